@@ -1,0 +1,2700 @@
+/* fogrt.h - v0.1 - a Monte Carlo path tracer for scenes filled with homogeneous fog - MIT license
+
+    fogrt renders triangle meshes and spheres inside one homogeneous participating medium
+    ("fog") by path tracing. It implements, step by step and in the open, the model of the
+    paper "Volumetric Ray Tracer in Homogeneous Media" (a CS184-based renderer): exponential
+    free-flight sampling, Beer-Lambert attenuation, the Henyey-Greenstein phase function,
+    the paper's Algorithm 1 with Russian roulette and next-event estimation, and its
+    one-bounce direct lighting baseline. The file reads top to bottom like a book; see the
+    chapter list at the start of the implementation.
+
+    DO THIS
+    =======
+    In exactly one C or C++ file, before including this header:
+
+        #define FOGRT_IMPLEMENTATION
+        #include "fogrt.h"
+
+    Everywhere else include it without the define. Link with -lm. Compile with -fopenmp to
+    render on all cores (optional; without it fogrt renders on one thread).
+
+    QUICK START
+    ===========
+        fogrt_scene *scene = NULL;
+        fogrt_scene_create(NULL, &scene);          // NULL desc: default allocator
+        fogrt_scene_add_default(scene);            // the fog-filled Cornell box
+        fogrt_scene_build(scene, NULL);            // BVH + feature analysis
+        fogrt_image img;
+        fogrt_image_alloc(&img, 320, 240, NULL);
+        fogrt_render_desc rd = {0};                 // zero = defaults everywhere
+        rd.width = 320; rd.height = 240;
+        fogrt_render(scene, &rd, &img, 64, NULL);   // add 64 samples per pixel
+        float *rgb = malloc(sizeof(float) * 3 * 320 * 240);
+        fogrt_image_resolve(&img, rgb);             // linear RGB mean
+        fogrt_write_pfm("fog.pfm", 320, 240, rgb);
+        fogrt_image_free(&img, NULL);
+        fogrt_scene_destroy(scene);
+
+    OPTIONS (define before including the implementation)
+    =======
+    FOGRT_API              prefix of every public declaration (default: extern)
+    FOGRT_STATIC           make every function static (private to one translation unit)
+    FOGRT_MALLOC(sz,u) / FOGRT_FREE(p,u)   default allocator (both or neither; default libc)
+    FOGRT_ASSERT(c)        programmer-error check (default: assert)
+    FOGRT_NO_MEDIUM        strip the fog: no free-flight sampling, transmittance or phase code
+    FOGRT_NO_GLASS         strip the refraction and glass BSDFs (they load as mirrors)
+    FOGRT_NO_EXACT_FRESNEL strip the exact dielectric Fresnel (Schlick only)
+    FOGRT_NO_STDIO         strip the PFM/PPM writers (no <stdio.h>)
+    FOGRT_BVH_BINS         compile-time default for fogrt_build_desc.bins (8)
+    FOGRT_MAX_PATH_VERTICES  hard cap on path vertices, a safety net behind Russian roulette
+                           (default 100000; never reached in practice, see Russian roulette)
+
+    CONVENTIONS
+    ===========
+    - Right-handed world, y up by convention (the camera's up vector says which way is up).
+    - Units: distances in scene units; sigma_t (the paper's lambda) per scene unit.
+    - Colours are linear RGB floats. Light intensity is radiant intensity (W/sr per channel);
+      emission is radiance.
+    - Directions: wo and wi both point AWAY from the interaction point (pbrt, Mitsuba). The
+      ray arriving at a point travels along d = -wo.
+    - Henyey-Greenstein: g > 0 scatters FORWARD, i.e. toward the propagation direction d;
+      the mean cosine between d and the new direction equals g.
+    - BSDF functions work in a local shading frame whose normal is +z. wo.z < 0 means the
+      ray arrives from the back (inside a refractive object).
+    - Triangles: counter-clockwise winding (seen from the front) gives the front side. Area
+      lights emit from the front side only. Reflecting surfaces are two-sided. Refractive
+      surfaces use the front (outward) side to tell entering from leaving.
+    - The medium fills all space outside refractive objects: a ray that refracts into a glass
+      or refraction object travels without fog until it leaves it. The camera sits in the fog.
+
+    ERRORS AND LOGGING
+    ==================
+    Every fallible call returns fogrt_result (FOGRT_RESULT_OK == 0); fogrt_result_string()
+    names it. Bad data (negative density, |g| > 1, NaN positions, ...) returns an error and
+    leaves the scene as it was. A NULL pointer where one is required is a programmer error
+    and hits FOGRT_ASSERT. An optional logger in fogrt_scene_desc receives one-line messages
+    (warnings and errors naming the parameter); fogrt is silent without it.
+
+    MEMORY
+    ======
+    All memory comes from the allocator in fogrt_scene_desc (NULL functions = FOGRT_MALLOC).
+    The scene copies the arrays it is given. The image (accumulation buffer) is a plain
+    struct the caller may fill with its own arrays or allocate with fogrt_image_alloc. No
+    globals, no hidden state: every random number comes from a stream derived from
+    (seed, pixel, sample index), so an image is the same bit for bit on 1 or N threads.
+
+    WHAT FOGRT DOES NOT DO
+    ======================
+    Heterogeneous or chromatic media (sigma_t is one number), textures, microfacet BSDFs,
+    spectral rendering, instancing, motion blur, GPU. Nested refractive objects are not
+    tracked (leaving any refractive object puts the ray back into the fog).
+
+    LICENSE
+    =======
+    MIT, see the end of the file.
+*/
+#ifndef FOGRT_H_INCLUDED
+#define FOGRT_H_INCLUDED
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdbool.h>
+
+#ifndef FOGRT_API
+#ifdef FOGRT_STATIC
+#define FOGRT_API static
+#else
+#define FOGRT_API extern
+#endif
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------------------------------
+   Results
+   One X-macro list makes both the enum and the message table, so they never drift apart.
+   ------------------------------------------------------------------------------------------ */
+#define FOGRT__RESULT_LIST(X) \
+    X(OK,                "ok") \
+    X(OUT_OF_MEMORY,     "out of memory") \
+    X(INVALID_ARGUMENT,  "invalid argument") \
+    X(INVALID_MATERIAL,  "invalid material (index out of range, or a non-finite or negative colour, or ior <= 0)") \
+    X(INVALID_GEOMETRY,  "invalid geometry (non-finite position, index out of range, or radius <= 0)") \
+    X(INVALID_LIGHT,     "invalid light (non-finite or negative intensity, or bad angles)") \
+    X(INVALID_CAMERA,    "invalid camera (fov outside (0,180), eye equals target, or negative lens)") \
+    X(INVALID_MEDIUM,    "invalid medium (sigma_t negative or non-finite, albedo outside [0,1], or |g| > 1)") \
+    X(TOO_LARGE,         "too large (more primitives, lights or pixels than fogrt can index)") \
+    X(NOT_BUILT,         "scene not built: call fogrt_scene_build after the last change") \
+    X(EMPTY_SCENE,       "the scene has no geometry and no light") \
+    X(IO_ERROR,          "file could not be opened, read or written") \
+    X(PARSE_ERROR,       "file is malformed") \
+    X(UNSUPPORTED,       "feature not supported (or stripped at compile time)") \
+    X(CANCELLED,         "cancelled by the progress callback")
+
+typedef enum fogrt_result {
+#define FOGRT__RESULT_ENUM(name, text) FOGRT_RESULT_##name,
+    FOGRT__RESULT_LIST(FOGRT__RESULT_ENUM)
+#undef FOGRT__RESULT_ENUM
+    FOGRT_RESULT_NUM,
+    FOGRT_RESULT_FORCE_U32 = 0x7FFFFFFF
+} fogrt_result;
+
+/* A short English sentence for a result code (never NULL). */
+FOGRT_API const char *fogrt_result_string(fogrt_result result);
+
+/* ------------------------------------------------------------------------------------------
+   Small value types
+   ------------------------------------------------------------------------------------------ */
+typedef struct fogrt_vec3 { float x, y, z; } fogrt_vec3;
+
+typedef struct fogrt_allocator {
+    void *(*alloc_fn)(size_t size, void *user_data);  /* NULL: FOGRT_MALLOC */
+    void (*free_fn)(void *ptr, void *user_data);      /* NULL: FOGRT_FREE */
+    void *user_data;
+} fogrt_allocator;
+
+typedef enum fogrt_log_level {
+    FOGRT_LOG_DEFAULT = 0, FOGRT_LOG_ERROR, FOGRT_LOG_WARNING, FOGRT_LOG_INFO,
+    FOGRT_LOG_NUM, FOGRT_LOG_FORCE_U32 = 0x7FFFFFFF
+} fogrt_log_level;
+
+typedef struct fogrt_logger {
+    void (*func)(fogrt_log_level level, const char *message, void *user_data); /* NULL: silent */
+    void *user_data;
+} fogrt_logger;
+
+/* ------------------------------------------------------------------------------------------
+   Scene description
+   ------------------------------------------------------------------------------------------ */
+typedef struct fogrt_scene fogrt_scene;   /* opaque; create with fogrt_scene_create */
+
+/* fogrt_scene_desc (all zero = defaults)
+     allocator   NULL functions: FOGRT_MALLOC / FOGRT_FREE
+     logger      NULL: silent                                                              */
+typedef struct fogrt_scene_desc {
+    fogrt_allocator allocator;
+    fogrt_logger logger;
+} fogrt_scene_desc;
+
+FOGRT_API fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogrt_scene **out_scene);
+FOGRT_API void fogrt_scene_destroy(fogrt_scene *scene);   /* NULL is a no-op */
+
+/* The four BSDFs of the paper. */
+typedef enum fogrt_bsdf_type {
+    FOGRT_BSDF_DEFAULT = 0,   /* = diffuse */
+    FOGRT_BSDF_DIFFUSE,       /* Lambertian, f = reflectance / pi */
+    FOGRT_BSDF_MIRROR,        /* perfect specular reflection, tinted by reflectance */
+    FOGRT_BSDF_REFRACTION,    /* specular transmission only; total internal reflection reflects */
+    FOGRT_BSDF_GLASS,         /* reflect with probability F (Fresnel), else refract */
+    FOGRT_BSDF_NUM,
+    FOGRT_BSDF_FORCE_U32 = 0x7FFFFFFF
+} fogrt_bsdf_type;
+
+/* fogrt_material_desc
+     type           FOGRT_BSDF_DEFAULT = diffuse
+     reflectance    diffuse albedo / mirror and glass reflection tint (zero is black, not a default)
+     transmittance  refraction and glass transmission tint
+     emission       radiance emitted from the front side; non-zero makes every primitive
+                    with this material an area light
+     ior            index of refraction inside the object relative to outside; 0 = 1.5     */
+typedef struct fogrt_material_desc {
+    fogrt_bsdf_type type;
+    fogrt_vec3 reflectance;
+    fogrt_vec3 transmittance;
+    fogrt_vec3 emission;
+    float ior;
+} fogrt_material_desc;
+
+FOGRT_API fogrt_result fogrt_scene_add_material(fogrt_scene *scene, const fogrt_material_desc *desc,
+                                                uint32_t *out_material_id);
+
+/* fogrt_mesh_desc
+     positions            3 floats per vertex (required)
+     normals              3 floats per vertex, optional shading normals (NULL: flat shading)
+     vertex_count
+     indices              3 per triangle; NULL: vertices 0,1,2 / 3,4,5 / ... form the triangles
+     triangle_count
+     material             material id of every triangle ...
+     triangle_materials   ... unless this per-triangle array is given                       */
+typedef struct fogrt_mesh_desc {
+    const float *positions;
+    const float *normals;
+    uint32_t vertex_count;
+    const uint32_t *indices;
+    uint32_t triangle_count;
+    uint32_t material;
+    const uint32_t *triangle_materials;
+} fogrt_mesh_desc;
+
+/* Adds a mesh. Degenerate (zero-area) triangles are kept but can never be hit. */
+FOGRT_API fogrt_result fogrt_scene_add_mesh(fogrt_scene *scene, const fogrt_mesh_desc *desc);
+FOGRT_API fogrt_result fogrt_scene_add_sphere(fogrt_scene *scene, fogrt_vec3 center, float radius,
+                                              uint32_t material);
+
+typedef enum fogrt_light_type {
+    FOGRT_LIGHT_DEFAULT = 0,  /* = point */
+    FOGRT_LIGHT_POINT,
+    FOGRT_LIGHT_SPOT,
+    FOGRT_LIGHT_NUM,
+    FOGRT_LIGHT_FORCE_U32 = 0x7FFFFFFF
+} fogrt_light_type;
+
+/* fogrt_light_desc: point and spot lights (area lights are emissive materials).
+     position, intensity  radiant intensity I (per channel); irradiance falls off as I / r^2
+     direction            spot axis (need not be unit length)
+     cutoff_deg           spot: half-angle where the intensity reaches zero (0..180)
+     beam_deg             spot: half-angle of full intensity (0..cutoff). Between the two the
+                          intensity falls linearly in the angle:
+                          I(theta) = I * clamp((cutoff - theta) / (cutoff - beam), 0, 1)
+                          (beam == cutoff: a hard-edged cone)
+     radius               > 0: the light is spread uniformly over a sphere of this radius, the
+                          paper's proposed fix for hard-edged spot shadows (soft shadows; the
+                          sphere itself is not visible)                                      */
+typedef struct fogrt_light_desc {
+    fogrt_light_type type;
+    fogrt_vec3 position;
+    fogrt_vec3 direction;
+    fogrt_vec3 intensity;
+    float cutoff_deg;
+    float beam_deg;
+    float radius;
+} fogrt_light_desc;
+
+FOGRT_API fogrt_result fogrt_scene_add_light(fogrt_scene *scene, const fogrt_light_desc *desc);
+
+/* Constant radiance arriving from infinity (rays that escape). upper_hemisphere_only: only
+   rays escaping with an upward (+y) direction see it (the CS184 <ambient> light).         */
+FOGRT_API fogrt_result fogrt_scene_set_environment(fogrt_scene *scene, fogrt_vec3 radiance,
+                                                   bool upper_hemisphere_only);
+
+/* fogrt_camera_desc
+     position, look_at    eye and target (must differ)
+     up                   zero: +y
+     fov_deg              field of view; 0 = 45
+     fov_is_horizontal    false: fov_deg is the vertical fov; true: horizontal
+     lens_radius          0 = pinhole; > 0 thin lens
+     focal_distance       thin lens: distance of the plane in focus; 0 = |look_at - position|  */
+typedef struct fogrt_camera_desc {
+    fogrt_vec3 position;
+    fogrt_vec3 look_at;
+    fogrt_vec3 up;
+    float fov_deg;
+    bool fov_is_horizontal;
+    float lens_radius;
+    float focal_distance;
+} fogrt_camera_desc;
+
+FOGRT_API fogrt_result fogrt_scene_set_camera(fogrt_scene *scene, const fogrt_camera_desc *desc);
+
+/* fogrt_medium_desc: the one homogeneous medium that fills the scene.
+     sigma_t   extinction coefficient sigma_t = sigma_a + sigma_s (the paper's lambda), per
+               scene unit; 0 = no medium (the renderer then pays nothing for fog)
+     albedo    single-scattering albedo sigma_s / sigma_t per channel, in [0,1]
+     g         Henyey-Greenstein asymmetry in [-1,1]; g > 0 forward. |g| >= FOGRT_HG_G_MAX
+               (0.9999) is clamped to +-FOGRT_HG_G_MAX and a warning is logged           */
+typedef struct fogrt_medium_desc {
+    float sigma_t;
+    fogrt_vec3 albedo;
+    float g;
+} fogrt_medium_desc;
+
+#define FOGRT_HG_G_MAX 0.9999f
+
+FOGRT_API fogrt_result fogrt_scene_set_medium(fogrt_scene *scene, const fogrt_medium_desc *desc);
+
+/* Adds the embedded default scene: the CS184 Cornell box (walls x = +-1, z = +-1, floor
+   y = 0, ceiling y = 1.5, red left wall, blue right wall, ceiling area light), a diffuse
+   sphere, a glass sphere, a spot light, fog (sigma_t 0.3, albedo 0.9, g 0.6) and a camera. */
+FOGRT_API fogrt_result fogrt_scene_add_default(fogrt_scene *scene);
+
+/* ------------------------------------------------------------------------------------------
+   Build: BVH and feature analysis
+   ------------------------------------------------------------------------------------------ */
+typedef enum fogrt_bvh_heuristic {
+    FOGRT_BVH_DEFAULT = 0,    /* = SAH */
+    FOGRT_BVH_SAH,            /* surface area heuristic: c_trav + c_int (A_l N_l + A_r N_r) / A */
+    FOGRT_BVH_VOLUME,         /* the paper's volume heuristic: H = N_l V_l + N_r V_r */
+    FOGRT_BVH_NUM,
+    FOGRT_BVH_FORCE_U32 = 0x7FFFFFFF
+} fogrt_bvh_heuristic;
+
+#ifndef FOGRT_BVH_BINS
+#define FOGRT_BVH_BINS 8
+#endif
+
+/* fogrt_build_desc (all zero = defaults)
+     heuristic       SAH
+     bins            FOGRT_BVH_BINS (8), at most 64
+     c_trav, c_int   traversal and intersection cost of the SAH, 1 and 1
+     max_leaf_size   4: largest leaf; a node is also split when the SAH prefers it       */
+typedef struct fogrt_build_desc {
+    fogrt_bvh_heuristic heuristic;
+    int bins;
+    float c_trav;
+    float c_int;
+    int max_leaf_size;
+} fogrt_build_desc;
+
+FOGRT_API fogrt_result fogrt_scene_build(fogrt_scene *scene, const fogrt_build_desc *desc);
+
+/* BVH node, 32 bytes (tinybvh's layout). A leaf iff prim_count > 0; its primitives are
+   prim_index[left_first .. left_first + prim_count). An inner node's children are nodes
+   left_first and left_first + 1. Node 0 is the root; node 1 is unused, so that every
+   sibling pair starts on an even index. Primitive ids: triangles first (0..T-1), then
+   spheres (T..T+S-1).                                                                      */
+typedef struct fogrt_bvh_node {
+    float bmin[3]; uint32_t left_first;
+    float bmax[3]; uint32_t prim_count;
+} fogrt_bvh_node;
+
+FOGRT_API void fogrt_scene_bvh(const fogrt_scene *scene, const fogrt_bvh_node **nodes,
+                               uint32_t *node_count, const uint32_t **prim_index);
+/* SAH cost of the built tree (c_trav per inner node, c_int per primitive, weighted by
+   surface area relative to the root): lets the SAH and the volume heuristic be compared. */
+FOGRT_API float fogrt_bvh_sah_cost(const fogrt_scene *scene);
+
+/* What the scene uses, found by fogrt_scene_build; the integrator skips everything else. */
+enum {
+    FOGRT_FEATURE_MEDIUM      = 1u << 0,  /* sigma_t > 0 */
+    FOGRT_FEATURE_FRESNEL     = 1u << 1,  /* a glass material is used */
+    FOGRT_FEATURE_REFRACTION  = 1u << 2,  /* a refraction or glass material is used */
+    FOGRT_FEATURE_AREA_LIGHTS = 1u << 3,
+    FOGRT_FEATURE_POINT_LIGHTS= 1u << 4,  /* point or spot */
+    FOGRT_FEATURE_SPOT_LIGHTS = 1u << 5,
+    FOGRT_FEATURE_ENVIRONMENT = 1u << 6,
+    FOGRT_FEATURE_SPHERES     = 1u << 7,
+    FOGRT_FEATURE_TRIANGLES   = 1u << 8
+};
+FOGRT_API uint32_t fogrt_scene_features(const fogrt_scene *scene);
+
+/* Counts and read-back, for tools and tests. */
+typedef struct fogrt_scene_info {
+    uint32_t triangle_count, sphere_count, material_count;
+    uint32_t light_count;        /* point + spot lights */
+    uint32_t area_light_count;   /* emissive meshes + emissive spheres (after build) */
+    fogrt_vec3 bounds_min, bounds_max;   /* of all geometry (after build) */
+    bool has_environment;
+    bool built;
+} fogrt_scene_info;
+FOGRT_API void fogrt_scene_get_info(const fogrt_scene *scene, fogrt_scene_info *info);
+FOGRT_API fogrt_result fogrt_scene_get_material(const fogrt_scene *scene, uint32_t id, fogrt_material_desc *out);
+FOGRT_API fogrt_result fogrt_scene_get_light(const fogrt_scene *scene, uint32_t index, fogrt_light_desc *out);
+FOGRT_API void fogrt_scene_get_camera(const fogrt_scene *scene, fogrt_camera_desc *out);
+FOGRT_API void fogrt_scene_get_medium(const fogrt_scene *scene, fogrt_medium_desc *out);
+/* Material of triangle i (i < triangle_count) or sphere i - triangle_count. */
+FOGRT_API uint32_t fogrt_scene_prim_material(const fogrt_scene *scene, uint32_t prim);
+
+/* ------------------------------------------------------------------------------------------
+   Ray queries (after fogrt_scene_build)
+   ------------------------------------------------------------------------------------------ */
+typedef struct fogrt_hit {
+    float t;            /* distance along the (unit) direction */
+    uint32_t prim;      /* primitive id (triangles first, then spheres) */
+    float u, v;         /* barycentrics of vertices 1 and 2 (triangles) */
+} fogrt_hit;
+
+/* Closest hit with tmin < t < tmax; d must be unit length. Returns false on a miss. */
+FOGRT_API bool fogrt_scene_intersect(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d,
+                                     float tmin, float tmax, fogrt_hit *hit);
+/* Any hit with tmin < t < tmax (shadow rays). */
+FOGRT_API bool fogrt_scene_occluded(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d,
+                                    float tmin, float tmax);
+/* The same closest-hit answer by testing every primitive: the reference for BVH tests. */
+FOGRT_API bool fogrt_scene_intersect_brute(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d,
+                                           float tmin, float tmax, fogrt_hit *hit);
+/* Ray-triangle (Moller-Trumbore) and ray-sphere tests on their own. */
+FOGRT_API bool fogrt_intersect_triangle(fogrt_vec3 o, fogrt_vec3 d, fogrt_vec3 v0, fogrt_vec3 v1,
+                                        fogrt_vec3 v2, float tmin, float tmax, float *t, float *u, float *v);
+FOGRT_API bool fogrt_intersect_sphere(fogrt_vec3 o, fogrt_vec3 d, fogrt_vec3 center, float radius,
+                                      float tmin, float tmax, float *t);
+
+/* ------------------------------------------------------------------------------------------
+   Sampling routines: pure functions of their uniform numbers u in [0,1).
+   Naming: fogrt_sample_X (the sampler), fogrt_X_pdf (its density), fogrt_invert_X.
+   ------------------------------------------------------------------------------------------ */
+/* Free flight (paper eq. 4-6): t = -ln(1 - u) / sigma_t, written with log1p.
+   sigma_t = 0 returns +infinity (the ray never collides).                                  */
+FOGRT_API float fogrt_sample_exponential(float u, float sigma_t);
+FOGRT_API float fogrt_exponential_pdf(float t, float sigma_t);        /* sigma_t exp(-sigma_t t) */
+FOGRT_API float fogrt_invert_exponential(float t, float sigma_t);     /* 1 - exp(-sigma_t t) */
+/* Beer-Lambert transmittance (paper eq. 7-8): T = exp(-sigma_t d). */
+FOGRT_API float fogrt_transmittance(float sigma_t, float distance);
+
+/* Henyey-Greenstein (paper eq. 9-12), physics convention: mu = cos(d, new direction).
+   p(mu) = (1 - g^2) / (4 pi (1 + g^2 - 2 g mu)^1.5)  per steradian.                        */
+FOGRT_API float fogrt_hg_phase(float mu, float g);
+/* Inverse-CDF sample of mu, in a form with no division by g (exact at g = 0, stable at
+   |g| -> 1): mu = (2u - (1-g))/D + 2g(1-g)(1+g)u(1-u)/D^2 with D = (1-g) + 2gu.             */
+FOGRT_API float fogrt_sample_hg_mu(float g, float u);
+/* Full direction sample around the propagation direction d = -wo; returns wi (unit) and the
+   pdf (per steradian, equal to the phase function, so the sample weight is exactly 1).    */
+FOGRT_API fogrt_vec3 fogrt_sample_hg(fogrt_vec3 wo, float g, float u1, float u2, float *pdf);
+/* Phase function / pdf for outward wo and wi: uses mu = -dot(wo, wi). */
+FOGRT_API float fogrt_hg_pdf(fogrt_vec3 wo, fogrt_vec3 wi, float g);
+
+/* Cosine-weighted hemisphere around +z (concentric disk map, then lift). pdf = cos/pi. */
+FOGRT_API fogrt_vec3 fogrt_sample_cosine_hemisphere(float u1, float u2);
+FOGRT_API float fogrt_cosine_hemisphere_pdf(float cos_theta);
+/* Uniform direction on the unit sphere. pdf = 1 / (4 pi). */
+FOGRT_API fogrt_vec3 fogrt_sample_uniform_sphere(float u1, float u2);
+FOGRT_API float fogrt_uniform_sphere_pdf(void);
+/* Uniform point on a triangle: returns barycentrics (b1, b2) of v1 and v2; pdf = 1/area. */
+FOGRT_API void fogrt_sample_triangle(float u1, float u2, float *b1, float *b2);
+/* Direction from p toward a sphere, uniform in the cone of directions the sphere subtends
+   (solid angle sampling). Returns the unit direction; *pdf per steradian. If p is inside
+   the sphere, samples the uniform sphere of directions instead.                            */
+FOGRT_API fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 p, fogrt_vec3 center, float radius,
+                                                     float u1, float u2, float *pdf);
+FOGRT_API float fogrt_sphere_solid_angle_pdf(fogrt_vec3 p, fogrt_vec3 center, float radius);
+/* Spot light profile: fraction of full intensity at angle theta (cos_theta) from the axis. */
+FOGRT_API float fogrt_spot_falloff(float cos_theta, float cutoff_deg, float beam_deg);
+
+/* Fresnel reflectance of a dielectric; cos_i > 0 on the outside (incident medium ior 1),
+   cos_i < 0 from inside; eta = n_inside / n_outside. Both return 1 on total internal
+   reflection. */
+FOGRT_API float fogrt_fresnel_schlick(float cos_i, float eta);
+FOGRT_API float fogrt_fresnel_dielectric(float cos_i, float eta);
+/* Mirror wo about n (both unit): 2 (wo.n) n - wo. */
+FOGRT_API fogrt_vec3 fogrt_reflect(fogrt_vec3 wo, fogrt_vec3 n);
+/* Refract wo through a surface with normal n (wo on either side; eta = n_inside/n_outside,
+   the inside being opposite n). Returns false on total internal reflection.             */
+FOGRT_API bool fogrt_refract(fogrt_vec3 wo, fogrt_vec3 n, float eta, fogrt_vec3 *wi);
+
+/* ------------------------------------------------------------------------------------------
+   BSDFs, in the local shading frame (normal = +z)
+   ------------------------------------------------------------------------------------------ */
+typedef enum fogrt_fresnel {
+    FOGRT_FRESNEL_DEFAULT = 0,  /* = Schlick, as in the paper */
+    FOGRT_FRESNEL_SCHLICK,
+    FOGRT_FRESNEL_EXACT,        /* exact unpolarised dielectric Fresnel */
+    FOGRT_FRESNEL_NUM,
+    FOGRT_FRESNEL_FORCE_U32 = 0x7FFFFFFF
+} fogrt_fresnel;
+
+typedef struct fogrt_bsdf_sample {
+    fogrt_vec3 wi;      /* sampled direction (unit) */
+    fogrt_vec3 weight;  /* f |cos| / pdf */
+    float pdf;          /* per steradian, or the discrete probability for a delta lobe */
+    bool is_delta;      /* a specular lobe (mirror, refraction) */
+    bool is_transmission;
+} fogrt_bsdf_sample;
+
+/* Samples wi given wo; u_lobe chooses between reflection and refraction (glass), u1 and u2
+   the direction. Returns false if no direction was produced (e.g. wo on the horizon).    */
+FOGRT_API bool fogrt_bsdf_sample_dir(const fogrt_material_desc *m, fogrt_fresnel fresnel,
+                                     fogrt_vec3 wo, float u_lobe, float u1, float u2,
+                                     fogrt_bsdf_sample *out);
+/* f(wo, wi) without the cosine; zero for the specular BSDFs (they are deltas). */
+FOGRT_API fogrt_vec3 fogrt_bsdf_eval(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi);
+/* pdf of fogrt_bsdf_sample_dir producing wi; zero for the specular BSDFs. */
+FOGRT_API float fogrt_bsdf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi);
+
+/* ------------------------------------------------------------------------------------------
+   Random numbers: PCG32 (O'Neill), one small state per stream
+   ------------------------------------------------------------------------------------------ */
+typedef struct fogrt_rng { uint64_t state, inc; } fogrt_rng;
+FOGRT_API void fogrt_rng_seed(fogrt_rng *rng, uint64_t seed, uint64_t stream);
+FOGRT_API uint32_t fogrt_rng_u32(fogrt_rng *rng);
+/* Uniform float in [0, 1 - 2^-24]: never 1. */
+FOGRT_API float fogrt_rng_float(fogrt_rng *rng);
+
+/* ------------------------------------------------------------------------------------------
+   Rendering
+   ------------------------------------------------------------------------------------------ */
+typedef enum fogrt_integrator {
+    FOGRT_INTEGRATOR_DEFAULT = 0,  /* = path */
+    FOGRT_INTEGRATOR_PATH,         /* global illumination, the paper's Algorithm 1 */
+    FOGRT_INTEGRATOR_DIRECT,       /* one-bounce direct lighting, the paper's baseline */
+    FOGRT_INTEGRATOR_NUM,
+    FOGRT_INTEGRATOR_FORCE_U32 = 0x7FFFFFFF
+} fogrt_integrator;
+
+typedef struct fogrt_progress {
+    int rows_done, rows_total;     /* of the current fogrt_render call */
+    int samples_per_pixel;         /* added by the current call */
+} fogrt_progress;
+
+/* fogrt_render_desc (all zero = defaults)
+     width, height     image size; must match the image (0: the image's size)
+     integrator        path
+     fresnel           Schlick
+     max_depth         bounces (surface or fog scattering events) after the camera ray;
+                       0 = 64, -1 = unlimited (Russian roulette still ends every path)
+     rr_depth          Russian roulette starts after this many bounces; 0 = 3
+     no_nee            true: no next-event estimation (light found only by hitting it, the
+                       paper's "without importance sampling")
+     no_mis            true: next-event estimation without multiple importance sampling
+                       (emitters found by BSDF/phase sampling are then not counted)
+     light_samples     samples per area light at each next-event estimate (CS184 -l); 0 = 1
+     seed              base seed of every random stream
+     threads           0 = all OpenMP threads; ignored without OpenMP
+     progress          optional; called between row blocks; return false to cancel        */
+typedef struct fogrt_render_desc {
+    int width, height;
+    fogrt_integrator integrator;
+    fogrt_fresnel fresnel;
+    int max_depth;
+    int rr_depth;
+    bool no_nee;
+    bool no_mis;
+    int light_samples;
+    uint64_t seed;
+    int threads;
+    bool (*progress)(const fogrt_progress *progress, void *user_data);
+    void *user_data;
+} fogrt_render_desc;
+
+/* Accumulation buffer owned by the caller: per pixel the sum of sample radiance (RGB), the
+   sum of squared sample luminance, and the sample count. Adding samples is progressive. */
+typedef struct fogrt_image {
+    int width, height;
+    float *sum;          /* 3 * width * height */
+    float *sum_sq;       /* width * height: sum of luminance^2 */
+    uint32_t *count;     /* width * height */
+    uint64_t rejected;   /* non-finite samples seen and dropped */
+} fogrt_image;
+
+FOGRT_API fogrt_result fogrt_image_alloc(fogrt_image *img, int width, int height, const fogrt_allocator *allocator);
+FOGRT_API void fogrt_image_free(fogrt_image *img, const fogrt_allocator *allocator);
+FOGRT_API void fogrt_image_clear(fogrt_image *img);
+/* Mean radiance per pixel, 3 floats per pixel, rows from the top. */
+FOGRT_API void fogrt_image_resolve(const fogrt_image *img, float *rgb);
+
+typedef struct fogrt_error_estimate {
+    double relative_error;   /* sqrt(sum_p Var[mean_p]) / sqrt(sum_p mean_p^2), luminance */
+    double mean_luminance;
+    uint64_t samples;
+    uint64_t rejected;
+} fogrt_error_estimate;
+/* The render's own estimate of its relative RMS error, from per-pixel sample variance. */
+FOGRT_API void fogrt_image_error(const fogrt_image *img, fogrt_error_estimate *out);
+
+typedef struct fogrt_render_stats {
+    uint64_t camera_rays;    /* samples taken */
+    uint64_t rays;           /* all rays traced (camera, bounce and shadow) */
+    uint64_t rejected;       /* non-finite samples dropped in this call */
+} fogrt_render_stats;
+
+/* Adds samples_per_pixel samples to every pixel of img. The same (seed, pixel, sample
+   index) always gives the same sample, so splitting the samples over calls or threads
+   does not change the image.                                                              */
+FOGRT_API fogrt_result fogrt_render(const fogrt_scene *scene, const fogrt_render_desc *desc,
+                                    fogrt_image *img, int samples_per_pixel, fogrt_render_stats *stats);
+/* One radiance sample along a ray (for tests and custom cameras). */
+FOGRT_API fogrt_vec3 fogrt_trace(const fogrt_scene *scene, const fogrt_render_desc *desc,
+                                 fogrt_vec3 o, fogrt_vec3 d, fogrt_rng *rng, uint64_t *ray_count);
+/* Camera ray through image position (px, py) in pixels (0..width, 0..height, y down). */
+FOGRT_API void fogrt_camera_ray(const fogrt_scene *scene, int width, int height, float px, float py,
+                                float lens_u1, float lens_u2, fogrt_vec3 *o, fogrt_vec3 *d);
+
+/* ------------------------------------------------------------------------------------------
+   Output helpers (no dependencies)
+   ------------------------------------------------------------------------------------------ */
+typedef enum fogrt_tonemap {
+    FOGRT_TONEMAP_DEFAULT = 0,   /* = sRGB */
+    FOGRT_TONEMAP_SRGB,          /* clamp to [0,1], sRGB curve */
+    FOGRT_TONEMAP_GAMMA22,       /* clamp to [0,1], x^(1/2.2) */
+    FOGRT_TONEMAP_NUM,
+    FOGRT_TONEMAP_FORCE_U32 = 0x7FFFFFFF
+} fogrt_tonemap;
+/* Linear RGB floats to 8-bit RGB, with an exposure multiplier (0 = 1). NaN maps to 0. */
+FOGRT_API void fogrt_tonemap_rgb8(const float *rgb, int width, int height, float exposure,
+                                  fogrt_tonemap mode, unsigned char *out);
+#ifndef FOGRT_NO_STDIO
+/* Little-endian PFM (linear float, rows stored bottom-up as the format wants). */
+FOGRT_API fogrt_result fogrt_write_pfm(const char *path, int width, int height, const float *rgb);
+/* Binary PPM (P6) from 8-bit RGB. */
+FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, const unsigned char *rgb8);
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* FOGRT_H_INCLUDED */
+
+/* ==========================================================================================
+
+      IMPLEMENTATION
+
+   The chapters follow the order of the paper and of docs/tutorial.md:
+     1. Configuration and small helpers         7. The scene: storage and validation
+     2. Vector maths and the orthonormal basis  8. The BVH: binned SAH build (or volume heuristic)
+     3. Random numbers (PCG32)                  9. Ray queries: traversal and primitives
+     4. Sampling the free-flight distance      10. Lights: next-event estimation
+     5. The Henyey-Greenstein phase function   11. The camera
+     6. BSDFs and Fresnel                      12. The integrators: Algorithm 1, one bounce
+                                               13. Rendering, error estimate, output
+                                               14. The default scene
+   ========================================================================================== */
+#ifdef FOGRT_IMPLEMENTATION
+#ifndef FOGRT_IMPLEMENTATION_INCLUDED
+#define FOGRT_IMPLEMENTATION_INCLUDED
+
+#include <math.h>
+#include <string.h>
+#include <float.h>
+#ifndef FOGRT_NO_STDIO
+#include <stdio.h>
+#endif
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/* ------------------------------------------------------------------------------------------
+   1. Configuration and small helpers
+   ------------------------------------------------------------------------------------------ */
+#if defined(FOGRT_MALLOC) && !defined(FOGRT_FREE) || !defined(FOGRT_MALLOC) && defined(FOGRT_FREE)
+#error "fogrt: define both FOGRT_MALLOC and FOGRT_FREE, or neither"
+#endif
+#ifndef FOGRT_MALLOC
+#include <stdlib.h>
+#define FOGRT_MALLOC(size, user) ((void)(user), malloc(size))
+#define FOGRT_FREE(ptr, user) ((void)(user), free(ptr))
+#endif
+#ifndef FOGRT_ASSERT
+#include <assert.h>
+#define FOGRT_ASSERT(c) assert(c)
+#endif
+#ifndef FOGRT_MAX_PATH_VERTICES
+#define FOGRT_MAX_PATH_VERTICES 100000
+#endif
+
+/* Every private function goes through this macro: static, and "maybe unused" on GCC/Clang so
+   that features stripped at compile time do not leave warnings behind. */
+#if defined(__GNUC__) || defined(__clang__)
+#define FOGRT__PRIVATE static __attribute__((unused))
+#else
+#define FOGRT__PRIVATE static
+#endif
+#ifdef FOGRT_STATIC
+#define FOGRT__PUBLIC static
+#else
+#define FOGRT__PUBLIC
+#endif
+
+#define FOGRT__PI      3.14159265358979323846f
+#define FOGRT__INV_PI  0.31830988618379067154f
+#define FOGRT__INV_4PI 0.07957747154594766788f
+#define FOGRT__ONE_MINUS_EPS 0x1.fffffep-1f   /* the largest float below 1 */
+
+/* Ternary min/max: gcc turns fminf/fmaxf into library calls in hot loops. */
+#define FOGRT__MIN(a, b) ((a) < (b) ? (a) : (b))
+#define FOGRT__MAX(a, b) ((a) > (b) ? (a) : (b))
+#define FOGRT__CLAMP(x, lo, hi) FOGRT__MIN(FOGRT__MAX(x, lo), hi)
+#define FOGRT__DEF(val, def) ((val) == 0 ? (def) : (val))   /* "zero means default" */
+
+FOGRT__PUBLIC const char *fogrt_result_string(fogrt_result result)
+{
+    static const char *names[FOGRT_RESULT_NUM] = {
+#define FOGRT__RESULT_TEXT(name, text) text,
+        FOGRT__RESULT_LIST(FOGRT__RESULT_TEXT)
+#undef FOGRT__RESULT_TEXT
+    };
+    if ((unsigned)result >= (unsigned)FOGRT_RESULT_NUM) return "unknown result code";
+    return names[result];
+}
+
+FOGRT__PRIVATE void *fogrt__alloc(const fogrt_allocator *a, size_t size)
+{
+    if (a && a->alloc_fn) return a->alloc_fn(size, a->user_data);
+    return FOGRT_MALLOC(size, a ? a->user_data : NULL);
+}
+FOGRT__PRIVATE void fogrt__free(const fogrt_allocator *a, void *ptr)
+{
+    if (!ptr) return;
+    if (a && a->free_fn) a->free_fn(ptr, a->user_data);
+    else FOGRT_FREE(ptr, a ? a->user_data : NULL);
+}
+FOGRT__PRIVATE bool fogrt__finite(float x) { return x - x == 0.0f; }  /* false for NaN, +-Inf */
+
+/* ------------------------------------------------------------------------------------------
+   2. Vector maths and the orthonormal basis
+   ------------------------------------------------------------------------------------------ */
+typedef fogrt_vec3 fogrt__v3;
+FOGRT__PRIVATE fogrt__v3 fogrt__v(float x, float y, float z) { fogrt__v3 r; r.x = x; r.y = y; r.z = z; return r; }
+FOGRT__PRIVATE fogrt__v3 fogrt__add(fogrt__v3 a, fogrt__v3 b) { return fogrt__v(a.x + b.x, a.y + b.y, a.z + b.z); }
+FOGRT__PRIVATE fogrt__v3 fogrt__sub(fogrt__v3 a, fogrt__v3 b) { return fogrt__v(a.x - b.x, a.y - b.y, a.z - b.z); }
+FOGRT__PRIVATE fogrt__v3 fogrt__mul(fogrt__v3 a, fogrt__v3 b) { return fogrt__v(a.x * b.x, a.y * b.y, a.z * b.z); }
+FOGRT__PRIVATE fogrt__v3 fogrt__scale(fogrt__v3 a, float s) { return fogrt__v(a.x * s, a.y * s, a.z * s); }
+FOGRT__PRIVATE fogrt__v3 fogrt__madd(fogrt__v3 a, fogrt__v3 b, float s) { return fogrt__v(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s); }
+FOGRT__PRIVATE fogrt__v3 fogrt__neg(fogrt__v3 a) { return fogrt__v(-a.x, -a.y, -a.z); }
+FOGRT__PRIVATE float fogrt__dot(fogrt__v3 a, fogrt__v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+FOGRT__PRIVATE fogrt__v3 fogrt__cross(fogrt__v3 a, fogrt__v3 b)
+{
+    return fogrt__v(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+FOGRT__PRIVATE float fogrt__length(fogrt__v3 a) { return sqrtf(fogrt__dot(a, a)); }
+FOGRT__PRIVATE fogrt__v3 fogrt__normalize(fogrt__v3 a)
+{
+    float len = fogrt__length(a);
+    return len > 0.0f ? fogrt__scale(a, 1.0f / len) : fogrt__v(0.0f, 0.0f, 1.0f);
+}
+FOGRT__PRIVATE float fogrt__max3(fogrt__v3 a) { return FOGRT__MAX(a.x, FOGRT__MAX(a.y, a.z)); }
+FOGRT__PRIVATE float fogrt__luminance(fogrt__v3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+FOGRT__PRIVATE bool fogrt__v3_finite(fogrt__v3 a) { return fogrt__finite(a.x) && fogrt__finite(a.y) && fogrt__finite(a.z); }
+FOGRT__PRIVATE bool fogrt__is_black(fogrt__v3 a) { return a.x == 0.0f && a.y == 0.0f && a.z == 0.0f; }
+FOGRT__PRIVATE float fogrt__comp(fogrt__v3 a, int axis) { return axis == 0 ? a.x : (axis == 1 ? a.y : a.z); }
+
+/* Orthonormal basis around a unit vector n (Duff et al. 2017, "Building an Orthonormal
+   Basis, Revisited"): no branch on a threshold, exact for n = +-z, any axis-parallel n. */
+typedef struct fogrt__frame { fogrt__v3 s, t, n; } fogrt__frame;
+FOGRT__PRIVATE fogrt__frame fogrt__frame_from_z(fogrt__v3 n)
+{
+    fogrt__frame f;
+    float sign = copysignf(1.0f, n.z);
+    float a = -1.0f / (sign + n.z);
+    float b = n.x * n.y * a;
+    f.s = fogrt__v(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    f.t = fogrt__v(b, sign + n.y * n.y * a, -n.y);
+    f.n = n;
+    return f;
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__to_local(const fogrt__frame *f, fogrt__v3 v)
+{
+    return fogrt__v(fogrt__dot(v, f->s), fogrt__dot(v, f->t), fogrt__dot(v, f->n));
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__to_world(const fogrt__frame *f, fogrt__v3 v)
+{
+    return fogrt__add(fogrt__add(fogrt__scale(f->s, v.x), fogrt__scale(f->t, v.y)), fogrt__scale(f->n, v.z));
+}
+
+/* ------------------------------------------------------------------------------------------
+   3. Random numbers: PCG32 (M. O'Neill, pcg-random.org), one stream per (pixel, sample)
+   ------------------------------------------------------------------------------------------ */
+FOGRT__PUBLIC uint32_t fogrt_rng_u32(fogrt_rng *rng)
+{
+    uint64_t old = rng->state;
+    uint32_t xorshifted, rot;
+    rng->state = old * 6364136223846793005ULL + rng->inc;
+    xorshifted = (uint32_t)(((old >> 18u) ^ old) >> 27u);
+    rot = (uint32_t)(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+}
+FOGRT__PUBLIC void fogrt_rng_seed(fogrt_rng *rng, uint64_t seed, uint64_t stream)
+{
+    rng->state = 0u;
+    rng->inc = (stream << 1u) | 1u;
+    (void)fogrt_rng_u32(rng);
+    rng->state += seed;
+    (void)fogrt_rng_u32(rng);
+}
+FOGRT__PUBLIC float fogrt_rng_float(fogrt_rng *rng)
+{
+    return (float)(fogrt_rng_u32(rng) >> 8) * 0x1p-24f;   /* 24 random bits: [0, 1 - 2^-24] */
+}
+/* A 64-bit mix (SplitMix64 finaliser) to turn (seed, pixel) into a well spread state. */
+FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x)
+{
+    x += 0x9E3779B97F4A7C15ULL;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+    return x ^ (x >> 31);
+}
+
+/* ------------------------------------------------------------------------------------------
+   4. Sampling the free-flight distance (paper eq. 4-8)
+   In a homogeneous medium the distance to the next collision is exponential with rate
+   sigma_t: pdf(t) = sigma_t exp(-sigma_t t). Inverting its CDF 1 - exp(-sigma_t t) = u gives
+   t = -ln(1 - u) / sigma_t; log1p keeps it accurate for small u. u < 1 always (the RNG never
+   returns 1), so t is finite; the tail beyond 16.6 mean free paths is cut (bias ~ 6e-8).
+   ------------------------------------------------------------------------------------------ */
+FOGRT__PUBLIC float fogrt_sample_exponential(float u, float sigma_t)
+{
+    if (!(sigma_t > 0.0f)) return INFINITY;            /* no medium: never collide */
+    return -log1pf(-FOGRT__MIN(u, FOGRT__ONE_MINUS_EPS)) / sigma_t;
+}
+FOGRT__PUBLIC float fogrt_exponential_pdf(float t, float sigma_t)
+{
+    if (!(sigma_t > 0.0f) || t < 0.0f) return 0.0f;
+    return sigma_t * expf(-sigma_t * t);
+}
+FOGRT__PUBLIC float fogrt_invert_exponential(float t, float sigma_t)
+{
+    if (!(sigma_t > 0.0f) || t <= 0.0f) return 0.0f;
+    return -expm1f(-sigma_t * t);
+}
+/* Beer-Lambert: the fraction of light that crosses a distance without colliding. */
+FOGRT__PUBLIC float fogrt_transmittance(float sigma_t, float distance)
+{
+    if (!(sigma_t > 0.0f) || !(distance > 0.0f)) return 1.0f;
+    return expf(-sigma_t * distance);   /* underflows to 0 for optical depth > ~87: correct */
+}
+
+/* ------------------------------------------------------------------------------------------
+   5. The Henyey-Greenstein phase function (paper eq. 9-12)
+   ------------------------------------------------------------------------------------------ */
+FOGRT__PRIVATE float fogrt__clamp_g(float g)
+{
+    if (!(g == g)) return 0.0f;
+    return FOGRT__CLAMP(g, -FOGRT_HG_G_MAX, FOGRT_HG_G_MAX);
+}
+/* p(mu) = (1 - g^2) / (4 pi (1 + g^2 - 2 g mu)^(3/2)). The base 1 + g^2 - 2 g mu is written
+   as a sum of non-negative terms, so it does not cancel near the peak when |g| -> 1:
+   g >= 0: (1 - g)^2 + 2g(1 - mu);  g < 0: (1 + g)^2 - 2g(1 + mu).                          */
+FOGRT__PUBLIC float fogrt_hg_phase(float mu, float g)
+{
+    float base;
+    g = fogrt__clamp_g(g);
+    mu = FOGRT__CLAMP(mu, -1.0f, 1.0f);
+    base = g >= 0.0f ? (1.0f - g) * (1.0f - g) + 2.0f * g * (1.0f - mu)
+                     : (1.0f + g) * (1.0f + g) - 2.0f * g * (1.0f + mu);
+    return FOGRT__INV_4PI * (1.0f - g) * (1.0f + g) / (base * sqrtf(base));
+}
+/* Inverse CDF. The textbook form mu = (1 + g^2 - s^2) / (2g), s = (1 - g^2)/(1 - g + 2gu),
+   divides by g and cancels badly for small |g| (error ~ 1e-7/|g|). Expanding it gives the
+   same mu with no division by g (see docs/sampling-notes):
+     D = (1 - g) + 2 g u,  mu = (2u - (1 - g)) / D + 2 g (1 - g)(1 + g) u (1 - u) / D^2.
+   g = 0 gives mu = 2u - 1 (isotropic) with no special branch; u = 0 gives -1, u -> 1 gives 1. */
+FOGRT__PUBLIC float fogrt_sample_hg_mu(float g, float u)
+{
+    float D, mu;
+    g = fogrt__clamp_g(g);
+    u = FOGRT__CLAMP(u, 0.0f, 1.0f);
+    D = (1.0f - g) + 2.0f * g * u;
+    mu = (2.0f * u - (1.0f - g)) / D + 2.0f * g * (1.0f - g) * (1.0f + g) * u * (1.0f - u) / (D * D);
+    return FOGRT__CLAMP(mu, -1.0f, 1.0f);
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg(fogrt_vec3 wo, float g, float u1, float u2, float *pdf)
+{
+    fogrt__v3 d = fogrt__neg(fogrt__normalize(wo));   /* propagation direction */
+    float mu = fogrt_sample_hg_mu(g, u1);
+    float sin_theta = sqrtf(FOGRT__MAX(0.0f, (1.0f - mu) * (1.0f + mu)));
+    float phi = 2.0f * FOGRT__PI * u2;
+    fogrt__frame f = fogrt__frame_from_z(d);
+    fogrt__v3 wi = fogrt__to_world(&f, fogrt__v(sin_theta * cosf(phi), sin_theta * sinf(phi), mu));
+    if (pdf) *pdf = fogrt_hg_phase(mu, g);
+    return fogrt__normalize(wi);
+}
+FOGRT__PUBLIC float fogrt_hg_pdf(fogrt_vec3 wo, fogrt_vec3 wi, float g)
+{
+    return fogrt_hg_phase(-fogrt__dot(wo, wi), g);    /* mu = cos(d, wi) with d = -wo */
+}
+
+/* Cosine-weighted hemisphere: Shirley-Chiu concentric map of the square to the disk, then
+   lift to the hemisphere (Malley's method). pdf = cos(theta) / pi. */
+FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *y)
+{
+    float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f, r, phi;
+    if (a == 0.0f && b == 0.0f) { *x = 0.0f; *y = 0.0f; return; }
+    if (fabsf(a) > fabsf(b)) { r = a; phi = (FOGRT__PI / 4.0f) * (b / a); }
+    else                     { r = b; phi = FOGRT__PI / 2.0f - (FOGRT__PI / 4.0f) * (a / b); }
+    *x = r * cosf(phi);
+    *y = r * sinf(phi);
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_cosine_hemisphere(float u1, float u2)
+{
+    float x, y;
+    fogrt__concentric_disk(u1, u2, &x, &y);
+    return fogrt__v(x, y, sqrtf(FOGRT__MAX(0.0f, 1.0f - x * x - y * y)));
+}
+FOGRT__PUBLIC float fogrt_cosine_hemisphere_pdf(float cos_theta)
+{
+    return cos_theta > 0.0f ? cos_theta * FOGRT__INV_PI : 0.0f;
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_uniform_sphere(float u1, float u2)
+{
+    float z = 1.0f - 2.0f * u1;
+    float r = sqrtf(FOGRT__MAX(0.0f, (1.0f - z) * (1.0f + z)));
+    float phi = 2.0f * FOGRT__PI * u2;
+    return fogrt__v(r * cosf(phi), r * sinf(phi), z);
+}
+FOGRT__PUBLIC float fogrt_uniform_sphere_pdf(void) { return FOGRT__INV_4PI; }
+/* Uniform on a triangle: b0 = 1 - sqrt(u1), b1 = sqrt(u1)(1 - u2), b2 = sqrt(u1) u2. */
+FOGRT__PUBLIC void fogrt_sample_triangle(float u1, float u2, float *b1, float *b2)
+{
+    float su = sqrtf(FOGRT__MAX(0.0f, u1));
+    *b1 = su * (1.0f - u2);
+    *b2 = su * u2;
+}
+/* Cone of directions subtended by a sphere: cos(theta_max) = sqrt(1 - r^2/d^2). 1 - cos is
+   formed as sin^2 / (1 + cos), which stays accurate for a small or distant sphere. */
+FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 p, fogrt__v3 c, float r, float *dist)
+{
+    fogrt__v3 pc = fogrt__sub(c, p);
+    float d2 = fogrt__dot(pc, pc), sin2_max, cos_max;
+    *dist = sqrtf(d2);
+    if (d2 <= r * r) return -1.0f;                       /* inside (or on) the sphere */
+    sin2_max = r * r / d2;
+    cos_max = sqrtf(FOGRT__MAX(0.0f, 1.0f - sin2_max));
+    return sin2_max / (1.0f + cos_max);
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 p, fogrt_vec3 center, float radius,
+                                                         float u1, float u2, float *pdf)
+{
+    float dist, omc = fogrt__sphere_one_minus_cos_max(p, center, radius, &dist);
+    float one_minus_cos, cos_theta, sin_theta, phi;
+    fogrt__frame f;
+    if (omc <= 0.0f) {   /* inside: every direction sees the sphere */
+        if (pdf) *pdf = FOGRT__INV_4PI;
+        return fogrt_sample_uniform_sphere(u1, u2);
+    }
+    one_minus_cos = u1 * omc;
+    cos_theta = 1.0f - one_minus_cos;
+    sin_theta = sqrtf(FOGRT__MAX(0.0f, one_minus_cos * (2.0f - one_minus_cos)));
+    phi = 2.0f * FOGRT__PI * u2;
+    f = fogrt__frame_from_z(fogrt__scale(fogrt__sub(center, p), 1.0f / dist));
+    if (pdf) *pdf = 1.0f / (2.0f * FOGRT__PI * omc);
+    return fogrt__normalize(fogrt__to_world(&f, fogrt__v(sin_theta * cosf(phi), sin_theta * sinf(phi), cos_theta)));
+}
+FOGRT__PUBLIC float fogrt_sphere_solid_angle_pdf(fogrt_vec3 p, fogrt_vec3 center, float radius)
+{
+    float dist, omc = fogrt__sphere_one_minus_cos_max(p, center, radius, &dist);
+    return omc <= 0.0f ? FOGRT__INV_4PI : 1.0f / (2.0f * FOGRT__PI * omc);
+}
+/* Spot profile: full inside the beam, linear in the angle down to zero at the cutoff. */
+FOGRT__PUBLIC float fogrt_spot_falloff(float cos_theta, float cutoff_deg, float beam_deg)
+{
+    float theta = acosf(FOGRT__CLAMP(cos_theta, -1.0f, 1.0f)) * (180.0f / FOGRT__PI);
+    if (!(cutoff_deg > beam_deg)) return theta <= cutoff_deg ? 1.0f : 0.0f;   /* hard cone */
+    return FOGRT__CLAMP((cutoff_deg - theta) / (cutoff_deg - beam_deg), 0.0f, 1.0f);
+}
+
+/* ------------------------------------------------------------------------------------------
+   6. BSDFs and Fresnel
+   All four BSDFs work in the local shading frame (normal +z). Diffuse and mirror reflect on
+   both sides (they answer on the side wo is on); refraction and glass use the sign of wo.z
+   to tell entering (wo.z > 0) from leaving (wo.z < 0).
+   ------------------------------------------------------------------------------------------ */
+/* Schlick: F = R0 + (1 - R0)(1 - c)^5 with R0 = ((eta-1)/(eta+1))^2, and c the cosine on the
+   optically thinner side: the incident cosine when entering, the transmitted one when
+   leaving (using cos_i there would be wrong). Total internal reflection is tested first. */
+FOGRT__PUBLIC float fogrt_fresnel_schlick(float cos_i, float eta)
+{
+    float r0 = (eta - 1.0f) / (eta + 1.0f), c, m;
+    r0 *= r0;
+    cos_i = FOGRT__CLAMP(cos_i, -1.0f, 1.0f);
+    if (cos_i >= 0.0f) {
+        c = cos_i;
+    } else {                                            /* leaving: n = eta -> n = 1 */
+        float sin2_t = (1.0f - cos_i * cos_i) * eta * eta;
+        if (sin2_t >= 1.0f) return 1.0f;                /* total internal reflection */
+        c = sqrtf(1.0f - sin2_t);
+    }
+    m = 1.0f - c;
+    return r0 + (1.0f - r0) * m * m * m * m * m;
+}
+#ifndef FOGRT_NO_EXACT_FRESNEL
+/* Exact unpolarised Fresnel of a dielectric: the mean of the s and p reflectances. */
+FOGRT__PUBLIC float fogrt_fresnel_dielectric(float cos_i, float eta)
+{
+    float sin2_t, cos_t, r_par, r_perp;
+    cos_i = FOGRT__CLAMP(cos_i, -1.0f, 1.0f);
+    if (cos_i < 0.0f) { eta = 1.0f / eta; cos_i = -cos_i; }   /* from inside */
+    sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1.0f) return 1.0f;                          /* total internal reflection */
+    cos_t = sqrtf(1.0f - sin2_t);
+    r_par = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return 0.5f * (r_par * r_par + r_perp * r_perp);
+}
+#else
+FOGRT__PUBLIC float fogrt_fresnel_dielectric(float cos_i, float eta) { return fogrt_fresnel_schlick(cos_i, eta); }
+#endif
+FOGRT__PUBLIC fogrt_vec3 fogrt_reflect(fogrt_vec3 wo, fogrt_vec3 n)
+{
+    return fogrt__sub(fogrt__scale(n, 2.0f * fogrt__dot(wo, n)), wo);
+}
+/* Snell's law: wi = -wo/eta + (cos_i/eta - cos_t) n, after flipping n (and eta) to wo's side. */
+FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 wo, fogrt_vec3 n, float eta, fogrt_vec3 *wi)
+{
+    float cos_i = fogrt__dot(n, wo), sin2_i, sin2_t, cos_t;
+    if (cos_i < 0.0f) { eta = 1.0f / eta; cos_i = -cos_i; n = fogrt__neg(n); }
+    sin2_i = FOGRT__MAX(0.0f, 1.0f - cos_i * cos_i);
+    sin2_t = sin2_i / (eta * eta);
+    if (sin2_t >= 1.0f) return false;
+    cos_t = sqrtf(1.0f - sin2_t);
+    *wi = fogrt__normalize(fogrt__add(fogrt__scale(wo, -1.0f / eta), fogrt__scale(n, cos_i / eta - cos_t)));
+    return true;
+}
+
+FOGRT__PRIVATE float fogrt__fresnel(fogrt_fresnel mode, float cos_i, float eta)
+{
+#ifndef FOGRT_NO_EXACT_FRESNEL
+    if (mode == FOGRT_FRESNEL_EXACT) return fogrt_fresnel_dielectric(cos_i, eta);
+#else
+    (void)mode;
+#endif
+    return fogrt_fresnel_schlick(cos_i, eta);
+}
+FOGRT__PRIVATE fogrt_bsdf_type fogrt__bsdf_type(const fogrt_material_desc *m)
+{
+    fogrt_bsdf_type t = m->type == FOGRT_BSDF_DEFAULT ? FOGRT_BSDF_DIFFUSE : m->type;
+#ifdef FOGRT_NO_GLASS
+    if (t == FOGRT_BSDF_REFRACTION || t == FOGRT_BSDF_GLASS) t = FOGRT_BSDF_MIRROR;
+#endif
+    return t;
+}
+FOGRT__PRIVATE bool fogrt__bsdf_is_delta(fogrt_bsdf_type t) { return t != FOGRT_BSDF_DIFFUSE; }
+
+FOGRT__PUBLIC bool fogrt_bsdf_sample_dir(const fogrt_material_desc *m, fogrt_fresnel fresnel,
+                                         fogrt_vec3 wo, float u_lobe, float u1, float u2,
+                                         fogrt_bsdf_sample *out)
+{
+    fogrt_bsdf_type type = fogrt__bsdf_type(m);
+    float side = wo.z < 0.0f ? -1.0f : 1.0f;
+    memset(out, 0, sizeof *out);
+    if (wo.z == 0.0f) return false;                      /* exactly on the horizon */
+    switch (type) {
+    case FOGRT_BSDF_MIRROR:
+        out->wi = fogrt__v(-wo.x, -wo.y, wo.z);
+        out->weight = m->reflectance; out->pdf = 1.0f; out->is_delta = true;
+        return true;
+#ifndef FOGRT_NO_GLASS
+    case FOGRT_BSDF_REFRACTION:
+    case FOGRT_BSDF_GLASS: {
+        float eta = FOGRT__DEF(m->ior, 1.5f);
+        fogrt__v3 wt;
+        bool can_refract = fogrt_refract(wo, fogrt__v(0.0f, 0.0f, 1.0f), eta, &wt);
+        float F;
+        out->is_delta = true;
+        if (type == FOGRT_BSDF_GLASS) F = fogrt__fresnel(fresnel, wo.z, eta);
+        else F = can_refract ? 0.0f : 1.0f;              /* refraction only: reflect on TIR */
+        if (!can_refract) F = 1.0f;
+        if (u_lobe < F) {                                /* reflect with probability F */
+            out->wi = fogrt__v(-wo.x, -wo.y, wo.z);
+            out->weight = type == FOGRT_BSDF_GLASS ? m->reflectance : m->transmittance;
+            out->pdf = F;
+        } else {                                         /* refract with probability 1 - F */
+            out->wi = wt;
+            out->weight = m->transmittance;
+            out->pdf = 1.0f - F;
+            out->is_transmission = true;
+        }
+        return true;
+    }
+#endif
+    default: {                                           /* diffuse: cosine-weighted */
+        fogrt__v3 wi = fogrt_sample_cosine_hemisphere(u1, u2);
+        (void)u_lobe; (void)fresnel;
+        if (wi.z <= 0.0f) return false;
+        wi.z *= side;
+        out->wi = wi;
+        out->weight = m->reflectance;                    /* (rho/pi) cos / (cos/pi) = rho */
+        out->pdf = fabsf(wi.z) * FOGRT__INV_PI;
+        return true;
+    }
+    }
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_bsdf_eval(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi)
+{
+    if (fogrt__bsdf_is_delta(fogrt__bsdf_type(m)) || !(wo.z * wi.z > 0.0f)) return fogrt__v(0.0f, 0.0f, 0.0f);
+    return fogrt__scale(m->reflectance, FOGRT__INV_PI);
+}
+FOGRT__PUBLIC float fogrt_bsdf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi)
+{
+    if (fogrt__bsdf_is_delta(fogrt__bsdf_type(m)) || !(wo.z * wi.z > 0.0f)) return 0.0f;
+    return fabsf(wi.z) * FOGRT__INV_PI;
+}
+
+/* ------------------------------------------------------------------------------------------
+   7. The scene: storage and validation
+   Every add_* call validates all of its input before it changes anything, so an error
+   leaves the scene exactly as it was.
+   ------------------------------------------------------------------------------------------ */
+/* A primitive as the traversal sees it, in BVH order: a triangle stores v0 and its two edges
+   (Moller-Trumbore needs nothing else); a sphere stores its centre in a and radius in b.x. */
+typedef struct fogrt__prim { fogrt__v3 a, b, c; uint32_t id; } fogrt__prim;
+
+/* An area light: all emissive triangles of one mesh, or one emissive sphere. */
+typedef struct fogrt__area_light {
+    uint32_t first, count;    /* range in scene->light_prims / light_cdf (triangles) */
+    uint32_t sphere;          /* sphere index (primitive id - triangle count), or UINT32_MAX */
+    float area;               /* total area */
+} fogrt__area_light;
+
+struct fogrt_scene {
+    fogrt_allocator allocator;
+    fogrt_logger logger;
+    /* materials */
+    fogrt_material_desc *materials; uint32_t material_count, material_cap;
+    /* triangles, in the order they were added: 3 vertices, 3 normals, flags */
+    fogrt__v3 *tri_v;          /* 3 per triangle */
+    fogrt__v3 *tri_n;          /* 3 per triangle (valid where tri_has_n) */
+    uint8_t *tri_has_n;
+    uint32_t *tri_material, *tri_mesh;
+    uint32_t tri_count, tri_cap, mesh_count;
+    /* spheres */
+    fogrt__v3 *sph_c; float *sph_r; uint32_t *sph_material;
+    uint32_t sph_count, sph_cap;
+    /* point and spot lights */
+    fogrt_light_desc *lights; uint32_t light_count, light_cap;
+    /* environment, camera, medium */
+    fogrt__v3 env; bool env_upper_only, has_env;
+    fogrt_camera_desc camera; bool has_camera;
+    fogrt_medium_desc medium;
+    /* built data (fogrt_scene_build) */
+    bool built;
+    fogrt_bvh_node *nodes; uint32_t node_count;
+    uint32_t *prim_index;
+    fogrt__prim *prims;        /* prim_count, in BVH order (parallel to prim_index) */
+    fogrt__area_light *area_lights; uint32_t area_light_count;
+    uint32_t *light_prims; float *light_cdf;   /* emissive triangles of each area light */
+    uint32_t *prim_light;      /* per primitive id: area light index or UINT32_MAX */
+    uint32_t features;
+    fogrt__v3 bmin, bmax;
+    float eps;                 /* absolute ray offset floor, relative to the scene size */
+    float r2_min;              /* smallest squared distance to a point light (see chapter 10) */
+};
+
+FOGRT__PRIVATE void fogrt__log(const fogrt_scene *s, fogrt_log_level level, const char *msg)
+{
+    if (s && s->logger.func) s->logger.func(level, msg, s->logger.user_data);
+}
+FOGRT__PRIVATE fogrt_result fogrt__fail(const fogrt_scene *s, fogrt_result r, const char *msg)
+{
+    fogrt__log(s, FOGRT_LOG_ERROR, msg);
+    return r;
+}
+
+/* Grow *ptr to hold at least need elements (doubling). Returns false when out of memory,
+   leaving the old array untouched. */
+FOGRT__PRIVATE bool fogrt__reserve(fogrt_scene *s, void **ptr, uint32_t cap, uint32_t new_cap, size_t elem)
+{
+    void *p;
+    if (new_cap <= cap && *ptr) return true;
+    p = fogrt__alloc(&s->allocator, (size_t)new_cap * elem);
+    if (!p) return false;
+    if (*ptr) { memcpy(p, *ptr, (size_t)cap * elem); fogrt__free(&s->allocator, *ptr); }
+    *ptr = p;
+    return true;
+}
+FOGRT__PRIVATE uint32_t fogrt__grow_cap(uint32_t cap, uint32_t need)
+{
+    uint64_t c = cap ? cap : 16;
+    while (c < need) c *= 2;
+    return c > 0x7FFFFFFFu ? 0x7FFFFFFFu : (uint32_t)c;
+}
+
+FOGRT__PUBLIC fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogrt_scene **out_scene)
+{
+    fogrt_scene_desc d;
+    fogrt_scene *s;
+    FOGRT_ASSERT(out_scene);
+    *out_scene = NULL;
+    memset(&d, 0, sizeof d);
+    if (desc) d = *desc;
+    if ((d.allocator.alloc_fn == NULL) != (d.allocator.free_fn == NULL))
+        return FOGRT_RESULT_INVALID_ARGUMENT;           /* both allocator functions or neither */
+    s = (fogrt_scene *)fogrt__alloc(&d.allocator, sizeof *s);
+    if (!s) return FOGRT_RESULT_OUT_OF_MEMORY;
+    memset(s, 0, sizeof *s);
+    s->allocator = d.allocator;
+    s->logger = d.logger;
+    *out_scene = s;
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s)
+{
+    fogrt__free(&s->allocator, s->nodes); s->nodes = NULL; s->node_count = 0;
+    fogrt__free(&s->allocator, s->prim_index); s->prim_index = NULL;
+    fogrt__free(&s->allocator, s->prims); s->prims = NULL;
+    fogrt__free(&s->allocator, s->area_lights); s->area_lights = NULL; s->area_light_count = 0;
+    fogrt__free(&s->allocator, s->light_prims); s->light_prims = NULL;
+    fogrt__free(&s->allocator, s->light_cdf); s->light_cdf = NULL;
+    fogrt__free(&s->allocator, s->prim_light); s->prim_light = NULL;
+    s->built = false;
+}
+FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s)
+{
+    fogrt_allocator a;
+    if (!s) return;
+    a = s->allocator;
+    fogrt__free_built(s);
+    fogrt__free(&a, s->materials);
+    fogrt__free(&a, s->tri_v); fogrt__free(&a, s->tri_n); fogrt__free(&a, s->tri_has_n);
+    fogrt__free(&a, s->tri_material); fogrt__free(&a, s->tri_mesh);
+    fogrt__free(&a, s->sph_c); fogrt__free(&a, s->sph_r); fogrt__free(&a, s->sph_material);
+    fogrt__free(&a, s->lights);
+    fogrt__free(&a, s);
+}
+
+FOGRT__PRIVATE bool fogrt__colour_ok(fogrt__v3 c)
+{
+    return fogrt__v3_finite(c) && c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f;
+}
+FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_material_desc *desc,
+                                                    uint32_t *out_id)
+{
+    fogrt_material_desc m;
+    FOGRT_ASSERT(s && desc);
+    m = *desc;
+    if ((unsigned)m.type >= (unsigned)FOGRT_BSDF_NUM)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "material.type: unknown BSDF type");
+    if (!fogrt__colour_ok(m.reflectance) || !fogrt__colour_ok(m.transmittance) || !fogrt__colour_ok(m.emission))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "material.reflectance/transmittance/emission: negative or not finite");
+    if (!fogrt__finite(m.ior) || m.ior < 0.0f)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "material.ior: must be > 0 (0 means the default 1.5)");
+    if (m.type == FOGRT_BSDF_DEFAULT) m.type = FOGRT_BSDF_DIFFUSE;
+    m.ior = FOGRT__DEF(m.ior, 1.5f);
+    if (s->material_count == 0xFFFFFFFEu) return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "too many materials");
+    if (s->material_count + 1 > s->material_cap) {
+        uint32_t cap = fogrt__grow_cap(s->material_cap, s->material_count + 1);
+        if (!fogrt__reserve(s, (void **)&s->materials, s->material_count, cap, sizeof m))
+            return FOGRT_RESULT_OUT_OF_MEMORY;
+        s->material_cap = cap;
+    }
+    s->materials[s->material_count] = m;
+    if (out_id) *out_id = s->material_count;
+    s->material_count++;
+    s->built = false;
+    return FOGRT_RESULT_OK;
+}
+
+FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh_desc *desc)
+{
+    uint32_t i, k, n, first;
+    FOGRT_ASSERT(s && desc);
+    n = desc->triangle_count;
+    if (n == 0) return FOGRT_RESULT_OK;
+    if (!desc->positions) return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "mesh.positions: NULL");
+    /* Validate everything first. */
+    if ((uint64_t)s->tri_count + n >= 0x7FFFFFF0u)
+        return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "mesh.triangle_count: too many triangles");
+    if (!desc->indices && (uint64_t)n * 3 > desc->vertex_count)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "mesh.vertex_count: fewer than 3 * triangle_count vertices and no indices");
+    for (i = 0; i < (uint64_t)desc->vertex_count * 3; ++i) {
+        if (!fogrt__finite(desc->positions[i]))
+            return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "mesh.positions: not finite");
+        if (desc->normals && !fogrt__finite(desc->normals[i]))
+            return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "mesh.normals: not finite");
+    }
+    if (desc->indices)
+        for (i = 0; i < (uint64_t)n * 3; ++i)
+            if (desc->indices[i] >= desc->vertex_count)
+                return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "mesh.indices: index out of range");
+    for (i = 0; i < n; ++i) {
+        uint32_t mat = desc->triangle_materials ? desc->triangle_materials[i] : desc->material;
+        if (mat >= s->material_count)
+            return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "mesh.material: material id out of range");
+    }
+    /* Make room in every array, then copy. */
+    if (s->tri_count + n > s->tri_cap) {
+        uint32_t cap = fogrt__grow_cap(s->tri_cap, s->tri_count + n), c = s->tri_count;
+        if (!fogrt__reserve(s, (void **)&s->tri_v, c * 3, cap * 3, sizeof(fogrt__v3)) ||
+            !fogrt__reserve(s, (void **)&s->tri_n, c * 3, cap * 3, sizeof(fogrt__v3)) ||
+            !fogrt__reserve(s, (void **)&s->tri_has_n, c, cap, 1) ||
+            !fogrt__reserve(s, (void **)&s->tri_material, c, cap, sizeof(uint32_t)) ||
+            !fogrt__reserve(s, (void **)&s->tri_mesh, c, cap, sizeof(uint32_t))) {
+            /* The arrays that did grow hold the old data; only tri_cap is the smaller of them. */
+            return FOGRT_RESULT_OUT_OF_MEMORY;
+        }
+        s->tri_cap = cap;
+    }
+    first = s->tri_count;
+    for (i = 0; i < n; ++i) {
+        uint32_t t = first + i;
+        for (k = 0; k < 3; ++k) {
+            uint32_t vi = desc->indices ? desc->indices[3 * i + k] : 3 * i + k;
+            const float *p = desc->positions + 3 * (size_t)vi;
+            s->tri_v[3 * t + k] = fogrt__v(p[0], p[1], p[2]);
+            if (desc->normals) {
+                const float *q = desc->normals + 3 * (size_t)vi;
+                s->tri_n[3 * t + k] = fogrt__v(q[0], q[1], q[2]);
+            } else {
+                s->tri_n[3 * t + k] = fogrt__v(0.0f, 0.0f, 0.0f);
+            }
+        }
+        s->tri_has_n[t] = desc->normals != NULL;
+        s->tri_material[t] = desc->triangle_materials ? desc->triangle_materials[i] : desc->material;
+        s->tri_mesh[t] = s->mesh_count;
+    }
+    s->tri_count += n;
+    s->mesh_count++;
+    s->built = false;
+    return FOGRT_RESULT_OK;
+}
+
+FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 center, float radius, uint32_t material)
+{
+    FOGRT_ASSERT(s);
+    if (!fogrt__v3_finite(center) || !fogrt__finite(radius) || !(radius > 0.0f))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "sphere: centre not finite or radius <= 0");
+    if (material >= s->material_count)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "sphere.material: material id out of range");
+    if ((uint64_t)s->tri_count + s->sph_count + 1 >= 0x7FFFFFF0u)
+        return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "too many spheres");
+    if (s->sph_count + 1 > s->sph_cap) {
+        uint32_t cap = fogrt__grow_cap(s->sph_cap, s->sph_count + 1), c = s->sph_count;
+        if (!fogrt__reserve(s, (void **)&s->sph_c, c, cap, sizeof(fogrt__v3)) ||
+            !fogrt__reserve(s, (void **)&s->sph_r, c, cap, sizeof(float)) ||
+            !fogrt__reserve(s, (void **)&s->sph_material, c, cap, sizeof(uint32_t)))
+            return FOGRT_RESULT_OUT_OF_MEMORY;
+        s->sph_cap = cap;
+    }
+    s->sph_c[s->sph_count] = center;
+    s->sph_r[s->sph_count] = radius;
+    s->sph_material[s->sph_count] = material;
+    s->sph_count++;
+    s->built = false;
+    return FOGRT_RESULT_OK;
+}
+
+FOGRT__PUBLIC fogrt_result fogrt_scene_add_light(fogrt_scene *s, const fogrt_light_desc *desc)
+{
+    fogrt_light_desc l;
+    FOGRT_ASSERT(s && desc);
+    l = *desc;
+    if (l.type == FOGRT_LIGHT_DEFAULT) l.type = FOGRT_LIGHT_POINT;
+    if ((unsigned)l.type >= (unsigned)FOGRT_LIGHT_NUM)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.type: unknown light type");
+    if (!fogrt__v3_finite(l.position))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.position: not finite");
+    if (!fogrt__colour_ok(l.intensity))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.intensity: negative or not finite");
+    if (!fogrt__finite(l.radius) || l.radius < 0.0f)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.radius: negative or not finite");
+    if (l.type == FOGRT_LIGHT_SPOT) {
+        if (!fogrt__v3_finite(l.direction) || fogrt__dot(l.direction, l.direction) == 0.0f)
+            return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.direction: zero or not finite");
+        if (!(l.cutoff_deg >= 0.0f && l.cutoff_deg <= 180.0f))
+            return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.cutoff_deg: outside [0, 180]");
+        if (!(l.beam_deg >= 0.0f && l.beam_deg <= l.cutoff_deg))
+            return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.beam_deg: outside [0, cutoff_deg]");
+        l.direction = fogrt__normalize(l.direction);
+    }
+    if (s->light_count + 1 > s->light_cap) {
+        uint32_t cap = fogrt__grow_cap(s->light_cap, s->light_count + 1);
+        if (!fogrt__reserve(s, (void **)&s->lights, s->light_count, cap, sizeof l)) return FOGRT_RESULT_OUT_OF_MEMORY;
+        s->light_cap = cap;
+    }
+    s->lights[s->light_count++] = l;
+    s->built = false;
+    return FOGRT_RESULT_OK;
+}
+
+FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment(fogrt_scene *s, fogrt_vec3 radiance, bool upper_only)
+{
+    FOGRT_ASSERT(s);
+    if (!fogrt__colour_ok(radiance))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment radiance: negative or not finite");
+    s->env = radiance;
+    s->env_upper_only = upper_only;
+    s->has_env = !fogrt__is_black(radiance);
+    s->built = false;
+    return FOGRT_RESULT_OK;
+}
+
+FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_camera_desc *desc)
+{
+    fogrt_camera_desc c;
+    fogrt__v3 fwd, up;
+    FOGRT_ASSERT(s && desc);
+    c = *desc;
+    if (fogrt__is_black(c.up)) c.up = fogrt__v(0.0f, 1.0f, 0.0f);
+    c.fov_deg = FOGRT__DEF(c.fov_deg, 45.0f);
+    if (!fogrt__v3_finite(c.position) || !fogrt__v3_finite(c.look_at) || !fogrt__v3_finite(c.up))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera.position/look_at/up: not finite");
+    fwd = fogrt__sub(c.look_at, c.position);
+    if (fogrt__dot(fwd, fwd) == 0.0f)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera.look_at: equals camera.position");
+    up = fogrt__cross(fogrt__normalize(fwd), fogrt__normalize(c.up));
+    if (fogrt__dot(up, up) < 1e-12f)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera.up: parallel to the view direction");
+    if (!(c.fov_deg > 0.0f && c.fov_deg < 180.0f))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera.fov_deg: outside (0, 180)");
+    if (!fogrt__finite(c.lens_radius) || c.lens_radius < 0.0f || !fogrt__finite(c.focal_distance) || c.focal_distance < 0.0f)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera.lens_radius/focal_distance: negative or not finite");
+    if (c.focal_distance == 0.0f) c.focal_distance = fogrt__length(fwd);
+    s->camera = c;
+    s->has_camera = true;
+    return FOGRT_RESULT_OK;
+}
+
+FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_medium_desc *desc)
+{
+    fogrt_medium_desc m;
+    FOGRT_ASSERT(s && desc);
+    m = *desc;
+    if (!fogrt__finite(m.sigma_t) || m.sigma_t < 0.0f)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.sigma_t: negative or not finite");
+    if (!fogrt__colour_ok(m.albedo) || fogrt__max3(m.albedo) > 1.0f)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.albedo: outside [0, 1]");
+    if (!(m.g >= -1.0f && m.g <= 1.0f))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.g: outside [-1, 1]");
+    if (fabsf(m.g) > FOGRT_HG_G_MAX) {
+        m.g = copysignf(FOGRT_HG_G_MAX, m.g);
+        fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
+    }
+#ifdef FOGRT_NO_MEDIUM
+    if (m.sigma_t > 0.0f)
+        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "medium: fogrt was compiled with FOGRT_NO_MEDIUM");
+#endif
+    s->medium = m;
+    s->built = false;
+    return FOGRT_RESULT_OK;
+}
+
+FOGRT__PUBLIC void fogrt_scene_get_info(const fogrt_scene *s, fogrt_scene_info *info)
+{
+    FOGRT_ASSERT(s && info);
+    memset(info, 0, sizeof *info);
+    info->triangle_count = s->tri_count;
+    info->sphere_count = s->sph_count;
+    info->material_count = s->material_count;
+    info->light_count = s->light_count;
+    info->area_light_count = s->area_light_count;
+    info->bounds_min = s->bmin;
+    info->bounds_max = s->bmax;
+    info->has_environment = s->has_env;
+    info->built = s->built;
+}
+FOGRT__PUBLIC fogrt_result fogrt_scene_get_material(const fogrt_scene *s, uint32_t id, fogrt_material_desc *out)
+{
+    FOGRT_ASSERT(s && out);
+    if (id >= s->material_count) return FOGRT_RESULT_INVALID_ARGUMENT;
+    *out = s->materials[id];
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PUBLIC fogrt_result fogrt_scene_get_light(const fogrt_scene *s, uint32_t index, fogrt_light_desc *out)
+{
+    FOGRT_ASSERT(s && out);
+    if (index >= s->light_count) return FOGRT_RESULT_INVALID_ARGUMENT;
+    *out = s->lights[index];
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PUBLIC void fogrt_scene_get_camera(const fogrt_scene *s, fogrt_camera_desc *out)
+{
+    FOGRT_ASSERT(s && out);
+    *out = s->camera;
+}
+FOGRT__PUBLIC void fogrt_scene_get_medium(const fogrt_scene *s, fogrt_medium_desc *out)
+{
+    FOGRT_ASSERT(s && out);
+    *out = s->medium;
+}
+FOGRT__PUBLIC uint32_t fogrt_scene_prim_material(const fogrt_scene *s, uint32_t prim)
+{
+    FOGRT_ASSERT(s);
+    if (prim < s->tri_count) return s->tri_material[prim];
+    if (prim - s->tri_count < s->sph_count) return s->sph_material[prim - s->tri_count];
+    return UINT32_MAX;
+}
+FOGRT__PUBLIC uint32_t fogrt_scene_features(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->features; }
+
+/* ------------------------------------------------------------------------------------------
+   8. The BVH: binned build with the surface area heuristic (or the paper's volume heuristic)
+   Each node splits its primitives by a plane through one of `bins` equal slices of the
+   centroid bounds. For every candidate plane the heuristic weighs both sides:
+     SAH:     cost = c_trav + c_int (A_l N_l + A_r N_r) / A   (A = surface area)
+     paper:   H    = N_l V_l + N_r V_r                          (V = volume)
+   The SAH also compares with the cost of a leaf (c_int N) and stops when splitting does not
+   pay; the volume heuristic has no such criterion, so it splits down to max_leaf_size.
+   ------------------------------------------------------------------------------------------ */
+#define FOGRT__BVH_SAH_DEPTH 56
+#define FOGRT__BVH_MAX_DEPTH 96   /* 56 + 32 halvings of at most 2^32 primitives, and margin */
+typedef struct fogrt__aabb { fogrt__v3 lo, hi; } fogrt__aabb;
+FOGRT__PRIVATE fogrt__aabb fogrt__aabb_empty(void)
+{
+    fogrt__aabb b;
+    b.lo = fogrt__v(FLT_MAX, FLT_MAX, FLT_MAX);
+    b.hi = fogrt__v(-FLT_MAX, -FLT_MAX, -FLT_MAX);
+    return b;
+}
+FOGRT__PRIVATE void fogrt__aabb_grow(fogrt__aabb *b, fogrt__v3 p)
+{
+    b->lo.x = FOGRT__MIN(b->lo.x, p.x); b->lo.y = FOGRT__MIN(b->lo.y, p.y); b->lo.z = FOGRT__MIN(b->lo.z, p.z);
+    b->hi.x = FOGRT__MAX(b->hi.x, p.x); b->hi.y = FOGRT__MAX(b->hi.y, p.y); b->hi.z = FOGRT__MAX(b->hi.z, p.z);
+}
+FOGRT__PRIVATE void fogrt__aabb_union(fogrt__aabb *b, const fogrt__aabb *o) { fogrt__aabb_grow(b, o->lo); fogrt__aabb_grow(b, o->hi); }
+FOGRT__PRIVATE float fogrt__aabb_area(const fogrt__aabb *b)
+{
+    fogrt__v3 e = fogrt__sub(b->hi, b->lo);
+    if (e.x < 0.0f) return 0.0f;
+    return 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
+}
+FOGRT__PRIVATE float fogrt__aabb_volume(const fogrt__aabb *b)
+{
+    fogrt__v3 e = fogrt__sub(b->hi, b->lo);
+    if (e.x < 0.0f) return 0.0f;
+    return e.x * e.y * e.z;
+}
+
+typedef struct fogrt__build {
+    fogrt_build_desc desc;
+    fogrt__aabb *box;      /* per primitive id */
+    fogrt__v3 *centroid;   /* per primitive id */
+    fogrt_bvh_node *nodes;
+    uint32_t *idx;
+    uint32_t node_count;
+} fogrt__build;
+
+FOGRT__PRIVATE void fogrt__node_bounds(fogrt__build *b, fogrt_bvh_node *node, uint32_t first, uint32_t count)
+{
+    fogrt__aabb bb = fogrt__aabb_empty();
+    uint32_t i;
+    for (i = 0; i < count; ++i) fogrt__aabb_union(&bb, &b->box[b->idx[first + i]]);
+    node->bmin[0] = bb.lo.x; node->bmin[1] = bb.lo.y; node->bmin[2] = bb.lo.z;
+    node->bmax[0] = bb.hi.x; node->bmax[1] = bb.hi.y; node->bmax[2] = bb.hi.z;
+}
+
+/* Find the best binned split of a node. Returns false if the node should stay a leaf. */
+FOGRT__PRIVATE bool fogrt__find_split(fogrt__build *b, const fogrt_bvh_node *node, int *out_axis, float *out_pos)
+{
+    enum { MAXB = 64 };
+    const fogrt_build_desc *d = &b->desc;
+    uint32_t first = node->left_first, count = node->prim_count, i;
+    fogrt__aabb cb = fogrt__aabb_empty(), nb;
+    float best = FLT_MAX, leaf_cost;
+    int axis, best_axis = -1, nbins = d->bins;
+    float best_pos = 0.0f;
+    for (i = 0; i < count; ++i) fogrt__aabb_grow(&cb, b->centroid[b->idx[first + i]]);
+    nb.lo = fogrt__v(node->bmin[0], node->bmin[1], node->bmin[2]);
+    nb.hi = fogrt__v(node->bmax[0], node->bmax[1], node->bmax[2]);
+    for (axis = 0; axis < 3; ++axis) {
+        fogrt__aabb bin_box[MAXB], right_box;
+        uint32_t bin_n[MAXB], left_n = 0, right_n = 0;
+        float left_cost[MAXB], lo = fogrt__comp(cb.lo, axis), hi = fogrt__comp(cb.hi, axis), scale;
+        fogrt__aabb left_box = fogrt__aabb_empty();
+        int k;
+        if (!(hi > lo)) continue;                       /* all centroids in one plane */
+        scale = (float)nbins / (hi - lo);
+        for (k = 0; k < nbins; ++k) { bin_box[k] = fogrt__aabb_empty(); bin_n[k] = 0; }
+        for (i = 0; i < count; ++i) {
+            uint32_t p = b->idx[first + i];
+            int bi = (int)((fogrt__comp(b->centroid[p], axis) - lo) * scale);
+            bi = FOGRT__CLAMP(bi, 0, nbins - 1);
+            bin_n[bi]++;
+            fogrt__aabb_union(&bin_box[bi], &b->box[p]);
+        }
+        /* Sweep from the left, then from the right, evaluating the nbins - 1 planes. */
+        for (k = 0; k < nbins - 1; ++k) {
+            left_n += bin_n[k];
+            fogrt__aabb_union(&left_box, &bin_box[k]);
+            left_cost[k] = (float)left_n * (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(&left_box)
+                                                                               : fogrt__aabb_area(&left_box));
+        }
+        right_box = fogrt__aabb_empty();
+        for (k = nbins - 1; k > 0; --k) {
+            float cost;
+            right_n += bin_n[k];
+            fogrt__aabb_union(&right_box, &bin_box[k]);
+            if (right_n == 0 || right_n == count) continue;
+            cost = left_cost[k - 1] + (float)right_n * (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(&right_box)
+                                                                                           : fogrt__aabb_area(&right_box));
+            if (cost < best) { best = cost; best_axis = axis; best_pos = lo + (float)k / scale; }
+        }
+    }
+    *out_axis = best_axis;
+    *out_pos = best_pos;
+    if (best_axis < 0) return false;
+    if (d->heuristic == FOGRT_BVH_VOLUME) return count > (uint32_t)d->max_leaf_size;
+    /* SAH: split when it is cheaper than a leaf, and always above the largest leaf size. */
+    leaf_cost = d->c_int * (float)count;
+    best = d->c_trav + d->c_int * best / FOGRT__MAX(fogrt__aabb_area(&nb), FLT_MIN);
+    return best < leaf_cost || count > (uint32_t)d->max_leaf_size;
+}
+
+FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count)
+{
+    /* Depth-first with an explicit stack of (node, depth). Past FOGRT__BVH_SAH_DEPTH levels
+       (only reached by adversarial inputs) nodes are halved without the heuristic, so the
+       tree depth stays below FOGRT__BVH_MAX_DEPTH, the size of the traversal stack. */
+    uint32_t stack[FOGRT__BVH_MAX_DEPTH + 2], depth[FOGRT__BVH_MAX_DEPTH + 2], sp = 0;
+    fogrt_bvh_node *root = &b->nodes[0];
+    memset(&b->nodes[1], 0, sizeof b->nodes[1]);          /* node 1: unused (pairs align) */
+    root->left_first = 0;
+    root->prim_count = prim_count;
+    fogrt__node_bounds(b, root, 0, prim_count);
+    b->node_count = 2;
+    stack[sp] = 0; depth[sp++] = 0;
+    while (sp > 0) {
+        uint32_t level = depth[--sp];
+        fogrt_bvh_node *node = &b->nodes[stack[sp]];
+        uint32_t first = node->left_first, count = node->prim_count, i, j, left_count, l;
+        int axis = -1;
+        float pos;
+        if (count <= 1) continue;
+        if (level >= FOGRT__BVH_SAH_DEPTH) {
+            left_count = count / 2;                   /* balanced from here on */
+        } else if (!fogrt__find_split(b, node, &axis, &pos)) {
+            if (axis >= 0 || count <= (uint32_t)b->desc.max_leaf_size) continue;
+            /* All centroids coincide but the node is too big: split the list in half. */
+            left_count = count / 2;
+        } else {
+            /* Partition the index range in place: left of the plane first. */
+            i = first; j = first + count;
+            while (i < j) {
+                if (fogrt__comp(b->centroid[b->idx[i]], axis) < pos) ++i;
+                else { uint32_t t = b->idx[i]; b->idx[i] = b->idx[--j]; b->idx[j] = t; }
+            }
+            left_count = i - first;
+            if (left_count == 0 || left_count == count) left_count = count / 2;  /* float edge case */
+        }
+        l = b->node_count;
+        b->node_count += 2;
+        b->nodes[l].left_first = first;             b->nodes[l].prim_count = left_count;
+        b->nodes[l + 1].left_first = first + left_count; b->nodes[l + 1].prim_count = count - left_count;
+        fogrt__node_bounds(b, &b->nodes[l], first, left_count);
+        fogrt__node_bounds(b, &b->nodes[l + 1], first + left_count, count - left_count);
+        node->left_first = l;
+        node->prim_count = 0;
+        FOGRT_ASSERT(sp + 2 <= FOGRT__BVH_MAX_DEPTH + 2);
+        stack[sp] = l + 1; depth[sp++] = level + 1;
+        stack[sp] = l;     depth[sp++] = level + 1;
+    }
+}
+
+FOGRT__PUBLIC void fogrt_scene_bvh(const fogrt_scene *s, const fogrt_bvh_node **nodes, uint32_t *node_count,
+                                   const uint32_t **prim_index)
+{
+    FOGRT_ASSERT(s);
+    if (nodes) *nodes = s->nodes;
+    if (node_count) *node_count = s->node_count;
+    if (prim_index) *prim_index = s->prim_index;
+}
+FOGRT__PUBLIC float fogrt_bvh_sah_cost(const fogrt_scene *s)
+{
+    double cost = 0.0, root_area;
+    uint32_t i;
+    fogrt__aabb rb;
+    FOGRT_ASSERT(s);
+    if (!s->nodes || s->node_count == 0) return 0.0f;
+    rb.lo = fogrt__v(s->nodes[0].bmin[0], s->nodes[0].bmin[1], s->nodes[0].bmin[2]);
+    rb.hi = fogrt__v(s->nodes[0].bmax[0], s->nodes[0].bmax[1], s->nodes[0].bmax[2]);
+    root_area = FOGRT__MAX(fogrt__aabb_area(&rb), FLT_MIN);
+    for (i = 0; i < s->node_count; ++i) {
+        const fogrt_bvh_node *n = &s->nodes[i];
+        fogrt__aabb nb;
+        if (i == 1) continue;
+        nb.lo = fogrt__v(n->bmin[0], n->bmin[1], n->bmin[2]);
+        nb.hi = fogrt__v(n->bmax[0], n->bmax[1], n->bmax[2]);
+        cost += (double)fogrt__aabb_area(&nb) / root_area * (n->prim_count > 0 ? 1.0 * n->prim_count : 1.0);
+    }
+    return (float)cost;
+}
+
+/* ------------------------------------------------------------------------------------------
+   9. Ray queries: primitives and BVH traversal
+   ------------------------------------------------------------------------------------------ */
+/* Moller-Trumbore with the edges precomputed. Every test is written so that a NaN (from a
+   degenerate, zero-area triangle) fails it: degenerate triangles are never hit. */
+FOGRT__PRIVATE bool fogrt__hit_triangle(fogrt__v3 o, fogrt__v3 d, fogrt__v3 v0, fogrt__v3 e1, fogrt__v3 e2,
+                                        float tmin, float tmax, float *t, float *u, float *v)
+{
+    fogrt__v3 pvec = fogrt__cross(d, e2), tvec, qvec;
+    float det = fogrt__dot(e1, pvec), inv_det, uu, vv, tt;
+    if (det == 0.0f) return false;
+    inv_det = 1.0f / det;
+    tvec = fogrt__sub(o, v0);
+    uu = fogrt__dot(tvec, pvec) * inv_det;
+    if (!(uu >= 0.0f && uu <= 1.0f)) return false;
+    qvec = fogrt__cross(tvec, e1);
+    vv = fogrt__dot(d, qvec) * inv_det;
+    if (!(vv >= 0.0f && uu + vv <= 1.0f)) return false;
+    tt = fogrt__dot(e2, qvec) * inv_det;
+    if (!(tt > tmin && tt < tmax)) return false;
+    *t = tt; *u = uu; *v = vv;
+    return true;
+}
+/* Ray-sphere for a unit direction. The discriminant is formed as r^2 - |oc - b d|^2 (the
+   squared distance of the centre from the line), which does not cancel for distant spheres,
+   and the nearer root comes from q = -b - sign(b) sqrt(disc) (no cancellation either). */
+FOGRT__PRIVATE bool fogrt__hit_sphere(fogrt__v3 o, fogrt__v3 d, fogrt__v3 c, float r, float tmin, float tmax, float *t)
+{
+    fogrt__v3 oc = fogrt__sub(o, c), f;
+    float b = fogrt__dot(oc, d), disc, sq, q, cc, t0, t1;
+    f = fogrt__madd(oc, d, -b);
+    disc = r * r - fogrt__dot(f, f);
+    if (!(disc >= 0.0f)) return false;
+    sq = sqrtf(disc);
+    cc = fogrt__dot(oc, oc) - r * r;
+    q = b > 0.0f ? -(b + sq) : (sq - b);
+    t0 = q;
+    t1 = q != 0.0f ? cc / q : q;
+    if (t0 > t1) { float tmp = t0; t0 = t1; t1 = tmp; }
+    if (t0 > tmin && t0 < tmax) { *t = t0; return true; }
+    if (t1 > tmin && t1 < tmax) { *t = t1; return true; }
+    return false;
+}
+FOGRT__PUBLIC bool fogrt_intersect_triangle(fogrt_vec3 o, fogrt_vec3 d, fogrt_vec3 v0, fogrt_vec3 v1,
+                                            fogrt_vec3 v2, float tmin, float tmax, float *t, float *u, float *v)
+{
+    return fogrt__hit_triangle(o, d, v0, fogrt__sub(v1, v0), fogrt__sub(v2, v0), tmin, tmax, t, u, v);
+}
+FOGRT__PUBLIC bool fogrt_intersect_sphere(fogrt_vec3 o, fogrt_vec3 d, fogrt_vec3 center, float radius,
+                                          float tmin, float tmax, float *t)
+{
+    return fogrt__hit_sphere(o, d, center, radius, tmin, tmax, t);
+}
+
+/* The reciprocal of a direction component, never a division by zero: +-0 becomes +-1e20,
+   so the slab test below never forms 0 * infinity (NaN) for axis-parallel rays. */
+FOGRT__PRIVATE float fogrt__safe_rcp(float x) { return fabsf(x) > 1e-20f ? 1.0f / x : copysignf(1e20f, x); }
+
+typedef struct fogrt__ray { fogrt__v3 o, d, inv; } fogrt__ray;
+
+/* Slab test: entry distance of the ray into the node's box, or FLT_MAX on a miss. The exit
+   distance is widened by 2 ulps so a ray grazing a face is not lost to rounding. */
+FOGRT__PRIVATE float fogrt__slab(const fogrt_bvh_node *n, const fogrt__ray *r, float tmin, float tmax)
+{
+    float tx1 = (n->bmin[0] - r->o.x) * r->inv.x, tx2 = (n->bmax[0] - r->o.x) * r->inv.x;
+    float ty1 = (n->bmin[1] - r->o.y) * r->inv.y, ty2 = (n->bmax[1] - r->o.y) * r->inv.y;
+    float tz1 = (n->bmin[2] - r->o.z) * r->inv.z, tz2 = (n->bmax[2] - r->o.z) * r->inv.z;
+    float t0 = FOGRT__MAX(FOGRT__MIN(tx1, tx2), FOGRT__MAX(FOGRT__MIN(ty1, ty2), FOGRT__MIN(tz1, tz2)));
+    float t1 = FOGRT__MIN(FOGRT__MAX(tx1, tx2), FOGRT__MIN(FOGRT__MAX(ty1, ty2), FOGRT__MAX(tz1, tz2)));
+    t1 *= 1.00000024f;
+    t0 = FOGRT__MAX(t0, tmin);
+    t1 = FOGRT__MIN(t1, tmax);
+    return t0 <= t1 ? t0 : FLT_MAX;
+}
+
+/* Iterative traversal with a fixed stack: visit the nearer child first, push the farther,
+   and skip a popped node whose entry lies beyond the closest hit found so far.
+   any_hit: return at the first hit (shadow rays). */
+FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
+                                    fogrt_hit *hit, bool any_hit)
+{
+    uint32_t stack[FOGRT__BVH_MAX_DEPTH + 2], sp = 0, tri_count = s->tri_count;
+    float stack_t[FOGRT__BVH_MAX_DEPTH + 2];
+    const fogrt_bvh_node *nodes = s->nodes, *node;
+    fogrt__ray r;
+    bool found = false;
+    if (!s->built || s->tri_count + s->sph_count == 0) return false;
+    r.o = o; r.d = d;
+    r.inv = fogrt__v(fogrt__safe_rcp(d.x), fogrt__safe_rcp(d.y), fogrt__safe_rcp(d.z));
+    node = &nodes[0];
+    if (fogrt__slab(node, &r, tmin, tmax) == FLT_MAX) return false;
+    for (;;) {
+        if (node->prim_count > 0) {                      /* leaf: test its primitives */
+            uint32_t i, end = node->left_first + node->prim_count;
+            for (i = node->left_first; i < end; ++i) {
+                const fogrt__prim *p = &s->prims[i];
+                float t, u = 0.0f, v = 0.0f;
+                bool h = p->id < tri_count ? fogrt__hit_triangle(o, d, p->a, p->b, p->c, tmin, tmax, &t, &u, &v)
+                                           : fogrt__hit_sphere(o, d, p->a, p->b.x, tmin, tmax, &t);
+                if (h) {
+                    found = true;
+                    tmax = t;
+                    if (any_hit) return true;
+                    hit->t = t; hit->prim = p->id; hit->u = u; hit->v = v;
+                }
+            }
+        } else {                                         /* inner: order the two children */
+            const fogrt_bvh_node *c1 = &nodes[node->left_first], *c2 = c1 + 1;
+            float d1 = fogrt__slab(c1, &r, tmin, tmax), d2 = fogrt__slab(c2, &r, tmin, tmax);
+            if (d1 > d2) { float td = d1; const fogrt_bvh_node *tn = c1; d1 = d2; d2 = td; c1 = c2; c2 = tn; }
+            if (d1 != FLT_MAX) {
+                if (d2 != FLT_MAX) { stack_t[sp] = d2; stack[sp++] = (uint32_t)(c2 - nodes); }
+                node = c1;
+                continue;
+            }
+        }
+        /* pop the next node that can still hold a closer hit */
+        for (;;) {
+            if (sp == 0) return found;
+            --sp;
+            if (stack_t[sp] < tmax) break;
+        }
+        node = &nodes[stack[sp]];
+    }
+}
+
+FOGRT__PUBLIC bool fogrt_scene_intersect(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax, fogrt_hit *hit)
+{
+    fogrt_hit tmp;
+    FOGRT_ASSERT(s);
+    return fogrt__traverse(s, o, d, tmin, tmax, hit ? hit : &tmp, false);
+}
+FOGRT__PUBLIC bool fogrt_scene_occluded(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax)
+{
+    fogrt_hit tmp;
+    FOGRT_ASSERT(s);
+    return fogrt__traverse(s, o, d, tmin, tmax, &tmp, true);
+}
+FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax, fogrt_hit *hit)
+{
+    uint32_t i;
+    bool found = false;
+    FOGRT_ASSERT(s);
+    for (i = 0; i < s->tri_count + s->sph_count; ++i) {
+        float t, u = 0.0f, v = 0.0f;
+        bool h;
+        if (i < s->tri_count) {
+            const fogrt__v3 *tv = &s->tri_v[3 * i];
+            h = fogrt__hit_triangle(o, d, tv[0], fogrt__sub(tv[1], tv[0]), fogrt__sub(tv[2], tv[0]), tmin, tmax, &t, &u, &v);
+        } else {
+            h = fogrt__hit_sphere(o, d, s->sph_c[i - s->tri_count], s->sph_r[i - s->tri_count], tmin, tmax, &t);
+        }
+        if (h) {
+            found = true; tmax = t;
+            if (hit) { hit->t = t; hit->prim = i; hit->u = u; hit->v = v; }
+        }
+    }
+    return found;
+}
+
+/* The build: bounds, BVH, primitives in BVH order, area lights and the feature analysis. */
+FOGRT__PRIVATE bool fogrt__material_used(const fogrt_scene *s, fogrt_bsdf_type type)
+{
+    uint32_t i;
+    for (i = 0; i < s->tri_count; ++i) if (fogrt__bsdf_type(&s->materials[s->tri_material[i]]) == type) return true;
+    for (i = 0; i < s->sph_count; ++i) if (fogrt__bsdf_type(&s->materials[s->sph_material[i]]) == type) return true;
+    return false;
+}
+FOGRT__PRIVATE float fogrt__tri_area(const fogrt_scene *s, uint32_t t)
+{
+    const fogrt__v3 *v = &s->tri_v[3 * t];
+    return 0.5f * fogrt__length(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
+}
+FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s)
+{
+    uint32_t i, n_tri = 0, n_groups = 0, n_sph = 0, g = 0, k = 0, prev_mesh = UINT32_MAX;
+    uint32_t n_prims = s->tri_count + s->sph_count;
+    for (i = 0; i < s->tri_count; ++i) {
+        if (fogrt__is_black(s->materials[s->tri_material[i]].emission) || !(fogrt__tri_area(s, i) > 0.0f)) continue;
+        if (s->tri_mesh[i] != prev_mesh) { n_groups++; prev_mesh = s->tri_mesh[i]; }
+        n_tri++;
+    }
+    for (i = 0; i < s->sph_count; ++i)
+        if (!fogrt__is_black(s->materials[s->sph_material[i]].emission)) n_sph++;
+    s->prim_light = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n_prims ? n_prims : 1));
+    s->area_lights = (fogrt__area_light *)fogrt__alloc(&s->allocator, sizeof(fogrt__area_light) * (n_groups + n_sph + 1));
+    s->light_prims = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n_tri + 1));
+    s->light_cdf = (float *)fogrt__alloc(&s->allocator, sizeof(float) * (n_tri + 1));
+    if (!s->prim_light || !s->area_lights || !s->light_prims || !s->light_cdf) return false;
+    for (i = 0; i < n_prims; ++i) s->prim_light[i] = UINT32_MAX;
+    /* Emissive triangles of one mesh form one light; a CDF over their areas picks one. */
+    prev_mesh = UINT32_MAX;
+    for (i = 0; i < s->tri_count; ++i) {
+        float area = fogrt__tri_area(s, i);
+        fogrt__area_light *L;
+        if (fogrt__is_black(s->materials[s->tri_material[i]].emission) || !(area > 0.0f)) continue;
+        if (s->tri_mesh[i] != prev_mesh) {
+            L = &s->area_lights[g++];
+            L->first = k; L->count = 0; L->sphere = UINT32_MAX; L->area = 0.0f;
+            prev_mesh = s->tri_mesh[i];
+        }
+        L = &s->area_lights[g - 1];
+        L->area += area;
+        L->count++;
+        s->light_prims[k] = i;
+        s->light_cdf[k] = L->area;         /* running sum, normalised below */
+        s->prim_light[i] = g - 1;
+        k++;
+    }
+    for (i = 0; i < g; ++i) {
+        fogrt__area_light *L = &s->area_lights[i];
+        for (k = 0; k < L->count; ++k) s->light_cdf[L->first + k] /= L->area;
+        s->light_cdf[L->first + L->count - 1] = 1.0f;
+    }
+    for (i = 0; i < s->sph_count; ++i) {
+        fogrt__area_light *L;
+        if (fogrt__is_black(s->materials[s->sph_material[i]].emission)) continue;
+        L = &s->area_lights[g];
+        L->first = 0; L->count = 0; L->sphere = i;
+        L->area = 4.0f * FOGRT__PI * s->sph_r[i] * s->sph_r[i];
+        s->prim_light[s->tri_count + i] = g++;
+    }
+    s->area_light_count = g;
+    return true;
+}
+
+FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
+{
+    fogrt__build b;
+    uint32_t n, i, k;
+    float diag;
+    FOGRT_ASSERT(s);
+    memset(&b, 0, sizeof b);
+    if (desc) b.desc = *desc;
+    if ((unsigned)b.desc.heuristic >= (unsigned)FOGRT_BVH_NUM || b.desc.bins < 0 || b.desc.bins > 64 ||
+        b.desc.max_leaf_size < 0 || !(b.desc.c_trav >= 0.0f) || !(b.desc.c_int >= 0.0f) ||
+        !fogrt__finite(b.desc.c_trav) || !fogrt__finite(b.desc.c_int))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: heuristic, bins (0..64), max_leaf_size, c_trav or c_int out of range");
+    if (b.desc.heuristic == FOGRT_BVH_DEFAULT) b.desc.heuristic = FOGRT_BVH_SAH;
+    b.desc.bins = FOGRT__MAX(2, FOGRT__DEF(b.desc.bins, FOGRT_BVH_BINS));
+    b.desc.c_trav = FOGRT__DEF(b.desc.c_trav, 1.0f);
+    b.desc.c_int = FOGRT__DEF(b.desc.c_int, 1.0f);
+    b.desc.max_leaf_size = FOGRT__DEF(b.desc.max_leaf_size, 4);
+    fogrt__free_built(s);
+    n = s->tri_count + s->sph_count;
+    if (n == 0 && s->light_count == 0 && !s->has_env)
+        return fogrt__fail(s, FOGRT_RESULT_EMPTY_SCENE, "scene: no geometry and no light");
+    b.box = (fogrt__aabb *)fogrt__alloc(&s->allocator, sizeof(fogrt__aabb) * (n + 1));
+    b.centroid = (fogrt__v3 *)fogrt__alloc(&s->allocator, sizeof(fogrt__v3) * (n + 1));
+    s->nodes = (fogrt_bvh_node *)fogrt__alloc(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
+    s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
+    s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
+    if (!b.box || !b.centroid || !s->nodes || !s->prim_index || !s->prims || !fogrt__build_lights(s)) {
+        fogrt__free(&s->allocator, b.box); fogrt__free(&s->allocator, b.centroid);
+        fogrt__free_built(s);
+        return FOGRT_RESULT_OUT_OF_MEMORY;
+    }
+    /* Bounds and centroids of every primitive, and of the scene. */
+    {
+        fogrt__aabb sb = fogrt__aabb_empty();
+        for (i = 0; i < n; ++i) {
+            fogrt__aabb *bb = &b.box[i];
+            *bb = fogrt__aabb_empty();
+            if (i < s->tri_count) {
+                for (k = 0; k < 3; ++k) fogrt__aabb_grow(bb, s->tri_v[3 * i + k]);
+            } else {
+                fogrt__v3 c = s->sph_c[i - s->tri_count];
+                float r = s->sph_r[i - s->tri_count];
+                bb->lo = fogrt__sub(c, fogrt__v(r, r, r));
+                bb->hi = fogrt__add(c, fogrt__v(r, r, r));
+            }
+            b.centroid[i] = fogrt__scale(fogrt__add(bb->lo, bb->hi), 0.5f);
+            fogrt__aabb_union(&sb, bb);
+            s->prim_index[i] = i;
+        }
+        if (n == 0) { sb.lo = fogrt__v(0, 0, 0); sb.hi = fogrt__v(0, 0, 0); }
+        s->bmin = sb.lo; s->bmax = sb.hi;
+    }
+    diag = fogrt__length(fogrt__sub(s->bmax, s->bmin));
+    if (!(diag > 0.0f)) diag = 1.0f;
+    s->eps = 1e-6f * diag;
+    s->r2_min = (1e-4f * diag) * (1e-4f * diag);
+    /* The tree. */
+    b.nodes = s->nodes;
+    b.idx = s->prim_index;
+    if (n > 0) fogrt__bvh_build(&b, n);
+    else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
+    s->node_count = b.node_count;
+    /* Primitives in BVH order, in the form the traversal wants. */
+    for (i = 0; i < n; ++i) {
+        uint32_t id = s->prim_index[i];
+        fogrt__prim *p = &s->prims[i];
+        p->id = id;
+        if (id < s->tri_count) {
+            const fogrt__v3 *v = &s->tri_v[3 * id];
+            p->a = v[0]; p->b = fogrt__sub(v[1], v[0]); p->c = fogrt__sub(v[2], v[0]);
+        } else {
+            p->a = s->sph_c[id - s->tri_count];
+            p->b = fogrt__v(s->sph_r[id - s->tri_count], 0.0f, 0.0f);
+            p->c = fogrt__v(0.0f, 0.0f, 0.0f);
+        }
+    }
+    fogrt__free(&s->allocator, b.box);
+    fogrt__free(&s->allocator, b.centroid);
+    /* What the scene uses: the integrator tests these bits and skips the rest. */
+    s->features = 0;
+#ifndef FOGRT_NO_MEDIUM
+    if (s->medium.sigma_t > 0.0f) s->features |= FOGRT_FEATURE_MEDIUM;
+#endif
+    if (fogrt__material_used(s, FOGRT_BSDF_GLASS)) s->features |= FOGRT_FEATURE_FRESNEL | FOGRT_FEATURE_REFRACTION;
+    if (fogrt__material_used(s, FOGRT_BSDF_REFRACTION)) s->features |= FOGRT_FEATURE_REFRACTION;
+    if (s->area_light_count) s->features |= FOGRT_FEATURE_AREA_LIGHTS;
+    for (i = 0; i < s->light_count; ++i) {
+        s->features |= FOGRT_FEATURE_POINT_LIGHTS;
+        if (s->lights[i].type == FOGRT_LIGHT_SPOT) s->features |= FOGRT_FEATURE_SPOT_LIGHTS;
+    }
+    if (s->has_env) s->features |= FOGRT_FEATURE_ENVIRONMENT;
+    if (s->sph_count) s->features |= FOGRT_FEATURE_SPHERES;
+    if (s->tri_count) s->features |= FOGRT_FEATURE_TRIANGLES;
+    s->built = true;
+    return FOGRT_RESULT_OK;
+}
+
+/* ------------------------------------------------------------------------------------------
+   10. Lights: next-event estimation
+   At every scattering vertex (a surface or a point in the fog) each light is sampled and a
+   shadow ray decides visibility. In the fog the shadow ray also carries the transmittance
+   exp(-sigma_t r) in closed form. Area lights are combined with BSDF / phase sampling by
+   multiple importance sampling (power heuristic, Veach 1997), counting the light_samples
+   samples per light: w_light = (n p_light)^2 / ((n p_light)^2 + p_bsdf^2).
+   Point lights: irradiance I / r^2 is unbounded as r -> 0, so r^2 is clamped from below at
+   (1e-4 x scene diagonal)^2 (a documented bias that only touches points that close), and a
+   point exactly at the light receives nothing from it (its direction is undefined).
+   ------------------------------------------------------------------------------------------ */
+typedef struct fogrt__settings {
+    int max_depth, rr_depth, light_samples;
+    bool nee, mis, direct_only;
+    fogrt_fresnel fresnel;
+} fogrt__settings;
+
+/* A scattering vertex: a point in the medium, or a surface point with its shading frame. */
+typedef struct fogrt__vertex {
+    fogrt__v3 p, wo;
+    bool in_medium;            /* the vertex lies in the fog (shadow rays are attenuated) */
+    bool is_medium;            /* a fog scattering event (else a surface) */
+    fogrt__frame frame;        /* surface: shading frame */
+    fogrt__v3 ng;              /* surface: geometric normal on the side of wo */
+    const fogrt_material_desc *m;
+} fogrt__vertex;
+
+FOGRT__PRIVATE float fogrt__power_heuristic(float a, float b)
+{
+    float r;
+    if (!(a > 0.0f)) return 0.0f;
+    r = b / a;
+    if (!(r == r)) return 0.0f;
+    return 1.0f / (1.0f + r * r);     /* = a^2 / (a^2 + b^2), without overflow */
+}
+/* Distance to push a new ray's origin off a surface: scale-aware, a few ulps of |p|. */
+FOGRT__PRIVATE float fogrt__offset_size(const fogrt_scene *s, fogrt__v3 p)
+{
+    return s->eps + 1e-5f * FOGRT__MAX(fabsf(p.x), FOGRT__MAX(fabsf(p.y), fabsf(p.z)));
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt__v3 n, fogrt__v3 w)
+{
+    float e = fogrt__offset_size(s, p);
+    return fogrt__madd(p, n, fogrt__dot(w, n) > 0.0f ? e : -e);
+}
+
+/* What the vertex sends toward -wi from light arriving along wi: f |cos| at a surface (in
+   world space, with the geometric-side test against light leaks), the phase function in the
+   fog. *pdf is the density with which BSDF / phase sampling would have chosen wi. */
+FOGRT__PRIVATE fogrt__v3 fogrt__vertex_f(const fogrt__vertex *v, fogrt__v3 wi, float g, float *pdf)
+{
+    fogrt__v3 wo_l, wi_l;
+    if (v->is_medium) {
+        float p = fogrt_hg_pdf(v->wo, wi, g);
+        *pdf = p;
+        return fogrt__v(p, p, p);
+    }
+    if (fogrt__dot(wi, v->ng) <= 0.0f) { *pdf = 0.0f; return fogrt__v(0.0f, 0.0f, 0.0f); }
+    wo_l = fogrt__to_local(&v->frame, v->wo);
+    wi_l = fogrt__to_local(&v->frame, wi);
+    *pdf = fogrt_bsdf_pdf(v->m, wo_l, wi_l);
+    return fogrt__scale(fogrt_bsdf_eval(v->m, wo_l, wi_l), fabsf(wi_l.z));
+}
+
+/* Visibility times transmittance between the vertex and a point at distance dist along wi. */
+FOGRT__PRIVATE float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float dist,
+                                   float far_offset, uint64_t *rays)
+{
+    fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, wi);
+    float tmax = dist - far_offset;
+    ++*rays;
+    if (tmax > 0.0f && fogrt__traverse(s, o, wi, 0.0f, tmax, NULL, true)) return 0.0f;
+#ifndef FOGRT_NO_MEDIUM
+    if (v->in_medium) return fogrt_transmittance(s->medium.sigma_t, dist);
+#endif
+    return 1.0f;
+}
+
+/* Sample a point on area light a as seen from p: returns Le, direction, distance and the
+   solid-angle pdf (0 when the sample is unusable: back side, or p inside an emitting sphere). */
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area_light *a, fogrt__v3 p,
+                                                  fogrt_rng *rng, fogrt__v3 *wi, float *dist, float *pdf)
+{
+    fogrt__v3 zero = fogrt__v(0.0f, 0.0f, 0.0f), y, ny, to;
+    float u0 = fogrt_rng_float(rng), u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng), d2, cos_l;
+    uint32_t tri, mat;
+    *pdf = 0.0f;
+    if (a->sphere != UINT32_MAX) {                       /* a sphere: sample its cone */
+        fogrt__v3 c = s->sph_c[a->sphere];
+        float r = s->sph_r[a->sphere], t;
+        if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r) return zero;   /* emits outward only */
+        *wi = fogrt_sample_sphere_solid_angle(p, c, r, u1, u2, pdf);
+        if (!fogrt__hit_sphere(p, *wi, c, r, 0.0f, INFINITY, &t)) t = fogrt__dot(fogrt__sub(c, p), *wi);
+        *dist = t;
+        return s->materials[s->sph_material[a->sphere]].emission;
+    }
+    {   /* a mesh: pick a triangle by area (binary search in the CDF), then a point on it */
+        uint32_t lo = 0, hi = a->count - 1;
+        const fogrt__v3 *v;
+        float b1, b2;
+        while (lo < hi) { uint32_t mid = (lo + hi) / 2; if (s->light_cdf[a->first + mid] <= u0) lo = mid + 1; else hi = mid; }
+        tri = s->light_prims[a->first + lo];
+        v = &s->tri_v[3 * tri];
+        fogrt_sample_triangle(u1, u2, &b1, &b2);
+        y = fogrt__add(v[0], fogrt__add(fogrt__scale(fogrt__sub(v[1], v[0]), b1), fogrt__scale(fogrt__sub(v[2], v[0]), b2)));
+        ny = fogrt__normalize(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
+        mat = s->tri_material[tri];
+    }
+    to = fogrt__sub(y, p);
+    d2 = fogrt__dot(to, to);
+    if (!(d2 > 0.0f)) return zero;
+    *dist = sqrtf(d2);
+    *wi = fogrt__scale(to, 1.0f / *dist);
+    cos_l = -fogrt__dot(*wi, ny);
+    if (!(cos_l > 0.0f)) return zero;                    /* the back of a one-sided emitter */
+    *pdf = d2 / (cos_l * a->area);                       /* area pdf 1/A -> solid angle */
+    return s->materials[mat].emission;
+}
+
+/* The solid-angle pdf with which next-event estimation would have sampled the emitter point
+   y (on primitive prim, geometric normal ny) from p: the MIS partner of BSDF sampling. */
+FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, fogrt__v3 p, fogrt__v3 y, fogrt__v3 ny)
+{
+    uint32_t li = s->prim_light[prim];
+    const fogrt__area_light *a;
+    fogrt__v3 to;
+    float d2, cos_l;
+    if (li == UINT32_MAX) return 0.0f;
+    a = &s->area_lights[li];
+    if (a->sphere != UINT32_MAX) {
+        fogrt__v3 c = s->sph_c[a->sphere];
+        float r = s->sph_r[a->sphere];
+        if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r) return 0.0f;
+        return fogrt_sphere_solid_angle_pdf(p, c, r);
+    }
+    to = fogrt__sub(y, p);
+    d2 = fogrt__dot(to, to);
+    cos_l = fabsf(fogrt__dot(fogrt__normalize(to), ny));
+    return cos_l > 0.0f ? d2 / (cos_l * a->area) : 0.0f;
+}
+
+/* Next-event estimation at vertex v (CS184 style: every light is sampled, area lights with
+   light_samples samples each). Returns the reflected radiance, before the path weight. */
+FOGRT__PRIVATE fogrt__v3 fogrt__direct(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v,
+                                       fogrt_rng *rng, uint64_t *rays)
+{
+    fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
+    float g = s->medium.g;
+    uint32_t i;
+    int j;
+    /* Point and spot lights (a light with a radius is spread over a sphere: several samples). */
+    for (i = 0; i < s->light_count; ++i) {
+        const fogrt_light_desc *l = &s->lights[i];
+        int n = l->radius > 0.0f ? st->light_samples : 1;
+        for (j = 0; j < n; ++j) {
+            fogrt__v3 lp = l->position, to, wi, I = l->intensity, f;
+            float d2, dist, pdf_b, tr;
+            if (l->radius > 0.0f) {
+                float u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng);
+                lp = fogrt__madd(lp, fogrt_sample_uniform_sphere(u1, u2), l->radius);
+            }
+            to = fogrt__sub(lp, v->p);
+            d2 = fogrt__dot(to, to);
+            if (!(d2 > 0.0f)) continue;                  /* the point is the light: no direction */
+            dist = sqrtf(d2);
+            wi = fogrt__scale(to, 1.0f / dist);
+            if (l->type == FOGRT_LIGHT_SPOT)
+                I = fogrt__scale(I, fogrt_spot_falloff(-fogrt__dot(wi, l->direction), l->cutoff_deg, l->beam_deg));
+            if (fogrt__is_black(I)) continue;
+            f = fogrt__vertex_f(v, wi, g, &pdf_b);
+            if (fogrt__is_black(f)) continue;
+            tr = fogrt__shadow(s, v, wi, dist, fogrt__offset_size(s, lp), rays);
+            if (tr == 0.0f) continue;
+            L = fogrt__add(L, fogrt__scale(fogrt__mul(f, I), tr / (FOGRT__MAX(d2, s->r2_min) * (float)n)));
+        }
+    }
+    /* Area lights, with MIS against BSDF / phase sampling. */
+    for (i = 0; i < s->area_light_count; ++i) {
+        const fogrt__area_light *a = &s->area_lights[i];
+        int n = st->light_samples;
+        for (j = 0; j < n; ++j) {
+            fogrt__v3 wi, Le, f;
+            float dist = 0.0f, pdf_l, pdf_b, tr, w;
+            Le = fogrt__sample_area_light(s, a, v->p, rng, &wi, &dist, &pdf_l);
+            if (!(pdf_l > 0.0f) || fogrt__is_black(Le)) continue;
+            f = fogrt__vertex_f(v, wi, g, &pdf_b);
+            if (fogrt__is_black(f)) continue;
+            tr = fogrt__shadow(s, v, wi, dist, fogrt__offset_size(s, fogrt__madd(v->p, wi, dist)), rays);
+            if (tr == 0.0f) continue;
+            w = st->mis ? fogrt__power_heuristic((float)n * pdf_l, pdf_b) : 1.0f;
+            L = fogrt__add(L, fogrt__scale(fogrt__mul(f, Le), tr * w / (pdf_l * (float)n)));
+        }
+    }
+    return L;
+}
+
+/* ------------------------------------------------------------------------------------------
+   11. The camera: pinhole or thin lens
+   ------------------------------------------------------------------------------------------ */
+typedef struct fogrt__camera { fogrt__v3 pos, right, up, fwd; float tan_x, tan_y, lens, focal; } fogrt__camera;
+
+FOGRT__PRIVATE fogrt__camera fogrt__camera_setup(const fogrt_scene *s, int width, int height)
+{
+    fogrt__camera c;
+    fogrt_camera_desc d = s->camera;
+    float aspect = (float)width / (float)FOGRT__MAX(height, 1), t;
+    if (!s->has_camera) {                       /* no camera: look at the scene from +z */
+        fogrt__v3 centre = fogrt__scale(fogrt__add(s->bmin, s->bmax), 0.5f);
+        float r = 0.5f * fogrt__length(fogrt__sub(s->bmax, s->bmin));
+        memset(&d, 0, sizeof d);
+        d.look_at = centre;
+        d.position = fogrt__add(centre, fogrt__v(0.0f, 0.0f, 2.5f * FOGRT__MAX(r, 1e-3f)));
+        d.up = fogrt__v(0.0f, 1.0f, 0.0f);
+        d.fov_deg = 45.0f;
+    }
+    c.pos = d.position;
+    c.fwd = fogrt__normalize(fogrt__sub(d.look_at, d.position));
+    c.right = fogrt__normalize(fogrt__cross(c.fwd, d.up));
+    c.up = fogrt__cross(c.right, c.fwd);
+    t = tanf(0.5f * d.fov_deg * FOGRT__PI / 180.0f);
+    if (d.fov_is_horizontal) { c.tan_x = t; c.tan_y = t / aspect; }
+    else { c.tan_y = t; c.tan_x = t * aspect; }
+    c.lens = d.lens_radius;
+    c.focal = d.focal_distance > 0.0f ? d.focal_distance : fogrt__length(fogrt__sub(d.look_at, d.position));
+    return c;
+}
+FOGRT__PRIVATE void fogrt__camera_generate(const fogrt__camera *c, int width, int height, float px, float py,
+                                           float lu1, float lu2, fogrt__v3 *o, fogrt__v3 *d)
+{
+    float x = (2.0f * px / (float)width - 1.0f) * c->tan_x;
+    float y = (1.0f - 2.0f * py / (float)height) * c->tan_y;
+    fogrt__v3 dir = fogrt__normalize(fogrt__add(c->fwd, fogrt__add(fogrt__scale(c->right, x), fogrt__scale(c->up, y))));
+    *o = c->pos;
+    if (c->lens > 0.0f) {        /* thin lens: aim through the focus point from a lens sample */
+        float lx, ly;
+        fogrt__v3 focus = fogrt__madd(c->pos, dir, c->focal / fogrt__dot(dir, c->fwd));
+        fogrt__concentric_disk(lu1, lu2, &lx, &ly);
+        *o = fogrt__add(c->pos, fogrt__add(fogrt__scale(c->right, lx * c->lens), fogrt__scale(c->up, ly * c->lens)));
+        dir = fogrt__normalize(fogrt__sub(focus, *o));
+    }
+    *d = dir;
+}
+FOGRT__PUBLIC void fogrt_camera_ray(const fogrt_scene *s, int width, int height, float px, float py,
+                                    float lens_u1, float lens_u2, fogrt_vec3 *o, fogrt_vec3 *d)
+{
+    fogrt__camera c;
+    FOGRT_ASSERT(s && o && d);
+    c = fogrt__camera_setup(s, width, height);
+    fogrt__camera_generate(&c, width, height, px, py, lens_u1, lens_u2, o, d);
+}
+
+/* ------------------------------------------------------------------------------------------
+   12. The integrators: the paper's Algorithm 1, and the one-bounce baseline
+   One loop serves both. Each pass of the loop follows the ray to its next event:
+     a. Free flight: if the ray travels in fog, sample a collision distance t (chapter 4). If
+        t comes before the surface, the event is a fog collision: the path weight is multiplied
+        by the albedo sigma_s/sigma_t (transmittance and pdf cancel), lights are sampled with
+        the phase function, and a new direction is drawn from Henyey-Greenstein. Otherwise the
+        ray reaches the surface with probability T and weight T/T = 1.
+     b. At a surface: add its emission (weighted by MIS when next-event estimation could have
+        found it too), sample the lights through the BSDF, and draw a new direction from it.
+     c. Russian roulette ends long paths without bias.
+   Path weights are kept as throughput beta = prod f |cos| / pdf; the image is sum beta Le.
+   A scene without fog never enters step a: it pays one well-predicted branch per bounce.
+   ------------------------------------------------------------------------------------------ */
+FOGRT__PRIVATE void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, const fogrt_hit *h,
+                                         fogrt__v3 *p, fogrt__v3 *ng, fogrt__v3 *ns)
+{
+    *p = fogrt__madd(o, d, h->t);
+    if (h->prim < s->tri_count) {
+        const fogrt__v3 *v = &s->tri_v[3 * h->prim];
+        *ng = fogrt__normalize(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
+        *ns = *ng;
+        if (s->tri_has_n[h->prim]) {   /* interpolated shading normal, on the side of ng */
+            const fogrt__v3 *n = &s->tri_n[3 * h->prim];
+            fogrt__v3 sn = fogrt__add(fogrt__scale(n[0], 1.0f - h->u - h->v), fogrt__add(fogrt__scale(n[1], h->u), fogrt__scale(n[2], h->v)));
+            if (fogrt__dot(sn, sn) > 0.0f) {
+                sn = fogrt__normalize(sn);
+                *ns = fogrt__dot(sn, *ng) < 0.0f ? fogrt__neg(sn) : sn;
+            }
+        }
+    } else {
+        fogrt__v3 c = s->sph_c[h->prim - s->tri_count];
+        float r = s->sph_r[h->prim - s->tri_count];
+        *ng = fogrt__normalize(fogrt__sub(*p, c));
+        *p = fogrt__madd(c, *ng, r);               /* re-project: removes the hit's rounding */
+        *ns = *ng;
+    }
+}
+
+FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
+                                         fogrt_rng *rng, uint64_t *rays)
+{
+    fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f), beta = fogrt__v(1.0f, 1.0f, 1.0f), prev_p = o;
+    float prev_pdf = 0.0f;        /* solid-angle pdf of the direction just sampled */
+    bool prev_delta = true;       /* camera ray or specular bounce: emission counts in full */
+    bool in_medium = (s->features & FOGRT_FEATURE_MEDIUM) != 0;   /* the camera sits in the fog */
+    int bounces = 0, limit = st->max_depth;
+    uint32_t vertex;
+    fogrt__vertex v;
+    for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
+        fogrt_hit hit;
+        bool found, entering;
+        fogrt__v3 ng, ns, wo = fogrt__neg(d);
+        fogrt_bsdf_type type;
+        fogrt_bsdf_sample bs;
+        float u_lobe, u1, u2;
+        ++*rays;
+        found = fogrt__traverse(s, o, d, 0.0f, INFINITY, &hit, false);
+#ifndef FOGRT_NO_MEDIUM
+        /* a. Free flight through the fog (paper eq. 4-6): collide before the surface? */
+        if (in_medium) {
+            float t = fogrt_sample_exponential(fogrt_rng_float(rng), s->medium.sigma_t);
+            if (t < (found ? hit.t : INFINITY)) {
+                fogrt__v3 wi;
+                float pdf;
+                beta = fogrt__mul(beta, s->medium.albedo);        /* sigma_s T / (sigma_t T) */
+                if (bounces >= limit || fogrt__is_black(beta)) break;
+                v.p = fogrt__madd(o, d, t); v.wo = wo;
+                v.is_medium = true; v.in_medium = true; v.m = NULL;
+                if (st->nee) L = fogrt__add(L, fogrt__mul(beta, fogrt__direct(s, st, &v, rng, rays)));
+                if (st->direct_only) { if (st->nee) break; limit = bounces + 1; }
+                u1 = fogrt_rng_float(rng); u2 = fogrt_rng_float(rng);
+                wi = fogrt_sample_hg(wo, s->medium.g, u1, u2, &pdf);  /* weight p/pdf = 1 */
+                prev_pdf = pdf; prev_delta = false; prev_p = v.p;
+                o = v.p; d = wi;
+                goto next_bounce;
+            }
+        }
+#endif
+        if (!found) {                                 /* escaped: the environment */
+            if (s->has_env && (!s->env_upper_only || d.y > 0.0f)) L = fogrt__add(L, fogrt__mul(beta, s->env));
+            break;
+        }
+        /* b. A surface. */
+        fogrt__surface_frame(s, o, d, &hit, &v.p, &ng, &ns);
+        v.m = &s->materials[fogrt_scene_prim_material(s, hit.prim)];
+        if (!fogrt__is_black(v.m->emission) && fogrt__dot(d, ng) < 0.0f) {   /* front side emits */
+            float w = 1.0f;
+            if (!prev_delta && st->nee)
+                w = st->mis ? fogrt__power_heuristic(prev_pdf, (float)st->light_samples *
+                                                     fogrt__area_light_pdf(s, hit.prim, prev_p, v.p, ng)) : 0.0f;
+            L = fogrt__add(L, fogrt__scale(fogrt__mul(beta, v.m->emission), w));
+        }
+        if (bounces >= limit) break;
+        type = fogrt__bsdf_type(v.m);
+        if (type == FOGRT_BSDF_DIFFUSE && fogrt__is_black(v.m->reflectance)) break;   /* absorbs all */
+        entering = fogrt__dot(wo, ng) > 0.0f;
+        if (type == FOGRT_BSDF_REFRACTION || type == FOGRT_BSDF_GLASS) {
+            /* refractive: keep the outward normal, so wo.z < 0 in the frame means "inside" */
+        } else if (!entering) {                       /* reflective: two-sided */
+            ng = fogrt__neg(ng); ns = fogrt__neg(ns);
+        }
+        if (type != FOGRT_BSDF_REFRACTION && type != FOGRT_BSDF_GLASS && fogrt__dot(wo, ns) <= 0.0f) ns = ng;
+        v.frame = fogrt__frame_from_z(ns);
+        v.ng = ng; v.wo = wo; v.is_medium = false; v.in_medium = in_medium;
+        if (!fogrt__bsdf_is_delta(type)) {
+            if (st->nee) L = fogrt__add(L, fogrt__mul(beta, fogrt__direct(s, st, &v, rng, rays)));
+            if (st->direct_only) { if (st->nee) break; limit = bounces + 1; }
+        }
+        u_lobe = fogrt_rng_float(rng); u1 = fogrt_rng_float(rng); u2 = fogrt_rng_float(rng);
+        if (!fogrt_bsdf_sample_dir(v.m, st->fresnel, fogrt__to_local(&v.frame, wo), u_lobe, u1, u2, &bs)) break;
+        d = fogrt__normalize(fogrt__to_world(&v.frame, bs.wi));
+        /* A shading normal can send a direction through the geometric surface: drop it. */
+        if (bs.is_transmission ? (fogrt__dot(d, ng) * fogrt__dot(wo, ng) >= 0.0f) : (fogrt__dot(d, ng) * fogrt__dot(wo, ng) <= 0.0f)) break;
+        beta = fogrt__mul(beta, bs.weight);
+        prev_pdf = bs.pdf; prev_delta = bs.is_delta; prev_p = v.p;
+        /* Refraction moves the ray into or out of the object: fog exists only outside. */
+        if (bs.is_transmission) in_medium = !entering && (s->features & FOGRT_FEATURE_MEDIUM) != 0;
+        o = fogrt__offset(s, v.p, ng, d);
+#ifndef FOGRT_NO_MEDIUM
+    next_bounce:
+#endif
+        /* c. Russian roulette (after rr_depth bounces): continue with probability q. */
+        bounces++;
+        if (bounces > st->rr_depth) {
+            float q = FOGRT__MIN(0.95f, fogrt__max3(beta));
+            if (!(fogrt_rng_float(rng) < q)) break;
+            beta = fogrt__scale(beta, 1.0f / q);
+        }
+    }
+    return L;
+}
+
+/* ------------------------------------------------------------------------------------------
+   13. Rendering, the error estimate, and output
+   ------------------------------------------------------------------------------------------ */
+FOGRT__PRIVATE fogrt__settings fogrt__settings_from(const fogrt_render_desc *d)
+{
+    fogrt__settings st;
+    st.max_depth = d->max_depth == 0 ? 64 : (d->max_depth < 0 ? 0x7FFFFFFF : d->max_depth);
+    st.rr_depth = d->rr_depth > 0 ? d->rr_depth : 3;
+    st.light_samples = d->light_samples > 0 ? d->light_samples : 1;
+    st.nee = !d->no_nee;
+    st.mis = !d->no_mis;
+    st.direct_only = d->integrator == FOGRT_INTEGRATOR_DIRECT;
+    st.fresnel = d->fresnel;
+    return st;
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_trace(const fogrt_scene *s, const fogrt_render_desc *desc, fogrt_vec3 o, fogrt_vec3 d,
+                                     fogrt_rng *rng, uint64_t *ray_count)
+{
+    fogrt_render_desc zero;
+    fogrt__settings st;
+    uint64_t rays = 0;
+    FOGRT_ASSERT(s && rng);
+    memset(&zero, 0, sizeof zero);
+    st = fogrt__settings_from(desc ? desc : &zero);
+    if (!s->built) return fogrt__v(0.0f, 0.0f, 0.0f);
+    o = fogrt__radiance(s, &st, o, fogrt__normalize(d), rng, &rays);
+    if (ray_count) *ray_count += rays;
+    return o;
+}
+
+FOGRT__PUBLIC fogrt_result fogrt_image_alloc(fogrt_image *img, int width, int height, const fogrt_allocator *a)
+{
+    size_t n;
+    FOGRT_ASSERT(img);
+    memset(img, 0, sizeof *img);
+    if (width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
+    if ((uint64_t)width * (uint64_t)height > ((uint64_t)1 << 31) / 16) return FOGRT_RESULT_TOO_LARGE;
+    n = (size_t)width * (size_t)height;
+    img->sum = (float *)fogrt__alloc(a, sizeof(float) * 3 * n);
+    img->sum_sq = (float *)fogrt__alloc(a, sizeof(float) * n);
+    img->count = (uint32_t *)fogrt__alloc(a, sizeof(uint32_t) * n);
+    if (!img->sum || !img->sum_sq || !img->count) { fogrt_image_free(img, a); return FOGRT_RESULT_OUT_OF_MEMORY; }
+    img->width = width; img->height = height;
+    fogrt_image_clear(img);
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PUBLIC void fogrt_image_free(fogrt_image *img, const fogrt_allocator *a)
+{
+    if (!img) return;
+    fogrt__free(a, img->sum); fogrt__free(a, img->sum_sq); fogrt__free(a, img->count);
+    memset(img, 0, sizeof *img);
+}
+FOGRT__PUBLIC void fogrt_image_clear(fogrt_image *img)
+{
+    size_t n;
+    FOGRT_ASSERT(img);
+    n = (size_t)img->width * (size_t)img->height;
+    if (img->sum) memset(img->sum, 0, sizeof(float) * 3 * n);
+    if (img->sum_sq) memset(img->sum_sq, 0, sizeof(float) * n);
+    if (img->count) memset(img->count, 0, sizeof(uint32_t) * n);
+    img->rejected = 0;
+}
+FOGRT__PUBLIC void fogrt_image_resolve(const fogrt_image *img, float *rgb)
+{
+    size_t i, n;
+    FOGRT_ASSERT(img && rgb);
+    n = (size_t)img->width * (size_t)img->height;
+    for (i = 0; i < n; ++i) {
+        float inv = img->count[i] ? 1.0f / (float)img->count[i] : 0.0f;
+        rgb[3 * i + 0] = img->sum[3 * i + 0] * inv;
+        rgb[3 * i + 1] = img->sum[3 * i + 1] * inv;
+        rgb[3 * i + 2] = img->sum[3 * i + 2] * inv;
+    }
+}
+/* Relative RMS error of the image, estimated from the samples themselves: each pixel's mean
+   has variance s^2 / n (s^2 the sample variance of its luminance), so
+     relative error = sqrt(sum_p s_p^2 / n_p) / sqrt(sum_p mean_p^2).
+   It falls as 1/sqrt(samples): this is the number to plot against seconds. */
+FOGRT__PUBLIC void fogrt_image_error(const fogrt_image *img, fogrt_error_estimate *out)
+{
+    double var_sum = 0.0, mean_sq_sum = 0.0, lum_sum = 0.0;
+    size_t i, n;
+    FOGRT_ASSERT(img && out);
+    memset(out, 0, sizeof *out);
+    n = (size_t)img->width * (size_t)img->height;
+    for (i = 0; i < n; ++i) {
+        double c = img->count[i], mean, var;
+        fogrt__v3 sum;
+        if (c < 1.0) continue;
+        sum = fogrt__v(img->sum[3 * i], img->sum[3 * i + 1], img->sum[3 * i + 2]);
+        mean = fogrt__luminance(sum) / c;
+        lum_sum += mean;
+        mean_sq_sum += mean * mean;
+        out->samples += img->count[i];
+        if (c < 2.0) continue;
+        var = (img->sum_sq[i] / c - mean * mean) * c / (c - 1.0);
+        if (var > 0.0) var_sum += var / c;
+    }
+    out->relative_error = mean_sq_sum > 0.0 ? sqrt(var_sum / mean_sq_sum) : 0.0;
+    out->mean_luminance = n ? lum_sum / (double)n : 0.0;
+    out->rejected = img->rejected;
+}
+
+FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render_desc *desc, fogrt_image *img,
+                                        int spp, fogrt_render_stats *stats)
+{
+    fogrt_render_desc zero;
+    fogrt__settings st;
+    fogrt__camera cam;
+    int width, height, block, y0;
+    uint64_t rays = 0, rejected = 0, base;
+    fogrt_result result = FOGRT_RESULT_OK;
+    FOGRT_ASSERT(s && img);
+    memset(&zero, 0, sizeof zero);
+    if (!desc) desc = &zero;
+    if (stats) memset(stats, 0, sizeof *stats);
+    if (!s->built) return fogrt__fail(s, FOGRT_RESULT_NOT_BUILT, "render: the scene changed since fogrt_scene_build");
+    width = img->width; height = img->height;
+    if (width <= 0 || height <= 0 || !img->sum || !img->sum_sq || !img->count ||
+        (desc->width && desc->width != width) || (desc->height && desc->height != height))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: image size does not match render desc width/height");
+    if (spp < 0 || desc->max_depth < -1 || desc->rr_depth < 0 || desc->light_samples < 0 ||
+        (unsigned)desc->integrator >= (unsigned)FOGRT_INTEGRATOR_NUM || (unsigned)desc->fresnel >= (unsigned)FOGRT_FRESNEL_NUM)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: samples_per_pixel, max_depth, rr_depth, light_samples, integrator or fresnel out of range");
+    st = fogrt__settings_from(desc);
+    cam = fogrt__camera_setup(s, width, height);
+    base = fogrt__hash64(desc->seed);
+    /* Rows go out in blocks; the progress callback runs between blocks on the calling thread. */
+    block = height >= 32 ? height / 32 : 1;
+    for (y0 = 0; y0 < height && spp > 0; y0 += block) {
+        int y1 = FOGRT__MIN(height, y0 + block), y;
+#ifdef _OPENMP
+        int nthreads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) reduction(+ : rays, rejected)
+#endif
+        for (y = y0; y < y1; ++y) {
+            int x, k;
+            for (x = 0; x < width; ++x) {
+                size_t pix = (size_t)y * (size_t)width + (size_t)x;
+                for (k = 0; k < spp; ++k) {
+                    /* One random stream per (seed, pixel, sample index): thread-independent. */
+                    uint64_t key = ((uint64_t)pix << 32) | (uint64_t)(img->count[pix] + (uint32_t)k);
+                    fogrt_rng rng;
+                    fogrt__v3 o, d, Lr;
+                    float jx, jy, l1, l2, lum;
+                    fogrt_rng_seed(&rng, fogrt__hash64(key ^ base), 0);
+                    jx = fogrt_rng_float(&rng); jy = fogrt_rng_float(&rng);
+                    l1 = fogrt_rng_float(&rng); l2 = fogrt_rng_float(&rng);
+                    fogrt__camera_generate(&cam, width, height, (float)x + jx, (float)y + jy, l1, l2, &o, &d);
+                    Lr = fogrt__radiance(s, &st, o, d, &rng, &rays);
+                    /* The NaN firewall: a non-finite sample is counted, never added. */
+                    if (!fogrt__v3_finite(Lr)) { rejected++; continue; }
+                    lum = fogrt__luminance(Lr);
+                    img->sum[3 * pix + 0] += Lr.x;
+                    img->sum[3 * pix + 1] += Lr.y;
+                    img->sum[3 * pix + 2] += Lr.z;
+                    img->sum_sq[pix] += lum * lum;
+                }
+                img->count[pix] += (uint32_t)spp;
+            }
+        }
+        if (desc->progress) {
+            fogrt_progress p;
+            p.rows_done = y1; p.rows_total = height; p.samples_per_pixel = spp;
+            if (!desc->progress(&p, desc->user_data)) { result = FOGRT_RESULT_CANCELLED; break; }
+        }
+    }
+    img->rejected += rejected;
+    if (stats) {
+        stats->camera_rays = (uint64_t)width * (uint64_t)height * (uint64_t)(spp > 0 ? spp : 0);
+        stats->rays = rays;
+        stats->rejected = rejected;
+    }
+    return result;
+}
+
+/* Output helpers. The sRGB curve: 12.92 x below 0.0031308, else 1.055 x^(1/2.4) - 0.055. */
+FOGRT__PUBLIC void fogrt_tonemap_rgb8(const float *rgb, int width, int height, float exposure,
+                                      fogrt_tonemap mode, unsigned char *out)
+{
+    size_t i, n = (size_t)FOGRT__MAX(width, 0) * (size_t)FOGRT__MAX(height, 0) * 3;
+    float e = FOGRT__DEF(exposure, 1.0f);
+    for (i = 0; i < n; ++i) {
+        float x = rgb[i] * e;
+        if (!(x > 0.0f)) x = 0.0f;                   /* also NaN -> 0 */
+        if (x > 1.0f) x = 1.0f;
+        if (mode == FOGRT_TONEMAP_GAMMA22) x = powf(x, 1.0f / 2.2f);
+        else x = x <= 0.0031308f ? 12.92f * x : 1.055f * powf(x, 1.0f / 2.4f) - 0.055f;
+        out[i] = (unsigned char)(x * 255.0f + 0.5f);
+    }
+}
+#ifndef FOGRT_NO_STDIO
+FOGRT__PUBLIC fogrt_result fogrt_write_pfm(const char *path, int width, int height, const float *rgb)
+{
+    FILE *f;
+    int y;
+    bool ok;
+    if (!path || !rgb || width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
+    f = fopen(path, "wb");
+    if (!f) return FOGRT_RESULT_IO_ERROR;
+    ok = fprintf(f, "PF\n%d %d\n-1.0\n", width, height) > 0;   /* -1: little endian */
+    for (y = height - 1; y >= 0 && ok; --y) {                    /* PFM stores bottom row first */
+        const float *row = rgb + (size_t)y * (size_t)width * 3;
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+        int i;
+        for (i = 0; i < width * 3 && ok; ++i) {
+            unsigned char b[4], t; memcpy(b, &row[i], 4);
+            t = b[0]; b[0] = b[3]; b[3] = t; t = b[1]; b[1] = b[2]; b[2] = t;
+            ok = fwrite(b, 1, 4, f) == 4;
+        }
+#else
+        ok = fwrite(row, sizeof(float) * 3, (size_t)width, f) == (size_t)width;
+#endif
+    }
+    if (fclose(f) != 0) ok = false;
+    return ok ? FOGRT_RESULT_OK : FOGRT_RESULT_IO_ERROR;
+}
+FOGRT__PUBLIC fogrt_result fogrt_write_ppm(const char *path, int width, int height, const unsigned char *rgb8)
+{
+    FILE *f;
+    bool ok;
+    if (!path || !rgb8 || width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
+    f = fopen(path, "wb");
+    if (!f) return FOGRT_RESULT_IO_ERROR;
+    ok = fprintf(f, "P6\n%d %d\n255\n", width, height) > 0;
+    ok = ok && fwrite(rgb8, 3, (size_t)width * (size_t)height, f) == (size_t)width * (size_t)height;
+    if (fclose(f) != 0) ok = false;
+    return ok ? FOGRT_RESULT_OK : FOGRT_RESULT_IO_ERROR;
+}
+#endif
+
+/* ------------------------------------------------------------------------------------------
+   14. The default scene: the CS184 Cornell box, filled with fog
+   ------------------------------------------------------------------------------------------ */
+FOGRT__PRIVATE fogrt_result fogrt__add_quad(fogrt_scene *s, fogrt__v3 a, fogrt__v3 b, fogrt__v3 c, fogrt__v3 d, uint32_t mat)
+{
+    /* a, b, c, d counter-clockwise seen from the front: triangles (a, b, c) and (a, c, d). */
+    float pos[12];
+    uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    fogrt_mesh_desc m;
+    pos[0] = a.x; pos[1] = a.y; pos[2] = a.z; pos[3] = b.x; pos[4] = b.y; pos[5] = b.z;
+    pos[6] = c.x; pos[7] = c.y; pos[8] = c.z; pos[9] = d.x; pos[10] = d.y; pos[11] = d.z;
+    memset(&m, 0, sizeof m);
+    m.positions = pos; m.vertex_count = 4; m.indices = idx; m.triangle_count = 2; m.material = mat;
+    return fogrt_scene_add_mesh(s, &m);
+}
+FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
+{
+    fogrt_material_desc md;
+    fogrt_light_desc ld;
+    fogrt_camera_desc cd;
+    fogrt_medium_desc fd;
+    uint32_t white, red, blue, lamp, matte, glass;
+    fogrt_result r = FOGRT_RESULT_OK;
+    FOGRT_ASSERT(s);
+#define FOGRT__TRY(call) do { r = (call); if (r != FOGRT_RESULT_OK) return r; } while (0)
+    memset(&md, 0, sizeof md);
+    md.type = FOGRT_BSDF_DIFFUSE;
+    md.reflectance = fogrt__v(0.73f, 0.73f, 0.73f); FOGRT__TRY(fogrt_scene_add_material(s, &md, &white));
+    md.reflectance = fogrt__v(0.65f, 0.06f, 0.05f); FOGRT__TRY(fogrt_scene_add_material(s, &md, &red));
+    md.reflectance = fogrt__v(0.08f, 0.12f, 0.60f); FOGRT__TRY(fogrt_scene_add_material(s, &md, &blue));
+    md.reflectance = fogrt__v(0.60f, 0.55f, 0.45f); FOGRT__TRY(fogrt_scene_add_material(s, &md, &matte));
+    md.reflectance = fogrt__v(0.0f, 0.0f, 0.0f);
+    md.emission = fogrt__v(17.0f, 12.0f, 4.0f);    FOGRT__TRY(fogrt_scene_add_material(s, &md, &lamp));
+    memset(&md, 0, sizeof md);
+    md.type = FOGRT_BSDF_GLASS; md.ior = 1.5f;
+    md.reflectance = fogrt__v(1.0f, 1.0f, 1.0f); md.transmittance = fogrt__v(1.0f, 1.0f, 1.0f);
+    FOGRT__TRY(fogrt_scene_add_material(s, &md, &glass));
+    /* The box: x in [-1, 1], y in [0, 1.5], z in [-1, 1], open toward +z (the camera). */
+    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 0, -1), fogrt__v(-1, 0, 1), fogrt__v(1, 0, 1), fogrt__v(1, 0, -1), white));          /* floor */
+    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 1.5f, -1), fogrt__v(1, 1.5f, -1), fogrt__v(1, 1.5f, 1), fogrt__v(-1, 1.5f, 1), white)); /* ceiling */
+    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 0, -1), fogrt__v(1, 0, -1), fogrt__v(1, 1.5f, -1), fogrt__v(-1, 1.5f, -1), white));   /* back */
+    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 0, -1), fogrt__v(-1, 1.5f, -1), fogrt__v(-1, 1.5f, 1), fogrt__v(-1, 0, 1), red));     /* left */
+    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(1, 0, -1), fogrt__v(1, 0, 1), fogrt__v(1, 1.5f, 1), fogrt__v(1, 1.5f, -1), blue));        /* right */
+    /* The ceiling lamp: a square just below the ceiling, wound to face down. */
+    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-0.25f, 1.49f, -0.25f), fogrt__v(0.25f, 1.49f, -0.25f),
+                               fogrt__v(0.25f, 1.49f, 0.25f), fogrt__v(-0.25f, 1.49f, 0.25f), lamp));
+    FOGRT__TRY(fogrt_scene_add_sphere(s, fogrt__v(-0.45f, 0.35f, -0.35f), 0.35f, matte));
+    FOGRT__TRY(fogrt_scene_add_sphere(s, fogrt__v(0.45f, 0.35f, 0.25f), 0.35f, glass));
+    /* The spot light: high on the left, aimed at the floor right of centre; its cone shows in the fog. */
+    memset(&ld, 0, sizeof ld);
+    ld.type = FOGRT_LIGHT_SPOT;
+    ld.position = fogrt__v(-0.8f, 1.4f, 0.6f);
+    ld.direction = fogrt__sub(fogrt__v(0.3f, 0.0f, 0.0f), ld.position);
+    ld.intensity = fogrt__v(2.0f, 2.6f, 3.2f);
+    ld.cutoff_deg = 16.0f; ld.beam_deg = 11.0f; ld.radius = 0.02f;
+    FOGRT__TRY(fogrt_scene_add_light(s, &ld));
+    memset(&cd, 0, sizeof cd);
+    cd.position = fogrt__v(0.0f, 0.75f, 3.6f);
+    cd.look_at = fogrt__v(0.0f, 0.7f, 0.0f);
+    cd.fov_deg = 38.0f;
+    FOGRT__TRY(fogrt_scene_set_camera(s, &cd));
+    memset(&fd, 0, sizeof fd);
+    fd.sigma_t = 0.3f; fd.albedo = fogrt__v(0.9f, 0.9f, 0.9f); fd.g = 0.6f;
+    FOGRT__TRY(fogrt_scene_set_medium(s, &fd));
+#undef FOGRT__TRY
+    return r;
+}
+
+#endif /* FOGRT_IMPLEMENTATION_INCLUDED */
+#endif /* FOGRT_IMPLEMENTATION */
+
+/*
+   REVISION HISTORY
+   0.1  first release: SAH/volume BVH, four BSDFs, homogeneous fog with HG, path tracing with
+        NEE + MIS, one-bounce baseline, point/spot/area lights, pinhole and thin-lens cameras.
+
+   LICENSE (MIT)
+   Copyright (c) 2026 the fogrt authors
+
+   Permission is hereby granted, free of charge, to any person obtaining a copy of this
+   software and associated documentation files (the "Software"), to deal in the Software
+   without restriction, including without limitation the rights to use, copy, modify, merge,
+   publish, distribute, sublicense, and/or sell copies of the Software, and to permit persons
+   to whom the Software is furnished to do so, subject to the following conditions:
+
+   The above copyright notice and this permission notice shall be included in all copies or
+   substantial portions of the Software.
+
+   THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR IMPLIED,
+   INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY, FITNESS FOR A PARTICULAR
+   PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE AUTHORS OR COPYRIGHT HOLDERS BE LIABLE
+   FOR ANY CLAIM, DAMAGES OR OTHER LIABILITY, WHETHER IN AN ACTION OF CONTRACT, TORT OR
+   OTHERWISE, ARISING FROM, OUT OF OR IN CONNECTION WITH THE SOFTWARE OR THE USE OR OTHER
+   DEALINGS IN THE SOFTWARE.
+*/
