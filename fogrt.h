@@ -448,6 +448,12 @@ FOGRT_API void fogrt_sample_triangle(float u1, float u2, float *b1, float *b2);
 FOGRT_API fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 p, fogrt_vec3 center, float radius,
                                                      float u1, float u2, float *pdf);
 FOGRT_API float fogrt_sphere_solid_angle_pdf(fogrt_vec3 p, fogrt_vec3 center, float radius);
+/* Equiangular distance sampling along a ray toward a point light (Kulla and Fajardo 2012):
+   the light at distance h from the ray's line, its closest approach at t = delta; samples
+   t in [a, b] (b may be +infinity) with pdf proportional to 1 / (h^2 + (t - delta)^2), which
+   cancels the light's 1/r^2. h must be > 0. */
+FOGRT_API float fogrt_sample_equiangular(float u, float delta, float h, float a, float b, float *pdf);
+FOGRT_API float fogrt_equiangular_pdf(float t, float delta, float h, float a, float b);
 /* Spot light profile: fraction of full intensity at angle theta (cos_theta) from the axis. */
 FOGRT_API float fogrt_spot_falloff(float cos_theta, float cutoff_deg, float beam_deg);
 
@@ -949,6 +955,24 @@ FOGRT__PUBLIC float fogrt_spot_falloff(float cos_theta, float cutoff_deg, float 
     float theta = acosf(FOGRT__CLAMP(cos_theta, -1.0f, 1.0f)) * (180.0f / FOGRT__PI);
     if (!(cutoff_deg > beam_deg)) return theta <= cutoff_deg ? 1.0f : 0.0f;   /* hard cone */
     return FOGRT__CLAMP((cutoff_deg - theta) / (cutoff_deg - beam_deg), 0.0f, 1.0f);
+}
+
+/* Equiangular: with theta the angle seen from the light, t = delta + h tan(theta) and theta is
+   uniform between theta_a = atan((a - delta)/h) and theta_b = atan((b - delta)/h). */
+FOGRT__PUBLIC float fogrt_sample_equiangular(float u, float delta, float h, float a, float b, float *pdf)
+{
+    float theta_a = atan2f(a - delta, h), theta_b = atan2f(b - delta, h), t;
+    if (!(theta_b > theta_a) || !(h > 0.0f)) { if (pdf) *pdf = 0.0f; return a; }
+    t = delta + h * tanf(theta_a + u * (theta_b - theta_a));
+    t = FOGRT__CLAMP(t, a, b);
+    if (pdf) *pdf = h / ((theta_b - theta_a) * (h * h + (t - delta) * (t - delta)));
+    return t;
+}
+FOGRT__PUBLIC float fogrt_equiangular_pdf(float t, float delta, float h, float a, float b)
+{
+    float theta_a = atan2f(a - delta, h), theta_b = atan2f(b - delta, h);
+    if (!(theta_b > theta_a) || !(h > 0.0f) || t < a || t > b) return 0.0f;
+    return h / ((theta_b - theta_a) * (h * h + (t - delta) * (t - delta)));
 }
 
 /* ------------------------------------------------------------------------------------------
@@ -2132,14 +2156,14 @@ FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, 
 /* Next-event estimation at vertex v (CS184 style: every light is sampled, area lights with
    light_samples samples each). Returns the reflected radiance, before the path weight. */
 FOGRT__PRIVATE fogrt__v3 fogrt__direct(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v,
-                                       fogrt_rng *rng, uint64_t *rays)
+                                       bool point_lights, fogrt_rng *rng, uint64_t *rays)
 {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
     float g = s->medium.g;
     uint32_t i;
     int j;
     /* Point and spot lights (a light with a radius is spread over a sphere: several samples). */
-    for (i = 0; i < s->light_count; ++i) {
+    for (i = 0; point_lights && i < s->light_count; ++i) {
         const fogrt_light_desc *l = &s->lights[i];
         int n = l->radius > 0.0f ? st->light_samples : 1;
         for (j = 0; j < n; ++j) {
@@ -2278,6 +2302,53 @@ FOGRT__PRIVATE void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogr
     }
 }
 
+#ifndef FOGRT_NO_MEDIUM
+/* Single scattering from point and spot lights along one fog segment [0, t_max] of the ray,
+   by equiangular sampling: an estimator of its own, so fog vertices leave point lights out of
+   their next-event estimate (the two never count the same light twice). Per light:
+     sigma_s T(t) p(wo, wi) I(theta) / r^2 T(r) V / pdf(t).                                  */
+FOGRT__PRIVATE fogrt__v3 fogrt__point_lights_in_fog(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o,
+                                                    fogrt__v3 d, float t_max, fogrt_rng *rng, uint64_t *rays)
+{
+    fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
+    float sigma_t = s->medium.sigma_t;
+    uint32_t i;
+    int j;
+    for (i = 0; i < s->light_count; ++i) {
+        const fogrt_light_desc *l = &s->lights[i];
+        int n = l->radius > 0.0f ? st->light_samples : 1;
+        for (j = 0; j < n; ++j) {
+            fogrt__v3 lp = l->position, oc, x, to, wi, I = l->intensity;
+            fogrt__vertex v;
+            float delta, h, t, pdf_t, d2, dist, tr, phase;
+            float u0 = fogrt_rng_float(rng), u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng);
+            if (l->radius > 0.0f) lp = fogrt__madd(lp, fogrt_sample_uniform_sphere(u1, u2), l->radius);
+            oc = fogrt__sub(lp, o);
+            delta = fogrt__dot(oc, d);
+            h = FOGRT__MAX(fogrt__length(fogrt__cross(oc, d)), sqrtf(s->r2_min));  /* ray through the light */
+            t = fogrt_sample_equiangular(u0, delta, h, 0.0f, t_max, &pdf_t);
+            if (!(pdf_t > 0.0f)) continue;
+            x = fogrt__madd(o, d, t);
+            to = fogrt__sub(lp, x);
+            d2 = fogrt__dot(to, to);
+            if (!(d2 > 0.0f)) continue;
+            dist = sqrtf(d2);
+            wi = fogrt__scale(to, 1.0f / dist);
+            if (l->type == FOGRT_LIGHT_SPOT)
+                I = fogrt__scale(I, fogrt_spot_falloff(-fogrt__dot(wi, l->direction), l->cutoff_deg, l->beam_deg));
+            if (fogrt__is_black(I)) continue;
+            phase = fogrt_hg_pdf(fogrt__neg(d), wi, s->medium.g);
+            v.p = x; v.is_medium = true; v.in_medium = true;
+            tr = fogrt__shadow(s, &v, wi, dist, fogrt__offset_size(s, lp), rays);
+            if (tr == 0.0f) continue;
+            tr *= sigma_t * fogrt_transmittance(sigma_t, t) * phase / (FOGRT__MAX(d2, s->r2_min) * pdf_t * (float)n);
+            L = fogrt__add(L, fogrt__scale(fogrt__mul(I, s->medium.albedo), tr));
+        }
+    }
+    return L;
+}
+#endif
+
 FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
                                          fogrt_rng *rng, uint64_t *rays)
 {
@@ -2301,6 +2372,8 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__sett
         /* a. Free flight through the fog (paper eq. 4-6): collide before the surface? */
         if (in_medium) {
             float t = fogrt_sample_exponential(fogrt_rng_float(rng), s->medium.sigma_t);
+            if (st->nee && s->light_count > 0 && bounces < limit)     /* point lights: equiangular */
+                L = fogrt__add(L, fogrt__mul(beta, fogrt__point_lights_in_fog(s, st, o, d, found ? hit.t : INFINITY, rng, rays)));
             if (t < (found ? hit.t : INFINITY)) {
                 fogrt__v3 wi;
                 float pdf;
@@ -2308,7 +2381,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__sett
                 if (bounces >= limit || fogrt__is_black(beta)) break;
                 v.p = fogrt__madd(o, d, t); v.wo = wo;
                 v.is_medium = true; v.in_medium = true; v.m = NULL;
-                if (st->nee) L = fogrt__add(L, fogrt__mul(beta, fogrt__direct(s, st, &v, rng, rays)));
+                if (st->nee) L = fogrt__add(L, fogrt__mul(beta, fogrt__direct(s, st, &v, false, rng, rays)));
                 if (st->direct_only) { if (st->nee) break; limit = bounces + 1; }
                 u1 = fogrt_rng_float(rng); u2 = fogrt_rng_float(rng);
                 wi = fogrt_sample_hg(wo, s->medium.g, u1, u2, &pdf);  /* weight p/pdf = 1 */
@@ -2345,7 +2418,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__sett
         v.frame = fogrt__frame_from_z(ns);
         v.ng = ng; v.wo = wo; v.is_medium = false; v.in_medium = in_medium;
         if (!fogrt__bsdf_is_delta(type)) {
-            if (st->nee) L = fogrt__add(L, fogrt__mul(beta, fogrt__direct(s, st, &v, rng, rays)));
+            if (st->nee) L = fogrt__add(L, fogrt__mul(beta, fogrt__direct(s, st, &v, true, rng, rays)));
             if (st->direct_only) { if (st->nee) break; limit = bounces + 1; }
         }
         u_lobe = fogrt_rng_float(rng); u1 = fogrt_rng_float(rng); u2 = fogrt_rng_float(rng);
@@ -2656,7 +2729,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
     ld.type = FOGRT_LIGHT_SPOT;
     ld.position = fogrt__v(-0.8f, 1.4f, 0.6f);
     ld.direction = fogrt__sub(fogrt__v(0.3f, 0.0f, 0.0f), ld.position);
-    ld.intensity = fogrt__v(2.0f, 2.6f, 3.2f);
+    ld.intensity = fogrt__v(16.0f, 20.0f, 26.0f);
     ld.cutoff_deg = 16.0f; ld.beam_deg = 11.0f; ld.radius = 0.02f;
     FOGRT__TRY(fogrt_scene_add_light(s, &ld));
     memset(&cd, 0, sizeof cd);

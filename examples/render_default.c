@@ -1,8 +1,10 @@
 /* render_default.c - render fogrt's embedded default scene (the fog-filled Cornell box).
 
-   Usage: render_default [out.png [out.pfm [samples_per_pixel [width height]]]]
+   Usage: render_default [out.png [out.pfm [samples_per_pixel [width height [seconds]]]]]
    Renders progressively, a batch of samples at a time, and after each batch prints how
    noisy the image still is (fogrt's own relative error estimate) against the seconds spent.
+   Stops at samples_per_pixel (default 256) or when the next batch would pass the time budget
+   (default 45 seconds), whichever comes first.
    Uses only fogrt's public API; the PNG goes through stb_image_write (Debian libstb-dev). */
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
@@ -32,6 +34,7 @@ int main(int argc, char **argv)
     const char *pfm = argc > 2 ? argv[2] : "fog.pfm";
     int spp = argc > 3 ? atoi(argv[3]) : 256;
     int width = argc > 5 ? atoi(argv[4]) : 480, height = argc > 5 ? atoi(argv[5]) : 360;
+    double budget = argc > 6 ? atof(argv[6]) : 45.0;
     int batch = 4, done = 0;
     fogrt_scene_desc sd = {0};
     fogrt_scene *scene = NULL;
@@ -64,6 +67,9 @@ int main(int argc, char **argv)
     printf("# seconds  spp  relative_error\n");
     while (done < spp) {
         int n = done + batch > spp ? spp - done : batch;
+        double elapsed = now_seconds() - t0;
+        /* time per sample so far predicts the next batch: stop before the budget runs out */
+        if (done > 0 && elapsed + elapsed / done * n > budget) break;
         fogrt_render(scene, &rd, &img, n, &st);
         rays += st.rays;
         done += n;
