@@ -1334,7 +1334,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 cen
 {
     FOGRT_ASSERT(s);
     if (!fogrt__v3_finite(center) || !fogrt__finite(radius) || !(radius > 0.0f))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "sphere: centre not finite or radius <= 0");
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "sphere.center not finite or sphere.radius <= 0");
     if (material >= s->material_count)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "sphere.material: material id out of range");
     if ((uint64_t)s->tri_count + s->sph_count + 1 >= 0x7FFFFFF0u)
@@ -1521,7 +1521,11 @@ FOGRT__PRIVATE void fogrt__aabb_grow(fogrt__aabb *b, fogrt__v3 p)
     b->lo.x = FOGRT__MIN(b->lo.x, p.x); b->lo.y = FOGRT__MIN(b->lo.y, p.y); b->lo.z = FOGRT__MIN(b->lo.z, p.z);
     b->hi.x = FOGRT__MAX(b->hi.x, p.x); b->hi.y = FOGRT__MAX(b->hi.y, p.y); b->hi.z = FOGRT__MAX(b->hi.z, p.z);
 }
-FOGRT__PRIVATE void fogrt__aabb_union(fogrt__aabb *b, const fogrt__aabb *o) { fogrt__aabb_grow(b, o->lo); fogrt__aabb_grow(b, o->hi); }
+FOGRT__PRIVATE void fogrt__aabb_union(fogrt__aabb *b, const fogrt__aabb *o)   /* o may be empty */
+{
+    b->lo.x = FOGRT__MIN(b->lo.x, o->lo.x); b->lo.y = FOGRT__MIN(b->lo.y, o->lo.y); b->lo.z = FOGRT__MIN(b->lo.z, o->lo.z);
+    b->hi.x = FOGRT__MAX(b->hi.x, o->hi.x); b->hi.y = FOGRT__MAX(b->hi.y, o->hi.y); b->hi.z = FOGRT__MAX(b->hi.z, o->hi.z);
+}
 FOGRT__PRIVATE float fogrt__aabb_area(const fogrt__aabb *b)
 {
     fogrt__v3 e = fogrt__sub(b->hi, b->lo);
@@ -1693,13 +1697,15 @@ FOGRT__PUBLIC float fogrt_bvh_sah_cost(const fogrt_scene *s)
    9. Ray queries: primitives and BVH traversal
    ------------------------------------------------------------------------------------------ */
 /* Moller-Trumbore with the edges precomputed. Every test is written so that a NaN (from a
-   degenerate, zero-area triangle) fails it: degenerate triangles are never hit. */
+   degenerate, zero-area triangle) fails it: degenerate triangles are never hit. A ray
+   parallel to the triangle's plane (|cos| below 1e-6, where the distance is numerically
+   meaningless) misses it too. */
 FOGRT__PRIVATE bool fogrt__hit_triangle(fogrt__v3 o, fogrt__v3 d, fogrt__v3 v0, fogrt__v3 e1, fogrt__v3 e2,
                                         float tmin, float tmax, float *t, float *u, float *v)
 {
     fogrt__v3 pvec = fogrt__cross(d, e2), tvec, qvec;
     float det = fogrt__dot(e1, pvec), inv_det, uu, vv, tt;
-    if (det == 0.0f) return false;
+    if (!(det * det > 1e-12f * fogrt__dot(e1, e1) * fogrt__dot(e2, e2))) return false;
     inv_det = 1.0f / det;
     tvec = fogrt__sub(o, v0);
     uu = fogrt__dot(tvec, pvec) * inv_det;
@@ -1743,25 +1749,30 @@ FOGRT__PUBLIC bool fogrt_intersect_sphere(fogrt_vec3 o, fogrt_vec3 d, fogrt_vec3
     return fogrt__hit_sphere(o, d, center, radius, tmin, tmax, t);
 }
 
-/* The reciprocal of a direction component, never a division by zero: +-0 becomes +-1e20,
-   so the slab test below never forms 0 * infinity (NaN) for axis-parallel rays. */
-FOGRT__PRIVATE float fogrt__safe_rcp(float x) { return fabsf(x) > 1e-20f ? 1.0f / x : copysignf(1e20f, x); }
+/* The reciprocal of a direction component, never a division by zero: +-0 (and anything
+   too small to invert) becomes +-infinity with the sign of the zero. */
+FOGRT__PRIVATE float fogrt__safe_rcp(float x) { return fabsf(x) > 1e-30f ? 1.0f / x : copysignf(INFINITY, x); }
 
 typedef struct fogrt__ray { fogrt__v3 o, d, inv; } fogrt__ray;
 
-/* Slab test: entry distance of the ray into the node's box, or FLT_MAX on a miss. The exit
-   distance is widened by 2 ulps so a ray grazing a face is not lost to rounding. */
+/* Slab test: entry distance of the ray into the node's box, or FLT_MAX on a miss.
+   An axis-parallel ray whose origin lies exactly on a slab's face forms 0 * infinity = NaN
+   for that face; every comparison below is written so that a NaN bound is ignored (the
+   ray is inside that slab), as in pbrt. The exit distance is widened by 2 ulps so a ray
+   grazing a face is not lost to rounding. */
+#define FOGRT__SLAB_AXIS(lo, hi, o, inv) do { \
+        float tn_ = ((inv) < 0.0f ? (hi) : (lo)) - (o), tf_ = ((inv) < 0.0f ? (lo) : (hi)) - (o); \
+        tn_ *= (inv); tf_ *= (inv); \
+        t0 = tn_ > t0 ? tn_ : t0; \
+        t1 = tf_ < t1 ? tf_ : t1; \
+    } while (0)
 FOGRT__PRIVATE float fogrt__slab(const fogrt_bvh_node *n, const fogrt__ray *r, float tmin, float tmax)
 {
-    float tx1 = (n->bmin[0] - r->o.x) * r->inv.x, tx2 = (n->bmax[0] - r->o.x) * r->inv.x;
-    float ty1 = (n->bmin[1] - r->o.y) * r->inv.y, ty2 = (n->bmax[1] - r->o.y) * r->inv.y;
-    float tz1 = (n->bmin[2] - r->o.z) * r->inv.z, tz2 = (n->bmax[2] - r->o.z) * r->inv.z;
-    float t0 = FOGRT__MAX(FOGRT__MIN(tx1, tx2), FOGRT__MAX(FOGRT__MIN(ty1, ty2), FOGRT__MIN(tz1, tz2)));
-    float t1 = FOGRT__MIN(FOGRT__MAX(tx1, tx2), FOGRT__MIN(FOGRT__MAX(ty1, ty2), FOGRT__MAX(tz1, tz2)));
-    t1 *= 1.00000024f;
-    t0 = FOGRT__MAX(t0, tmin);
-    t1 = FOGRT__MIN(t1, tmax);
-    return t0 <= t1 ? t0 : FLT_MAX;
+    float t0 = tmin, t1 = tmax;
+    FOGRT__SLAB_AXIS(n->bmin[0], n->bmax[0], r->o.x, r->inv.x);
+    FOGRT__SLAB_AXIS(n->bmin[1], n->bmax[1], r->o.y, r->inv.y);
+    FOGRT__SLAB_AXIS(n->bmin[2], n->bmax[2], r->o.z, r->inv.z);
+    return t0 <= t1 * 1.00000024f ? t0 : FLT_MAX;
 }
 
 /* Iterative traversal with a fixed stack: visit the nearer child first, push the farther,
@@ -2382,7 +2393,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__sett
                 v.p = fogrt__madd(o, d, t); v.wo = wo;
                 v.is_medium = true; v.in_medium = true; v.m = NULL;
                 if (st->nee) L = fogrt__add(L, fogrt__mul(beta, fogrt__direct(s, st, &v, false, rng, rays)));
-                if (st->direct_only) { if (st->nee) break; limit = bounces + 1; }
+                if (st->direct_only) limit = bounces + 1;   /* one bounce: only emission after this */
                 u1 = fogrt_rng_float(rng); u2 = fogrt_rng_float(rng);
                 wi = fogrt_sample_hg(wo, s->medium.g, u1, u2, &pdf);  /* weight p/pdf = 1 */
                 prev_pdf = pdf; prev_delta = false; prev_p = v.p;
@@ -2419,7 +2430,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__sett
         v.ng = ng; v.wo = wo; v.is_medium = false; v.in_medium = in_medium;
         if (!fogrt__bsdf_is_delta(type)) {
             if (st->nee) L = fogrt__add(L, fogrt__mul(beta, fogrt__direct(s, st, &v, true, rng, rays)));
-            if (st->direct_only) { if (st->nee) break; limit = bounces + 1; }
+            if (st->direct_only) limit = bounces + 1;   /* one bounce: the sampled ray only adds emission (MIS) */
         }
         u_lobe = fogrt_rng_float(rng); u1 = fogrt_rng_float(rng); u2 = fogrt_rng_float(rng);
         if (!fogrt_bsdf_sample_dir(v.m, st->fresnel, fogrt__to_local(&v.frame, wo), u_lobe, u1, u2, &bs)) break;
