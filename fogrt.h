@@ -989,6 +989,7 @@ FOGRT__PUBLIC float fogrt_fresnel_schlick(float cos_i, float eta)
     float r0 = (eta - 1.0f) / (eta + 1.0f), c, m;
     r0 *= r0;
     cos_i = FOGRT__CLAMP(cos_i, -1.0f, 1.0f);
+    if (eta < 1.0f) { cos_i = -cos_i; eta = 1.0f / eta; }   /* make the inside the denser side */
     if (cos_i >= 0.0f) {
         c = cos_i;
     } else {                                            /* leaving: n = eta -> n = 1 */
@@ -2087,14 +2088,18 @@ FOGRT__PRIVATE fogrt__v3 fogrt__vertex_f(const fogrt__vertex *v, fogrt__v3 wi, f
     return fogrt__scale(fogrt_bsdf_eval(v->m, wo_l, wi_l), fabsf(wi_l.z));
 }
 
-/* Visibility times transmittance between the vertex and a point at distance dist along wi. */
+/* Visibility times transmittance between the vertex and a point at distance dist along wi.
+   The shadow ray starts at the offset origin and aims at the target itself, stopping
+   far_offset short of it (the target may lie on a surface: the emitter). */
 FOGRT__PRIVATE float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float dist,
                                    float far_offset, uint64_t *rays)
 {
+    fogrt__v3 y = fogrt__madd(v->p, wi, dist);
     fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, wi);
-    float tmax = dist - far_offset;
+    fogrt__v3 to = fogrt__sub(y, o);
+    float len = fogrt__length(to), tmax = len - far_offset;
     ++*rays;
-    if (tmax > 0.0f && fogrt__traverse(s, o, wi, 0.0f, tmax, NULL, true)) return 0.0f;
+    if (tmax > 0.0f && fogrt__traverse(s, o, fogrt__scale(to, 1.0f / len), 0.0f, tmax, NULL, true)) return 0.0f;
 #ifndef FOGRT_NO_MEDIUM
     if (v->in_medium) return fogrt_transmittance(s->medium.sigma_t, dist);
 #endif
