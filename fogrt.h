@@ -249,9 +249,12 @@ typedef enum fogrt_light_type {
                           intensity falls linearly in the angle:
                           I(theta) = I * clamp((cutoff - theta) / (cutoff - beam), 0, 1)
                           (beam == cutoff: a hard-edged cone)
-     radius               > 0: the light is spread uniformly over a sphere of this radius, the
-                          paper's proposed fix for hard-edged spot shadows (soft shadows; the
-                          sphere itself is not visible)                                      */
+     radius               > 0: the light becomes a small spherical emitter of this radius, the
+                          paper's proposed fix for hard-edged spot shadows: uniform radiance
+                          I(theta) / (pi radius^2), so that from afar it gives the same I / r^2,
+                          but soft shadows, and bounded light near it (no 1/r^2 spike in the
+                          fog). It is sampled by solid angle and lights the scene through
+                          next-event estimation only (camera rays do not see the sphere).   */
 typedef struct fogrt_light_desc {
     fogrt_light_type type;
     fogrt_vec3 position;
@@ -674,7 +677,9 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #else
 #define FOGRT__PRIVATE static
 #endif
-#ifdef FOGRT_STATIC
+#if defined(FOGRT_STATIC) && (defined(__GNUC__) || defined(__clang__))
+#define FOGRT__PUBLIC static __attribute__((unused))
+#elif defined(FOGRT_STATIC)
 #define FOGRT__PUBLIC static
 #else
 #define FOGRT__PUBLIC
@@ -683,7 +688,7 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #define FOGRT__PI      3.14159265358979323846f
 #define FOGRT__INV_PI  0.31830988618379067154f
 #define FOGRT__INV_4PI 0.07957747154594766788f
-#define FOGRT__ONE_MINUS_EPS 0x1.fffffep-1f   /* the largest float below 1 */
+#define FOGRT__ONE_MINUS_EPS 0.99999994f      /* the largest float below 1, 1 - 2^-24 */
 
 /* Ternary min/max: gcc turns fminf/fmaxf into library calls in hot loops. */
 #define FOGRT__MIN(a, b) ((a) < (b) ? (a) : (b))
@@ -788,7 +793,7 @@ FOGRT__PUBLIC void fogrt_rng_seed(fogrt_rng *rng, uint64_t seed, uint64_t stream
 }
 FOGRT__PUBLIC float fogrt_rng_float(fogrt_rng *rng)
 {
-    return (float)(fogrt_rng_u32(rng) >> 8) * 0x1p-24f;   /* 24 random bits: [0, 1 - 2^-24] */
+    return (float)(fogrt_rng_u32(rng) >> 8) * 5.9604644775390625e-8f;   /* 24 bits times 2^-24: [0, 1 - 2^-24] */
 }
 /* A 64-bit mix (SplitMix64 finaliser) to turn (seed, pixel) into a well spread state. */
 FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x)
@@ -2033,7 +2038,8 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
    samples per light: w_light = (n p_light)^2 / ((n p_light)^2 + p_bsdf^2).
    Point lights: irradiance I / r^2 is unbounded as r -> 0, so r^2 is clamped from below at
    (1e-4 x scene diagonal)^2 (a documented bias that only touches points that close), and a
-   point exactly at the light receives nothing from it (its direction is undefined).
+   point exactly at the light receives nothing from it (its direction is undefined). A light
+   with a radius is a spherical emitter instead and has no such spike.
    ------------------------------------------------------------------------------------------ */
 typedef struct fogrt__settings {
     int max_depth, rr_depth, light_samples;
@@ -2104,6 +2110,33 @@ FOGRT__PRIVATE float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v,
     if (v->in_medium) return fogrt_transmittance(s->medium.sigma_t, dist);
 #endif
     return 1.0f;
+}
+
+/* Light arriving at x from point or spot light l: a direction wi, the distance to the
+   emitting point, and the incident radiance divided by the sampling pdf (for a point light,
+   simply I(theta) / r^2). A light with a radius is a sphere of radiance I(theta)/(pi R^2),
+   sampled uniformly in the cone it subtends (inside it: every direction). Returns black when
+   x gets nothing. The spot profile is evaluated from the light's centre. */
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l, fogrt__v3 x,
+                                                   float u1, float u2, fogrt__v3 *wi, float *dist)
+{
+    fogrt__v3 to = fogrt__sub(l->position, x), I = l->intensity;
+    float d2 = fogrt__dot(to, to), d, pdf, t;
+    if (!(d2 > 0.0f)) return fogrt__v(0.0f, 0.0f, 0.0f);   /* x is the light: no direction */
+    d = sqrtf(d2);
+    if (l->type == FOGRT_LIGHT_SPOT)
+        I = fogrt__scale(I, fogrt_spot_falloff(-fogrt__dot(to, l->direction) / d, l->cutoff_deg, l->beam_deg));
+    if (fogrt__is_black(I)) return I;
+    if (!(l->radius > 0.0f)) {
+        *wi = fogrt__scale(to, 1.0f / d);
+        *dist = d;
+        return fogrt__scale(I, 1.0f / FOGRT__MAX(d2, s->r2_min));
+    }
+    *wi = fogrt_sample_sphere_solid_angle(x, l->position, l->radius, u1, u2, &pdf);
+    if (d <= l->radius) t = 0.0f;                        /* inside the emitter */
+    else if (!fogrt__hit_sphere(x, *wi, l->position, l->radius, 0.0f, INFINITY, &t)) t = fogrt__dot(to, *wi);
+    *dist = t;
+    return fogrt__scale(I, 1.0f / (FOGRT__PI * l->radius * l->radius * pdf));
 }
 
 /* Sample a point on area light a as seen from p: returns Le, direction, distance and the
@@ -2178,30 +2211,20 @@ FOGRT__PRIVATE fogrt__v3 fogrt__direct(const fogrt_scene *s, const fogrt__settin
     float g = s->medium.g;
     uint32_t i;
     int j;
-    /* Point and spot lights (a light with a radius is spread over a sphere: several samples). */
+    /* Point and spot lights (one with a radius is an extended emitter: light_samples samples). */
     for (i = 0; point_lights && i < s->light_count; ++i) {
         const fogrt_light_desc *l = &s->lights[i];
         int n = l->radius > 0.0f ? st->light_samples : 1;
         for (j = 0; j < n; ++j) {
-            fogrt__v3 lp = l->position, to, wi, I = l->intensity, f;
-            float d2, dist, pdf_b, tr;
-            if (l->radius > 0.0f) {
-                float u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng);
-                lp = fogrt__madd(lp, fogrt_sample_uniform_sphere(u1, u2), l->radius);
-            }
-            to = fogrt__sub(lp, v->p);
-            d2 = fogrt__dot(to, to);
-            if (!(d2 > 0.0f)) continue;                  /* the point is the light: no direction */
-            dist = sqrtf(d2);
-            wi = fogrt__scale(to, 1.0f / dist);
-            if (l->type == FOGRT_LIGHT_SPOT)
-                I = fogrt__scale(I, fogrt_spot_falloff(-fogrt__dot(wi, l->direction), l->cutoff_deg, l->beam_deg));
-            if (fogrt__is_black(I)) continue;
+            fogrt__v3 wi, Li, f;
+            float dist = 0.0f, pdf_b, tr, u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng);
+            Li = fogrt__sample_point_light(s, l, v->p, u1, u2, &wi, &dist);
+            if (fogrt__is_black(Li)) continue;
             f = fogrt__vertex_f(v, wi, g, &pdf_b);
             if (fogrt__is_black(f)) continue;
-            tr = fogrt__shadow(s, v, wi, dist, fogrt__offset_size(s, lp), rays);
+            tr = fogrt__shadow(s, v, wi, dist, fogrt__offset_size(s, fogrt__madd(v->p, wi, dist)), rays);
             if (tr == 0.0f) continue;
-            L = fogrt__add(L, fogrt__scale(fogrt__mul(f, I), tr / (FOGRT__MAX(d2, s->r2_min) * (float)n)));
+            L = fogrt__add(L, fogrt__scale(fogrt__mul(f, Li), tr / (float)n));
         }
     }
     /* Area lights, with MIS against BSDF / phase sampling. */
@@ -2319,6 +2342,47 @@ FOGRT__PRIVATE void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogr
 }
 
 #ifndef FOGRT_NO_MEDIUM
+/* The part [*a, *b] of the ray o + t d (t in [*a, *b] on entry) inside a spot light's cone:
+   the forward nappe of a cone with a half-angle below 90 degrees is convex, so a line meets
+   it in one interval. Its ends are among the roots of the quadratic "on the cone surface"
+   and the plane through the apex; the inside test at the midpoints picks the interval.
+   Returns false when the ray misses the cone. */
+FOGRT__PRIVATE bool fogrt__clip_to_cone(const fogrt_light_desc *l, fogrt__v3 o, fogrt__v3 d, float *a, float *b)
+{
+    fogrt__v3 w = fogrt__sub(o, l->position);
+    float cos_c = cosf(l->cutoff_deg * (FOGRT__PI / 180.0f)), c2 = cos_c * cos_c;
+    float da = fogrt__dot(d, l->direction), wa = fogrt__dot(w, l->direction);
+    float A = da * da - c2, B = da * wa - c2 * fogrt__dot(d, w), C = wa * wa - c2 * fogrt__dot(w, w);
+    float t[6], lo = FLT_MAX, hi = -FLT_MAX, end = *b;
+    int n = 0, i, j;
+    if (l->cutoff_deg >= 90.0f) return true;           /* not convex: keep the whole segment */
+    t[n++] = *a;
+    if (A != 0.0f) {
+        float disc = B * B - A * C;
+        if (disc >= 0.0f) { float q = sqrtf(disc); t[n++] = (-B - q) / A; t[n++] = (-B + q) / A; }
+    } else if (B != 0.0f) {
+        t[n++] = -C / (2.0f * B);
+    }
+    if (da != 0.0f) t[n++] = -wa / da;
+    if (!(end < INFINITY)) { float far_t = 1.0f; for (i = 0; i < n; ++i) far_t = FOGRT__MAX(far_t, 2.0f * fabsf(t[i]) + 1.0f); end = far_t; }
+    t[n++] = end;
+    for (i = 1; i < n; ++i)                               /* insertion sort, at most 6 values */
+        for (j = i; j > 0 && t[j] < t[j - 1]; --j) { float tmp = t[j]; t[j] = t[j - 1]; t[j - 1] = tmp; }
+    for (i = 0; i + 1 < n; ++i) {
+        float t0 = FOGRT__MAX(t[i], *a), t1 = FOGRT__MIN(t[i + 1], end), tm, ax;
+        fogrt__v3 x;
+        if (!(t1 > t0)) continue;
+        tm = 0.5f * (t0 + t1);
+        x = fogrt__madd(w, d, tm);
+        ax = fogrt__dot(x, l->direction);
+        if (ax >= 0.0f && ax * ax >= c2 * fogrt__dot(x, x)) { lo = FOGRT__MIN(lo, t0); hi = FOGRT__MAX(hi, t1); }
+    }
+    if (!(hi > lo)) return false;
+    *a = lo;
+    *b = (hi >= end && !(*b < INFINITY)) ? INFINITY : hi;
+    return true;
+}
+
 /* Single scattering from point and spot lights along one fog segment [0, t_max] of the ray,
    by equiangular sampling: an estimator of its own, so fog vertices leave point lights out of
    their next-event estimate (the two never count the same light twice). Per light:
@@ -2334,31 +2398,26 @@ FOGRT__PRIVATE fogrt__v3 fogrt__point_lights_in_fog(const fogrt_scene *s, const 
         const fogrt_light_desc *l = &s->lights[i];
         int n = l->radius > 0.0f ? st->light_samples : 1;
         for (j = 0; j < n; ++j) {
-            fogrt__v3 lp = l->position, oc, x, to, wi, I = l->intensity;
+            fogrt__v3 oc = fogrt__sub(l->position, o), x, wi, Li;
             fogrt__vertex v;
-            float delta, h, t, pdf_t, d2, dist, tr, phase;
+            float delta, h, t, pdf_t, dist = 0.0f, tr, phase;
             float u0 = fogrt_rng_float(rng), u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng);
-            if (l->radius > 0.0f) lp = fogrt__madd(lp, fogrt_sample_uniform_sphere(u1, u2), l->radius);
-            oc = fogrt__sub(lp, o);
+            float t_lo = 0.0f, t_hi = t_max;
+            /* a spot light only lights its cone: sample only the part of the ray inside it */
+            if (l->type == FOGRT_LIGHT_SPOT && !fogrt__clip_to_cone(l, o, d, &t_lo, &t_hi)) continue;
             delta = fogrt__dot(oc, d);
             h = FOGRT__MAX(fogrt__length(fogrt__cross(oc, d)), sqrtf(s->r2_min));  /* ray through the light */
-            t = fogrt_sample_equiangular(u0, delta, h, 0.0f, t_max, &pdf_t);
+            t = fogrt_sample_equiangular(u0, delta, h, t_lo, t_hi, &pdf_t);
             if (!(pdf_t > 0.0f)) continue;
             x = fogrt__madd(o, d, t);
-            to = fogrt__sub(lp, x);
-            d2 = fogrt__dot(to, to);
-            if (!(d2 > 0.0f)) continue;
-            dist = sqrtf(d2);
-            wi = fogrt__scale(to, 1.0f / dist);
-            if (l->type == FOGRT_LIGHT_SPOT)
-                I = fogrt__scale(I, fogrt_spot_falloff(-fogrt__dot(wi, l->direction), l->cutoff_deg, l->beam_deg));
-            if (fogrt__is_black(I)) continue;
+            Li = fogrt__sample_point_light(s, l, x, u1, u2, &wi, &dist);
+            if (fogrt__is_black(Li)) continue;
             phase = fogrt_hg_pdf(fogrt__neg(d), wi, s->medium.g);
             v.p = x; v.is_medium = true; v.in_medium = true;
-            tr = fogrt__shadow(s, &v, wi, dist, fogrt__offset_size(s, lp), rays);
+            tr = fogrt__shadow(s, &v, wi, dist, fogrt__offset_size(s, fogrt__madd(x, wi, dist)), rays);
             if (tr == 0.0f) continue;
-            tr *= sigma_t * fogrt_transmittance(sigma_t, t) * phase / (FOGRT__MAX(d2, s->r2_min) * pdf_t * (float)n);
-            L = fogrt__add(L, fogrt__scale(fogrt__mul(I, s->medium.albedo), tr));
+            tr *= sigma_t * fogrt_transmittance(sigma_t, t) * phase / (pdf_t * (float)n);
+            L = fogrt__add(L, fogrt__scale(fogrt__mul(Li, s->medium.albedo), tr));
         }
     }
     return L;
@@ -2551,12 +2610,12 @@ FOGRT__PUBLIC void fogrt_image_error(const fogrt_image *img, fogrt_error_estimat
         fogrt__v3 sum;
         if (c < 1.0) continue;
         sum = fogrt__v(img->sum[3 * i], img->sum[3 * i + 1], img->sum[3 * i + 2]);
-        mean = fogrt__luminance(sum) / c;
+        mean = (double)fogrt__luminance(sum) / c;
         lum_sum += mean;
         mean_sq_sum += mean * mean;
         out->samples += img->count[i];
         if (c < 2.0) continue;
-        var = (img->sum_sq[i] / c - mean * mean) * c / (c - 1.0);
+        var = ((double)img->sum_sq[i] / c - mean * mean) * c / (c - 1.0);
         if (var > 0.0) var_sum += var / c;
     }
     out->relative_error = mean_sq_sum > 0.0 ? sqrt(var_sum / mean_sq_sum) : 0.0;
@@ -2570,7 +2629,7 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
     fogrt_render_desc zero;
     fogrt__settings st;
     fogrt__camera cam;
-    int width, height, block, y0;
+    int width, height, block;
     uint64_t rays = 0, rejected = 0, base;
     fogrt_result result = FOGRT_RESULT_OK;
     FOGRT_ASSERT(s && img);
@@ -2588,16 +2647,23 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
     st = fogrt__settings_from(desc);
     cam = fogrt__camera_setup(s, width, height);
     base = fogrt__hash64(desc->seed);
-    /* Rows go out in blocks; the progress callback runs between blocks on the calling thread. */
+    /* One parallel loop over the rows, handed out one at a time (rows differ in cost). The
+       progress callback runs on the calling thread (OpenMP thread 0) whenever another block
+       of rows is done; if it asks to stop, the rows not yet started are skipped. */
     block = height >= 32 ? height / 32 : 1;
-    for (y0 = 0; y0 < height && spp > 0; y0 += block) {
-        int y1 = FOGRT__MIN(height, y0 + block), y;
+    {
+        int y, rows_done = 0, cancelled = 0, last_report = 0;
 #ifdef _OPENMP
         int nthreads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) reduction(+ : rays, rejected)
 #endif
-        for (y = y0; y < y1; ++y) {
-            int x, k;
+        for (y = 0; y < height; ++y) {
+            int x, k, stop, done;
+#ifdef _OPENMP
+#pragma omp atomic read
+#endif
+            stop = cancelled;
+            if (stop || spp == 0) continue;
             for (x = 0; x < width; ++x) {
                 size_t pix = (size_t)y * (size_t)width + (size_t)x;
                 for (k = 0; k < spp; ++k) {
@@ -2621,11 +2687,30 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
                 }
                 img->count[pix] += (uint32_t)spp;
             }
+#ifdef _OPENMP
+#pragma omp atomic capture
+#endif
+            done = ++rows_done;
+#ifdef _OPENMP
+            if (omp_get_thread_num() != 0) continue;
+#endif
+            if (desc->progress && (done - last_report >= block || done == height)) {
+                fogrt_progress p;
+                last_report = done;
+                p.rows_done = done; p.rows_total = height; p.samples_per_pixel = spp;
+                if (!desc->progress(&p, desc->user_data)) {
+#ifdef _OPENMP
+#pragma omp atomic write
+#endif
+                    cancelled = 1;
+                }
+            }
         }
-        if (desc->progress) {
+        if (cancelled) result = FOGRT_RESULT_CANCELLED;
+        else if (desc->progress && last_report != height && spp > 0) {   /* the final report */
             fogrt_progress p;
-            p.rows_done = y1; p.rows_total = height; p.samples_per_pixel = spp;
-            if (!desc->progress(&p, desc->user_data)) { result = FOGRT_RESULT_CANCELLED; break; }
+            p.rows_done = height; p.rows_total = height; p.samples_per_pixel = spp;
+            if (!desc->progress(&p, desc->user_data)) result = FOGRT_RESULT_CANCELLED;
         }
     }
     img->rejected += rejected;

@@ -1,0 +1,5 @@
+# mk/compile.mk - `make check-compile`: fogrt.h compiles warning-free (-Werror) with gcc and
+# clang (if installed) as C99, as C++11, without OpenMP, as FOGRT_STATIC, and with every
+# combination of the FOGRT_NO_* strip macros. See tests/compile_check.sh.
+check-compile:
+	@sh tests/compile_check.sh

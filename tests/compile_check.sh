@@ -1,0 +1,213 @@
+#!/bin/sh
+# compile_check.sh - fogrt.h compiles warning-free (-Werror) in every supported configuration.
+#
+#   sh tests/compile_check.sh          (from the repository root; `make check-compile`)
+#
+# Checks, one line each ("ok", "FAIL" with the compiler output, or "skip"):
+#   - C99 with gcc and with clang (clang only if installed), with and without -fopenmp:
+#     the implementation in one file, the header alone in a second file, linked and run
+#     (a tiny render of the default scene), and the header included twice after the define
+#   - gcc with -Wdouble-promotion (STYLE.md section 8)
+#   - C++ (g++ -std=c++11 -pedantic; clang++ too if installed): the implementation compiled
+#     as C++ and linked with the C user file (checks extern "C")
+#   - FOGRT_STATIC (every function static: must not warn about unused functions)
+#   - all 16 combinations of FOGRT_NO_MEDIUM, FOGRT_NO_GLASS, FOGRT_NO_EXACT_FRESNEL and
+#     FOGRT_NO_STDIO (compile only), with gcc, and the full strip as C++
+# Exit status 1 if any check failed.
+#
+# Compilers can be overridden: GCC=gcc-13 CLANG=clang-17 GXX=g++-13 sh tests/compile_check.sh
+
+GCC=${GCC:-gcc}
+CLANG=${CLANG:-clang}
+GXX=${GXX:-g++}
+CLANGXX=${CLANGXX:-clang++}
+
+ROOT=$(pwd)
+if [ ! -f "$ROOT/fogrt.h" ]; then
+    echo "compile_check.sh: run from the repository root (fogrt.h not found)" >&2
+    exit 2
+fi
+
+TMP=$(mktemp -d) || exit 2
+trap 'rm -rf "$TMP"' EXIT
+trap 'exit 130' INT TERM
+
+CWARN="-std=c99 -Wall -Wextra -pedantic -Wshadow -Werror"
+XXWARN="-std=c++11 -Wall -Wextra -pedantic -Werror"
+
+passed=0
+failed=0
+skipped=0
+
+# run DESCRIPTION COMMAND...: run a command, print one line, keep the count.
+run() {
+    desc=$1
+    shift
+    if "$@" >"$TMP/out.txt" 2>&1; then
+        echo "ok    $desc"
+        passed=$((passed + 1))
+    else
+        echo "FAIL  $desc"
+        echo "      \$ $*"
+        sed 's/^/      | /' "$TMP/out.txt" | head -40
+        failed=$((failed + 1))
+    fi
+}
+
+skip() {
+    echo "skip  $1"
+    skipped=$((skipped + 1))
+}
+
+have() { command -v "$1" >/dev/null 2>&1; }
+
+# has_openmp COMPILER [LANGUAGE]: can the compiler build an OpenMP program (omp.h and the
+# runtime present)? clang needs the libomp development package for this.
+has_openmp() {
+    printf '#include <omp.h>\nint main(void) { return omp_get_max_threads() > 0 ? 0 : 1; }\n' >"$TMP/omp_probe.c"
+    $1 -x "${2:-c}" -fopenmp -o "$TMP/omp_probe" "$TMP/omp_probe.c" >/dev/null 2>&1
+}
+
+# ---- the test sources ------------------------------------------------------------------
+# impl.c: the implementation, included twice (the second include must be a no-op).
+cat >"$TMP/impl.c" <<'EOF'
+#define FOGRT_IMPLEMENTATION
+#include "fogrt.h"
+#include "fogrt.h"
+EOF
+cp "$TMP/impl.c" "$TMP/impl.cc"
+
+# user.c: the header alone, as a user sees it; renders a few pixels of the default scene.
+cat >"$TMP/user.c" <<'EOF'
+#include "fogrt.h"
+#include <stdio.h>
+#include <string.h>
+
+int main(void)
+{
+    fogrt_scene *scene = NULL;
+    fogrt_image img;
+    fogrt_render_desc rd;
+    fogrt_result r;
+    memset(&rd, 0, sizeof rd);
+    rd.width = 8;
+    rd.height = 6;
+    if (fogrt_scene_create(NULL, &scene) != FOGRT_RESULT_OK) return 1;
+    r = fogrt_scene_add_default(scene);
+    if (r == FOGRT_RESULT_OK) r = fogrt_scene_build(scene, NULL);
+    if (r == FOGRT_RESULT_OK) r = fogrt_image_alloc(&img, 8, 6, NULL);
+    if (r == FOGRT_RESULT_OK) {
+        r = fogrt_render(scene, &rd, &img, 1, NULL);
+        fogrt_image_free(&img, NULL);
+    }
+    fogrt_scene_destroy(scene);
+    if (r != FOGRT_RESULT_OK) {
+        printf("render failed: %s\n", fogrt_result_string(r));
+        return 1;
+    }
+    return 0;
+}
+EOF
+
+# static.c: everything static in one translation unit, most functions never called.
+cat >"$TMP/static.c" <<'EOF'
+#define FOGRT_STATIC
+#define FOGRT_IMPLEMENTATION
+#include "fogrt.h"
+int main(void)
+{
+    fogrt_scene *scene = NULL;
+    if (fogrt_scene_create(NULL, &scene) != FOGRT_RESULT_OK) return 1;
+    fogrt_scene_destroy(scene);
+    return 0;
+}
+EOF
+
+# c_build COMPILER OMPFLAG LABEL: compile impl + user, link, run.
+c_build() {
+    cc=$1 omp=$2 label=$3
+    out="$TMP/prog_$(echo "$label" | tr -c 'A-Za-z0-9' '_')"
+    run "$label: implementation file" $cc $CWARN $omp -I"$ROOT" -c "$TMP/impl.c" -o "$out.impl.o"
+    run "$label: header-only user file" $cc $CWARN $omp -I"$ROOT" -c "$TMP/user.c" -o "$out.user.o"
+    if [ -f "$out.impl.o" ] && [ -f "$out.user.o" ]; then
+        run "$label: link and render the default scene" \
+            sh -c "$cc $omp -o '$out' '$out.impl.o' '$out.user.o' -lm && '$out'"
+    fi
+}
+
+# ---- C: gcc and clang, with and without OpenMP ------------------------------------------
+if have "$GCC"; then
+    c_build "$GCC" -fopenmp "$GCC -std=c99 -fopenmp"
+    c_build "$GCC" "" "$GCC -std=c99 (no OpenMP)"
+    run "$GCC -Wdouble-promotion (STYLE.md section 8)" \
+        $GCC $CWARN -Wdouble-promotion -fopenmp -I"$ROOT" -c "$TMP/impl.c" -o "$TMP/dp.o"
+    run "$GCC FOGRT_STATIC: all functions static, no unused-function warnings" \
+        sh -c "$GCC $CWARN -I'$ROOT' -o '$TMP/static' '$TMP/static.c' -lm && '$TMP/static'"
+else
+    skip "$GCC not installed"
+fi
+
+if have "$CLANG"; then
+    if has_openmp "$CLANG"; then
+        c_build "$CLANG" -fopenmp "$CLANG -std=c99 -fopenmp"
+    else
+        skip "$CLANG -fopenmp: no OpenMP support (omp.h or libomp missing; Debian: libomp-dev)"
+    fi
+    c_build "$CLANG" "" "$CLANG -std=c99 (no OpenMP)"
+else
+    skip "clang: not installed (install the clang package to run the clang checks)"
+fi
+
+# ---- C++ -----------------------------------------------------------------------------------
+# cxx_build COMPILER OMPFLAG LABEL: the implementation as C++, linked with the C user file.
+cxx_build() {
+    cxx=$1 omp=$2 label=$3
+    rm -f "$TMP/impl_cxx.o"
+    run "$label: implementation as C++" $cxx $XXWARN $omp -I"$ROOT" -c "$TMP/impl.cc" -o "$TMP/impl_cxx.o"
+    run "$label: header-only user file as C++" $cxx $XXWARN -I"$ROOT" -x c++ -c "$TMP/user.c" -o "$TMP/user_cxx.o"
+    if have "$GCC" && [ -f "$TMP/impl_cxx.o" ]; then
+        run "$label: C++ implementation linked with a C user (extern \"C\")" \
+            sh -c "$GCC $CWARN -I'$ROOT' -c '$TMP/user.c' -o '$TMP/user_c.o' && $cxx $omp -o '$TMP/mixed' '$TMP/impl_cxx.o' '$TMP/user_c.o' -lm && '$TMP/mixed'"
+    fi
+}
+
+if have "$GXX"; then
+    cxx_build "$GXX" -fopenmp "$GXX -std=c++11 -fopenmp"
+else
+    skip "$GXX not installed"
+fi
+if have "$CLANGXX"; then
+    if has_openmp "$CLANGXX" c++; then
+        cxx_build "$CLANGXX" -fopenmp "$CLANGXX -std=c++11 -fopenmp"
+    else
+        cxx_build "$CLANGXX" "" "$CLANGXX -std=c++11 (no OpenMP)"
+    fi
+else
+    skip "clang++: not installed"
+fi
+
+# ---- the strip macros: all 16 combinations --------------------------------------------------
+if have "$GCC"; then
+    for medium in 0 1; do
+        for glass in 0 1; do
+            for exact in 0 1; do
+                for stdio in 0 1; do
+                    defs=""
+                    [ $medium = 1 ] && defs="$defs -DFOGRT_NO_MEDIUM"
+                    [ $glass = 1 ] && defs="$defs -DFOGRT_NO_GLASS"
+                    [ $exact = 1 ] && defs="$defs -DFOGRT_NO_EXACT_FRESNEL"
+                    [ $stdio = 1 ] && defs="$defs -DFOGRT_NO_STDIO"
+                    run "$GCC strip:${defs:- (none)}" \
+                        $GCC $CWARN -fopenmp $defs -I"$ROOT" -c "$TMP/impl.c" -o "$TMP/strip.o"
+                done
+            done
+        done
+    done
+fi
+if have "$GXX"; then
+    run "$GXX strip: all four" $GXX $XXWARN -DFOGRT_NO_MEDIUM -DFOGRT_NO_GLASS -DFOGRT_NO_EXACT_FRESNEL \
+        -DFOGRT_NO_STDIO -I"$ROOT" -c "$TMP/impl.cc" -o "$TMP/strip_cxx.o"
+fi
+
+echo "compile checks: $passed passed, $failed failed, $skipped skipped"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,759 @@
+/* test_render.c - whole renders: finite output, reproducibility, progress and cancelling, the
+ * error estimate, unbiasedness of next-event estimation, the two integrators, the cameras,
+ * tone mapping and the image writers.
+ *
+ * Statistical checks use fixed seeds, so they pass or fail the same way on every run; each
+ * compares two estimates of one quantity with a tolerance of 4 standard errors, where the
+ * standard error comes from independent batches (renders with different seeds). */
+#define FOGRT_IMPLEMENTATION
+#include "fogrt.h"
+#include "unity.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void setUp(void) {}
+void tearDown(void) {}
+
+/* Where output files go: the directory of the test binary ($(BUILD)/tests), set by main. */
+static char out_dir[512] = ".";
+
+/* ------------------------------------------------------------------------------------------
+   Helpers
+   ------------------------------------------------------------------------------------------ */
+static fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
+
+static fogrt_scene *default_scene(void)
+{
+    fogrt_scene *scene = NULL;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_default(scene));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    return scene;
+}
+
+static void add_quad(fogrt_scene *scene, fogrt_vec3 a, fogrt_vec3 b, fogrt_vec3 c, fogrt_vec3 d, uint32_t mat)
+{
+    float pos[12];
+    uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
+    fogrt_mesh_desc m;
+    pos[0] = a.x; pos[1] = a.y; pos[2] = a.z; pos[3] = b.x; pos[4] = b.y; pos[5] = b.z;
+    pos[6] = c.x; pos[7] = c.y; pos[8] = c.z; pos[9] = d.x; pos[10] = d.y; pos[11] = d.z;
+    memset(&m, 0, sizeof m);
+    m.positions = pos; m.vertex_count = 4; m.indices = idx; m.triangle_count = 2; m.material = mat;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_mesh(scene, &m));
+}
+
+static uint32_t add_material(fogrt_scene *scene, fogrt_bsdf_type type, fogrt_vec3 refl, fogrt_vec3 emission)
+{
+    fogrt_material_desc m;
+    uint32_t id = 0;
+    memset(&m, 0, sizeof m);
+    m.type = type;
+    m.reflectance = refl;
+    m.transmittance = v3(1, 1, 1);
+    m.emission = emission;
+    m.ior = 1.5f;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_material(scene, &m, &id));
+    return id;
+}
+
+/* A closed Cornell-like box lit only by an area light on the ceiling, with a diffuse sphere
+   and (if specular) a mirror and a glass sphere, and optionally fog: every light can be found
+   both by next-event estimation and by BSDF sampling, so NEE on and off must agree. */
+static fogrt_scene *area_light_box(float sigma_t, bool specular, float lamp_half)
+{
+    fogrt_scene *scene = NULL;
+    fogrt_camera_desc cam;
+    uint32_t white, red, green, lamp;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
+    white = add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.7f, 0.7f, 0.7f), v3(0, 0, 0));
+    red = add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.7f, 0.1f, 0.1f), v3(0, 0, 0));
+    green = add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.1f, 0.7f, 0.1f), v3(0, 0, 0));
+    lamp = add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0, 0, 0), v3(6, 6, 6));
+    /* Walls wound to face inward; the box is closed (front wall behind the camera). */
+    add_quad(scene, v3(-1, 0, -1), v3(-1, 0, 1), v3(1, 0, 1), v3(1, 0, -1), white);        /* floor */
+    add_quad(scene, v3(-1, 2, -1), v3(1, 2, -1), v3(1, 2, 1), v3(-1, 2, 1), white);        /* ceiling */
+    add_quad(scene, v3(-1, 0, -1), v3(1, 0, -1), v3(1, 2, -1), v3(-1, 2, -1), white);      /* back */
+    add_quad(scene, v3(-1, 0, 1), v3(-1, 2, 1), v3(1, 2, 1), v3(1, 0, 1), white);          /* front */
+    add_quad(scene, v3(-1, 0, -1), v3(-1, 2, -1), v3(-1, 2, 1), v3(-1, 0, 1), red);        /* left */
+    add_quad(scene, v3(1, 0, -1), v3(1, 0, 1), v3(1, 2, 1), v3(1, 2, -1), green);          /* right */
+    add_quad(scene, v3(-lamp_half, 1.99f, -lamp_half), v3(lamp_half, 1.99f, -lamp_half),
+             v3(lamp_half, 1.99f, lamp_half), v3(-lamp_half, 1.99f, lamp_half), lamp);       /* lamp, facing down */
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_sphere(scene, v3(-0.5f, 0.3f, -0.3f), 0.3f, white));
+    if (specular) {
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_sphere(scene, v3(0.5f, 0.3f, -0.4f), 0.3f,
+                                                                     add_material(scene, FOGRT_BSDF_MIRROR, v3(0.9f, 0.9f, 0.9f), v3(0, 0, 0))));
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_sphere(scene, v3(0.1f, 0.3f, 0.35f), 0.25f,
+                                                                     add_material(scene, FOGRT_BSDF_GLASS, v3(1, 1, 1), v3(0, 0, 0))));
+    }
+    memset(&cam, 0, sizeof cam);
+    cam.position = v3(0, 1, 0.95f);
+    cam.look_at = v3(0, 0.8f, 0);
+    cam.fov_deg = 75.0f;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_set_camera(scene, &cam));
+    if (sigma_t > 0.0f) {
+        fogrt_medium_desc med;
+        memset(&med, 0, sizeof med);
+        med.sigma_t = sigma_t;
+        med.albedo = v3(0.8f, 0.8f, 0.8f);
+        med.g = 0.5f;
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_set_medium(scene, &med));
+    }
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    return scene;
+}
+
+static fogrt_render_desc render_desc(int width, int height, uint64_t seed)
+{
+    fogrt_render_desc rd;
+    memset(&rd, 0, sizeof rd);
+    rd.width = width;
+    rd.height = height;
+    rd.seed = seed;
+    rd.threads = 1;   /* the tests share 2 cores with other test programs */
+    return rd;
+}
+
+/* Renders spp samples into a fresh image (the caller frees it). */
+static void render_new(const fogrt_scene *scene, const fogrt_render_desc *rd, int spp, fogrt_image *img,
+                       fogrt_render_stats *stats)
+{
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_image_alloc(img, rd->width, rd->height, NULL));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_render(scene, rd, img, spp, stats));
+}
+
+/* Mean of (r + g + b) / 3 over the image (any linear functional would do). */
+static double image_mean(const fogrt_image *img)
+{
+    size_t i, n = (size_t)img->width * (size_t)img->height;
+    double sum = 0;
+    for (i = 0; i < n; i++) {
+        double c = img->count[i] ? (double)img->count[i] : 1.0;
+        sum += ((double)img->sum[3 * i] + img->sum[3 * i + 1] + img->sum[3 * i + 2]) / (3.0 * c);
+    }
+    return sum / (double)n;
+}
+
+static size_t pixels(const fogrt_image *img) { return (size_t)img->width * (size_t)img->height; }
+
+static void assert_same_image(const fogrt_image *a, const fogrt_image *b, const char *what)
+{
+    size_t n = pixels(a);
+    TEST_ASSERT_EQUAL_INT(a->width, b->width);
+    TEST_ASSERT_EQUAL_INT(a->height, b->height);
+    TEST_ASSERT_TRUE_MESSAGE(memcmp(a->sum, b->sum, sizeof(float) * 3 * n) == 0, what);
+    TEST_ASSERT_TRUE_MESSAGE(memcmp(a->sum_sq, b->sum_sq, sizeof(float) * n) == 0, what);
+    TEST_ASSERT_TRUE_MESSAGE(memcmp(a->count, b->count, sizeof(uint32_t) * n) == 0, what);
+    TEST_ASSERT_EQUAL_UINT64_MESSAGE(a->rejected, b->rejected, what);
+}
+
+/* Mean and standard error of the image mean over `batches` independent renders (seeds
+   base_seed, base_seed + 1, ...). */
+typedef struct batch_estimate { double mean, std_error; } batch_estimate;
+
+static batch_estimate batch_mean(const fogrt_scene *scene, const fogrt_render_desc *proto, int spp,
+                                 int batches, uint64_t base_seed)
+{
+    batch_estimate e;
+    double sum = 0, sum_sq = 0;
+    int b;
+    for (b = 0; b < batches; b++) {
+        fogrt_render_desc rd = *proto;
+        fogrt_image img;
+        double m;
+        rd.seed = base_seed + (uint64_t)b;
+        render_new(scene, &rd, spp, &img, NULL);
+        TEST_ASSERT_EQUAL_UINT64(0, img.rejected);
+        m = image_mean(&img);
+        sum += m;
+        sum_sq += m * m;
+        fogrt_image_free(&img, NULL);
+    }
+    e.mean = sum / batches;
+    e.std_error = sqrt(fmax(0.0, (sum_sq / batches - e.mean * e.mean) * batches / (batches - 1.0)) / batches);
+    return e;
+}
+
+/* Two estimates of one mean agree within 4 standard errors (and the errors are not zero:
+   a batch spread of 0 would make any tolerance meaningless). */
+static void assert_means_agree(batch_estimate a, batch_estimate b, const char *what)
+{
+    char msg[256];
+    double tol = 4.0 * sqrt(a.std_error * a.std_error + b.std_error * b.std_error);
+    snprintf(msg, sizeof msg, "%s: %.5f +- %.5f vs %.5f +- %.5f (difference %.2f standard errors)", what,
+             a.mean, a.std_error, b.mean, b.std_error, fabs(a.mean - b.mean) / (tol / 4.0));
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(a.std_error > 0.0 && b.std_error > 0.0, msg);
+    TEST_ASSERT_TRUE_MESSAGE(a.mean > 0.0 && b.mean > 0.0, msg);
+    TEST_ASSERT_TRUE_MESSAGE(fabs(a.mean - b.mean) <= tol, msg);
+}
+
+/* ------------------------------------------------------------------------------------------
+   The default scene
+   ------------------------------------------------------------------------------------------ */
+
+/* 64x48 at 4 spp: every sample counted, every pixel finite and non-negative, no rejected
+   (non-finite) samples, a lit image with structure (not one flat value). */
+static void test_default_scene_renders(void)
+{
+    fogrt_scene *scene = default_scene();
+    fogrt_render_desc rd = render_desc(64, 48, 1);
+    fogrt_render_stats stats;
+    fogrt_error_estimate err;
+    fogrt_image img;
+    float *rgb;
+    size_t i, n;
+    double mean, min_lum = 1e30, max_lum = 0;
+    render_new(scene, &rd, 4, &img, &stats);
+    n = pixels(&img);
+    rgb = (float *)malloc(sizeof(float) * 3 * n);
+    TEST_ASSERT_NOT_NULL(rgb);
+    fogrt_image_resolve(&img, rgb);
+    for (i = 0; i < n; i++) {
+        double lum = (rgb[3 * i] + rgb[3 * i + 1] + rgb[3 * i + 2]) / 3.0;
+        TEST_ASSERT_EQUAL_UINT32(4, img.count[i]);
+        TEST_ASSERT_FLOAT_IS_DETERMINATE(rgb[3 * i]);
+        TEST_ASSERT_FLOAT_IS_DETERMINATE(rgb[3 * i + 1]);
+        TEST_ASSERT_FLOAT_IS_DETERMINATE(rgb[3 * i + 2]);
+        TEST_ASSERT_FLOAT_IS_DETERMINATE(img.sum_sq[i]);
+        TEST_ASSERT_TRUE(rgb[3 * i] >= 0.0f && rgb[3 * i + 1] >= 0.0f && rgb[3 * i + 2] >= 0.0f);
+        if (lum < min_lum) min_lum = lum;
+        if (lum > max_lum) max_lum = lum;
+    }
+    TEST_ASSERT_EQUAL_UINT64(0, img.rejected);
+    TEST_ASSERT_EQUAL_UINT64(0, stats.rejected);
+    TEST_ASSERT_EQUAL_UINT64(64 * 48 * 4, stats.camera_rays);
+    TEST_ASSERT_TRUE(stats.rays > stats.camera_rays);     /* bounces and shadow rays too */
+    mean = image_mean(&img);
+    TEST_ASSERT_TRUE(mean > 0.0);
+    TEST_ASSERT_TRUE(max_lum > 2.0 * min_lum);            /* walls, lamp and shadows differ */
+    fogrt_image_error(&img, &err);
+    TEST_ASSERT_EQUAL_UINT64(64 * 48 * 4, err.samples);
+    TEST_ASSERT_EQUAL_UINT64(0, err.rejected);
+    TEST_ASSERT_TRUE(err.mean_luminance > 0.0);
+    TEST_ASSERT_TRUE(err.relative_error > 0.0 && err.relative_error < 10.0);
+    free(rgb);
+    fogrt_image_free(&img, NULL);
+    fogrt_scene_destroy(scene);
+}
+
+/* The image does not depend on the thread count: threads = 1 and threads = 2 give the same
+   bits (each sample's random stream depends only on seed, pixel and sample index). */
+static void test_threads_bit_identical(void)
+{
+    fogrt_scene *scene = default_scene();
+    fogrt_render_desc rd = render_desc(48, 36, 7);
+    fogrt_image one, two;
+    rd.threads = 1;
+    render_new(scene, &rd, 4, &one, NULL);
+    rd.threads = 2;
+    render_new(scene, &rd, 4, &two, NULL);
+    assert_same_image(&one, &two, "threads = 1 vs threads = 2");
+#ifndef _OPENMP
+    TEST_MESSAGE("built without OpenMP: both renders ran on one thread");
+#endif
+    fogrt_image_free(&one, NULL);
+    fogrt_image_free(&two, NULL);
+    fogrt_scene_destroy(scene);
+}
+
+/* Progressive rendering: 2 + 2 samples (and 1 + 3) in separate calls give the same bits as
+   4 in one call. */
+static void test_split_samples_identical(void)
+{
+    fogrt_scene *scene = default_scene();
+    fogrt_render_desc rd = render_desc(48, 36, 3);
+    fogrt_image once, split;
+    render_new(scene, &rd, 4, &once, NULL);
+    render_new(scene, &rd, 2, &split, NULL);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_render(scene, &rd, &split, 2, NULL));
+    assert_same_image(&once, &split, "4 spp vs 2 + 2 spp");
+    fogrt_image_clear(&split);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_render(scene, &rd, &split, 1, NULL));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_render(scene, &rd, &split, 3, NULL));
+    assert_same_image(&once, &split, "4 spp vs 1 + 3 spp after fogrt_image_clear");
+    fogrt_image_free(&once, NULL);
+    fogrt_image_free(&split, NULL);
+    fogrt_scene_destroy(scene);
+}
+
+/* The same seed gives the same image; another seed gives a different one (in most pixels,
+   not just a few: the seed must reach every pixel's stream). */
+static void test_seeds(void)
+{
+    fogrt_scene *scene = default_scene();
+    fogrt_render_desc rd = render_desc(32, 24, 11);
+    fogrt_image a, b, c;
+    size_t i, n, differ = 0;
+    render_new(scene, &rd, 2, &a, NULL);
+    render_new(scene, &rd, 2, &b, NULL);
+    rd.seed = 12;
+    render_new(scene, &rd, 2, &c, NULL);
+    assert_same_image(&a, &b, "same seed");
+    n = pixels(&a);
+    for (i = 0; i < n; i++) differ += memcmp(&a.sum[3 * i], &c.sum[3 * i], 3 * sizeof(float)) != 0;
+    TEST_ASSERT_GREATER_THAN(n * 9 / 10, differ);
+    fogrt_image_free(&a, NULL);
+    fogrt_image_free(&b, NULL);
+    fogrt_image_free(&c, NULL);
+    fogrt_scene_destroy(scene);
+}
+
+/* The progress callback sees every row block in order, with the render's size and sample
+   count; returning false stops the render with FOGRT_RESULT_CANCELLED at once (rows not yet
+   started get no samples). */
+typedef struct progress_log {
+    int calls, last_rows_done, rows_total, spp, bad_order, cancel_after;
+} progress_log;
+
+static bool on_progress(const fogrt_progress *p, void *user_data)
+{
+    progress_log *log = (progress_log *)user_data;
+    log->calls++;
+    if (p->rows_done <= log->last_rows_done || p->rows_done > p->rows_total) log->bad_order++;
+    log->last_rows_done = p->rows_done;
+    log->rows_total = p->rows_total;
+    log->spp = p->samples_per_pixel;
+    return !(log->cancel_after > 0 && log->calls >= log->cancel_after);
+}
+
+static void test_progress_and_cancel(void)
+{
+    fogrt_scene *scene = default_scene();
+    fogrt_render_desc rd = render_desc(16, 40, 5);
+    progress_log log;
+    fogrt_image img;
+    int x, y, rows_with_samples = 0;
+    memset(&log, 0, sizeof log);
+    rd.progress = on_progress;
+    rd.user_data = &log;
+    render_new(scene, &rd, 2, &img, NULL);
+    TEST_ASSERT_GREATER_OR_EQUAL(1, log.calls);
+    TEST_ASSERT_EQUAL_INT(0, log.bad_order);
+    TEST_ASSERT_EQUAL_INT(40, log.last_rows_done);
+    TEST_ASSERT_EQUAL_INT(40, log.rows_total);
+    TEST_ASSERT_EQUAL_INT(2, log.spp);
+
+    /* Cancel at the first callback. */
+    memset(&log, 0, sizeof log);
+    log.cancel_after = 1;
+    fogrt_image_clear(&img);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_CANCELLED, fogrt_render(scene, &rd, &img, 2, NULL));
+    TEST_ASSERT_EQUAL_INT(1, log.calls);
+    TEST_ASSERT_LESS_THAN(40, log.last_rows_done);
+    for (y = 0; y < 40; y++) {
+        int counted = 0;
+        for (x = 0; x < 16; x++) counted += img.count[y * 16 + x] != 0;
+        TEST_ASSERT_TRUE(counted == 0 || counted == 16);   /* rows are done whole */
+        rows_with_samples += counted == 16;
+    }
+    TEST_ASSERT_EQUAL_INT(log.last_rows_done, rows_with_samples);
+    fogrt_image_free(&img, NULL);
+    fogrt_scene_destroy(scene);
+}
+
+/* ------------------------------------------------------------------------------------------
+   The error estimate
+   ------------------------------------------------------------------------------------------ */
+
+/* Monte Carlo error falls as 1/sqrt(spp): fogrt_image_error at 16 spp is about half of that
+   at 4 spp (accepted: 0.35 .. 0.65). And the estimate is calibrated: the RMS difference of two
+   independent 16 spp renders is sqrt(2) times the error of one, so measured / predicted must
+   be near 1 (accepted: 0.7 .. 1.4). */
+static void test_error_estimate(void)
+{
+    fogrt_scene *scene = default_scene();
+    fogrt_render_desc rd = render_desc(64, 48, 21);
+    fogrt_image i4, i16, j16;
+    fogrt_error_estimate e4, e16;
+    float *a, *b;
+    double diff_sq = 0, mean_sq = 0, measured, ratio;
+    size_t i, n;
+    char msg[200];
+    render_new(scene, &rd, 4, &i4, NULL);
+    rd.seed = 22;
+    render_new(scene, &rd, 16, &i16, NULL);
+    rd.seed = 23;
+    render_new(scene, &rd, 16, &j16, NULL);
+    fogrt_image_error(&i4, &e4);
+    fogrt_image_error(&i16, &e16);
+    ratio = e16.relative_error / e4.relative_error;
+    snprintf(msg, sizeof msg, "relative error: %.4f at 4 spp, %.4f at 16 spp, ratio %.3f (ideal 0.5)",
+             e4.relative_error, e16.relative_error, ratio);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(ratio >= 0.35 && ratio <= 0.65, msg);
+    TEST_ASSERT_EQUAL_UINT64(64 * 48 * 16, e16.samples);
+
+    /* Calibration against two independent renders, in luminance (Rec. 709 weights). */
+    n = pixels(&i16);
+    a = (float *)malloc(sizeof(float) * 3 * n);
+    b = (float *)malloc(sizeof(float) * 3 * n);
+    TEST_ASSERT_TRUE(a && b);
+    fogrt_image_resolve(&i16, a);
+    fogrt_image_resolve(&j16, b);
+    for (i = 0; i < n; i++) {
+        double la = 0.2126 * a[3 * i] + 0.7152 * a[3 * i + 1] + 0.0722 * a[3 * i + 2];
+        double lb = 0.2126 * b[3 * i] + 0.7152 * b[3 * i + 1] + 0.0722 * b[3 * i + 2];
+        diff_sq += (la - lb) * (la - lb);
+        mean_sq += 0.5 * (la * la + lb * lb);
+    }
+    measured = sqrt(diff_sq / mean_sq) / sqrt(2.0);
+    ratio = measured / e16.relative_error;
+    snprintf(msg, sizeof msg, "16 spp: measured relative error %.4f, estimated %.4f, ratio %.3f (ideal 1)",
+             measured, e16.relative_error, ratio);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(ratio >= 0.7 && ratio <= 1.4, msg);
+    free(a); free(b);
+    fogrt_image_free(&i4, NULL);
+    fogrt_image_free(&i16, NULL);
+    fogrt_image_free(&j16, NULL);
+    fogrt_scene_destroy(scene);
+}
+
+/* ------------------------------------------------------------------------------------------
+   Unbiasedness: different estimators of the same image agree
+   ------------------------------------------------------------------------------------------ */
+
+/* Without fog, next-event estimation with MIS, NEE without MIS and no NEE at all are three
+   unbiased estimators of one image: their means agree within noise. Fails on a double-counted
+   or dropped emitter (a wrong MIS weight, emission after a specular bounce lost, a wrong
+   light pdf). */
+static void test_nee_unbiased_without_fog(void)
+{
+    fogrt_scene *scene = area_light_box(0.0f, true, 0.7f);
+    fogrt_render_desc rd = render_desc(24, 18, 0);
+    batch_estimate with_mis, without_mis, no_nee;
+    TEST_ASSERT_EQUAL_UINT32(0, fogrt_scene_features(scene) & FOGRT_FEATURE_MEDIUM);
+    with_mis = batch_mean(scene, &rd, 8, 10, 100);
+    rd.no_mis = true;
+    without_mis = batch_mean(scene, &rd, 8, 10, 200);
+    rd.no_mis = false;
+    rd.no_nee = true;
+    no_nee = batch_mean(scene, &rd, 8, 10, 300);
+    assert_means_agree(with_mis, no_nee, "NEE + MIS vs no NEE");
+    assert_means_agree(without_mis, no_nee, "NEE without MIS vs no NEE");
+    fogrt_scene_destroy(scene);
+}
+
+/* The same in fog: NEE through the phase function (with transmittance on the shadow ray) must
+   agree with finding the lamp by phase sampling alone. */
+static void test_nee_unbiased_in_fog(void)
+{
+    fogrt_scene *scene = area_light_box(0.6f, true, 0.7f);
+    fogrt_render_desc rd = render_desc(24, 18, 0);
+    batch_estimate with_nee, no_nee;
+    TEST_ASSERT_TRUE(fogrt_scene_features(scene) & FOGRT_FEATURE_MEDIUM);
+    with_nee = batch_mean(scene, &rd, 8, 10, 400);
+    rd.no_nee = true;
+    no_nee = batch_mean(scene, &rd, 8, 10, 500);
+    assert_means_agree(with_nee, no_nee, "in fog: NEE + MIS vs no NEE");
+    fogrt_scene_destroy(scene);
+}
+
+/* The DIRECT integrator (one bounce, the paper's baseline) estimates the same quantity as
+   path tracing cut after one bounce (max_depth = 1): emitted plus direct light. With MIS on
+   (the default) and off, without fog and with it, in a box with a large lamp (where BSDF
+   sampling finds the lamp often, so MIS weights matter) and without mirror or glass (through
+   those DIRECT follows the specular chain to the first diffuse surface, while max_depth
+   counts the bounce). Fails if MIS-weighted light samples are not completed by the BSDF
+   samples that hit the lamp. */
+static void test_direct_integrator(void)
+{
+    static const float sigmas[2] = { 0.0f, 0.6f };
+    int k;
+    for (k = 0; k < 2; k++) {
+        fogrt_scene *scene = area_light_box(sigmas[k], false, 0.95f);
+        fogrt_render_desc rd = render_desc(24, 18, 0);
+        batch_estimate direct, direct_no_mis, path1, full;
+        char what[96];
+        rd.integrator = FOGRT_INTEGRATOR_PATH;
+        rd.max_depth = 1;
+        path1 = batch_mean(scene, &rd, 8, 10, 700);
+        rd.max_depth = 0;
+        full = batch_mean(scene, &rd, 8, 4, 800);
+        rd.integrator = FOGRT_INTEGRATOR_DIRECT;
+        direct = batch_mean(scene, &rd, 8, 10, 600);
+        rd.no_mis = true;
+        direct_no_mis = batch_mean(scene, &rd, 8, 10, 900);
+        snprintf(what, sizeof what, "sigma_t %g: DIRECT (no MIS) vs PATH with max_depth 1", sigmas[k]);
+        assert_means_agree(direct_no_mis, path1, what);
+        snprintf(what, sizeof what, "sigma_t %g: DIRECT (MIS) vs PATH with max_depth 1", sigmas[k]);
+        assert_means_agree(direct, path1, what);
+        /* Indirect light only adds: full path tracing is clearly brighter. */
+        TEST_ASSERT_TRUE(full.mean > path1.mean + 4.0 * (full.std_error + path1.std_error));
+        fogrt_scene_destroy(scene);
+    }
+}
+
+/* The DIRECT integrator on the default scene (fog, spot light, glass): finite and lit. */
+static void test_direct_default_scene(void)
+{
+    fogrt_scene *scene = default_scene();
+    fogrt_render_desc rd = render_desc(32, 24, 31);
+    fogrt_image img;
+    size_t i;
+    rd.integrator = FOGRT_INTEGRATOR_DIRECT;
+    render_new(scene, &rd, 4, &img, NULL);
+    TEST_ASSERT_EQUAL_UINT64(0, img.rejected);
+    for (i = 0; i < 3 * pixels(&img); i++) TEST_ASSERT_FLOAT_IS_DETERMINATE(img.sum[i]);
+    TEST_ASSERT_TRUE(image_mean(&img) > 0.0);
+    fogrt_image_free(&img, NULL);
+    fogrt_scene_destroy(scene);
+}
+
+/* ------------------------------------------------------------------------------------------
+   Cameras
+   ------------------------------------------------------------------------------------------ */
+
+/* A thin-lens camera: ray origins lie on the lens disk (radius lens_radius, perpendicular to
+   the view), and all rays through one pixel meet again on the plane in focus. The image
+   renders finite and differs from the pinhole image. */
+static void test_thin_lens(void)
+{
+    fogrt_scene *scene = NULL;
+    fogrt_camera_desc cam;
+    fogrt_render_desc rd = render_desc(32, 24, 41);
+    fogrt_image pin, lens;
+    fogrt_vec3 fwd, focus0 = v3(0, 0, 0);
+    float len;
+    size_t i;
+    int k;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_default(scene));
+    fogrt_scene_get_camera(scene, &cam);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    render_new(scene, &rd, 4, &pin, NULL);
+
+    cam.lens_radius = 0.1f;
+    cam.focal_distance = 3.0f;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_set_camera(scene, &cam));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    fwd = v3(cam.look_at.x - cam.position.x, cam.look_at.y - cam.position.y, cam.look_at.z - cam.position.z);
+    len = sqrtf(fwd.x * fwd.x + fwd.y * fwd.y + fwd.z * fwd.z);
+    fwd = v3(fwd.x / len, fwd.y / len, fwd.z / len);
+    for (k = 0; k < 9; k++) {
+        fogrt_vec3 o, d, rel, focus;
+        float lu1 = 0.05f + 0.1f * (float)k, lu2 = 0.9f - 0.1f * (float)k, along, t;
+        fogrt_camera_ray(scene, 32, 24, 7.5f, 20.25f, lu1, lu2, &o, &d);
+        TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, sqrtf(d.x * d.x + d.y * d.y + d.z * d.z));
+        rel = v3(o.x - cam.position.x, o.y - cam.position.y, o.z - cam.position.z);
+        along = rel.x * fwd.x + rel.y * fwd.y + rel.z * fwd.z;
+        TEST_ASSERT_FLOAT_WITHIN(1e-5f, 0.0f, along);                                   /* on the lens plane */
+        TEST_ASSERT_TRUE(sqrtf(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z) <= 0.1f + 1e-5f);   /* inside the lens */
+        t = (3.0f - along) / (d.x * fwd.x + d.y * fwd.y + d.z * fwd.z);                   /* to the focal plane */
+        focus = v3(o.x + t * d.x, o.y + t * d.y, o.z + t * d.z);
+        if (k == 0) focus0 = focus;
+        TEST_ASSERT_FLOAT_WITHIN(1e-4f, focus0.x, focus.x);
+        TEST_ASSERT_FLOAT_WITHIN(1e-4f, focus0.y, focus.y);
+        TEST_ASSERT_FLOAT_WITHIN(1e-4f, focus0.z, focus.z);
+    }
+    render_new(scene, &rd, 4, &lens, NULL);
+    TEST_ASSERT_EQUAL_UINT64(0, lens.rejected);
+    for (i = 0; i < 3 * pixels(&lens); i++) TEST_ASSERT_FLOAT_IS_DETERMINATE(lens.sum[i]);
+    TEST_ASSERT_TRUE(image_mean(&lens) > 0.0);
+    TEST_ASSERT_FALSE(memcmp(pin.sum, lens.sum, sizeof(float) * 3 * pixels(&pin)) == 0);
+    fogrt_image_free(&pin, NULL);
+    fogrt_image_free(&lens, NULL);
+    fogrt_scene_destroy(scene);
+}
+
+/* A pinhole camera: every ray starts at the eye; the centre of the image looks at look_at. */
+static void test_pinhole_rays(void)
+{
+    fogrt_scene *scene = default_scene();
+    fogrt_camera_desc cam;
+    fogrt_vec3 o, d, to;
+    float len;
+    fogrt_scene_get_camera(scene, &cam);
+    fogrt_camera_ray(scene, 64, 48, 32.0f, 24.0f, 0.3f, 0.8f, &o, &d);
+    TEST_ASSERT_EQUAL_FLOAT(cam.position.x, o.x);
+    TEST_ASSERT_EQUAL_FLOAT(cam.position.y, o.y);
+    TEST_ASSERT_EQUAL_FLOAT(cam.position.z, o.z);
+    to = v3(cam.look_at.x - o.x, cam.look_at.y - o.y, cam.look_at.z - o.z);
+    len = sqrtf(to.x * to.x + to.y * to.y + to.z * to.z);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, to.x / len, d.x);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, to.y / len, d.y);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, to.z / len, d.z);
+    /* The top row looks up (+y), the left column looks left (-x, camera looks down -z). */
+    fogrt_camera_ray(scene, 64, 48, 32.0f, 0.0f, 0.5f, 0.5f, &o, &d);
+    TEST_ASSERT_TRUE(d.y > to.y / len);
+    fogrt_camera_ray(scene, 64, 48, 0.0f, 24.0f, 0.5f, 0.5f, &o, &d);
+    TEST_ASSERT_TRUE(d.x < 0.0f);
+    fogrt_scene_destroy(scene);
+}
+
+/* An empty scene lit only by a uniform environment, without fog: every camera ray escapes
+   and sees exactly the environment radiance (zero variance); with upper_hemisphere_only, a
+   downward ray sees nothing. */
+static void test_environment_only(void)
+{
+    fogrt_scene *scene = NULL;
+    fogrt_render_desc rd = render_desc(8, 6, 1);
+    fogrt_image img;
+    fogrt_rng rng;
+    fogrt_vec3 L;
+    float *rgb;
+    size_t i;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_set_environment(scene, v3(0.25f, 0.5f, 1.0f), false));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    render_new(scene, &rd, 3, &img, NULL);
+    rgb = (float *)malloc(sizeof(float) * 3 * pixels(&img));
+    TEST_ASSERT_NOT_NULL(rgb);
+    fogrt_image_resolve(&img, rgb);
+    for (i = 0; i < pixels(&img); i++) {
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.25f, rgb[3 * i]);
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.5f, rgb[3 * i + 1]);
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f, rgb[3 * i + 2]);
+    }
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_set_environment(scene, v3(1, 1, 1), true));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    fogrt_rng_seed(&rng, 1, 2);
+    L = fogrt_trace(scene, NULL, v3(0, 0, 0), v3(0, -1, 0), &rng, NULL);
+    TEST_ASSERT_EQUAL_FLOAT(0.0f, L.x + L.y + L.z);
+    L = fogrt_trace(scene, NULL, v3(0, 0, 0), v3(0.6f, 0.8f, 0), &rng, NULL);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f, L.y);
+    free(rgb);
+    fogrt_image_free(&img, NULL);
+    fogrt_scene_destroy(scene);
+}
+
+/* ------------------------------------------------------------------------------------------
+   Output
+   ------------------------------------------------------------------------------------------ */
+
+/* 0 -> 0 and 1 -> 255 in every mode; NaN, negatives and -inf -> 0; above 1 and +inf -> 255;
+   exposure 0 means 1, exposure 2 doubles; the sRGB curve at 0.5 (0.7354 -> 188) and its
+   linear toe (0.001 -> 12.92 * 0.001 -> 3); gamma 2.2 at 0.5 (0.7297 -> 186); monotonic. */
+static void test_tonemap(void)
+{
+    /* 4 pixels = 12 values. */
+    const float in[12] = { 0.0f, 1.0f, (float)NAN, -0.5f, 2.0f, (float)INFINITY,
+                           -(float)INFINITY, 0.5f, 0.001f, 0.25f, 0.0f, 0.0f };
+    unsigned char out[12], ramp_out[3 * 256];
+    float ramp[3 * 256];
+    int mode, i;
+    for (mode = 0; mode < FOGRT_TONEMAP_NUM; mode++) {
+        fogrt_tonemap tm = (fogrt_tonemap)mode;
+        unsigned mid = mode == FOGRT_TONEMAP_GAMMA22 ? 186u : 188u;
+        fogrt_tonemap_rgb8(in, 2, 2, 0.0f, tm, out);
+        TEST_ASSERT_EQUAL_UINT(0, out[0]);
+        TEST_ASSERT_EQUAL_UINT(255, out[1]);
+        TEST_ASSERT_EQUAL_UINT(0, out[2]);      /* NaN */
+        TEST_ASSERT_EQUAL_UINT(0, out[3]);
+        TEST_ASSERT_EQUAL_UINT(255, out[4]);
+        TEST_ASSERT_EQUAL_UINT(255, out[5]);
+        TEST_ASSERT_EQUAL_UINT(0, out[6]);
+        TEST_ASSERT_EQUAL_UINT(mid, out[7]);
+        if (mode != FOGRT_TONEMAP_GAMMA22) TEST_ASSERT_EQUAL_UINT(3, out[8]);
+        /* Exposure 2: 0.5 maps like 1, 0.25 like 0.5. */
+        fogrt_tonemap_rgb8(in, 2, 2, 2.0f, tm, out);
+        TEST_ASSERT_EQUAL_UINT(255, out[7]);
+        TEST_ASSERT_EQUAL_UINT(mid, out[9]);
+        TEST_ASSERT_EQUAL_UINT(0, out[2]);      /* NaN stays 0 */
+        /* A ramp maps monotonically and covers 0..255. */
+        for (i = 0; i < 3 * 256; i++) ramp[i] = (float)i / (3 * 256 - 1.0f);
+        fogrt_tonemap_rgb8(ramp, 256, 1, 1.0f, tm, ramp_out);
+        for (i = 1; i < 3 * 256; i++) TEST_ASSERT_TRUE(ramp_out[i] >= ramp_out[i - 1]);
+        TEST_ASSERT_EQUAL_UINT(0, ramp_out[0]);
+        TEST_ASSERT_EQUAL_UINT(255, ramp_out[3 * 256 - 1]);
+    }
+}
+
+static long file_size(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    long size;
+    if (f == NULL) return -1;
+    fseek(f, 0, SEEK_END);
+    size = ftell(f);
+    fclose(f);
+    return size;
+}
+
+/* PFM: header "PF", "w h", a negative scale (little endian), then 12 bytes per pixel with the
+   bottom row first. PPM: "P6", "w h", "255", then 3 bytes per pixel, top row first. An
+   unwritable path gives FOGRT_RESULT_IO_ERROR. */
+static void test_write_files(void)
+{
+    enum { W = 5, H = 3 };
+    float rgb[3 * W * H], back[3 * W];
+    unsigned char rgb8[3 * W * H], back8[3];
+    char path[600], magic[3] = { 0 };
+    int w = 0, h = 0, i;
+    float scale = 0;
+    long size, header;
+    FILE *f;
+    for (i = 0; i < 3 * W * H; i++) { rgb[i] = 0.01f * (float)i; rgb8[i] = (unsigned char)(i * 5); }
+
+    snprintf(path, sizeof path, "%s/test_render_out.pfm", out_dir);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_write_pfm(path, W, H, rgb), path);
+    f = fopen(path, "rb");
+    TEST_ASSERT_NOT_NULL_MESSAGE(f, path);
+    TEST_ASSERT_EQUAL_INT(3, fscanf(f, "%2s %d %d", magic, &w, &h));
+    TEST_ASSERT_EQUAL_INT(1, fscanf(f, "%f", &scale));
+    TEST_ASSERT_EQUAL_INT('\n', fgetc(f));          /* one whitespace byte, then the data */
+    header = ftell(f);
+    TEST_ASSERT_EQUAL_STRING("PF", magic);
+    TEST_ASSERT_EQUAL_INT(W, w);
+    TEST_ASSERT_EQUAL_INT(H, h);
+    TEST_ASSERT_TRUE(scale < 0.0f);
+    TEST_ASSERT_EQUAL_INT(W, (int)fread(back, 3 * sizeof(float), W, f));
+    fclose(f);
+    TEST_ASSERT_EQUAL_MEMORY(&rgb[3 * W * (H - 1)], back, sizeof back);   /* bottom row first */
+    size = file_size(path);
+    TEST_ASSERT_EQUAL_INT64(header + 12L * W * H, size);
+    remove(path);
+
+    snprintf(path, sizeof path, "%s/test_render_out.ppm", out_dir);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_write_ppm(path, W, H, rgb8), path);
+    f = fopen(path, "rb");
+    TEST_ASSERT_NOT_NULL(f);
+    TEST_ASSERT_EQUAL_INT(4, fscanf(f, "%2s %d %d %f", magic, &w, &h, &scale));
+    TEST_ASSERT_EQUAL_INT('\n', fgetc(f));
+    header = ftell(f);
+    TEST_ASSERT_EQUAL_STRING("P6", magic);
+    TEST_ASSERT_EQUAL_INT(W, w);
+    TEST_ASSERT_EQUAL_INT(H, h);
+    TEST_ASSERT_EQUAL_FLOAT(255.0f, scale);
+    TEST_ASSERT_EQUAL_INT(1, (int)fread(back8, 3, 1, f));
+    fclose(f);
+    TEST_ASSERT_EQUAL_MEMORY(rgb8, back8, 3);                              /* top row first */
+    TEST_ASSERT_EQUAL_INT64(header + 3L * W * H, file_size(path));
+    remove(path);
+
+    /* A directory that does not exist, and a directory itself. */
+    snprintf(path, sizeof path, "%s/no-such-dir/x.pfm", out_dir);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_IO_ERROR, fogrt_write_pfm(path, W, H, rgb));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_IO_ERROR, fogrt_write_ppm(path, W, H, rgb8));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_IO_ERROR, fogrt_write_pfm(out_dir, W, H, rgb));
+}
+
+int main(int argc, char **argv)
+{
+    /* Output files go next to the test binary, i.e. into the build directory. */
+    if (argc > 0 && argv[0] != NULL && strrchr(argv[0], '/') != NULL) {
+        size_t len = (size_t)(strrchr(argv[0], '/') - argv[0]);
+        if (len > 0 && len < sizeof out_dir) { memcpy(out_dir, argv[0], len); out_dir[len] = '\0'; }
+    }
+    UNITY_BEGIN();
+    RUN_TEST(test_default_scene_renders);
+    RUN_TEST(test_threads_bit_identical);
+    RUN_TEST(test_split_samples_identical);
+    RUN_TEST(test_seeds);
+    RUN_TEST(test_progress_and_cancel);
+    RUN_TEST(test_error_estimate);
+    RUN_TEST(test_nee_unbiased_without_fog);
+    RUN_TEST(test_nee_unbiased_in_fog);
+    RUN_TEST(test_direct_integrator);
+    RUN_TEST(test_direct_default_scene);
+    RUN_TEST(test_thin_lens);
+    RUN_TEST(test_pinhole_rays);
+    RUN_TEST(test_environment_only);
+    RUN_TEST(test_tonemap);
+    RUN_TEST(test_write_files);
+    return UNITY_END();
+}
