@@ -2809,7 +2809,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
     md.reflectance = fogrt__v(0.08f, 0.12f, 0.60f); FOGRT__TRY(fogrt_scene_add_material(s, &md, &blue));
     md.reflectance = fogrt__v(0.60f, 0.55f, 0.45f); FOGRT__TRY(fogrt_scene_add_material(s, &md, &matte));
     md.reflectance = fogrt__v(0.0f, 0.0f, 0.0f);
-    md.emission = fogrt__v(17.0f, 12.0f, 4.0f);    FOGRT__TRY(fogrt_scene_add_material(s, &md, &lamp));
+    md.emission = fogrt__v(8.5f, 6.0f, 2.0f);     FOGRT__TRY(fogrt_scene_add_material(s, &md, &lamp));
     memset(&md, 0, sizeof md);
     md.type = FOGRT_BSDF_GLASS; md.ior = 1.5f;
     md.reflectance = fogrt__v(1.0f, 1.0f, 1.0f); md.transmittance = fogrt__v(1.0f, 1.0f, 1.0f);
@@ -2821,8 +2821,8 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
     FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 0, -1), fogrt__v(-1, 1.5f, -1), fogrt__v(-1, 1.5f, 1), fogrt__v(-1, 0, 1), red));     /* left */
     FOGRT__TRY(fogrt__add_quad(s, fogrt__v(1, 0, -1), fogrt__v(1, 0, 1), fogrt__v(1, 1.5f, 1), fogrt__v(1, 1.5f, -1), blue));        /* right */
     /* The ceiling lamp: a square just below the ceiling, wound to face down. */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-0.25f, 1.49f, -0.25f), fogrt__v(0.25f, 1.49f, -0.25f),
-                               fogrt__v(0.25f, 1.49f, 0.25f), fogrt__v(-0.25f, 1.49f, 0.25f), lamp));
+    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-0.35f, 1.49f, -0.35f), fogrt__v(0.35f, 1.49f, -0.35f),
+                               fogrt__v(0.35f, 1.49f, 0.35f), fogrt__v(-0.35f, 1.49f, 0.35f), lamp));
     FOGRT__TRY(fogrt_scene_add_sphere(s, fogrt__v(-0.45f, 0.35f, -0.35f), 0.35f, matte));
     FOGRT__TRY(fogrt_scene_add_sphere(s, fogrt__v(0.45f, 0.35f, 0.25f), 0.35f, glass));
     /* The spot light: high on the left, aimed at the floor right of centre; its cone shows in the fog. */
