@@ -48,6 +48,11 @@ run: deps-stb $(BUILD)/render_default
 $(BUILD)/render_default: examples/render_default.c fogrt.h | $(BUILD)
 	$(CC) $(ALL_CFLAGS) -o $@ examples/render_default.c $(LDLIBS)
 
+# ---- the README's program must keep compiling ----
+$(BUILD)/minimal: examples/minimal.c fogrt.h | $(BUILD)
+	$(CC) $(ALL_CFLAGS) -o $@ examples/minimal.c $(LDLIBS)
+EXTRA_TEST_DEPS += $(BUILD)/minimal
+
 # ---- tests: every tests/test_*.c is one Unity test program ----
 TEST_SRCS := $(wildcard tests/test_*.c)
 TEST_BINS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRCS))
