@@ -970,14 +970,15 @@ FOGRT__PUBLIC float fogrt_sample_equiangular(float u, float delta, float h, floa
     if (!(theta_b > theta_a) || !(h > 0.0f)) { if (pdf) *pdf = 0.0f; return a; }
     t = delta + h * tanf(theta_a + u * (theta_b - theta_a));
     t = FOGRT__CLAMP(t, a, b);
-    if (pdf) *pdf = h / ((theta_b - theta_a) * (h * h + (t - delta) * (t - delta)));
+    /* pdf = h / ((theta_b - theta_a)(h^2 + (t - delta)^2)), written so h^2 cannot underflow */
+    if (pdf) *pdf = 1.0f / ((theta_b - theta_a) * (h + (t - delta) * ((t - delta) / h)));
     return t;
 }
 FOGRT__PUBLIC float fogrt_equiangular_pdf(float t, float delta, float h, float a, float b)
 {
     float theta_a = atan2f(a - delta, h), theta_b = atan2f(b - delta, h);
     if (!(theta_b > theta_a) || !(h > 0.0f) || t < a || t > b) return 0.0f;
-    return h / ((theta_b - theta_a) * (h * h + (t - delta) * (t - delta)));
+    return 1.0f / ((theta_b - theta_a) * (h + (t - delta) * ((t - delta) / h)));
 }
 
 /* ------------------------------------------------------------------------------------------
@@ -1443,7 +1444,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_me
         return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.albedo: outside [0, 1]");
     if (!(m.g >= -1.0f && m.g <= 1.0f))
         return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.g: outside [-1, 1]");
-    if (fabsf(m.g) > FOGRT_HG_G_MAX) {
+    if (fabsf(m.g) >= FOGRT_HG_G_MAX && fabsf(m.g) != FOGRT_HG_G_MAX) {
         m.g = copysignf(FOGRT_HG_G_MAX, m.g);
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
     }
