@@ -309,7 +309,8 @@ FOGRT_API fogrt_result fogrt_scene_set_medium(fogrt_scene *scene, const fogrt_me
 
 /* Adds the embedded default scene: the CS184 Cornell box (walls x = +-1, z = +-1, floor
    y = 0, ceiling y = 1.5, red left wall, blue right wall, ceiling area light), a diffuse
-   sphere, a glass sphere, a spot light, fog (sigma_t 0.3, albedo 0.9, g 0.6) and a camera. */
+   sphere, a glass sphere, a spot light, fog (sigma_t 0.3, albedo 0.9, g 0.6) and a camera.
+   (Built with FOGRT_NO_MEDIUM: the same scene without fog.) */
 FOGRT_API fogrt_result fogrt_scene_add_default(fogrt_scene *scene);
 
 /* ------------------------------------------------------------------------------------------
@@ -695,6 +696,7 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #define FOGRT__MAX(a, b) ((a) > (b) ? (a) : (b))
 #define FOGRT__CLAMP(x, lo, hi) FOGRT__MIN(FOGRT__MAX(x, lo), hi)
 #define FOGRT__DEF(val, def) ((val) == 0 ? (def) : (val))   /* "zero means default" */
+#define FOGRT__MAX_PRIMS (1u << 28)   /* triangles + spheres: keeps every index and size in range */
 
 FOGRT__PUBLIC const char *fogrt_result_string(fogrt_result result)
 {
@@ -719,6 +721,10 @@ FOGRT__PRIVATE void fogrt__free(const fogrt_allocator *a, void *ptr)
     else FOGRT_FREE(ptr, a ? a->user_data : NULL);
 }
 FOGRT__PRIVATE bool fogrt__finite(float x) { return x - x == 0.0f; }  /* false for NaN, +-Inf */
+/* Coordinates must be finite and at most 1e30 in size, so that squared distances and box
+   areas stay finite in float. */
+#define FOGRT__MAX_COORD 1e30f
+FOGRT__PRIVATE bool fogrt__coord_ok(float x) { return x >= -FOGRT__MAX_COORD && x <= FOGRT__MAX_COORD; }
 
 /* ------------------------------------------------------------------------------------------
    2. Vector maths and the orthonormal basis
@@ -1281,13 +1287,13 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh
     if (n == 0) return FOGRT_RESULT_OK;
     if (!desc->positions) return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "mesh.positions: NULL");
     /* Validate everything first. */
-    if ((uint64_t)s->tri_count + n >= 0x7FFFFFF0u)
+    if ((uint64_t)s->tri_count + s->sph_count + n > FOGRT__MAX_PRIMS)
         return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "mesh.triangle_count: too many triangles");
     if (!desc->indices && (uint64_t)n * 3 > desc->vertex_count)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "mesh.vertex_count: fewer than 3 * triangle_count vertices and no indices");
     for (i = 0; i < (uint64_t)desc->vertex_count * 3; ++i) {
-        if (!fogrt__finite(desc->positions[i]))
-            return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "mesh.positions: not finite");
+        if (!fogrt__coord_ok(desc->positions[i]))
+            return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "mesh.positions: not finite or beyond +-1e30");
         if (desc->normals && !fogrt__finite(desc->normals[i]))
             return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "mesh.normals: not finite");
     }
@@ -1340,11 +1346,12 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 center, float radius, uint32_t material)
 {
     FOGRT_ASSERT(s);
-    if (!fogrt__v3_finite(center) || !fogrt__finite(radius) || !(radius > 0.0f))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "sphere.center not finite or sphere.radius <= 0");
+    if (!fogrt__coord_ok(center.x) || !fogrt__coord_ok(center.y) || !fogrt__coord_ok(center.z) ||
+        !fogrt__coord_ok(radius) || !(radius > 0.0f))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "sphere.center or sphere.radius not finite or beyond 1e30, or sphere.radius <= 0");
     if (material >= s->material_count)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "sphere.material: material id out of range");
-    if ((uint64_t)s->tri_count + s->sph_count + 1 >= 0x7FFFFFF0u)
+    if ((uint64_t)s->tri_count + s->sph_count + 1 > FOGRT__MAX_PRIMS)
         return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "too many spheres");
     if (s->sph_count + 1 > s->sph_cap) {
         uint32_t cap = fogrt__grow_cap(s->sph_cap, s->sph_count + 1), c = s->sph_count;
@@ -1583,13 +1590,13 @@ FOGRT__PRIVATE bool fogrt__find_split(fogrt__build *b, const fogrt_bvh_node *nod
         float left_cost[MAXB], lo = fogrt__comp(cb.lo, axis), hi = fogrt__comp(cb.hi, axis), scale;
         fogrt__aabb left_box = fogrt__aabb_empty();
         int k;
-        if (!(hi > lo)) continue;                       /* all centroids in one plane */
         scale = (float)nbins / (hi - lo);
+        if (!(hi > lo) || !(scale > 0.0f && scale < FLT_MAX)) continue;   /* flat (or degenerate) extent */
         for (k = 0; k < nbins; ++k) { bin_box[k] = fogrt__aabb_empty(); bin_n[k] = 0; }
         for (i = 0; i < count; ++i) {
             uint32_t p = b->idx[first + i];
-            int bi = (int)((fogrt__comp(b->centroid[p], axis) - lo) * scale);
-            bi = FOGRT__CLAMP(bi, 0, nbins - 1);
+            float f = (fogrt__comp(b->centroid[p], axis) - lo) * scale;
+            int bi = f > 0.0f ? (f < (float)nbins ? (int)f : nbins - 1) : 0;   /* NaN -> bin 0 */
             bin_n[bi]++;
             fogrt__aabb_union(&bin_box[bi], &b->box[p]);
         }
@@ -2839,9 +2846,13 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
     cd.look_at = fogrt__v(0.0f, 0.7f, 0.0f);
     cd.fov_deg = 38.0f;
     FOGRT__TRY(fogrt_scene_set_camera(s, &cd));
+#ifndef FOGRT_NO_MEDIUM   /* a build without fog gets the same box, without fog */
     memset(&fd, 0, sizeof fd);
     fd.sigma_t = 0.3f; fd.albedo = fogrt__v(0.9f, 0.9f, 0.9f); fd.g = 0.6f;
     FOGRT__TRY(fogrt_scene_set_medium(s, &fd));
+#else
+    (void)fd;
+#endif
 #undef FOGRT__TRY
     return r;
 }
