@@ -66,7 +66,7 @@ test: deps-stb $(TEST_BINS) $(EXTRA_TEST_DEPS)
 install: $(BUILD)/fogrt
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/include
 	install -m 755 $(BUILD)/fogrt $(DESTDIR)$(PREFIX)/bin/fogrt
-	install -m 644 fogrt.h $(DESTDIR)$(PREFIX)/include/fogrt.h
+	install -m 644 fogrt.h fogrt_load.h $(DESTDIR)$(PREFIX)/include/
 
 clean:
 	rm -rf build build-san fog.png fog.pfm

@@ -1695,7 +1695,7 @@ FOGRT__PUBLIC float fogrt_bvh_sah_cost(const fogrt_scene *s)
     if (!s->nodes || s->node_count == 0) return 0.0f;
     rb.lo = fogrt__v(s->nodes[0].bmin[0], s->nodes[0].bmin[1], s->nodes[0].bmin[2]);
     rb.hi = fogrt__v(s->nodes[0].bmax[0], s->nodes[0].bmax[1], s->nodes[0].bmax[2]);
-    root_area = FOGRT__MAX(fogrt__aabb_area(&rb), FLT_MIN);
+    root_area = (double)FOGRT__MAX(fogrt__aabb_area(&rb), FLT_MIN);
     for (i = 0; i < s->node_count; ++i) {
         const fogrt_bvh_node *n = &s->nodes[i];
         fogrt__aabb nb;

@@ -1,0 +1,48 @@
+# mk/cli.mk - the `fogrt` command-line renderer, its shell test, and libFuzzer targets for
+# the scene loaders in fogrt_load.h.
+#   make                 builds $(BUILD)/fogrt (the top Makefile's `all`)
+#   make cli-test        runs tests/test_cli.sh against $(BUILD)/fogrt (part of `make test`)
+#   make fuzz            fuzzes the .dae, .obj and .ply parsers, FUZZ_SECONDS each (default 600)
+#   make fuzz-dae ...    one parser
+
+$(BUILD)/fogrt: examples/fogrt_cli.c fogrt.h fogrt_load.h | deps-stb $(BUILD)
+	$(CC) $(ALL_CFLAGS) -o $@ examples/fogrt_cli.c $(LDLIBS)
+
+.PHONY: cli-test fuzz fuzz-dae fuzz-obj fuzz-ply fuzz-build fuzz-deps
+cli-test: $(BUILD)/fogrt
+	@sh tests/test_cli.sh $(BUILD)/fogrt
+EXTRA_TEST_DEPS += cli-test
+
+# ---- fuzzing (clang + libFuzzer, from Debian: clang and libclang-rt-*-dev) ----
+FUZZ_SECONDS ?= 600
+FUZZ_CC      ?= clang
+FUZZ_DIR     := $(BUILD)/fuzz
+FUZZ_DEFS    ?=
+FUZZ_CFLAGS  := -std=c99 -g -O1 -fno-omit-frame-pointer -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined $(FUZZ_DEFS) -I.
+
+fuzz-deps:
+	@sh tools/need-package.sh clang /usr/bin/clang
+	@[ -e "$$($(FUZZ_CC) --print-runtime-dir 2>/dev/null)/libclang_rt.fuzzer-x86_64.a" ] || \
+	  sh tools/need-package.sh libclang-rt-$$($(FUZZ_CC) -dumpversion | cut -d. -f1)-dev \
+	    "$$($(FUZZ_CC) --print-runtime-dir)/libclang_rt.fuzzer-x86_64.a"
+
+$(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c fogrt.h fogrt_load.h | fuzz-deps $(BUILD)
+	@mkdir -p $(FUZZ_DIR)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -o $@ $< -lm
+
+fuzz-build: $(FUZZ_DIR)/fuzz_dae $(FUZZ_DIR)/fuzz_obj $(FUZZ_DIR)/fuzz_ply
+
+# The seed corpus in tests/fuzz/corpus_<fmt> is read-only; new inputs go to $(FUZZ_DIR)/corpus_<fmt>,
+# crashes to $(FUZZ_DIR)/crash-<fmt>-*. Fixed crashes belong in tests/fuzz/regress/ (replayed by
+# tests/test_load.c).
+define FOGRT_FUZZ_RUN
+fuzz-$(1): $$(FUZZ_DIR)/fuzz_$(1)
+	@mkdir -p $$(FUZZ_DIR)/corpus_$(1)
+	$$(FUZZ_DIR)/fuzz_$(1) $$(FUZZ_DIR)/corpus_$(1) tests/fuzz/corpus_$(1) \
+	  $$(if $$(wildcard tests/fuzz/$(1).dict),-dict=tests/fuzz/$(1).dict) \
+	  -max_total_time=$$(FUZZ_SECONDS) -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
+	  -print_final_stats=1 -artifact_prefix=$$(FUZZ_DIR)/crash-$(1)-
+endef
+$(foreach f,dae obj ply,$(eval $(call FOGRT_FUZZ_RUN,$(f))))
+
+fuzz: fuzz-dae fuzz-obj fuzz-ply

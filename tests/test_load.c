@@ -1,0 +1,1093 @@
+/* test_load.c - fogrt_load.h: CS184 .dae scenes, OBJ, PLY and camera files.
+
+   - every shared CS184 scene (../shared/scenes/cs184/) against the fact sheet in
+     ../shared/docs/cs184-dae.md: triangle and sphere counts, lights, materials, camera;
+   - one small hand-written file per element or quirk in tests/data/;
+   - malformed and truncated input: an error naming file and line, never a crash, and the
+     scene untouched;
+   - the fuzzers' regression inputs (tests/fuzz/regress/);
+   - the Stanford bunny PLY, and the load time of CBbunny.dae. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <time.h>
+#include <dirent.h>
+#define FOGRT_IMPLEMENTATION
+#include "fogrt.h"
+#define FOGRT_LOAD_IMPLEMENTATION
+#include "fogrt_load.h"
+#include "unity.h"
+
+#ifndef FOGRT_SHARED_DIR
+#define FOGRT_SHARED_DIR "../shared"
+#endif
+#define CS184_DIR FOGRT_SHARED_DIR "/scenes/cs184/"
+#define DATA_DIR "tests/data/"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+/* ------------------------------------------------------------------------------------------
+   Helpers
+   ------------------------------------------------------------------------------------------ */
+static fogrt_scene *new_scene(void)
+{
+    fogrt_scene *s = NULL;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &s));
+    return s;
+}
+static bool file_exists(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (f) fclose(f);
+    return f != NULL;
+}
+static char *read_all(const char *path, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    char *buf;
+    long n;
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    buf = (char *)malloc((size_t)n + 1);
+    if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) { free(buf); buf = NULL; }
+    fclose(f);
+    *size = (size_t)n;
+    return buf;
+}
+/* Loads tests/data/name (by extension) into a fresh scene and expects OK. */
+static fogrt_scene *load_ok(const char *name, fogrt_load_report *rep, const fogrt_load_options *opt)
+{
+    char path[512], msg[700];
+    fogrt_scene *s = new_scene();
+    fogrt_result r;
+    snprintf(path, sizeof path, DATA_DIR "%s", name);
+    r = fogrt_load_file(s, path, opt, rep);
+    snprintf(msg, sizeof msg, "%s:%d: %s", rep->file, rep->line, rep->message);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, r, msg);
+    return s;
+}
+static fogrt_load_options as_is(void)
+{
+    fogrt_load_options o;
+    memset(&o, 0, sizeof o);
+    o.place = FOGRT_LOAD_PLACE_AS_IS;
+    return o;
+}
+static fogrt_vec3 tri_v(const fogrt_scene *s, uint32_t t, int k) { return s->tri_v[3 * t + (uint32_t)k]; }
+static fogrt_vec3 tri_n(const fogrt_scene *s, uint32_t t, int k) { return s->tri_n[3 * t + (uint32_t)k]; }
+static fogrt_vec3 winding_normal(const fogrt_scene *s, uint32_t t)
+{
+    fogrt_vec3 a = tri_v(s, t, 0), b = tri_v(s, t, 1), c = tri_v(s, t, 2), n;
+    float e1x = b.x - a.x, e1y = b.y - a.y, e1z = b.z - a.z, e2x = c.x - a.x, e2y = c.y - a.y, e2z = c.z - a.z;
+    n.x = e1y * e2z - e1z * e2y; n.y = e1z * e2x - e1x * e2z; n.z = e1x * e2y - e1y * e2x;
+    return n;
+}
+static void assert_vec3(float tol, float x, float y, float z, fogrt_vec3 v, const char *what)
+{
+    TEST_ASSERT_FLOAT_WITHIN_MESSAGE(tol, x, v.x, what);
+    TEST_ASSERT_FLOAT_WITHIN_MESSAGE(tol, y, v.y, what);
+    TEST_ASSERT_FLOAT_WITHIN_MESSAGE(tol, z, v.z, what);
+}
+static fogrt_material_desc prim_material(const fogrt_scene *s, uint32_t prim)
+{
+    fogrt_material_desc m;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_material(s, fogrt_scene_prim_material(s, prim), &m));
+    return m;
+}
+static bool same_colour(fogrt_vec3 a, float r, float g, float b)
+{
+    return fabsf(a.x - r) < 1e-5f && fabsf(a.y - g) < 1e-5f && fabsf(a.z - b) < 1e-5f;
+}
+/* Number of triangles whose material has this diffuse reflectance (and no emission). */
+static uint32_t count_diffuse(const fogrt_scene *s, float r, float g, float b)
+{
+    uint32_t t, n = 0;
+    for (t = 0; t < s->tri_count; ++t) {
+        const fogrt_material_desc *m = &s->materials[s->tri_material[t]];
+        if (m->type == FOGRT_BSDF_DIFFUSE && same_colour(m->reflectance, r, g, b) && same_colour(m->emission, 0, 0, 0)) n++;
+    }
+    return n;
+}
+
+/* ------------------------------------------------------------------------------------------
+   1. The shared CS184 scenes against the fact sheet
+   ------------------------------------------------------------------------------------------ */
+typedef struct cs184_fact {
+    const char *file;
+    uint32_t triangles, spheres;
+    uint32_t point_lights, spot_lights, merged_area;   /* merged: the <area> lamp is the emissive quad */
+    uint32_t emissive_triangles;
+    bool ambient;
+    float cam[3], look[3];
+} cs184_fact;
+
+static const cs184_fact cs184_facts[] = {
+    { "CBempty.dae",              12,    0, 1, 0, 0, 2, false, { 0, 0.75f, 4.8023f },  { 0, 0.75f, 0 } },
+    { "CBspheres_lambertian.dae", 12,    2, 0, 0, 1, 2, false, { 0, 0.75f, 4.8023f },  { 0, 0.75f, 0 } },
+    { "CBspheres.dae",            12,    2, 0, 0, 1, 2, false, { 0, 0.75f, 4.8023f },  { 0, 0.75f, 0 } },
+    { "CBspheres_refract.dae",    12,    2, 0, 0, 1, 2, false, { 0, 0.75f, 4.8023f },  { 0, 0.75f, 0 } },
+    { "CBbunny.dae",              28588, 0, 0, 0, 1, 2, false, { 0, 0.75f, -4.8023f }, { 0, 0.75f, 0 } },
+    { "bunny.dae",                33696, 0, 0, 0, 0, 0, true,  { 0, 1.4877f, 3.3159f }, { 0, 0.3824f, 0 } },
+    { "CBbunny_upSpot.dae",       28586, 0, 0, 1, 0, 0, false, { 0, 0.75f, -4.8023f }, { 0, 0.75f, 0 } },
+};
+
+/* Per-file extras from the fact sheet (materials and light placement). */
+static void check_cs184_details(const char *file, fogrt_scene *s)
+{
+    fogrt_scene_info info;
+    fogrt_light_desc l;
+    uint32_t i;
+    fogrt_scene_get_info(s, &info);
+    if (strncmp(file, "CB", 2) == 0) {
+        /* Cornell walls: red 0.6 0.2 0.2 on the image-left (x = -1), blue on the right */
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(2, count_diffuse(s, 0.6f, 0.2f, 0.2f), file);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(2, count_diffuse(s, 0.2f, 0.2f, 0.6f), file);
+        /* the red wall is on the image's left, the blue one on its right (CBbunny turns the
+           whole box and puts the camera on the other side, so the layout is the same) */
+        for (i = 0; i < s->tri_count; ++i) {
+            fogrt_vec3 v = tri_v(s, i, 0), p = s->camera.position, d = s->camera.look_at, right;
+            float side;
+            d.x -= p.x; d.y -= p.y; d.z -= p.z;
+            right.x = -d.z; right.y = 0; right.z = d.x;          /* cross(forward, +y) */
+            side = (v.x - p.x) * right.x + (v.z - p.z) * right.z;
+            if (same_colour(s->materials[s->tri_material[i]].reflectance, 0.6f, 0.2f, 0.2f))
+                TEST_ASSERT_TRUE_MESSAGE(side < 0.0f, "red wall on the image's left");
+            if (same_colour(s->materials[s->tri_material[i]].reflectance, 0.2f, 0.2f, 0.6f))
+                TEST_ASSERT_TRUE_MESSAGE(side > 0.0f, "blue wall on the image's right");
+            if (same_colour(s->materials[s->tri_material[i]].reflectance, 0.6f, 0.2f, 0.2f))
+                TEST_ASSERT_FLOAT_WITHIN_MESSAGE(1e-3f, 1.0f, fabsf(v.x), "red wall at x = +-1");
+        }
+    }
+    if (strcmp(file, "CBspheres.dae") == 0 || strcmp(file, "CBspheres_refract.dae") == 0 || strcmp(file, "CBspheres_lambertian.dae") == 0) {
+        /* sphere 0 (node Sphere1): r 0.3 at (0.4, 0.3, 0.3); sphere 1: (-0.4, 0.3, -0.3) */
+        fogrt_material_desc m0 = prim_material(s, info.triangle_count), m1 = prim_material(s, info.triangle_count + 1);
+        assert_vec3(1e-4f, 0.4f, 0.3f, 0.3f, s->sph_c[0], "sphere 0 centre");
+        assert_vec3(1e-4f, -0.4f, 0.3f, -0.3f, s->sph_c[1], "sphere 1 centre");
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.3f, s->sph_r[0]);
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.3f, s->sph_r[1]);
+        if (strcmp(file, "CBspheres_lambertian.dae") == 0) {
+            TEST_ASSERT_EQUAL_INT(FOGRT_BSDF_DIFFUSE, m0.type);
+            TEST_ASSERT_TRUE(same_colour(m0.reflectance, 0.8f, 0.8f, 0.8f));
+            TEST_ASSERT_EQUAL_INT(FOGRT_BSDF_DIFFUSE, m1.type);
+        } else {
+            TEST_ASSERT_EQUAL_INT(strcmp(file, "CBspheres.dae") == 0 ? FOGRT_BSDF_GLASS : FOGRT_BSDF_REFRACTION, m0.type);
+            TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.45f, m0.ior);
+            TEST_ASSERT_TRUE(same_colour(m0.transmittance, 1, 1, 1));
+            TEST_ASSERT_EQUAL_INT(FOGRT_BSDF_MIRROR, m1.type);
+            TEST_ASSERT_TRUE(same_colour(m1.reflectance, 1, 1, 1));
+        }
+    }
+    if (strcmp(file, "CBbunny.dae") == 0 || strcmp(file, "CBbunny_upSpot.dae") == 0) {
+        /* the bunny: 28576 triangles of diffuse 0.5 (phong in CBbunny, lambert in upSpot) */
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(28576, count_diffuse(s, 0.5f, 0.5f, 0.5f), file);
+    }
+    if (strcmp(file, "CBbunny.dae") == 0) {
+        /* bunny bounding box from the fact sheet: x [-0.386, 0.391], y [0.002, 0.774], z [-0.289, 0.306] */
+        float lo[3] = { 1e9f, 1e9f, 1e9f }, hi[3] = { -1e9f, -1e9f, -1e9f };
+        int k;
+        for (i = 0; i < s->tri_count; ++i) {
+            if (!same_colour(s->materials[s->tri_material[i]].reflectance, 0.5f, 0.5f, 0.5f)) continue;
+            for (k = 0; k < 3; ++k) {
+                fogrt_vec3 v = tri_v(s, i, k);
+                lo[0] = fminf(lo[0], v.x); lo[1] = fminf(lo[1], v.y); lo[2] = fminf(lo[2], v.z);
+                hi[0] = fmaxf(hi[0], v.x); hi[1] = fmaxf(hi[1], v.y); hi[2] = fmaxf(hi[2], v.z);
+            }
+        }
+        TEST_ASSERT_FLOAT_WITHIN(2e-3f, -0.386f, lo[0]); TEST_ASSERT_FLOAT_WITHIN(2e-3f, 0.391f, hi[0]);
+        TEST_ASSERT_FLOAT_WITHIN(2e-3f, 0.002f, lo[1]);  TEST_ASSERT_FLOAT_WITHIN(2e-3f, 0.774f, hi[1]);
+        TEST_ASSERT_FLOAT_WITHIN(2e-3f, -0.289f, lo[2]); TEST_ASSERT_FLOAT_WITHIN(2e-3f, 0.306f, hi[2]);
+    }
+    if (strcmp(file, "CBempty.dae") == 0) {
+        /* the "Area" node has no CGL extra: a point light of colour 5 at (0, 1.49, 0.0043) */
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_light(s, 0, &l));
+        TEST_ASSERT_EQUAL_INT(FOGRT_LIGHT_POINT, l.type);
+        assert_vec3(1e-4f, 0.0f, 1.49f, 0.0043f, l.position, "CBempty point light");
+        TEST_ASSERT_TRUE(same_colour(l.intensity, 5, 5, 5));
+    }
+    if (strcmp(file, "CBbunny_upSpot.dae") == 0) {
+        /* the paper's spot: (0, 1.432, 0) pointing down, full angle 60, blend 0.2916403 */
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_light(s, 0, &l));
+        TEST_ASSERT_EQUAL_INT(FOGRT_LIGHT_SPOT, l.type);
+        assert_vec3(1e-4f, 0.0f, 1.432015f, 0.0f, l.position, "spot position");
+        assert_vec3(1e-5f, 0.0f, -1.0f, 0.0f, l.direction, "spot axis");
+        TEST_ASSERT_TRUE(same_colour(l.intensity, 10, 10, 10));
+        TEST_ASSERT_FLOAT_WITHIN(1e-4f, 30.0f, l.cutoff_deg);
+        TEST_ASSERT_FLOAT_WITHIN(1e-3f, 30.0f * (1.0f - 0.2916403f), l.beam_deg);
+        /* no emissive quad in this file: fogrt's lamp is the spot alone */
+        TEST_ASSERT_EQUAL_UINT32(0, info.area_light_count);
+    }
+    if (strcmp(file, "bunny.dae") == 0) {
+        TEST_ASSERT_EQUAL_UINT32(28576, count_diffuse(s, 0.48f, 0.48f, 0.48f));
+        TEST_ASSERT_EQUAL_UINT32(5120, count_diffuse(s, 0.25f, 0.25f, 0.25f));
+        TEST_ASSERT_TRUE(s->has_env && s->env_upper_only);
+        TEST_ASSERT_TRUE(same_colour(s->env, 1, 1, 1));
+    }
+}
+
+/* Every shared CS184 file loads with the fact sheet's counts, lights and camera; fails if the
+   loader drops or duplicates geometry, misreads a transform or places the camera otherwise. */
+static void test_cs184_scenes_match_fact_sheet(void)
+{
+    size_t i;
+    int found = 0;
+    for (i = 0; i < sizeof cs184_facts / sizeof cs184_facts[0]; ++i) {
+        const cs184_fact *f = &cs184_facts[i];
+        char path[512], msg[700];
+        fogrt_scene *s;
+        fogrt_load_report rep;
+        fogrt_load_options opt;
+        fogrt_scene_info info;
+        fogrt_camera_desc cam;
+        fogrt_result r;
+        uint32_t t;
+        snprintf(path, sizeof path, CS184_DIR "%s", f->file);
+        if (!file_exists(path)) continue;
+        found++;
+        memset(&opt, 0, sizeof opt);
+        opt.image_width = 480; opt.image_height = 360;
+        s = new_scene();
+        r = fogrt_load_dae(s, path, &opt, &rep);
+        snprintf(msg, sizeof msg, "%s:%d: %s", rep.file, rep.line, rep.message);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, r, msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_scene_build(s, NULL), f->file);
+        fogrt_scene_get_info(s, &info);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(f->triangles, info.triangle_count, f->file);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(f->spheres, info.sphere_count, f->file);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(f->point_lights, rep.point_lights, f->file);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(f->spot_lights, rep.spot_lights, f->file);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(f->point_lights + f->spot_lights, info.light_count, f->file);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(f->merged_area, rep.area_lights_merged, f->file);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(0, rep.area_rectangles, f->file);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(f->emissive_triangles, rep.emissive_triangles, f->file);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(f->ambient, rep.ambient, f->file);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(0, rep.warnings, f->file);
+        /* CS184's camera: orbit position, looking at the box centre, +Y up */
+        fogrt_scene_get_camera(s, &cam);
+        TEST_ASSERT_TRUE_MESSAGE(rep.has_camera, f->file);
+        assert_vec3(2e-3f, f->cam[0], f->cam[1], f->cam[2], cam.position, f->file);
+        assert_vec3(2e-3f, f->look[0], f->look[1], f->look[2], cam.look_at, f->file);
+        assert_vec3(0.0f, 0, 1, 0, cam.up, f->file);
+        /* the fov CS184 uses for its 800x600 window (screenDist 875 px): tan(v/2) = 300/875 */
+        TEST_ASSERT_FLOAT_WITHIN_MESSAGE(1e-4f, 300.0f / 875.0f, rep.frame_tan_half_y, f->file);
+        /* the lamps (emissive quads) face down into the box */
+        for (t = 0; t < info.triangle_count; ++t)
+            if (!same_colour(s->materials[s->tri_material[t]].emission, 0, 0, 0))
+                TEST_ASSERT_TRUE_MESSAGE((winding_normal(s, t).y) < (0.0f), f->file);
+        check_cs184_details(f->file, s);
+        fogrt_scene_destroy(s);
+    }
+    if (!found) TEST_IGNORE_MESSAGE("no CS184 scenes in " CS184_DIR " (../shared absent): skipped");
+}
+
+/* The Cornell walls' shading normals point into the box, as CS184 computes them for its open
+   quads (negated winding normal); fails if the boundary rule is lost. */
+static void test_cs184_wall_normals_point_into_box(void)
+{
+    fogrt_scene *s;
+    fogrt_load_report rep;
+    uint32_t t;
+    int k, checked = 0;
+    if (!file_exists(CS184_DIR "CBspheres.dae")) { TEST_IGNORE_MESSAGE("CBspheres.dae absent: skipped"); return; }
+    s = new_scene();
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_load_dae(s, CS184_DIR "CBspheres.dae", NULL, &rep));
+    for (t = 0; t < s->tri_count; ++t) {
+        fogrt_vec3 c = tri_v(s, t, 0);
+        if (!s->tri_has_n[t] || !same_colour(s->materials[s->tri_material[t]].emission, 0, 0, 0)) continue;
+        for (k = 0; k < 3; ++k) {
+            fogrt_vec3 n = tri_n(s, t, k);
+            /* into the box: the normal points from the wall toward the box centre (0, 0.75, 0) */
+            float to_centre = n.x * (0.0f - c.x) + n.y * (0.75f - c.y) + n.z * (0.0f - c.z);
+            TEST_ASSERT_TRUE_MESSAGE((to_centre) > (0.0f), "to_centre > 0.0f");
+            TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, sqrtf(n.x * n.x + n.y * n.y + n.z * n.z));
+            checked++;
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(30, checked);   /* 5 walls x 2 triangles x 3 corners */
+    fogrt_scene_destroy(s);
+}
+
+/* Loading CBbunny.dae takes well under a second (printed); fails if parsing turns quadratic. */
+static void test_cs184_bunny_load_time(void)
+{
+    struct timespec t0, t1;
+    fogrt_scene *s;
+    fogrt_load_report rep;
+    double ms;
+    char msg[128];
+    if (!file_exists(CS184_DIR "CBbunny.dae")) { TEST_IGNORE_MESSAGE("CBbunny.dae absent: skipped"); return; }
+    s = new_scene();
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_load_dae(s, CS184_DIR "CBbunny.dae", NULL, &rep));
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    ms = (double)(t1.tv_sec - t0.tv_sec) * 1e3 + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-6;
+    snprintf(msg, sizeof msg, "CBbunny.dae loaded in %.1f ms (%u triangles)", ms, rep.triangles);
+    TEST_MESSAGE(msg);
+#if defined(__SANITIZE_ADDRESS__)
+    TEST_ASSERT_TRUE_MESSAGE((ms) < (5000.0), "ms < 5000.0");   /* sanitizers slow everything down */
+#else
+    TEST_ASSERT_TRUE_MESSAGE((ms) < (1000.0), "ms < 1000.0");
+#endif
+    fogrt_scene_destroy(s);
+}
+
+/* The CS184 framing is kept at every resolution: the same image fraction gives the same ray
+   at 480x360 and 800x600, and a wider image only adds room at the sides; fails if the fov is
+   recomputed from a fixed focal length in pixels as CS184 does. */
+static void test_cs184_framing_at_every_resolution(void)
+{
+    fogrt_scene *s;
+    fogrt_load_report rep;
+    fogrt_load_options opt;
+    fogrt_vec3 o1, d1, o2, d2;
+    fogrt_camera_desc cam;
+    if (!file_exists(CS184_DIR "CBspheres.dae")) { TEST_IGNORE_MESSAGE("CBspheres.dae absent: skipped"); return; }
+    memset(&opt, 0, sizeof opt);
+    opt.image_width = 480; opt.image_height = 360;
+    s = new_scene();
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_load_dae(s, CS184_DIR "CBspheres.dae", &opt, &rep));
+    fogrt_camera_ray(s, 480, 360, 0.0f, 0.0f, 0.5f, 0.5f, &o1, &d1);   /* top-left corner */
+    fogrt_camera_ray(s, 800, 600, 0.0f, 0.0f, 0.5f, 0.5f, &o2, &d2);
+    assert_vec3(1e-6f, d1.x, d1.y, d1.z, d2, "corner ray at 480x360 and 800x600");
+    /* the 800x600 corner ray has CS184's half-angles: tan = 0.45714 (h) and 0.34286 (v) */
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, -0.457143f, d1.x / -d1.z);
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 0.342857f, d1.y / -d1.z);
+    fogrt_scene_destroy(s);
+    /* 960x360 (wider): same vertical fov; 360x480 (taller): same horizontal fov */
+    fogrt_load_fit_fov(rep.frame_tan_half_y, rep.frame_aspect, 960, 360, &cam);
+    TEST_ASSERT_FALSE(cam.fov_is_horizontal);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 37.8493f, cam.fov_deg);
+    fogrt_load_fit_fov(rep.frame_tan_half_y, rep.frame_aspect, 360, 480, &cam);
+    TEST_ASSERT_TRUE(cam.fov_is_horizontal);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 49.1343f, cam.fov_deg);
+}
+
+/* ------------------------------------------------------------------------------------------
+   2. One quirk per file (tests/data)
+   ------------------------------------------------------------------------------------------ */
+/* The minimal Y_UP scene: one triangle at its file position, grey 0.5 without a material,
+   CS184's default camera (+z side, xfov 50 on 4:3); fails on any frame change. */
+static void test_dae_minimal(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_minimal_yup.dae", &rep, NULL);
+    fogrt_material_desc m = prim_material(s, 0);
+    TEST_ASSERT_EQUAL_UINT32(1, s->tri_count);
+    assert_vec3(0, 1, 2, 3, tri_v(s, 0, 0), "v0");
+    assert_vec3(0, 2, 2, 3, tri_v(s, 0, 1), "v1");
+    TEST_ASSERT_EQUAL_INT(FOGRT_BSDF_DIFFUSE, m.type);
+    TEST_ASSERT_TRUE(same_colour(m.reflectance, 0.5f, 0.5f, 0.5f));
+    TEST_ASSERT_FALSE(rep.has_camera);
+    /* bbox centre (1.5, 2.5, 3), diagonal sqrt(2): eye at centre + 1.5 sqrt(2) (0, 0, 1) */
+    assert_vec3(1e-5f, 1.5f, 2.5f, 3.0f + 1.5f * sqrtf(2.0f), s->camera.position, "default camera");
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, tanf(25.0f * 3.14159265f / 180.0f) * 0.75f, rep.frame_tan_half_y);
+    TEST_ASSERT_EQUAL_UINT32(0, rep.warnings);
+    fogrt_scene_destroy(s);
+}
+
+/* up_axis: Z_UP maps (x,y,z) to (-x,z,y), X_UP to (y,x,-z), none = Y_UP with a warning;
+   fails if the correction is missing, mirrored or applied after the node transform. */
+static void test_dae_up_axis(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_upaxis_zup.dae", &rep, NULL);
+    assert_vec3(0, -1, 3, 2, tri_v(s, 0, 0), "Z_UP");
+    assert_vec3(0, -2, 3, 2, tri_v(s, 0, 1), "Z_UP");
+    /* a proper rotation: the winding normal (0,0,+) of the file becomes (0,+,0) */
+    TEST_ASSERT_TRUE_MESSAGE((winding_normal(s, 0).y) > (0.0f), "winding_normal(s, 0).y > 0.0f");
+    fogrt_scene_destroy(s);
+    s = load_ok("dae_upaxis_xup.dae", &rep, NULL);
+    assert_vec3(0, 2, 1, -3, tri_v(s, 0, 0), "X_UP");
+    fogrt_scene_destroy(s);
+    s = load_ok("dae_upaxis_none.dae", &rep, NULL);
+    assert_vec3(0, 1, 2, 3, tri_v(s, 0, 0), "no up_axis");
+    TEST_ASSERT_EQUAL_UINT32(1, rep.warnings);
+    fogrt_scene_destroy(s);
+}
+
+/* translate / rotate / scale compose in document order, rotate in degrees, transforms after
+   the first <matrix> are ignored, nested nodes compose parent x child. */
+static void test_dae_transforms(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_transforms.dae", &rep, NULL);
+    TEST_ASSERT_EQUAL_UINT32(3, s->tri_count);
+    assert_vec3(1e-5f, 1, 2, 0, tri_v(s, 0, 0), "A v0");
+    assert_vec3(1e-5f, 0, 0, 0, tri_v(s, 0, 1), "A v1");
+    assert_vec3(1e-5f, 1, 0, 0, tri_v(s, 0, 2), "A v2");
+    assert_vec3(1e-5f, 2, 0, 5, tri_v(s, 1, 0), "B v0");
+    assert_vec3(1e-5f, 1, 1, 5, tri_v(s, 1, 1), "B v1");
+    assert_vec3(1e-5f, 3, 10, 0, tri_v(s, 2, 0), "C v0");
+    assert_vec3(1e-5f, 0, 13, 0, tri_v(s, 2, 1), "C v1");
+    fogrt_scene_destroy(s);
+}
+
+/* A 15-number camera matrix is zero-filled (not rejected), and only c = M (0,0,-1,1) places
+   the camera; xfov 60 / aspect 2 is widened to 4:3 as CS184 does. */
+static void test_dae_short_matrix_camera(void)
+{
+    fogrt_load_report rep;
+    fogrt_load_options opt;
+    fogrt_scene *s;
+    float r = 1.5f * sqrtf(2.0f), cx = 1.0f / sqrtf(1.25f), cy = 0.5f / sqrtf(1.25f);
+    memset(&opt, 0, sizeof opt);
+    opt.image_width = 800; opt.image_height = 600;
+    s = load_ok("dae_short_matrix.dae", &rep, &opt);
+    TEST_ASSERT_TRUE(rep.has_camera);
+    assert_vec3(1e-5f, 1.5f + r * cx, 2.5f + r * cy, 3.0f, s->camera.position, "camera position");
+    assert_vec3(1e-5f, 1.5f, 2.5f, 3.0f, s->camera.look_at, "camera target");
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, tanf(30.0f * 3.14159265f / 180.0f) * 0.75f, rep.frame_tan_half_y);
+    TEST_ASSERT_FALSE(s->camera.fov_is_horizontal);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 2.0f * atanf(rep.frame_tan_half_y) * 180.0f / 3.14159265f, s->camera.fov_deg);
+    fogrt_scene_destroy(s);
+}
+
+/* yfov given and narrower than 4:3 wide: the horizontal fov is widened, yfov kept; the first
+   of two cameras wins (warning); Z_UP camera matrix of the Cornell files gives c = +z. */
+static void test_dae_camera_yfov(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_camera_yfov.dae", &rep, NULL);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, tanf(20.0f * 3.14159265f / 180.0f), rep.frame_tan_half_y);
+    assert_vec3(1e-4f, 0, 0, 1.5f * sqrtf(8.0f), s->camera.position, "camera on +z");
+    TEST_ASSERT_EQUAL_UINT32(1, rep.warnings);
+    fogrt_scene_destroy(s);
+}
+
+/* One global id table: cross-library and forward references, a source taken from another
+   mesh, and the first of two duplicate ids. */
+static void test_dae_global_ids(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_global_ids.dae", &rep, NULL);
+    fogrt_material_desc m = prim_material(s, 0);
+    TEST_ASSERT_EQUAL_UINT32(1, s->tri_count);
+    assert_vec3(0, 0, 1, 0, tri_v(s, 0, 0), "mesh b reads mesh a's positions, reversed");
+    TEST_ASSERT_TRUE(same_colour(m.reflectance, 0.7f, 0.1f, 0.1f));
+    fogrt_scene_destroy(s);
+}
+
+/* polylist n-gons are fan-triangulated; the index stride is the largest offset + 1 (an extra
+   COLOR input included); VERTEX is read at its own offset; 2-corner polygons are skipped. */
+static void test_dae_polylist_ngon(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_polylist_ngon.dae", &rep, NULL);
+    TEST_ASSERT_EQUAL_UINT32(6, s->tri_count);
+    /* quad 0 1 2 3 -> (0,1,2) (0,2,3); pentagon 4 5 6 7 2 -> (4,5,6) (4,6,7) (4,7,2) */
+    assert_vec3(0, 0, 0, 0, tri_v(s, 1, 0), "fan 0");
+    assert_vec3(0, 1, 1, 0, tri_v(s, 1, 1), "fan 2");
+    assert_vec3(0, 0, 1, 0, tri_v(s, 1, 2), "fan 3");
+    assert_vec3(0, 2, 0, 0, tri_v(s, 4, 0), "pentagon fan 4");
+    assert_vec3(0, 2.5f, 2, 0, tri_v(s, 4, 1), "pentagon fan 7");
+    assert_vec3(0, 1, 1, 0, tri_v(s, 4, 2), "pentagon fan 2");
+    TEST_ASSERT_EQUAL_UINT32(1, rep.warnings);   /* the 2-corner polygon */
+    fogrt_scene_destroy(s);
+}
+
+/* Several primitive lists in one mesh (<triangles>, <polylist>, <polygons>), each bound to its
+   material by symbol, an unknown symbol falling back to the first instance_material. */
+static void test_dae_multi_lists(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_multi_lists.dae", &rep, NULL);
+    TEST_ASSERT_EQUAL_UINT32(7, s->tri_count);
+    TEST_ASSERT_EQUAL_UINT32(2, count_diffuse(s, 0.1f, 0.1f, 0.8f));
+    TEST_ASSERT_EQUAL_UINT32(5, count_diffuse(s, 0.1f, 0.8f, 0.1f));
+    TEST_ASSERT_TRUE(same_colour(prim_material(s, 0).reflectance, 0.1f, 0.1f, 0.8f));
+    fogrt_scene_destroy(s);
+}
+
+/* CGL spheres: radius ".25" x the node's X scale 2, centre the node origin through Z_UP, the
+   geometry shared by two nodes, grey without a material. */
+static void test_dae_sphere(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_sphere.dae", &rep, NULL);
+    TEST_ASSERT_EQUAL_UINT32(2, s->sph_count);
+    assert_vec3(1e-6f, -1, 3, 2, s->sph_c[0], "sphere centre");
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.5f, s->sph_r[0]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.25f, s->sph_r[1]);
+    TEST_ASSERT_EQUAL_INT(FOGRT_BSDF_MIRROR, prim_material(s, 0).type);
+    TEST_ASSERT_TRUE(same_colour(prim_material(s, 0).reflectance, 0.9f, 0.9f, 0.9f));
+    TEST_ASSERT_TRUE(same_colour(prim_material(s, 1).reflectance, 0.5f, 0.5f, 0.5f));
+    fogrt_scene_destroy(s);
+}
+
+/* Material precedence and every CGL BSDF, in the order of dae_materials.dae's comment. */
+static void test_dae_materials(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_materials.dae", &rep, NULL);
+    fogrt_material_desc m;
+    float f0r = ((0.2f - 1) * (0.2f - 1) + 3.9f * 3.9f) / ((0.2f + 1) * (0.2f + 1) + 3.9f * 3.9f);
+    TEST_ASSERT_EQUAL_UINT32(12, s->tri_count);
+    m = prim_material(s, 0);
+    TEST_ASSERT_EQUAL_INT(FOGRT_BSDF_GLASS, m.type);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.45f, m.ior);
+    TEST_ASSERT_TRUE(same_colour(m.transmittance, 0.9f, 0.9f, 0.9f));
+    TEST_ASSERT_TRUE(same_colour(m.reflectance, 1, 1, 1));
+    m = prim_material(s, 1);
+    TEST_ASSERT_EQUAL_INT(FOGRT_BSDF_DIFFUSE, m.type);
+    TEST_ASSERT_TRUE(same_colour(m.reflectance, 0.2f, 0.4f, 0.6f));
+    TEST_ASSERT_TRUE(same_colour(prim_material(s, 2).reflectance, 0.3f, 0.3f, 0.3f));
+    TEST_ASSERT_TRUE(same_colour(prim_material(s, 3).reflectance, 0.5f, 0.5f, 0.5f));
+    TEST_ASSERT_TRUE(same_colour(prim_material(s, 4).reflectance, 0.5f, 0.5f, 0.5f));
+    m = prim_material(s, 5);
+    TEST_ASSERT_TRUE(same_colour(m.emission, 4, 5, 6));
+    TEST_ASSERT_TRUE(same_colour(m.reflectance, 0, 0, 0));
+    m = prim_material(s, 6);
+    TEST_ASSERT_EQUAL_INT(FOGRT_BSDF_REFRACTION, m.type);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.33f, m.ior);
+    TEST_ASSERT_TRUE(same_colour(m.transmittance, 0.8f, 0.9f, 1.0f));
+    m = prim_material(s, 7);
+    TEST_ASSERT_EQUAL_INT(FOGRT_BSDF_MIRROR, m.type);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, f0r, m.reflectance.x);
+    TEST_ASSERT_TRUE(same_colour(prim_material(s, 8).reflectance, 0.1f, 0.2f, 0.3f));
+    TEST_ASSERT_TRUE(same_colour(prim_material(s, 9).reflectance, 0.5f, 0.5f, 0.5f));
+    TEST_ASSERT_TRUE(same_colour(prim_material(s, 10).reflectance, 0.9f, 0.8f, 0.7f));
+    m = prim_material(s, 11);
+    TEST_ASSERT_EQUAL_INT(FOGRT_BSDF_DIFFUSE, m.type);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, f0r, m.reflectance.x);
+    TEST_ASSERT_EQUAL_UINT32(3, rep.warnings);   /* two microfacets, one material without effect */
+    fogrt_scene_destroy(s);
+}
+
+/* Smooth normals from connectivity: outward area-weighted at a closed part, negated on an
+   open part, file normals ignored. */
+static void test_dae_normals(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_normals.dae", &rep, NULL);
+    float k = 1.0f / sqrtf(3.0f);
+    TEST_ASSERT_EQUAL_UINT32(6, s->tri_count);
+    TEST_ASSERT_TRUE(s->tri_has_n[0]);
+    assert_vec3(1e-6f, -k, -k, -k, tri_n(s, 0, 0), "tetrahedron vertex 0");
+    /* vertex 3 = (0,0,1): faces -y, -x and (1,1,1): sum (-1,-1,0) + (1,1,1) = (0,0,1) */
+    assert_vec3(1e-6f, 0, 0, 1, tri_n(s, 1, 2), "tetrahedron vertex 3");
+    assert_vec3(0, 0, 0, -1, tri_n(s, 4, 0), "open quad: negated");
+    assert_vec3(0, 0, 0, -1, tri_n(s, 5, 2), "open quad: negated");
+    TEST_ASSERT_TRUE_MESSAGE((winding_normal(s, 4).z) > (0.0f), "winding_normal(s, 4).z > 0.0f");   /* winding untouched */
+    fogrt_scene_destroy(s);
+}
+
+/* A CGL <area> light without an emissive mesh becomes an emissive rectangle from the node's
+   X/Y scale, centred on the node, emitting along local -Z (down); CGL wins over <point>. */
+static void test_dae_area_light_rectangle(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_area_light.dae", &rep, NULL);
+    fogrt_material_desc m;
+    float lo[3] = { 9, 9, 9 }, hi[3] = { -9, -9, -9 };
+    uint32_t t;
+    int k;
+    TEST_ASSERT_EQUAL_UINT32(1, rep.area_rectangles);
+    TEST_ASSERT_EQUAL_UINT32(0, rep.point_lights);
+    TEST_ASSERT_EQUAL_UINT32(4, s->tri_count);      /* floor quad + rectangle */
+    for (t = 2; t < 4; ++t) {
+        fogrt_vec3 n = winding_normal(s, t);
+        m = prim_material(s, t);
+        TEST_ASSERT_TRUE(same_colour(m.emission, 7, 8, 9));
+        TEST_ASSERT_TRUE_MESSAGE((n.y) < (0.0f), "n.y < 0.0f");
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, n.x);
+        for (k = 0; k < 3; ++k) {
+            fogrt_vec3 v = tri_v(s, t, k);
+            lo[0] = fminf(lo[0], v.x); lo[1] = fminf(lo[1], v.y); lo[2] = fminf(lo[2], v.z);
+            hi[0] = fmaxf(hi[0], v.x); hi[1] = fmaxf(hi[1], v.y); hi[2] = fmaxf(hi[2], v.z);
+        }
+    }
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, -0.25f, lo[0]); TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.25f, hi[0]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 2.0f, lo[1]);   TEST_ASSERT_FLOAT_WITHIN(1e-6f, 2.0f, hi[1]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, -0.125f, lo[2]); TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.125f, hi[2]);
+    /* the camera's bounding box ignores lights: it frames the floor quad only */
+    assert_vec3(1e-5f, 0, 0, 0, s->camera.look_at, "camera target");
+    fogrt_scene_destroy(s);
+}
+
+/* With an emissive mesh the <area> element is the same lamp: nothing added twice. */
+static void test_dae_area_light_merged(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_area_with_emitter.dae", &rep, NULL);
+    uint32_t t;
+    TEST_ASSERT_EQUAL_UINT32(0, rep.area_rectangles);
+    TEST_ASSERT_EQUAL_UINT32(1, rep.area_lights_merged);
+    TEST_ASSERT_EQUAL_UINT32(2, rep.emissive_triangles);
+    TEST_ASSERT_EQUAL_UINT32(4, s->tri_count);
+    for (t = 0; t < s->tri_count; ++t)
+        if (!same_colour(prim_material(s, t).emission, 0, 0, 0))
+            TEST_ASSERT_TRUE_MESSAGE((winding_normal(s, t).y) < (0.0f), "winding_normal(s, t).y < 0.0f");   /* faces down */
+    fogrt_scene_destroy(s);
+}
+
+/* point: intensity = colour at the node origin; spot: cutoff = falloff_angle / 2, beam =
+   cutoff (1 - blend), axis = local -Z; COLLADA defaults; directional and unknown types
+   skipped with warnings. The loaded spot follows I = clamp((cutoff - theta)/(cutoff - beam)). */
+static void test_dae_point_and_spot(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_point_spot.dae", &rep, NULL);
+    fogrt_light_desc l;
+    float mid;
+    TEST_ASSERT_EQUAL_UINT32(1, rep.point_lights);
+    TEST_ASSERT_EQUAL_UINT32(2, rep.spot_lights);
+    TEST_ASSERT_EQUAL_UINT32(2, rep.warnings);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_light(s, 0, &l));
+    TEST_ASSERT_EQUAL_INT(FOGRT_LIGHT_POINT, l.type);
+    assert_vec3(0, 1, 2, 3, l.position, "point position");
+    TEST_ASSERT_TRUE(same_colour(l.intensity, 1, 2, 3));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_light(s, 1, &l));
+    TEST_ASSERT_EQUAL_INT(FOGRT_LIGHT_SPOT, l.type);
+    assert_vec3(1e-6f, 0, 4, 0, l.position, "spot position");
+    assert_vec3(1e-6f, 0, -1, 0, l.direction, "spot axis");
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 30.0f, l.cutoff_deg);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 22.5f, l.beam_deg);
+    mid = 0.5f * (l.cutoff_deg + l.beam_deg) * 3.14159265f / 180.0f;
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 0.5f, fogrt_spot_falloff(cosf(mid), l.cutoff_deg, l.beam_deg));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f, fogrt_spot_falloff(cosf(0.3f), l.cutoff_deg, l.beam_deg));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_light(s, 2, &l));
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 90.0f, l.cutoff_deg);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 90.0f, l.beam_deg);
+    assert_vec3(1e-6f, 0, 0, -1, l.direction, "default spot axis");
+    fogrt_scene_destroy(s);
+}
+
+/* <ambient>: constant radiance from the upper hemisphere only. */
+static void test_dae_ambient(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_ambient.dae", &rep, NULL);
+    TEST_ASSERT_TRUE(rep.ambient);
+    TEST_ASSERT_TRUE(s->has_env && s->env_upper_only);
+    TEST_ASSERT_TRUE(same_colour(s->env, 0.5f, 0.6f, 0.7f));
+    fogrt_scene_destroy(s);
+}
+
+/* BOM, CRLF, DOCTYPE, quotes, entities, CDATA, padded text, comments: all read. */
+static void test_dae_xml_quirks(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_xml_quirks.dae", &rep, NULL);
+    TEST_ASSERT_EQUAL_UINT32(1, s->tri_count);
+    TEST_ASSERT_EQUAL_UINT32(0, s->light_count);
+    assert_vec3(0, 0, 1, 0, tri_v(s, 0, 2), "CDATA positions");
+    TEST_ASSERT_EQUAL_UINT32(0, rep.warnings);
+    fogrt_scene_destroy(s);
+}
+
+/* A mirroring node keeps the emitting side: the triangle is re-wound. */
+static void test_dae_mirror_node(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_mirror_node.dae", &rep, NULL);
+    /* (0,0,0) (1,0,0) (0,1,0) mirrored to (0,0,0) (-1,0,0) (0,1,0), then re-wound */
+    assert_vec3(0, 0, 1, 0, tri_v(s, 0, 1), "re-wound vertex 1");
+    assert_vec3(0, -1, 0, 0, tri_v(s, 0, 2), "re-wound vertex 2");
+    TEST_ASSERT_TRUE_MESSAGE((winding_normal(s, 0).z) > (0.0f), "winding_normal(s, 0).z > 0.0f");
+    fogrt_scene_destroy(s);
+}
+
+/* ------------------------------------------------------------------------------------------
+   3. OBJ, PLY and camera files
+   ------------------------------------------------------------------------------------------ */
+/* OBJ: quads and pentagons fan-triangulated, negative indices, v/t, ignored statements,
+   CRLF; fails on a wrong fan or index base. */
+static void test_obj_polygons(void)
+{
+    fogrt_load_report rep;
+    fogrt_load_options opt = as_is();
+    fogrt_scene *s = load_ok("obj_polygons.obj", &rep, &opt);
+    TEST_ASSERT_EQUAL_UINT32(6, s->tri_count);
+    TEST_ASSERT_EQUAL_UINT32(9, rep.vertices);
+    TEST_ASSERT_EQUAL_UINT32(3, rep.faces);
+    assert_vec3(0, 2, 0, 0, tri_v(s, 4, 0), "pentagon fan");
+    assert_vec3(0, 2.5f, 2, 0, tri_v(s, 4, 1), "pentagon fan");
+    assert_vec3(0, 2, 1, 0, tri_v(s, 4, 2), "pentagon fan");
+    assert_vec3(0, 0, 0, 0, tri_v(s, 5, 0), "-9 is vertex 1");
+    assert_vec3(0, 1, 0, 0, tri_v(s, 5, 1), "-8 is vertex 2");
+    assert_vec3(0, 0, 1, 0, tri_v(s, 5, 2), "-6 is vertex 4");
+    /* no normals in the file: smooth computed ones, along the winding (+z) */
+    assert_vec3(1e-6f, 0, 0, 1, tri_n(s, 0, 0), "computed normal");
+    fogrt_scene_destroy(s);
+}
+
+/* OBJ normals (v//n, v/t/n) are used, normalised, one vertex per (position, normal) pair. */
+static void test_obj_normals(void)
+{
+    fogrt_load_report rep;
+    fogrt_load_options opt = as_is();
+    fogrt_scene *s = load_ok("obj_normals.obj", &rep, &opt);
+    TEST_ASSERT_EQUAL_UINT32(2, s->tri_count);
+    assert_vec3(0, 0, 0, 1, tri_n(s, 0, 0), "vn 0 0 2 normalised");
+    assert_vec3(0, 0, -1, 0, tri_n(s, 1, 0), "vn 0 -3 0 normalised");
+    assert_vec3(0, 0, 0, 1, tri_v(s, 1, 1), "second face, vertex 4");
+    fogrt_scene_destroy(s);
+}
+
+/* PLY ascii: extra vertex properties skipped, file normals, list faces fan-triangulated, an
+   extra element parsed past. */
+static void test_ply_ascii(void)
+{
+    fogrt_load_report rep;
+    fogrt_load_options opt = as_is();
+    fogrt_scene *s = load_ok("ply_ascii.ply", &rep, &opt);
+    TEST_ASSERT_EQUAL_UINT32(3, s->tri_count);
+    TEST_ASSERT_EQUAL_UINT32(5, rep.vertices);
+    TEST_ASSERT_EQUAL_UINT32(2, rep.faces);
+    assert_vec3(0, 2, 0, 0, tri_v(s, 0, 1), "x, y, z around the confidence property");
+    assert_vec3(0, 1, 2, 0, tri_v(s, 2, 2), "triangle face");
+    assert_vec3(0, 0, 0, 1, tri_n(s, 2, 2), "nz 2 normalised");
+    fogrt_scene_destroy(s);
+}
+
+/* Writes a binary PLY (little or big endian) with a double and a uchar property besides
+   x y z, a uchar/int list quad and a short list property on a second element. */
+static size_t make_binary_ply(unsigned char *buf, bool little)
+{
+    static const float xyz[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 2, 0 }, { 0, 2, 0 } };
+    const char *hdr_le = "ply\nformat binary_little_endian 1.0\n", *hdr_be = "ply\nformat binary_big_endian 1.0\n";
+    const char *rest = "element vertex 4\nproperty float x\nproperty double extra\nproperty float y\nproperty float z\n"
+                       "property uchar tag\nelement face 1\nproperty list uchar int vertex_indices\n"
+                       "element misc 1\nproperty list uchar short values\nend_header\n";
+    size_t n = 0;
+    int v, k;
+#define PUT(ptr, size) do { int b_; for (b_ = 0; b_ < (size); ++b_) buf[n++] = ((const unsigned char *)(ptr))[little ? b_ : (size) - 1 - b_]; } while (0)
+    memcpy(buf, little ? hdr_le : hdr_be, strlen(little ? hdr_le : hdr_be)); n = strlen(little ? hdr_le : hdr_be);
+    memcpy(buf + n, rest, strlen(rest)); n += strlen(rest);
+    for (v = 0; v < 4; ++v) {
+        double extra = 123.5;
+        unsigned char tag = 7;
+        PUT(&xyz[v][0], 4); PUT(&extra, 8); PUT(&xyz[v][1], 4); PUT(&xyz[v][2], 4); PUT(&tag, 1);
+    }
+    {
+        unsigned char cnt = 4;
+        int32_t idx;
+        int16_t sh = -3;
+        PUT(&cnt, 1);
+        for (k = 0; k < 4; ++k) { idx = k; PUT(&idx, 4); }
+        cnt = 2; PUT(&cnt, 1); PUT(&sh, 2); PUT(&sh, 2);
+    }
+#undef PUT
+    return n;
+}
+
+/* PLY binary in both byte orders from memory (the host is little endian in practice; the
+   test builds both layouts byte by byte), and truncated binary data as an error. */
+static void test_ply_binary(void)
+{
+    unsigned char buf[1024];
+    int little;
+    for (little = 0; little < 2; ++little) {
+        size_t n = make_binary_ply(buf, little != 0);
+        fogrt_scene *s = new_scene();
+        fogrt_load_report rep;
+        fogrt_load_options opt = as_is();
+        TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_load_ply_memory(s, buf, n, "bin.ply", &opt, &rep), rep.message);
+        TEST_ASSERT_EQUAL_UINT32(2, s->tri_count);
+        assert_vec3(0, 1, 2, 0, tri_v(s, 0, 2), "binary vertex 2");
+        assert_vec3(0, 0, 2, 0, tri_v(s, 1, 2), "binary vertex 3");
+        fogrt_scene_destroy(s);
+        s = new_scene();
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_ply_memory(s, buf, n - 3, "bin.ply", &opt, &rep));
+        TEST_ASSERT_NOT_NULL(strstr(rep.message, "truncated"));
+        TEST_ASSERT_EQUAL_UINT32(0, s->tri_count);
+        fogrt_scene_destroy(s);
+    }
+}
+
+/* OBJ/PLY placement: scaled uniformly into the fit box, standing on its floor, centred in x
+   and z; the default box is the free corner of the default Cornell box. */
+static void test_mesh_placement(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = new_scene();
+    fogrt_scene_info info;
+    float sx, sz;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_default(s));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_load_obj(s, DATA_DIR "obj_polygons.obj", NULL, &rep));
+    fogrt_scene_destroy(s);
+    s = new_scene();
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_load_obj(s, DATA_DIR "obj_normals.obj", NULL, &rep));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(s, NULL));
+    fogrt_scene_get_info(s, &info);
+    /* a unit tetrahedron-like mesh: limited by the 0.6 x 0.7 x 0.6 box, so scaled by 0.6 */
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, FOGRT_LOAD_FIT_MIN_Y, info.bounds_min.y);
+    sx = info.bounds_max.x - info.bounds_min.x; sz = info.bounds_max.z - info.bounds_min.z;
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 0.6f, sx);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 0.6f, sz);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 0.5f * (FOGRT_LOAD_FIT_MIN_X + FOGRT_LOAD_FIT_MAX_X), 0.5f * (info.bounds_min.x + info.bounds_max.x));
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 0.5f * (FOGRT_LOAD_FIT_MIN_Z + FOGRT_LOAD_FIT_MAX_Z), 0.5f * (info.bounds_min.z + info.bounds_max.z));
+    fogrt_scene_destroy(s);
+}
+
+/* The Stanford bunny (res2) loads with its header counts and fits the box. */
+static void test_stanford_bunny_ply(void)
+{
+    const char *path = FOGRT_SHARED_DIR "/scenes/stanford/bun_zipper_res2.ply";
+    fogrt_scene *s;
+    fogrt_load_report rep;
+    fogrt_scene_info info;
+    if (!file_exists(path)) { TEST_IGNORE_MESSAGE("bun_zipper_res2.ply absent (../shared): skipped"); return; }
+    s = new_scene();
+    TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_load_ply(s, path, NULL, &rep), rep.message);
+    TEST_ASSERT_EQUAL_UINT32(8171, rep.vertices);
+    TEST_ASSERT_EQUAL_UINT32(16301, rep.faces);
+    TEST_ASSERT_EQUAL_UINT32(16301, rep.triangles);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(s, NULL));
+    fogrt_scene_get_info(s, &info);
+    TEST_ASSERT_TRUE_MESSAGE((info.bounds_min.x) >= (FOGRT_LOAD_FIT_MIN_X - 1e-5f), "info.bounds_min.x >= FOGRT_LOAD_FIT_MIN_X - 1e-5f");
+    TEST_ASSERT_TRUE_MESSAGE((info.bounds_max.x) <= (FOGRT_LOAD_FIT_MAX_X + 1e-5f), "info.bounds_max.x <= FOGRT_LOAD_FIT_MAX_X + 1e-5f");
+    TEST_ASSERT_TRUE_MESSAGE((info.bounds_max.y) <= (FOGRT_LOAD_FIT_MAX_Y + 1e-5f), "info.bounds_max.y <= FOGRT_LOAD_FIT_MAX_Y + 1e-5f");
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 0.0f, info.bounds_min.y);
+    fogrt_scene_destroy(s);
+}
+
+/* CS184 camera settings (-c): position, target, up from c2w's 2nd column, lens, and the
+   framing from screenH / (2 screenDist); too few numbers is an error with a line. */
+static void test_camera_file(void)
+{
+    fogrt_camera_desc cam;
+    fogrt_load_report rep;
+    const char *bad = "49 37 1.3 0.1 100\n0 0 1 0 0 0\n";
+    TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_load_camera_file(DATA_DIR "cam_settings.txt", 480, 360, &cam, &rep), rep.message);
+    assert_vec3(0, 0.5f, 1, 4, cam.position, "position");
+    assert_vec3(0, 0.5f, 0.75f, 0, cam.look_at, "target");
+    assert_vec3(0, 0, 0.99f, -0.1f, cam.up, "up");
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 3.5f, cam.focal_distance);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.05f, cam.lens_radius);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 37.8493f, cam.fov_deg);
+    TEST_ASSERT_FALSE(cam.fov_is_horizontal);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_camera_memory(bad, strlen(bad), "bad.cam", 480, 360, &cam, &rep));
+    TEST_ASSERT_EQUAL_INT(2, rep.line);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_IO_ERROR, fogrt_load_camera_file(DATA_DIR "no_such_camera.txt", 480, 360, &cam, &rep));
+}
+
+/* ------------------------------------------------------------------------------------------
+   4. Malformed and truncated input
+   ------------------------------------------------------------------------------------------ */
+typedef struct bad_case { const char *file; int line; const char *words; } bad_case;
+static const bad_case bad_cases[] = {
+    { "bad_unclosed.dae", 28, "not closed" },
+    { "bad_mismatch.dae", 15, "does not match" },
+    { "bad_number.dae", 11, "'x3'" },
+    { "bad_index.dae", 18, "out of range" },
+    { "bad_count.dae", 11, "count" },
+    { "bad_upaxis.dae", 5, "up_axis" },
+    { "bad_noscene.dae", 3, "instance_visual_scene" },
+    { "bad_attr.dae", 17, "not quoted" },
+    { "bad_root.dae", 3, "not a COLLADA" },
+    { "bad_text.dae", 31, "outside the root" },
+    { "bad_triangles_short.dae", 18, "too short" },
+    { "bad_glass.dae", 9, "<ior>" },
+    { "bad_vcount.dae", 12, "vcount" },
+    { "obj_bad_index.obj", 6, "out of range" },
+    { "obj_bad_number.obj", 4, "finite" },
+    { "obj_bad_face.obj", 5, "fewer than 3" },
+    { "ply_bad_index.ply", 14, "out of range" },
+    { "ply_bad_header.ply", 6, "quaternion" },
+    { "ply_truncated.ply", 11, "end of file" },
+};
+
+/* Each malformed file gives PARSE_ERROR at the right line with a telling message, and adds
+   nothing to the scene (the default scene stays as it was). */
+static void test_malformed_files(void)
+{
+    size_t i;
+    for (i = 0; i < sizeof bad_cases / sizeof bad_cases[0]; ++i) {
+        char path[512], msg[800];
+        fogrt_scene *s = new_scene();
+        fogrt_load_report rep;
+        fogrt_scene_info before, after;
+        fogrt_result r;
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_default(s));
+        fogrt_scene_get_info(s, &before);
+        snprintf(path, sizeof path, DATA_DIR "%s", bad_cases[i].file);
+        r = fogrt_load_file(s, path, NULL, &rep);
+        snprintf(msg, sizeof msg, "%s: got %s:%d: %s", bad_cases[i].file, rep.file, rep.line, rep.message);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_PARSE_ERROR, r, msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(bad_cases[i].line, rep.line, msg);
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, bad_cases[i].words), msg);
+        TEST_ASSERT_EQUAL_STRING(path, rep.file);
+        fogrt_scene_get_info(s, &after);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(before.triangle_count, after.triangle_count, msg);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(before.material_count, after.material_count, msg);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(before.light_count, after.light_count, msg);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(before.sphere_count, after.sphere_count, msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_scene_build(s, NULL), msg);
+        fogrt_scene_destroy(s);
+    }
+    {   /* a missing file is an I/O error naming it */
+        fogrt_scene *s = new_scene();
+        fogrt_load_report rep;
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_IO_ERROR, fogrt_load_file(s, DATA_DIR "no_such_scene.dae", NULL, &rep));
+        TEST_ASSERT_EQUAL_STRING(DATA_DIR "no_such_scene.dae", rep.file);
+        TEST_ASSERT_NOT_NULL(strstr(rep.message, "cannot open"));
+        fogrt_scene_destroy(s);
+    }
+}
+
+typedef fogrt_result (*load_fn)(fogrt_scene *, const void *, size_t, const char *, const fogrt_load_options *, fogrt_load_report *);
+static load_fn loader_for(const char *name)
+{
+    size_t n = strlen(name);
+    if (n > 4 && strcmp(name + n - 4, ".dae") == 0) return fogrt_load_dae_memory;
+    if (n > 4 && strcmp(name + n - 4, ".obj") == 0) return fogrt_load_obj_memory;
+    if (n > 4 && strcmp(name + n - 4, ".ply") == 0) return fogrt_load_ply_memory;
+    if (strncmp(name, "dae", 3) == 0) return fogrt_load_dae_memory;
+    if (strncmp(name, "obj", 3) == 0) return fogrt_load_obj_memory;
+    if (strncmp(name, "ply", 3) == 0) return fogrt_load_ply_memory;
+    return NULL;
+}
+
+/* Loads every prefix of data: the result is OK or PARSE_ERROR with a message and a line
+   inside the prefix, the scene is untouched on error, and for .dae every prefix that cuts
+   the document's end tag fails. Returns the number of loads. */
+static int truncation_sweep(const char *name, const char *data, size_t size, size_t step)
+{
+    load_fn fn = loader_for(name);
+    size_t len, last_gt = size;
+    int loads = 0;
+    bool is_dae = fn == fogrt_load_dae_memory;
+    while (last_gt > 0 && data[last_gt - 1] != '>') last_gt--;
+    for (len = 0; len < size; len += step) {
+        fogrt_scene *s = new_scene();
+        fogrt_load_report rep;
+        fogrt_result r = fn(s, data, len, name, NULL, &rep);
+        char msg[800];
+        int lines = 1;
+        size_t i;
+        for (i = 0; i < len; ++i) if (data[i] == '\n') lines++;
+        snprintf(msg, sizeof msg, "%s cut at %u bytes: %s:%d: %s", name, (unsigned)len, rep.file, rep.line, rep.message);
+        if (r == FOGRT_RESULT_PARSE_ERROR) {
+            TEST_ASSERT_TRUE_MESSAGE(rep.message[0] != 0, msg);
+            TEST_ASSERT_GREATER_OR_EQUAL_MESSAGE(1, rep.line, msg);
+            TEST_ASSERT_LESS_OR_EQUAL_MESSAGE(lines, rep.line, msg);
+            TEST_ASSERT_EQUAL_UINT32_MESSAGE(0, s->tri_count + s->sph_count + s->light_count + s->material_count, msg);
+        } else {
+            TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, r, msg);
+            TEST_ASSERT_FALSE_MESSAGE(is_dae && len < last_gt, msg);
+        }
+        fogrt_scene_destroy(s);
+        loads++;
+    }
+    return loads;
+}
+
+/* Every test file cut at every length (and the shared CBspheres.dae at many): never a crash
+   (ASan/UBSan builds check memory too), always an error with a plausible line. */
+static void test_truncated_files(void)
+{
+    static const char *names[] = {
+        "dae_minimal_yup.dae", "dae_upaxis_zup.dae", "dae_transforms.dae", "dae_short_matrix.dae", "dae_camera_yfov.dae",
+        "dae_global_ids.dae", "dae_polylist_ngon.dae", "dae_multi_lists.dae", "dae_sphere.dae", "dae_materials.dae",
+        "dae_normals.dae", "dae_area_light.dae", "dae_area_with_emitter.dae", "dae_point_spot.dae", "dae_ambient.dae",
+        "dae_xml_quirks.dae", "dae_mirror_node.dae", "bad_glass.dae", "bad_vcount.dae",
+        "obj_polygons.obj", "obj_normals.obj", "obj_bad_index.obj", "ply_ascii.ply", "ply_bad_index.ply",
+    };
+    size_t i, size;
+    int loads = 0;
+    char msg[128];
+    unsigned char bin[1024];
+    for (i = 0; i < sizeof names / sizeof names[0]; ++i) {
+        char path[512];
+        char *data;
+        snprintf(path, sizeof path, DATA_DIR "%s", names[i]);
+        data = read_all(path, &size);
+        TEST_ASSERT_NOT_NULL_MESSAGE(data, path);
+        loads += truncation_sweep(names[i], data, size, 1);
+        free(data);
+    }
+    size = make_binary_ply(bin, true);
+    loads += truncation_sweep("bin_le.ply", (const char *)bin, size, 1);
+    size = make_binary_ply(bin, false);
+    loads += truncation_sweep("bin_be.ply", (const char *)bin, size, 1);
+    if (file_exists(CS184_DIR "CBspheres.dae")) {
+        char *data = read_all(CS184_DIR "CBspheres.dae", &size);
+        TEST_ASSERT_NOT_NULL(data);
+        loads += truncation_sweep("CBspheres.dae", data, size, 97);
+        free(data);
+    }
+    snprintf(msg, sizeof msg, "%d truncated loads", loads);
+    TEST_MESSAGE(msg);
+}
+
+/* The crashing inputs the fuzzers found (tests/fuzz/regress/, named dae_*, obj_*, ply_*)
+   load or fail cleanly, and what loads also builds (two of them place a mesh with denormal
+   or huge extents, which once made the BVH build's binning convert NaN to int). */
+static void test_fuzz_regressions(void)
+{
+    DIR *dir = opendir("tests/fuzz/regress");
+    struct dirent *e;
+    int n = 0;
+    char msg[128];
+    TEST_ASSERT_NOT_NULL_MESSAGE(dir, "tests/fuzz/regress is missing");
+    while ((e = readdir(dir)) != NULL) {
+        char path[600];
+        size_t size;
+        char *data;
+        load_fn fn = loader_for(e->d_name);
+        fogrt_scene *s;
+        fogrt_load_report rep;
+        fogrt_result r;
+        if (e->d_name[0] == '.' || !fn) continue;
+        snprintf(path, sizeof path, "tests/fuzz/regress/%s", e->d_name);
+        data = read_all(path, &size);
+        TEST_ASSERT_NOT_NULL(data);
+        s = new_scene();
+        r = fn(s, data, size, e->d_name, NULL, &rep);
+        TEST_ASSERT_TRUE_MESSAGE(r == FOGRT_RESULT_OK || r == FOGRT_RESULT_PARSE_ERROR || r == FOGRT_RESULT_TOO_LARGE ||
+                                 r == FOGRT_RESULT_INVALID_GEOMETRY, e->d_name);
+        if (r != FOGRT_RESULT_OK) TEST_ASSERT_TRUE_MESSAGE(rep.message[0] != 0, e->d_name);
+        else {
+            fogrt_result b = fogrt_scene_build(s, NULL);
+            TEST_ASSERT_TRUE_MESSAGE(b == FOGRT_RESULT_OK || b == FOGRT_RESULT_EMPTY_SCENE, e->d_name);
+        }
+        fogrt_scene_destroy(s);
+        free(data);
+        n++;
+    }
+    closedir(dir);
+    snprintf(msg, sizeof msg, "%d fuzz regression inputs replayed", n);
+    TEST_MESSAGE(msg);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_cs184_scenes_match_fact_sheet);
+    RUN_TEST(test_cs184_wall_normals_point_into_box);
+    RUN_TEST(test_cs184_bunny_load_time);
+    RUN_TEST(test_cs184_framing_at_every_resolution);
+    RUN_TEST(test_dae_minimal);
+    RUN_TEST(test_dae_up_axis);
+    RUN_TEST(test_dae_transforms);
+    RUN_TEST(test_dae_short_matrix_camera);
+    RUN_TEST(test_dae_camera_yfov);
+    RUN_TEST(test_dae_global_ids);
+    RUN_TEST(test_dae_polylist_ngon);
+    RUN_TEST(test_dae_multi_lists);
+    RUN_TEST(test_dae_sphere);
+    RUN_TEST(test_dae_materials);
+    RUN_TEST(test_dae_normals);
+    RUN_TEST(test_dae_area_light_rectangle);
+    RUN_TEST(test_dae_area_light_merged);
+    RUN_TEST(test_dae_point_and_spot);
+    RUN_TEST(test_dae_ambient);
+    RUN_TEST(test_dae_xml_quirks);
+    RUN_TEST(test_dae_mirror_node);
+    RUN_TEST(test_obj_polygons);
+    RUN_TEST(test_obj_normals);
+    RUN_TEST(test_ply_ascii);
+    RUN_TEST(test_ply_binary);
+    RUN_TEST(test_mesh_placement);
+    RUN_TEST(test_stanford_bunny_ply);
+    RUN_TEST(test_camera_file);
+    RUN_TEST(test_malformed_files);
+    RUN_TEST(test_truncated_files);
+    RUN_TEST(test_fuzz_regressions);
+    return UNITY_END();
+}
