@@ -209,5 +209,5 @@ if have "$GXX"; then
         -DFOGRT_NO_STDIO -I"$ROOT" -c "$TMP/impl.cc" -o "$TMP/strip_cxx.o"
 fi
 
-echo "compile checks: $passed passed, $failed failed, $skipped skipped"
+echo "compile: $passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]
