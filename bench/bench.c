@@ -1,0 +1,714 @@
+/* bench.c - how fast fogrt builds its BVH, traces rays and renders. Run it with `make bench`.
+
+   It prints, all measured in one run so that the ratios compare like with like:
+     1. BVH build seconds (median of several builds) of two meshes: (a) the CS184 bunny
+        (CBbunny.dae, when fogrt_load.h and ../shared are there, else a displaced sphere of the
+        same size, ~28.6k triangles) and (b) a displaced sphere of 1M triangles;
+     2. closest-hit throughput in million rays per second (median of several passes over the
+        same rays), on 1 and 2 OpenMP threads, of three ray sets per mesh:
+          primary  one camera ray through the centre of every pixel (coherent);
+          random   origins uniform in the scene bounds, directions uniform on the sphere
+                   (incoherent, the hard case);
+          bounce   one cosine-weighted diffuse bounce from every primary hit (incoherent,
+                   what a path tracer traces after the first hit);
+        every ray goes through fogrt_scene_intersect, and, when bench_embree.c is linked
+        (HAVE_EMBREE), through Embree 3's rtcIntersect1 too, with the fogrt/Embree ratio;
+     3. samples per second of a full render of the default scene (fogrt_scene_add_default).
+   Before timing, a sample of every ray set is checked against fogrt_scene_intersect_brute
+   (and the Embree answers against fogrt's), so a fast but wrong BVH cannot pass unnoticed.
+
+   Usage: bench [--quick]     --quick: fewer rays and repetitions (a smoke test, noisy)   */
+#define FOGRT_IMPLEMENTATION
+#include "fogrt.h"
+#ifdef HAVE_FOGRT_LOAD
+#define FOGRT_LOAD_IMPLEMENTATION
+#include "fogrt_load.h"
+#endif
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#ifndef FOGRT_SHARED_DIR
+#define FOGRT_SHARED_DIR "../shared"
+#endif
+#ifndef BENCH_CFLAGS
+#define BENCH_CFLAGS "(unknown flags)"
+#endif
+
+#ifdef HAVE_EMBREE
+/* bench_embree.c (the same prototypes are defined there). */
+typedef struct bench_embree bench_embree;
+const char *bench_embree_version(void);
+bench_embree *bench_embree_create(const float *positions, uint32_t vertex_count,
+                                  const uint32_t *indices, uint32_t triangle_count,
+                                  const float *spheres, uint32_t sphere_count,
+                                  int build_threads, double *build_seconds);
+void bench_embree_trace(const bench_embree *e, const float *rays, size_t ray_count, int threads,
+                        float *t_out, uint32_t *prim_out);
+void bench_embree_destroy(bench_embree *e);
+#endif
+
+/* ------------------------------------------------------------------------------------------
+   Small helpers: clock, median, allocation that cannot fail silently
+   ------------------------------------------------------------------------------------------ */
+static double now_seconds(void)
+{
+#ifdef _OPENMP
+    return omp_get_wtime();
+#else
+    return (double)clock() / CLOCKS_PER_SEC;   /* one thread: CPU time is wall time */
+#endif
+}
+
+static int compare_doubles(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Median of n values (sorts them in place). */
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, compare_doubles);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static void *xmalloc(size_t size)
+{
+    void *p = malloc(size ? size : 1);
+    if (!p) { fprintf(stderr, "bench: out of memory (%zu bytes)\n", size); exit(1); }
+    return p;
+}
+
+static void check(fogrt_result r, const char *what)
+{
+    if (r != FOGRT_RESULT_OK) {
+        fprintf(stderr, "bench: %s failed: %s\n", what, fogrt_result_string(r));
+        exit(1);
+    }
+}
+
+/* Is the machine quiet? Other processes running during the benchmark lower every figure.
+   The one-thread timings also add up their process CPU time: on a quiet machine it equals
+   the wall time; a smaller share means the benchmark waited for a CPU. */
+static double g_wall_1t, g_cpu_1t;
+
+static double cpu_seconds(void) { return (double)clock() / CLOCKS_PER_SEC; }
+
+static void print_load_average(const char *when)
+{
+    FILE *f = fopen("/proc/loadavg", "r");
+    double l1 = 0.0;
+    if (!f) return;
+    if (fscanf(f, "%lf", &l1) == 1) printf("load average (1 min) %s: %.2f\n", when, l1);
+    fclose(f);
+}
+
+static int max_threads(void)
+{
+#ifdef _OPENMP
+    return omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+
+/* ------------------------------------------------------------------------------------------
+   Benchmark geometry: plain arrays (so Embree can get the very same triangles) plus a camera
+   ------------------------------------------------------------------------------------------ */
+typedef struct bench_geometry {
+    char name[64];
+    float *positions;          /* 3 per vertex */
+    uint32_t vertex_count;
+    uint32_t *indices;         /* 3 per triangle */
+    uint32_t triangle_count;
+    float *spheres;            /* x, y, z, radius per sphere */
+    uint32_t sphere_count;
+    fogrt_camera_desc camera;
+} bench_geometry;
+
+static void geometry_free(bench_geometry *g)
+{
+    free(g->positions); free(g->indices); free(g->spheres);
+    memset(g, 0, sizeof *g);
+}
+
+/* A unit sphere with bumps, as a latitude-longitude grid closed by a fan at each pole:
+   2 * segments * (rings - 1) triangles. Its triangles are all of similar size, like a scanned
+   model's; the bumps make the surface non-convex so that bounce rays hit it again. */
+static void make_displaced_sphere(uint32_t rings, uint32_t segments, const char *name, bench_geometry *g)
+{
+    const float pi = 3.14159265358979f;
+    uint32_t j, i, v = 0, t = 0;
+    memset(g, 0, sizeof *g);
+    snprintf(g->name, sizeof g->name, "%s", name);
+    g->vertex_count = 2 + (rings - 1) * segments;
+    g->triangle_count = 2 * segments * (rings - 1);
+    g->positions = (float *)xmalloc(sizeof(float) * 3 * g->vertex_count);
+    g->indices = (uint32_t *)xmalloc(sizeof(uint32_t) * 3 * g->triangle_count);
+
+    /* Vertices: north pole, the rings from north to south, south pole. */
+    g->positions[v++] = 0.0f; g->positions[v++] = 1.0f; g->positions[v++] = 0.0f;
+    for (j = 1; j < rings; j++) {
+        float theta = pi * (float)j / (float)rings;
+        for (i = 0; i < segments; i++) {
+            float phi = 2.0f * pi * (float)i / (float)segments;
+            float r = 1.0f + 0.08f * sinf(9.0f * theta) * cosf(7.0f * phi)
+                           + 0.03f * sinf(31.0f * theta + 5.0f * phi);
+            g->positions[v++] = r * sinf(theta) * cosf(phi);
+            g->positions[v++] = r * cosf(theta);
+            g->positions[v++] = r * sinf(theta) * sinf(phi);
+        }
+    }
+    g->positions[v++] = 0.0f; g->positions[v++] = -1.0f; g->positions[v++] = 0.0f;
+
+#define RING_VERTEX(ring, seg) (1u + ((ring) - 1u) * segments + ((seg) % segments))
+    /* Triangles: the north fan, quads between neighbouring rings, the south fan. */
+    for (i = 0; i < segments; i++) {
+        g->indices[t++] = 0; g->indices[t++] = RING_VERTEX(1, i + 1); g->indices[t++] = RING_VERTEX(1, i);
+    }
+    for (j = 1; j + 1 < rings; j++) {
+        for (i = 0; i < segments; i++) {
+            uint32_t a = RING_VERTEX(j, i), b = RING_VERTEX(j, i + 1);
+            uint32_t c = RING_VERTEX(j + 1, i), d = RING_VERTEX(j + 1, i + 1);
+            g->indices[t++] = a; g->indices[t++] = b; g->indices[t++] = d;
+            g->indices[t++] = a; g->indices[t++] = d; g->indices[t++] = c;
+        }
+    }
+    for (i = 0; i < segments; i++) {
+        g->indices[t++] = g->vertex_count - 1;
+        g->indices[t++] = RING_VERTEX(rings - 1, i); g->indices[t++] = RING_VERTEX(rings - 1, i + 1);
+    }
+#undef RING_VERTEX
+
+    /* A camera 3.2 units away: the sphere fills most of the frame. */
+    g->camera.position.x = 0.6f; g->camera.position.y = 0.8f; g->camera.position.z = 3.0f;
+    g->camera.fov_deg = 45.0f;
+}
+
+/* A fresh scene holding the geometry (one diffuse material) and its camera, not yet built. */
+static fogrt_scene *geometry_scene(const bench_geometry *g)
+{
+    fogrt_scene *scene = NULL;
+    fogrt_material_desc m;
+    uint32_t material = 0, s;
+    check(fogrt_scene_create(NULL, &scene), "fogrt_scene_create");
+    memset(&m, 0, sizeof m);
+    m.type = FOGRT_BSDF_DIFFUSE;
+    m.reflectance.x = m.reflectance.y = m.reflectance.z = 0.5f;
+    check(fogrt_scene_add_material(scene, &m, &material), "fogrt_scene_add_material");
+    if (g->triangle_count) {
+        fogrt_mesh_desc mesh;
+        memset(&mesh, 0, sizeof mesh);
+        mesh.positions = g->positions;
+        mesh.vertex_count = g->vertex_count;
+        mesh.indices = g->indices;
+        mesh.triangle_count = g->triangle_count;
+        mesh.material = material;
+        check(fogrt_scene_add_mesh(scene, &mesh), "fogrt_scene_add_mesh");
+    }
+    for (s = 0; s < g->sphere_count; s++) {
+        const float *sp = g->spheres + 4 * s;
+        fogrt_vec3 c;
+        c.x = sp[0]; c.y = sp[1]; c.z = sp[2];
+        check(fogrt_scene_add_sphere(scene, c, sp[3], material), "fogrt_scene_add_sphere");
+    }
+    check(fogrt_scene_set_camera(scene, &g->camera), "fogrt_scene_set_camera");
+    return scene;
+}
+
+#ifdef HAVE_FOGRT_LOAD
+/* Copies the triangles (as 3 unshared vertices each, in the scene's order) and spheres of a
+   scene. The public API has no triangle read-back, so this reads the scene's private arrays
+   (bench.c compiles the implementation, as the tests do). */
+static void copy_scene_geometry(const fogrt_scene *scene, bench_geometry *g)
+{
+    uint32_t i;
+    g->triangle_count = scene->tri_count;
+    g->vertex_count = 3 * scene->tri_count;
+    g->positions = (float *)xmalloc(sizeof(float) * 3 * g->vertex_count);
+    g->indices = (uint32_t *)xmalloc(sizeof(uint32_t) * 3 * g->triangle_count);
+    for (i = 0; i < g->vertex_count; i++) {
+        g->positions[3 * i + 0] = scene->tri_v[i].x;
+        g->positions[3 * i + 1] = scene->tri_v[i].y;
+        g->positions[3 * i + 2] = scene->tri_v[i].z;
+        g->indices[i] = i;
+    }
+    g->sphere_count = scene->sph_count;
+    g->spheres = (float *)xmalloc(sizeof(float) * 4 * g->sphere_count);
+    for (i = 0; i < g->sphere_count; i++) {
+        g->spheres[4 * i + 0] = scene->sph_c[i].x;
+        g->spheres[4 * i + 1] = scene->sph_c[i].y;
+        g->spheres[4 * i + 2] = scene->sph_c[i].z;
+        g->spheres[4 * i + 3] = scene->sph_r[i];
+    }
+}
+
+/* The CS184 bunny: load CBbunny.dae and copy out its triangles, spheres and camera (the
+   benchmark then rebuilds scenes from these arrays, so fogrt and Embree get the same input).
+   Returns false if the file cannot be read. */
+static bool load_cs184_bunny(bench_geometry *g, int image_side)
+{
+    const char *path = FOGRT_SHARED_DIR "/scenes/cs184/CBbunny.dae";
+    fogrt_scene *scene = NULL;
+    fogrt_load_options options;
+    fogrt_load_report report;
+    fogrt_result r;
+    memset(g, 0, sizeof *g);
+    memset(&options, 0, sizeof options);
+    options.image_width = options.image_height = image_side;   /* frame the camera for it */
+    check(fogrt_scene_create(NULL, &scene), "fogrt_scene_create");
+    r = fogrt_load_dae(scene, path, &options, &report);
+    if (r != FOGRT_RESULT_OK) {
+        fprintf(stderr, "bench: cannot load %s (%s:%d: %s); using a synthetic mesh instead\n",
+                path, report.file, report.line, report.message);
+        fogrt_scene_destroy(scene);
+        return false;
+    }
+    snprintf(g->name, sizeof g->name, "CS184 CBbunny.dae");
+    copy_scene_geometry(scene, g);
+    fogrt_scene_get_camera(scene, &g->camera);
+    fogrt_scene_destroy(scene);
+    return true;
+}
+#endif
+
+/* ------------------------------------------------------------------------------------------
+   Ray sets: 8 floats per ray, ox oy oz tmin dx dy dz tmax (bench_embree.c reads the same)
+   ------------------------------------------------------------------------------------------ */
+typedef struct ray_set {
+    const char *name;
+    float *rays;
+    size_t count;
+} ray_set;
+
+static void put_ray(float *r, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax)
+{
+    r[0] = o.x; r[1] = o.y; r[2] = o.z; r[3] = tmin;
+    r[4] = d.x; r[5] = d.y; r[6] = d.z; r[7] = tmax;
+}
+
+/* One pinhole camera ray through the centre of every pixel of a side x side image. */
+static ray_set make_primary_rays(const fogrt_scene *scene, int side)
+{
+    ray_set s;
+    int x, y;
+    s.name = "primary";
+    s.count = (size_t)side * (size_t)side;
+    s.rays = (float *)xmalloc(sizeof(float) * 8 * s.count);
+    for (y = 0; y < side; y++)
+        for (x = 0; x < side; x++) {
+            fogrt_vec3 o, d;
+            fogrt_camera_ray(scene, side, side, (float)x + 0.5f, (float)y + 0.5f, 0.5f, 0.5f, &o, &d);
+            put_ray(s.rays + 8 * ((size_t)y * (size_t)side + (size_t)x), o, d, 0.0f, INFINITY);
+        }
+    return s;
+}
+
+/* Origins uniform in the scene's bounding box, directions uniform on the sphere. */
+static ray_set make_random_rays(const fogrt_scene *scene, size_t count, uint64_t seed)
+{
+    ray_set s;
+    fogrt_scene_info info;
+    fogrt_rng rng;
+    size_t i;
+    fogrt_scene_get_info(scene, &info);
+    fogrt_rng_seed(&rng, seed, 1);
+    s.name = "random";
+    s.count = count;
+    s.rays = (float *)xmalloc(sizeof(float) * 8 * count);
+    for (i = 0; i < count; i++) {
+        fogrt_vec3 o, d;
+        o.x = info.bounds_min.x + (info.bounds_max.x - info.bounds_min.x) * fogrt_rng_float(&rng);
+        o.y = info.bounds_min.y + (info.bounds_max.y - info.bounds_min.y) * fogrt_rng_float(&rng);
+        o.z = info.bounds_min.z + (info.bounds_max.z - info.bounds_min.z) * fogrt_rng_float(&rng);
+        d = fogrt_sample_uniform_sphere(fogrt_rng_float(&rng), fogrt_rng_float(&rng));
+        put_ray(s.rays + 8 * i, o, d, 0.0f, INFINITY);
+    }
+    return s;
+}
+
+/* Geometric unit normal of primitive prim (triangles first, then spheres) at point p. */
+static fogrt_vec3 geometric_normal(const bench_geometry *g, uint32_t prim, fogrt_vec3 p)
+{
+    fogrt_vec3 n;
+    float len;
+    if (prim < g->triangle_count) {
+        const uint32_t *tri = g->indices + 3 * (size_t)prim;
+        const float *a = g->positions + 3 * (size_t)tri[0];
+        const float *b = g->positions + 3 * (size_t)tri[1];
+        const float *c = g->positions + 3 * (size_t)tri[2];
+        float e1[3], e2[3];
+        int k;
+        for (k = 0; k < 3; k++) { e1[k] = b[k] - a[k]; e2[k] = c[k] - a[k]; }
+        n.x = e1[1] * e2[2] - e1[2] * e2[1];
+        n.y = e1[2] * e2[0] - e1[0] * e2[2];
+        n.z = e1[0] * e2[1] - e1[1] * e2[0];
+    } else {
+        const float *sp = g->spheres + 4 * (size_t)(prim - g->triangle_count);
+        n.x = p.x - sp[0]; n.y = p.y - sp[1]; n.z = p.z - sp[2];
+    }
+    len = sqrtf(n.x * n.x + n.y * n.y + n.z * n.z);
+    if (len > 0.0f) { n.x /= len; n.y /= len; n.z /= len; }
+    return n;
+}
+
+/* One cosine-weighted diffuse bounce from every hit of the primary rays (t_hit, prim_hit are
+   fogrt's answers for them). The origin is pushed off the surface by eps along the normal on
+   the side the primary ray came from. */
+static ray_set make_bounce_rays(const bench_geometry *g, const ray_set *primary, const float *t_hit,
+                                const uint32_t *prim_hit, float eps, uint64_t seed)
+{
+    ray_set s;
+    fogrt_rng rng;
+    size_t i, n = 0;
+    fogrt_rng_seed(&rng, seed, 2);
+    s.name = "bounce";
+    s.rays = (float *)xmalloc(sizeof(float) * 8 * (primary->count ? primary->count : 1));
+    for (i = 0; i < primary->count; i++) {
+        const float *r = primary->rays + 8 * i;
+        fogrt_vec3 p, nrm, local, t1, t2, d, o;
+        float sign, len;
+        if (t_hit[i] < 0.0f) continue;
+        p.x = r[0] + t_hit[i] * r[4]; p.y = r[1] + t_hit[i] * r[5]; p.z = r[2] + t_hit[i] * r[6];
+        nrm = geometric_normal(g, prim_hit[i], p);
+        sign = (nrm.x * r[4] + nrm.y * r[5] + nrm.z * r[6]) > 0.0f ? -1.0f : 1.0f;  /* face the ray */
+        nrm.x *= sign; nrm.y *= sign; nrm.z *= sign;
+        /* Orthonormal frame (t1, t2, nrm): t1 from the axis least aligned with the normal. */
+        if (fabsf(nrm.x) < 0.9f) { t1.x = 0.0f; t1.y = nrm.z; t1.z = -nrm.y; }
+        else                     { t1.x = -nrm.z; t1.y = 0.0f; t1.z = nrm.x; }
+        len = sqrtf(t1.x * t1.x + t1.y * t1.y + t1.z * t1.z);
+        t1.x /= len; t1.y /= len; t1.z /= len;
+        t2.x = nrm.y * t1.z - nrm.z * t1.y;
+        t2.y = nrm.z * t1.x - nrm.x * t1.z;
+        t2.z = nrm.x * t1.y - nrm.y * t1.x;
+        local = fogrt_sample_cosine_hemisphere(fogrt_rng_float(&rng), fogrt_rng_float(&rng));
+        d.x = local.x * t1.x + local.y * t2.x + local.z * nrm.x;
+        d.y = local.x * t1.y + local.y * t2.y + local.z * nrm.y;
+        d.z = local.x * t1.z + local.y * t2.z + local.z * nrm.z;
+        len = sqrtf(d.x * d.x + d.y * d.y + d.z * d.z);
+        d.x /= len; d.y /= len; d.z /= len;
+        o.x = p.x + eps * nrm.x; o.y = p.y + eps * nrm.y; o.z = p.z + eps * nrm.z;
+        put_ray(s.rays + 8 * n, o, d, 0.0f, INFINITY);
+        n++;
+    }
+    s.count = n;
+    return s;
+}
+
+/* ------------------------------------------------------------------------------------------
+   Tracing: the loop that is timed
+   ------------------------------------------------------------------------------------------ */
+static void trace_fogrt(const fogrt_scene *scene, const ray_set *s, int threads, float *t_out, uint32_t *prim_out)
+{
+    long i, n = (long)s->count;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
+#else
+    (void)threads;
+#endif
+    for (i = 0; i < n; i++) {
+        const float *r = s->rays + 8 * (size_t)i;
+        fogrt_vec3 o, d;
+        fogrt_hit hit;
+        o.x = r[0]; o.y = r[1]; o.z = r[2];
+        d.x = r[4]; d.y = r[5]; d.z = r[6];
+        if (fogrt_scene_intersect(scene, o, d, r[3], r[7], &hit)) {
+            t_out[i] = hit.t;
+            prim_out[i] = hit.prim;
+        } else {
+            t_out[i] = -1.0f;
+            prim_out[i] = UINT32_MAX;
+        }
+    }
+}
+
+/* Do two closest-hit answers agree? Both miss, or both hit at the same distance up to float
+   round-off (the primitive may differ on a shared edge, so it is not compared). */
+static bool same_answer(float ta, float tb)
+{
+    if (ta < 0.0f || tb < 0.0f) return ta < 0.0f && tb < 0.0f;
+    return fabsf(ta - tb) <= 1e-4f * (1.0f + fmaxf(ta, tb));
+}
+
+/* Checks up to `samples` rays of the set, spread evenly, against the brute-force reference;
+   returns how many disagree. */
+static size_t check_against_brute(const fogrt_scene *scene, const ray_set *s, size_t samples,
+                                  const float *t_bvh)
+{
+    size_t k, bad = 0, step = s->count / (samples ? samples : 1);
+    if (step == 0) step = 1;
+    for (k = 0; k < s->count; k += step) {
+        const float *r = s->rays + 8 * k;
+        fogrt_vec3 o, d;
+        fogrt_hit hit;
+        float t;
+        o.x = r[0]; o.y = r[1]; o.z = r[2];
+        d.x = r[4]; d.y = r[5]; d.z = r[6];
+        t = fogrt_scene_intersect_brute(scene, o, d, r[3], r[7], &hit) ? hit.t : -1.0f;
+        if (!same_answer(t, t_bvh[k])) bad++;
+    }
+    return bad;
+}
+
+/* ------------------------------------------------------------------------------------------
+   The benchmark of one geometry: build times, then every ray set on 1 and 2 threads
+   ------------------------------------------------------------------------------------------ */
+typedef struct bench_options {
+    int image_side;       /* primary rays: side x side */
+    int trace_reps;       /* passes over each ray set per configuration (median taken) */
+    int build_reps;
+    int render_reps;      /* renders per thread count (median taken) */
+    double render_seconds;  /* the samples per pixel are chosen for about this long a render */
+} bench_options;
+
+#define MAX_REPS 15
+
+static void bench_geometry_run(const bench_geometry *g, const bench_options *opt)
+{
+    fogrt_scene *scene = NULL;
+    double times[MAX_REPS], build_median, sah;
+    uint32_t node_count = 0;
+    const fogrt_bvh_node *nodes;
+    const uint32_t *prim_index;
+    fogrt_scene_info info;
+    ray_set sets[3];
+    float *t_f, *t_e;
+    uint32_t *p_f, *p_e;
+    float extent;
+    size_t max_rays;
+    int rep, k, threads_list[2] = {1, 2}, ti;
+#ifdef HAVE_EMBREE
+    bench_embree *embree = NULL;
+    double embree_build[MAX_REPS], embree_build_median = 0.0;
+#endif
+
+    printf("\n== %s: %u triangles, %u spheres ==\n", g->name, g->triangle_count, g->sphere_count);
+
+    /* BVH build: a fresh scene each time; only fogrt_scene_build is timed. */
+    for (rep = 0; rep < opt->build_reps; rep++) {
+        double t0;
+        if (scene) fogrt_scene_destroy(scene);
+        scene = geometry_scene(g);
+        t0 = now_seconds();
+        check(fogrt_scene_build(scene, NULL), "fogrt_scene_build");
+        times[rep] = now_seconds() - t0;
+    }
+    build_median = median(times, opt->build_reps);
+    fogrt_scene_bvh(scene, &nodes, &node_count, &prim_index);
+    sah = fogrt_bvh_sah_cost(scene);
+    printf("build     fogrt  %8.4f s  (median of %d; %u nodes, SAH cost %.2f)\n",
+           build_median, opt->build_reps, node_count, sah);
+#ifdef HAVE_EMBREE
+    for (rep = 0; rep < opt->build_reps; rep++) {
+        if (embree) bench_embree_destroy(embree);
+        embree = bench_embree_create(g->positions, g->vertex_count, g->indices, g->triangle_count,
+                                     g->spheres, g->sphere_count, 1, &embree_build[rep]);
+        if (!embree) { fprintf(stderr, "bench: Embree scene creation failed\n"); exit(1); }
+    }
+    embree_build_median = median(embree_build, opt->build_reps);
+    printf("build     embree %8.4f s  (median of %d, 1 build thread)   fogrt/embree time %.2f\n",
+           embree_build_median, opt->build_reps, build_median / embree_build_median);
+#endif
+
+    /* Ray sets. */
+    fogrt_scene_get_info(scene, &info);
+    extent = fmaxf(info.bounds_max.x - info.bounds_min.x,
+                   fmaxf(info.bounds_max.y - info.bounds_min.y, info.bounds_max.z - info.bounds_min.z));
+    sets[0] = make_primary_rays(scene, opt->image_side);
+    sets[1] = make_random_rays(scene, sets[0].count, 12345u);
+    max_rays = sets[0].count;
+    t_f = (float *)xmalloc(sizeof(float) * max_rays);
+    t_e = (float *)xmalloc(sizeof(float) * max_rays);
+    p_f = (uint32_t *)xmalloc(sizeof(uint32_t) * max_rays);
+    p_e = (uint32_t *)xmalloc(sizeof(uint32_t) * max_rays);
+    trace_fogrt(scene, &sets[0], max_threads(), t_f, p_f);
+    sets[2] = make_bounce_rays(g, &sets[0], t_f, p_f, 1e-4f * extent, 777u);
+
+    printf("%-8s %9s %5s | %9s %9s", "rays", "count", "hit%", "fogrt 1T", "fogrt 2T");
+#ifdef HAVE_EMBREE
+    printf(" | %9s %9s | %8s %8s", "embree 1T", "embree 2T", "f/e 1T", "f/e 2T");
+#endif
+    printf(" | %6s | %s\n", "2T/1T", "checks");
+
+    for (k = 0; k < 3; k++) {
+        const ray_set *s = &sets[k];
+        double mrays_f[2] = {0, 0};
+        size_t hits = 0, i, bad_brute;
+#ifdef HAVE_EMBREE
+        size_t bad_embree = 0;
+        double mrays_e[2] = {0, 0};
+#endif
+        /* Correctness first: a sample against brute force (at most ~5e7 triangle tests). */
+        trace_fogrt(scene, s, max_threads(), t_f, p_f);
+        for (i = 0; i < s->count; i++) hits += t_f[i] >= 0.0f;
+        {
+            size_t samples = (size_t)(5e7 / (double)(g->triangle_count + g->sphere_count + 1));
+            if (samples > 2000) samples = 2000;
+            bad_brute = check_against_brute(scene, s, samples, t_f);
+        }
+#ifdef HAVE_EMBREE
+        bench_embree_trace(embree, s->rays, s->count, max_threads(), t_e, p_e);
+        for (i = 0; i < s->count; i++) bad_embree += !same_answer(t_f[i], t_e[i]);
+#endif
+        /* Timing: fogrt and Embree alternate, so drifts of the machine hit both alike. */
+        for (ti = 0; ti < 2; ti++) {
+            int threads = threads_list[ti];
+            double tf[MAX_REPS];
+#ifdef HAVE_EMBREE
+            double te[MAX_REPS];
+#endif
+            if (threads > max_threads()) continue;
+            for (rep = 0; rep < opt->trace_reps; rep++) {
+                double t0 = now_seconds(), c0 = cpu_seconds();
+                trace_fogrt(scene, s, threads, t_f, p_f);
+                tf[rep] = now_seconds() - t0;
+                if (threads == 1) { g_wall_1t += tf[rep]; g_cpu_1t += cpu_seconds() - c0; }
+#ifdef HAVE_EMBREE
+                t0 = now_seconds(); c0 = cpu_seconds();
+                bench_embree_trace(embree, s->rays, s->count, threads, t_e, p_e);
+                te[rep] = now_seconds() - t0;
+                if (threads == 1) { g_wall_1t += te[rep]; g_cpu_1t += cpu_seconds() - c0; }
+#endif
+            }
+            mrays_f[ti] = (double)s->count / median(tf, opt->trace_reps) / 1e6;
+#ifdef HAVE_EMBREE
+            mrays_e[ti] = (double)s->count / median(te, opt->trace_reps) / 1e6;
+#endif
+        }
+        printf("%-8s %9zu %5.1f | %9.2f %9.2f", s->name, s->count,
+               100.0 * (double)hits / (double)(s->count ? s->count : 1), mrays_f[0], mrays_f[1]);
+#ifdef HAVE_EMBREE
+        printf(" | %9.2f %9.2f | %8.2f %8.2f", mrays_e[0], mrays_e[1],
+               mrays_f[0] / mrays_e[0], mrays_e[1] > 0 ? mrays_f[1] / mrays_e[1] : 0.0);
+#endif
+        printf(" | %6.2f | brute %zu bad", mrays_f[0] > 0 ? mrays_f[1] / mrays_f[0] : 0.0, bad_brute);
+#ifdef HAVE_EMBREE
+        printf(", embree %zu/%zu differ", bad_embree, s->count);
+#endif
+        printf("\n");
+    }
+    printf("(Mrays/s = million closest-hit rays per second, median of %d passes; f/e = fogrt/Embree)\n",
+           opt->trace_reps);
+
+    for (k = 0; k < 3; k++) free(sets[k].rays);
+    free(t_f); free(t_e); free(p_f); free(p_e);
+#ifdef HAVE_EMBREE
+    bench_embree_destroy(embree);
+#endif
+    fogrt_scene_destroy(scene);
+}
+
+/* ------------------------------------------------------------------------------------------
+   Render: samples per second of the default scene
+   ------------------------------------------------------------------------------------------ */
+static void bench_render(const bench_options *opt)
+{
+    fogrt_scene *scene = NULL;
+    fogrt_image img;
+    fogrt_render_desc rd;
+    fogrt_render_stats stats;
+    const int width = 320, height = 240;
+    int spp, ti, rep, reps = opt->render_reps;
+    double t0, t1;
+    check(fogrt_scene_create(NULL, &scene), "fogrt_scene_create");
+    check(fogrt_scene_add_default(scene), "fogrt_scene_add_default");
+    check(fogrt_scene_build(scene, NULL), "fogrt_scene_build");
+    check(fogrt_image_alloc(&img, width, height, NULL), "fogrt_image_alloc");
+    memset(&rd, 0, sizeof rd);
+    rd.width = width; rd.height = height; rd.seed = 1;
+
+    /* Choose the samples per pixel so that one render on 2 threads takes about render_seconds. */
+    rd.threads = max_threads() >= 2 ? 2 : 1;
+    t0 = now_seconds();
+    check(fogrt_render(scene, &rd, &img, 1, &stats), "fogrt_render");
+    t1 = now_seconds() - t0;
+    spp = (int)(opt->render_seconds / (t1 > 1e-6 ? t1 : 1e-6));
+    if (spp < 1) spp = 1;
+    if (spp > 1024) spp = 1024;
+
+    printf("\n== render: default scene (fogrt_scene_add_default), %dx%d, %d spp, path integrator ==\n",
+           width, height, spp);
+    printf("%-8s | %14s | %14s | %s\n", "threads", "samples/s", "Mrays/s", "rays per sample");
+    for (ti = 1; ti <= 2; ti++) {
+        double times[MAX_REPS];
+        uint64_t rays = 0, samples = 0;
+        if (ti > max_threads()) continue;
+        rd.threads = ti;
+        for (rep = 0; rep < reps; rep++) {
+            fogrt_image_clear(&img);
+            t0 = now_seconds();
+            check(fogrt_render(scene, &rd, &img, spp, &stats), "fogrt_render");
+            times[rep] = now_seconds() - t0;
+            rays = stats.rays; samples = stats.camera_rays;
+        }
+        t1 = median(times, reps);
+        printf("%-8d | %14.0f | %14.2f | %.2f\n", ti, (double)samples / t1, (double)rays / t1 / 1e6,
+               (double)rays / (double)(samples ? samples : 1));
+    }
+    printf("(median of %d renders; Mrays/s counts camera, bounce and shadow rays)\n", reps);
+    fogrt_image_free(&img, NULL);
+    fogrt_scene_destroy(scene);
+}
+
+int main(int argc, char **argv)
+{
+    bench_options opt;
+    bench_geometry bunny, big;
+    bool quick = argc > 1 && strcmp(argv[1], "--quick") == 0;
+    bool have_bunny = false;
+
+    if (argc > 2 || (argc == 2 && !quick)) {
+        fprintf(stderr, "usage: %s [--quick]\n", argv[0]);
+        return 2;
+    }
+    opt.image_side = quick ? 512 : 1024;
+    opt.trace_reps = quick ? 3 : 5;
+    opt.build_reps = quick ? 3 : 5;
+    opt.render_reps = quick ? 3 : 5;
+    opt.render_seconds = quick ? 0.3 : 1.0;
+
+    printf("fogrt benchmark: compiled with %s (%s), %d OpenMP thread(s) available",
+#ifdef __VERSION__
+           "cc " __VERSION__,
+#else
+           "cc",
+#endif
+           BENCH_CFLAGS, max_threads());
+#ifdef HAVE_EMBREE
+    printf(", Embree %s", bench_embree_version());
+#else
+    printf(", no Embree (apt-get install libembree-dev to compare)");
+#endif
+    printf("\n");
+    print_load_average("at the start");
+
+#ifdef HAVE_FOGRT_LOAD
+    have_bunny = load_cs184_bunny(&bunny, opt.image_side);
+#endif
+    if (!have_bunny) make_displaced_sphere(124, 116, "synthetic bunny-sized mesh (displaced sphere)", &bunny);
+    bench_geometry_run(&bunny, &opt);
+    geometry_free(&bunny);
+
+    make_displaced_sphere(501, 1000, "synthetic 1M-triangle mesh (displaced sphere)", &big);
+    bench_geometry_run(&big, &opt);
+    geometry_free(&big);
+
+    bench_render(&opt);
+
+    printf("\n");
+    print_load_average("at the end");
+    if (g_wall_1t > 0.0) {
+        double share = g_cpu_1t / g_wall_1t;
+        printf("one-thread ray timings got %.0f%% of a CPU%s\n", 100.0 * share,
+               share < 0.9 ? ": the machine was busy, the figures are too low and noisy" : "");
+    }
+    return 0;
+}
