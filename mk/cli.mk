@@ -26,7 +26,7 @@ fuzz-deps:
 	  sh tools/need-package.sh libclang-rt-$$($(FUZZ_CC) -dumpversion | cut -d. -f1)-dev \
 	    "$$($(FUZZ_CC) --print-runtime-dir)/libclang_rt.fuzzer-x86_64.a"
 
-$(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c fogrt.h fogrt_load.h | fuzz-deps $(BUILD)
+$(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_common.h fogrt.h fogrt_load.h | fuzz-deps $(BUILD)
 	@mkdir -p $(FUZZ_DIR)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -o $@ $< -lm
 

@@ -8,6 +8,7 @@
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
 #include "unity.h"
+#include "test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -19,20 +20,8 @@ void tearDown(void) {}
 #define PI_D 3.14159265358979323846
 
 /* ------------------------------------------------------------------------------------------
-   Helpers
+   Helpers (test_rng, v3 and vdot come from test_util.h)
    ------------------------------------------------------------------------------------------ */
-typedef struct test_rng { uint64_t s; } test_rng;
-static uint64_t rng_next(test_rng *r)
-{
-    uint64_t z = (r->s += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-}
-static float rng_uniform(test_rng *r) { return (float)(rng_next(r) >> 40) * 0x1p-24f; }   /* [0,1) */
-
-static fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
-static float vdot(fogrt_vec3 a, fogrt_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 static float vlen(fogrt_vec3 a) { return sqrtf(vdot(a, a)); }
 static fogrt_vec3 vnorm(fogrt_vec3 a) { float l = vlen(a); return v3(a.x / l, a.y / l, a.z / l); }
 

@@ -12,6 +12,7 @@
 #include "fogrt.h"
 #include "unity.h"
 #include "stats.h"
+#include "test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -21,7 +22,6 @@
 void setUp(void) {}
 void tearDown(void) {}
 
-static fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
 static double len3(fogrt_vec3 v) { return sqrt((double)v.x * v.x + (double)v.y * v.y + (double)v.z * v.z); }
 
 /* A unit direction from its cosine to the normal (+z) and an azimuth. */

@@ -9,6 +9,7 @@
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
 #include "unity.h"
+#include "test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -19,26 +20,15 @@ void setUp(void) {}
 void tearDown(void) {}
 
 /* ------------------------------------------------------------------------------------------
-   Test data: a tiny generator of our own (SplitMix64), so the soups do not depend on the
-   library's RNG.
+   Test data from a generator of our own (SplitMix64, test_rng in test_util.h), so the soups
+   do not depend on the library's RNG.
    ------------------------------------------------------------------------------------------ */
-typedef struct test_rng { uint64_t s; } test_rng;
-static uint64_t rng_next(test_rng *r)
-{
-    uint64_t z = (r->s += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-}
-static float rng_uniform(test_rng *r) { return (float)(rng_next(r) >> 40) * 0x1p-24f; }          /* [0,1) */
 static float rng_range(test_rng *r, float lo, float hi) { return lo + (hi - lo) * rng_uniform(r); }
 static uint32_t rng_below(test_rng *r, uint32_t n) { return (uint32_t)(rng_next(r) % n); }
 
-static fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
 static fogrt_vec3 vadd(fogrt_vec3 a, fogrt_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
 static fogrt_vec3 vsub(fogrt_vec3 a, fogrt_vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
 static fogrt_vec3 vscale(fogrt_vec3 a, float s) { return v3(a.x * s, a.y * s, a.z * s); }
-static float vdot(fogrt_vec3 a, fogrt_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 static fogrt_vec3 vnorm(fogrt_vec3 a)
 {
     double len = sqrt((double)a.x * a.x + (double)a.y * a.y + (double)a.z * a.z);

@@ -8,6 +8,7 @@
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
 #include "unity.h"
+#include "test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -17,13 +18,6 @@
 void setUp(void) {}
 void tearDown(void) {}
 
-#define CHECK_OK(call)                                                          \
-    do {                                                                        \
-        fogrt_result check_ok_r_ = (call);                                      \
-        TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, check_ok_r_,             \
-                                      fogrt_result_string(check_ok_r_));        \
-    } while (0)
-
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
 /* The two ends of the uniform numbers fogrt's RNG can return: 0 and 1 - 2^-24. */
@@ -31,7 +25,6 @@ void tearDown(void) {}
 static const float U_EDGES[] = { 0.0f, U_MAX };
 static const float U_ALL[] = { 0.0f, 1e-7f, 0.5f, 0.9999999f, U_MAX };
 
-static fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
 static float len3(fogrt_vec3 v) { return sqrtf(v.x * v.x + v.y * v.y + v.z * v.z); }
 static fogrt_vec3 unit3(float x, float y, float z)
 {
@@ -60,14 +53,11 @@ static fogrt_scene *default_with_fog(float sigma_t, float albedo, float g, log_c
 {
     fogrt_scene *scene = NULL;
     fogrt_scene_desc sd;
-    fogrt_medium_desc med;
     memset(&sd, 0, sizeof sd);
     if (logc) { sd.logger.func = count_log; sd.logger.user_data = logc; }
     CHECK_OK(fogrt_scene_create(&sd, &scene));
     CHECK_OK(fogrt_scene_add_default(scene));
-    memset(&med, 0, sizeof med);
-    med.sigma_t = sigma_t; med.albedo = v3(albedo, albedo, albedo); med.g = g;
-    CHECK_OK(fogrt_scene_set_medium(scene, &med));
+    set_medium(scene, sigma_t, v3(albedo, albedo, albedo), g);
     return scene;
 }
 
@@ -566,13 +556,10 @@ static fogrt_scene *box_and_sphere(void)
     static const uint32_t idx[36] = { 0, 1, 2, 0, 2, 3,  4, 6, 5, 4, 7, 6,  0, 4, 5, 0, 5, 1,
                                       3, 2, 6, 3, 6, 7,  0, 3, 7, 0, 7, 4,  1, 5, 6, 1, 6, 2 };
     fogrt_scene *scene = NULL;
-    fogrt_material_desc m;
     fogrt_mesh_desc md;
-    uint32_t id = 0;
+    uint32_t id;
     CHECK_OK(fogrt_scene_create(NULL, &scene));
-    memset(&m, 0, sizeof m);
-    m.reflectance = v3(0.5f, 0.5f, 0.5f);
-    CHECK_OK(fogrt_scene_add_material(scene, &m, &id));
+    id = add_basic_material(scene, FOGRT_BSDF_DEFAULT, v3(0.5f, 0.5f, 0.5f), v3(0, 0, 0));
     memset(&md, 0, sizeof md);
     md.positions = pos; md.vertex_count = 8; md.indices = idx; md.triangle_count = 12; md.material = id;
     CHECK_OK(fogrt_scene_add_mesh(scene, &md));
@@ -751,36 +738,25 @@ static fogrt_scene *scaled_room(float s)
     fogrt_material_desc m;
     fogrt_mesh_desc md;
     fogrt_light_desc l;
-    fogrt_medium_desc med;
-    fogrt_camera_desc cam;
-    uint32_t wall = 0, lamp = 0, glass = 0;
-    float pos[8 * 3], lamp_pos[4 * 3];
+    uint32_t wall, lamp, glass = 0;
+    float pos[8 * 3];
     static const uint32_t idx[30] = { 0, 1, 2, 0, 2, 3,  4, 6, 5, 4, 7, 6,  0, 4, 5, 0, 5, 1,
                                       3, 2, 6, 3, 6, 7,  0, 3, 7, 0, 7, 4 };   /* no +x wall */
-    static const uint32_t lamp_idx[6] = { 0, 1, 2, 0, 2, 3 };
     int k;
     for (k = 0; k < 8; ++k) {
         pos[3 * k + 0] = ((k == 1 || k == 2 || k == 5 || k == 6) ? 1.0f : -1.0f) * s;
         pos[3 * k + 1] = ((k == 2 || k == 3 || k == 6 || k == 7) ? 1.0f : -1.0f) * s;
         pos[3 * k + 2] = (k >= 4 ? 1.0f : -1.0f) * s;
     }
-    /* the lamp: a 0.6 x 0.6 square just under the ceiling, facing down */
-    {
-        static const float q[12] = { -0.3f, 0.99f, -0.3f,  0.3f, 0.99f, -0.3f,  0.3f, 0.99f, 0.3f,  -0.3f, 0.99f, 0.3f };
-        for (k = 0; k < 12; ++k) lamp_pos[k] = q[k] * s;
-    }
     CHECK_OK(fogrt_scene_create(NULL, &scene));
-    memset(&m, 0, sizeof m);
-    m.reflectance = v3(0.6f, 0.5f, 0.4f);
-    CHECK_OK(fogrt_scene_add_material(scene, &m, &wall));
-    memset(&m, 0, sizeof m);
-    m.emission = v3(8, 8, 8);
-    CHECK_OK(fogrt_scene_add_material(scene, &m, &lamp));
+    wall = add_basic_material(scene, FOGRT_BSDF_DEFAULT, v3(0.6f, 0.5f, 0.4f), v3(0, 0, 0));
+    lamp = add_basic_material(scene, FOGRT_BSDF_DEFAULT, v3(0, 0, 0), v3(8, 8, 8));
     memset(&md, 0, sizeof md);
     md.positions = pos; md.vertex_count = 8; md.indices = idx; md.triangle_count = 10; md.material = wall;
     CHECK_OK(fogrt_scene_add_mesh(scene, &md));
-    md.positions = lamp_pos; md.vertex_count = 4; md.indices = lamp_idx; md.triangle_count = 2; md.material = lamp;
-    CHECK_OK(fogrt_scene_add_mesh(scene, &md));
+    /* the lamp: a 0.6 x 0.6 square just under the ceiling, facing down */
+    add_quad_corners(scene, v3(-0.3f * s, 0.99f * s, -0.3f * s), v3(0.3f * s, 0.99f * s, -0.3f * s),
+                     v3(0.3f * s, 0.99f * s, 0.3f * s), v3(-0.3f * s, 0.99f * s, 0.3f * s), lamp);
     CHECK_OK(fogrt_scene_add_sphere(scene, v3(-0.3f * s, -0.6f * s, 0.1f * s), 0.4f * s, wall));
     /* a glass sphere: refraction offsets and fog-free interiors must scale too */
     memset(&m, 0, sizeof m);
@@ -792,14 +768,8 @@ static fogrt_scene *scaled_room(float s)
     l.position = v3(0.5f * s, -0.2f * s, -0.4f * s);
     l.intensity = v3(2.0f * s * s, 2.0f * s * s, 2.0f * s * s);
     CHECK_OK(fogrt_scene_add_light(scene, &l));
-    memset(&med, 0, sizeof med);
-    med.sigma_t = 0.6f / s; med.albedo = v3(0.9f, 0.9f, 0.9f); med.g = 0.4f;
-    CHECK_OK(fogrt_scene_set_medium(scene, &med));
-    memset(&cam, 0, sizeof cam);
-    cam.position = v3(0.9f * s, 0.1f * s, 0.2f * s);
-    cam.look_at = v3(-1.0f * s, -0.2f * s, 0.0f);
-    cam.fov_deg = 70.0f;
-    CHECK_OK(fogrt_scene_set_camera(scene, &cam));
+    set_medium(scene, 0.6f / s, v3(0.9f, 0.9f, 0.9f), 0.4f);
+    set_camera(scene, v3(0.9f * s, 0.1f * s, 0.2f * s), v3(-1.0f * s, -0.2f * s, 0.0f), 70.0f);
     CHECK_OK(fogrt_scene_build(scene, NULL));
     return scene;
 }
@@ -826,12 +796,10 @@ static void test_scene_scale(void)
         for (y = 0; y < h; ++y) {
             for (x = 0; x < w; ++x) {
                 int p = y * w + x, qq = (y >= h / 2) * 2 + (x >= w / 2);
-                double n = img.count[p], lum = (0.2126 * img.sum[3 * p] + 0.7152 * img.sum[3 * p + 1] +
-                                                0.0722 * img.sum[3 * p + 2]) / n;
-                double var = (img.sum_sq[p] / n - lum * lum) / (n - 1.0);
+                double lum = pixel_luminance(&img, p);
                 TEST_ASSERT_TRUE(finite_nonneg((float)lum));
                 quad_mean[si][qq] += lum / (w * h / 4);
-                quad_var[si][qq] += (var > 0.0 ? var : 0.0) / ((w * h / 4.0) * (w * h / 4.0));
+                quad_var[si][qq] += pixel_luminance_variance(&img, p) / ((w * h / 4.0) * (w * h / 4.0));
             }
         }
         fogrt_image_free(&img, NULL);
@@ -859,29 +827,14 @@ static void test_scene_scale(void)
 /* A diffuse floor (y = 0, 10 x 10), a camera above, one point light; optional fog. */
 static fogrt_scene *floor_with_light(fogrt_light_desc l, float sigma_t)
 {
-    static const float pos[12] = { -5, 0, -5,  -5, 0, 5,  5, 0, 5,  5, 0, -5 };
-    static const uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
     fogrt_scene *scene = NULL;
-    fogrt_material_desc m;
-    fogrt_mesh_desc md;
-    fogrt_medium_desc med;
-    fogrt_camera_desc cam;
-    uint32_t id = 0;
+    uint32_t id;
     CHECK_OK(fogrt_scene_create(NULL, &scene));
-    memset(&m, 0, sizeof m);
-    m.reflectance = v3(0.7f, 0.7f, 0.7f);
-    CHECK_OK(fogrt_scene_add_material(scene, &m, &id));
-    memset(&md, 0, sizeof md);
-    md.positions = pos; md.vertex_count = 4; md.indices = idx; md.triangle_count = 2; md.material = id;
-    CHECK_OK(fogrt_scene_add_mesh(scene, &md));
+    id = add_basic_material(scene, FOGRT_BSDF_DEFAULT, v3(0.7f, 0.7f, 0.7f), v3(0, 0, 0));
+    add_quad_corners(scene, v3(-5, 0, -5), v3(-5, 0, 5), v3(5, 0, 5), v3(5, 0, -5), id);
     CHECK_OK(fogrt_scene_add_light(scene, &l));
-    memset(&med, 0, sizeof med);
-    med.sigma_t = sigma_t; med.albedo = v3(0.9f, 0.9f, 0.9f); med.g = 0.2f;
-    CHECK_OK(fogrt_scene_set_medium(scene, &med));
-    memset(&cam, 0, sizeof cam);
-    cam.position = v3(0.2f, 1.5f, 1.0f);
-    cam.look_at = v3(0, 0, 0);
-    CHECK_OK(fogrt_scene_set_camera(scene, &cam));
+    set_medium(scene, sigma_t, v3(0.9f, 0.9f, 0.9f), 0.2f);
+    set_camera(scene, v3(0.2f, 1.5f, 1.0f), v3(0, 0, 0), 0.0f);   /* fov 0: the default 45 degrees */
     return scene;
 }
 

@@ -11,6 +11,7 @@
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
 #include "unity.h"
+#include "test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -19,15 +20,6 @@
 
 void setUp(void) {}
 void tearDown(void) {}
-
-#define CHECK_OK(call)                                                          \
-    do {                                                                        \
-        fogrt_result check_ok_r_ = (call);                                      \
-        TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, check_ok_r_,             \
-                                      fogrt_result_string(check_ok_r_));        \
-    } while (0)
-
-static fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
 
 /* ---- scene building ------------------------------------------------------------------- */
 
@@ -73,25 +65,12 @@ static void add_box(fogrt_scene *scene, float h, uint32_t material, bool inward)
 static fogrt_scene *make_furnace(float rho, float sigma_t, fogrt_vec3 albedo, float g)
 {
     fogrt_scene *scene = NULL;
-    fogrt_material_desc wall;
-    fogrt_medium_desc med;
-    fogrt_camera_desc cam;
-    uint32_t wall_id = 0;
+    uint32_t wall_id;
     CHECK_OK(fogrt_scene_create(NULL, &scene));
-    memset(&wall, 0, sizeof wall);
-    wall.type = FOGRT_BSDF_DIFFUSE;
-    wall.reflectance = v3(rho, rho, rho);
-    wall.emission = v3(1, 1, 1);
-    CHECK_OK(fogrt_scene_add_material(scene, &wall, &wall_id));
+    wall_id = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(rho, rho, rho), v3(1, 1, 1));
     add_box(scene, 1.0f, wall_id, true);
-    memset(&med, 0, sizeof med);
-    med.sigma_t = sigma_t; med.albedo = albedo; med.g = g;
-    CHECK_OK(fogrt_scene_set_medium(scene, &med));
-    memset(&cam, 0, sizeof cam);
-    cam.position = v3(0.1f, -0.2f, 0.05f);
-    cam.look_at = v3(1.0f, 0.3f, -0.7f);
-    cam.fov_deg = 90.0f;
-    CHECK_OK(fogrt_scene_set_camera(scene, &cam));
+    set_medium(scene, sigma_t, albedo, g);
+    set_camera(scene, v3(0.1f, -0.2f, 0.05f), v3(1.0f, 0.3f, -0.7f), 90.0f);
     return scene;
 }
 
@@ -245,21 +224,13 @@ static void test_empty_furnace_is_exactly_one(void)
 static void test_backside_of_emitter_is_black(void)
 {
     fogrt_scene *scene = NULL;
-    fogrt_material_desc wall;
-    fogrt_camera_desc cam;
     fogrt_render_desc rd = base_desc(false, false);
-    uint32_t id = 0;
+    uint32_t id;
     image_stats s;
     CHECK_OK(fogrt_scene_create(NULL, &scene));
-    memset(&wall, 0, sizeof wall);
-    wall.emission = v3(1, 1, 1);
-    CHECK_OK(fogrt_scene_add_material(scene, &wall, &id));
+    id = add_basic_material(scene, FOGRT_BSDF_DEFAULT, v3(0, 0, 0), v3(1, 1, 1));
     add_box(scene, 1.0f, id, false);
-    memset(&cam, 0, sizeof cam);
-    cam.position = v3(0.1f, -0.2f, 0.05f);
-    cam.look_at = v3(1.0f, 0.3f, -0.7f);
-    cam.fov_deg = 90.0f;
-    CHECK_OK(fogrt_scene_set_camera(scene, &cam));
+    set_camera(scene, v3(0.1f, -0.2f, 0.05f), v3(1.0f, 0.3f, -0.7f), 90.0f);
     s = render_stats(scene, &rd, 8, 8, 4, 0.0, NULL);
     TEST_ASSERT_TRUE_MESSAGE(s.max_pixel_dev == 0.0, "the back of an emitter must be black");
     fogrt_scene_destroy(scene);
@@ -552,7 +523,7 @@ static void test_one_bounce_off_emitting_walls(void)
                 sum_sq += (double)L.y * L.y;
             }
             mean = sum / n;
-            se = sqrt(fmax(sum_sq / n - mean * mean, 0.0) / (n - 1));
+            se = std_error_of_mean(sum, sum_sq, n);
             snprintf(msg, sizeof msg, "%s, wall point %d: mean %.5f expected 1.5 (se %.5f)",
                      mode_name(mode), t, mean, se);
             TEST_ASSERT_TRUE_MESSAGE(fabs(mean - 1.5) <= 5.0 * se + 1e-5, msg);
@@ -578,7 +549,6 @@ static void test_specular_sphere_invisible(void)
                 for (mode = 0; mode < 2; ++mode) {
                     fogrt_scene *scene = make_furnace(0.0f, j ? 1.0f : 0.0f, v3(1, 1, 1), 0.3f);
                     fogrt_material_desc m;
-                    fogrt_camera_desc cam;
                     fogrt_render_desc rd = base_desc(mode == 0, false);
                     uint32_t id = 0;
                     char what[160];
@@ -591,11 +561,7 @@ static void test_specular_sphere_invisible(void)
                     CHECK_OK(fogrt_scene_add_material(scene, &m, &id));
                     CHECK_OK(fogrt_scene_add_sphere(scene, v3(0.1f, 0.0f, 0.0f), 0.45f, id));
                     /* look straight at the sphere, so it fills most of the image */
-                    memset(&cam, 0, sizeof cam);
-                    cam.position = v3(-0.3f, 0.1f, -0.8f);
-                    cam.look_at = v3(0.1f, 0.0f, 0.0f);
-                    cam.fov_deg = 60.0f;
-                    CHECK_OK(fogrt_scene_set_camera(scene, &cam));
+                    set_camera(scene, v3(-0.3f, 0.1f, -0.8f), v3(0.1f, 0.0f, 0.0f), 60.0f);
                     rd.fresnel = fr ? FOGRT_FRESNEL_EXACT : FOGRT_FRESNEL_SCHLICK;
                     snprintf(what, sizeof what, "bsdf %d sigma_t %d fresnel %d nee %d", (int)types[t],
                              j, fr, mode);

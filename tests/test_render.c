@@ -8,6 +8,7 @@
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
 #include "unity.h"
+#include "test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -23,8 +24,6 @@ static char out_dir[512] = ".";
 /* ------------------------------------------------------------------------------------------
    Helpers
    ------------------------------------------------------------------------------------------ */
-static fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
-
 static fogrt_scene *default_scene(void)
 {
     fogrt_scene *scene = NULL;
@@ -32,18 +31,6 @@ static fogrt_scene *default_scene(void)
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_default(scene));
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
     return scene;
-}
-
-static void add_quad(fogrt_scene *scene, fogrt_vec3 a, fogrt_vec3 b, fogrt_vec3 c, fogrt_vec3 d, uint32_t mat)
-{
-    float pos[12];
-    uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
-    fogrt_mesh_desc m;
-    pos[0] = a.x; pos[1] = a.y; pos[2] = a.z; pos[3] = b.x; pos[4] = b.y; pos[5] = b.z;
-    pos[6] = c.x; pos[7] = c.y; pos[8] = c.z; pos[9] = d.x; pos[10] = d.y; pos[11] = d.z;
-    memset(&m, 0, sizeof m);
-    m.positions = pos; m.vertex_count = 4; m.indices = idx; m.triangle_count = 2; m.material = mat;
-    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_mesh(scene, &m));
 }
 
 static uint32_t add_material(fogrt_scene *scene, fogrt_bsdf_type type, fogrt_vec3 refl, fogrt_vec3 emission)
@@ -66,7 +53,6 @@ static uint32_t add_material(fogrt_scene *scene, fogrt_bsdf_type type, fogrt_vec
 static fogrt_scene *area_light_box(float sigma_t, bool specular, float lamp_half)
 {
     fogrt_scene *scene = NULL;
-    fogrt_camera_desc cam;
     uint32_t white, red, green, lamp;
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
     white = add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.7f, 0.7f, 0.7f), v3(0, 0, 0));
@@ -74,14 +60,14 @@ static fogrt_scene *area_light_box(float sigma_t, bool specular, float lamp_half
     green = add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.1f, 0.7f, 0.1f), v3(0, 0, 0));
     lamp = add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0, 0, 0), v3(6, 6, 6));
     /* Walls wound to face inward; the box is closed (front wall behind the camera). */
-    add_quad(scene, v3(-1, 0, -1), v3(-1, 0, 1), v3(1, 0, 1), v3(1, 0, -1), white);        /* floor */
-    add_quad(scene, v3(-1, 2, -1), v3(1, 2, -1), v3(1, 2, 1), v3(-1, 2, 1), white);        /* ceiling */
-    add_quad(scene, v3(-1, 0, -1), v3(1, 0, -1), v3(1, 2, -1), v3(-1, 2, -1), white);      /* back */
-    add_quad(scene, v3(-1, 0, 1), v3(-1, 2, 1), v3(1, 2, 1), v3(1, 0, 1), white);          /* front */
-    add_quad(scene, v3(-1, 0, -1), v3(-1, 2, -1), v3(-1, 2, 1), v3(-1, 0, 1), red);        /* left */
-    add_quad(scene, v3(1, 0, -1), v3(1, 0, 1), v3(1, 2, 1), v3(1, 2, -1), green);          /* right */
-    add_quad(scene, v3(-lamp_half, 1.99f, -lamp_half), v3(lamp_half, 1.99f, -lamp_half),
-             v3(lamp_half, 1.99f, lamp_half), v3(-lamp_half, 1.99f, lamp_half), lamp);       /* lamp, facing down */
+    add_quad_corners(scene, v3(-1, 0, -1), v3(-1, 0, 1), v3(1, 0, 1), v3(1, 0, -1), white);     /* floor */
+    add_quad_corners(scene, v3(-1, 2, -1), v3(1, 2, -1), v3(1, 2, 1), v3(-1, 2, 1), white);     /* ceiling */
+    add_quad_corners(scene, v3(-1, 0, -1), v3(1, 0, -1), v3(1, 2, -1), v3(-1, 2, -1), white);   /* back */
+    add_quad_corners(scene, v3(-1, 0, 1), v3(-1, 2, 1), v3(1, 2, 1), v3(1, 0, 1), white);       /* front */
+    add_quad_corners(scene, v3(-1, 0, -1), v3(-1, 2, -1), v3(-1, 2, 1), v3(-1, 0, 1), red);     /* left */
+    add_quad_corners(scene, v3(1, 0, -1), v3(1, 0, 1), v3(1, 2, 1), v3(1, 2, -1), green);       /* right */
+    add_quad_corners(scene, v3(-lamp_half, 1.99f, -lamp_half), v3(lamp_half, 1.99f, -lamp_half),
+                     v3(lamp_half, 1.99f, lamp_half), v3(-lamp_half, 1.99f, lamp_half), lamp);  /* lamp, facing down */
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_sphere(scene, v3(-0.5f, 0.3f, -0.3f), 0.3f, white));
     if (specular) {
         TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_sphere(scene, v3(0.5f, 0.3f, -0.4f), 0.3f,
@@ -89,19 +75,8 @@ static fogrt_scene *area_light_box(float sigma_t, bool specular, float lamp_half
         TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_sphere(scene, v3(0.1f, 0.3f, 0.35f), 0.25f,
                                                                      add_material(scene, FOGRT_BSDF_GLASS, v3(1, 1, 1), v3(0, 0, 0))));
     }
-    memset(&cam, 0, sizeof cam);
-    cam.position = v3(0, 1, 0.95f);
-    cam.look_at = v3(0, 0.8f, 0);
-    cam.fov_deg = 75.0f;
-    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_set_camera(scene, &cam));
-    if (sigma_t > 0.0f) {
-        fogrt_medium_desc med;
-        memset(&med, 0, sizeof med);
-        med.sigma_t = sigma_t;
-        med.albedo = v3(0.8f, 0.8f, 0.8f);
-        med.g = 0.5f;
-        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_set_medium(scene, &med));
-    }
+    set_camera(scene, v3(0, 1, 0.95f), v3(0, 0.8f, 0), 75.0f);
+    if (sigma_t > 0.0f) set_medium(scene, sigma_t, v3(0.8f, 0.8f, 0.8f), 0.5f);
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
     return scene;
 }
@@ -395,8 +370,8 @@ static void test_error_estimate(void)
     fogrt_image_resolve(&i16, a);
     fogrt_image_resolve(&j16, b);
     for (i = 0; i < n; i++) {
-        double la = 0.2126 * a[3 * i] + 0.7152 * a[3 * i + 1] + 0.0722 * a[3 * i + 2];
-        double lb = 0.2126 * b[3 * i] + 0.7152 * b[3 * i + 1] + 0.0722 * b[3 * i + 2];
+        double la = luminance(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
+        double lb = luminance(b[3 * i], b[3 * i + 1], b[3 * i + 2]);
         diff_sq += (la - lb) * (la - lb);
         mean_sq += 0.5 * (la * la + lb * lb);
     }

@@ -8,6 +8,7 @@
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
 #include "unity.h"
+#include "test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -81,8 +82,6 @@ static void record_log(fogrt_log_level level, const char *message, void *user_da
         r->last_warning[sizeof r->last_warning - 1] = '\0';
     }
 }
-
-static fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
 
 static fogrt_scene *new_scene(log_record *log)
 {

@@ -7,6 +7,7 @@
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
 #include "unity.h"
+#include "test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -16,35 +17,7 @@
 void setUp(void) {}
 void tearDown(void) {}
 
-#define CHECK_OK(call)                                                          \
-    do {                                                                        \
-        fogrt_result check_ok_r_ = (call);                                      \
-        TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, check_ok_r_,             \
-                                      fogrt_result_string(check_ok_r_));        \
-    } while (0)
-
-static fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
 static float comp(fogrt_vec3 v, int c) { return c == 0 ? v.x : c == 1 ? v.y : v.z; }
-
-/* Adds the quad p, p+e1, p+e1+e2, p+e2 (two triangles); its front side is along e1 x e2. */
-static void add_quad(fogrt_scene *scene, fogrt_vec3 p, fogrt_vec3 e1, fogrt_vec3 e2, uint32_t material)
-{
-    float pos[12];
-    static const uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
-    fogrt_mesh_desc md;
-    int k;
-    for (k = 0; k < 4; ++k) {
-        float a = (k == 1 || k == 2) ? 1.0f : 0.0f, b = (k == 2 || k == 3) ? 1.0f : 0.0f;
-        pos[3 * k + 0] = p.x + a * e1.x + b * e2.x;
-        pos[3 * k + 1] = p.y + a * e1.y + b * e2.y;
-        pos[3 * k + 2] = p.z + a * e1.z + b * e2.z;
-    }
-    memset(&md, 0, sizeof md);
-    md.positions = pos; md.vertex_count = 4;
-    md.indices = idx; md.triangle_count = 2;
-    md.material = material;
-    CHECK_OK(fogrt_scene_add_mesh(scene, &md));
-}
 
 /* ---- Beer-Lambert through absorbing fog ----------------------------------------------- */
 
@@ -56,25 +29,13 @@ static const fogrt_vec3 EMIT = { 2.0f, 1.0f, 0.5f };
 static fogrt_scene *make_wall_scene(float sigma_t, float fov_deg)
 {
     fogrt_scene *scene = NULL;
-    fogrt_material_desc m;
-    fogrt_medium_desc med;
-    fogrt_camera_desc cam;
-    uint32_t id = 0;
+    uint32_t id;
     CHECK_OK(fogrt_scene_create(NULL, &scene));
-    memset(&m, 0, sizeof m);
-    m.emission = EMIT;
-    CHECK_OK(fogrt_scene_add_material(scene, &m, &id));
+    id = add_basic_material(scene, FOGRT_BSDF_DEFAULT, v3(0, 0, 0), EMIT);
     /* e1 = +y, e2 = +x: e1 x e2 = -z, toward the camera */
     add_quad(scene, v3(-50, -50, WALL_Z), v3(0, 100, 0), v3(100, 0, 0), id);
-    memset(&med, 0, sizeof med);
-    med.sigma_t = sigma_t;
-    med.albedo = v3(0, 0, 0);
-    CHECK_OK(fogrt_scene_set_medium(scene, &med));
-    memset(&cam, 0, sizeof cam);
-    cam.position = v3(0, 0, 0);
-    cam.look_at = v3(0, 0, 1);
-    cam.fov_deg = fov_deg;
-    CHECK_OK(fogrt_scene_set_camera(scene, &cam));
+    set_medium(scene, sigma_t, v3(0, 0, 0), 0.0f);
+    set_camera(scene, v3(0, 0, 0), v3(0, 0, 1), fov_deg);
     CHECK_OK(fogrt_scene_build(scene, NULL));
     return scene;
 }
@@ -225,16 +186,10 @@ static const fogrt_vec3 LIGHT_POS = { 0.5f, 1.0f, -0.3f };
 static fogrt_scene *make_plane_scene(float sigma_t, bool spot, float cutoff, float beam)
 {
     fogrt_scene *scene = NULL;
-    fogrt_material_desc m;
     fogrt_light_desc l;
-    fogrt_medium_desc med;
-    fogrt_camera_desc cam;
-    uint32_t id = 0;
+    uint32_t id;
     CHECK_OK(fogrt_scene_create(NULL, &scene));
-    memset(&m, 0, sizeof m);
-    m.type = FOGRT_BSDF_DIFFUSE;
-    m.reflectance = RHO;
-    CHECK_OK(fogrt_scene_add_material(scene, &m, &id));
+    id = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, RHO, v3(0, 0, 0));
     /* e1 = +z, e2 = +x: e1 x e2 = +y */
     add_quad(scene, v3(-10, 0, -10), v3(0, 0, 20), v3(20, 0, 0), id);
     memset(&l, 0, sizeof l);
@@ -245,14 +200,8 @@ static fogrt_scene *make_plane_scene(float sigma_t, bool spot, float cutoff, flo
     l.cutoff_deg = cutoff;
     l.beam_deg = beam;
     CHECK_OK(fogrt_scene_add_light(scene, &l));
-    memset(&med, 0, sizeof med);
-    med.sigma_t = sigma_t;   /* albedo 0: the fog only absorbs */
-    CHECK_OK(fogrt_scene_set_medium(scene, &med));
-    memset(&cam, 0, sizeof cam);
-    cam.position = v3(0.3f, 2.0f, 0.2f);
-    cam.look_at = v3(0, 0, 0);
-    cam.fov_deg = 60.0f;
-    CHECK_OK(fogrt_scene_set_camera(scene, &cam));
+    set_medium(scene, sigma_t, v3(0, 0, 0), 0.0f);   /* albedo 0: the fog only absorbs */
+    set_camera(scene, v3(0.3f, 2.0f, 0.2f), v3(0, 0, 0), 60.0f);
     CHECK_OK(fogrt_scene_build(scene, NULL));
     return scene;
 }
@@ -446,7 +395,6 @@ static void test_single_scattering_point_and_spot(void)
     for (i = 0; i < (int)(sizeof cases / sizeof cases[0]); ++i) {
         fogrt_scene *scene = NULL;
         fogrt_light_desc l;
-        fogrt_medium_desc med;
         fogrt_render_desc rd;
         fogrt_rng rng;
         double sum = 0.0, sum_sq = 0.0, mean, se, ref = 0.0;
@@ -460,9 +408,7 @@ static void test_single_scattering_point_and_spot(void)
         l.cutoff_deg = cases[i].cutoff; l.beam_deg = cases[i].beam;
         l.radius = cases[i].radius;
         CHECK_OK(fogrt_scene_add_light(scene, &l));
-        memset(&med, 0, sizeof med);
-        med.sigma_t = sigma_t; med.albedo = v3(albedo, albedo, albedo); med.g = g;
-        CHECK_OK(fogrt_scene_set_medium(scene, &med));
+        set_medium(scene, sigma_t, v3(albedo, albedo, albedo), g);
         CHECK_OK(fogrt_scene_build(scene, NULL));
         memset(&rd, 0, sizeof rd);
         rd.max_depth = 1;
@@ -487,7 +433,7 @@ static void test_single_scattering_point_and_spot(void)
                    * (t_end / steps);
         }
         mean = sum / n;
-        se = sqrt(fmax(sum_sq / n - mean * mean, 0.0) / (n - 1));
+        se = std_error_of_mean(sum, sum_sq, n);
         snprintf(msg, sizeof msg, "case %d: trace %.6g (se %.2g), reference %.6g", i, mean, se, ref);
         TEST_ASSERT_TRUE_MESSAGE(fabs(mean - ref) <= 5.0 * se + 5e-3 * ref + 1e-9, msg);
         TEST_ASSERT_TRUE_MESSAGE(se <= 0.01 * ref + 1e-9, msg);
@@ -506,19 +452,14 @@ static const fogrt_vec3 PLATE_LIGHT = { 0.0f, 2.0f, 0.0f };
 static fogrt_scene *make_plate_scene(bool area_light)
 {
     fogrt_scene *scene = NULL;
-    fogrt_material_desc m;
-    fogrt_medium_desc med;
-    uint32_t black = 0, lamp = 0;
+    uint32_t black, lamp;
     CHECK_OK(fogrt_scene_create(NULL, &scene));
-    memset(&m, 0, sizeof m);
-    m.type = FOGRT_BSDF_DIFFUSE;   /* reflectance 0: absorbs everything */
-    CHECK_OK(fogrt_scene_add_material(scene, &m, &black));
+    /* reflectance 0: absorbs everything */
+    black = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(0, 0, 0), v3(0, 0, 0));
     /* e1 = +z, e2 = +x: e1 x e2 = +y, toward the light */
     add_quad(scene, v3(-1, 0, -1), v3(0, 0, 2), v3(2, 0, 0), black);
     if (area_light) {
-        memset(&m, 0, sizeof m);
-        m.emission = v3(5, 5, 5);
-        CHECK_OK(fogrt_scene_add_material(scene, &m, &lamp));
+        lamp = add_basic_material(scene, FOGRT_BSDF_DEFAULT, v3(0, 0, 0), v3(5, 5, 5));
         /* 0.4 x 0.4 around PLATE_LIGHT; e1 = +x, e2 = +z: e1 x e2 = -y, toward the plate */
         add_quad(scene, v3(PLATE_LIGHT.x - 0.2f, PLATE_LIGHT.y, PLATE_LIGHT.z - 0.2f),
                  v3(0.4f, 0, 0), v3(0, 0, 0.4f), lamp);
@@ -530,9 +471,7 @@ static fogrt_scene *make_plate_scene(bool area_light)
         l.intensity = v3(2, 2, 2);
         CHECK_OK(fogrt_scene_add_light(scene, &l));
     }
-    memset(&med, 0, sizeof med);
-    med.sigma_t = 0.5f; med.albedo = v3(0.8f, 0.8f, 0.8f); med.g = 0.3f;
-    CHECK_OK(fogrt_scene_set_medium(scene, &med));
+    set_medium(scene, 0.5f, v3(0.8f, 0.8f, 0.8f), 0.3f);
     CHECK_OK(fogrt_scene_build(scene, NULL));
     return scene;
 }
@@ -596,7 +535,7 @@ static void test_fog_shadow_behind_plate(void)
                     sum_sq += (double)L.x * L.x;
                 }
                 mean = sum / n;
-                se = sqrt(fmax(sum_sq / n - mean * mean, 0.0) / (n - 1));
+                se = std_error_of_mean(sum, sum_sq, n);
                 snprintf(msg, sizeof msg, "%s light, %s, ray %c: mean %.6g (se %.2g), %d of %d samples lit"
                          "; ray B's single scattering %.6g", area ? "area" : "point",
                          integ ? "DIRECT" : "PATH depth 1", ray ? 'B' : 'A', mean, se, lit, n, ref_b);
@@ -626,21 +565,14 @@ static void test_fog_shadow_behind_plate(void)
 static fogrt_scene *make_open_fog_scene(float box)
 {
     fogrt_scene *scene = NULL;
-    fogrt_material_desc m;
-    fogrt_medium_desc med;
-    fogrt_camera_desc cam;
-    uint32_t lamp = 0, black = 0;
+    uint32_t lamp, black;
     CHECK_OK(fogrt_scene_create(NULL, &scene));
-    memset(&m, 0, sizeof m);
-    m.emission = v3(4, 4, 4);
-    CHECK_OK(fogrt_scene_add_material(scene, &m, &lamp));
+    lamp = add_basic_material(scene, FOGRT_BSDF_DEFAULT, v3(0, 0, 0), v3(4, 4, 4));
     /* e1 = +y, e2 = +x: e1 x e2 = -z, toward the camera */
     add_quad(scene, v3(-1, -1, 3), v3(0, 2, 0), v3(2, 0, 0), lamp);
     if (box > 0.0f) {
         float b = box, w = 2.0f * box;
-        memset(&m, 0, sizeof m);
-        m.type = FOGRT_BSDF_DIFFUSE;
-        CHECK_OK(fogrt_scene_add_material(scene, &m, &black));
+        black = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(0, 0, 0), v3(0, 0, 0));
         add_quad(scene, v3(-b, -b, -b), v3(w, 0, 0), v3(0, w, 0), black);   /* z = -b */
         add_quad(scene, v3(-b, -b, b), v3(w, 0, 0), v3(0, w, 0), black);    /* z = +b */
         add_quad(scene, v3(-b, -b, -b), v3(0, w, 0), v3(0, 0, w), black);   /* x = -b */
@@ -648,14 +580,9 @@ static fogrt_scene *make_open_fog_scene(float box)
         add_quad(scene, v3(-b, -b, -b), v3(0, 0, w), v3(w, 0, 0), black);   /* y = -b */
         add_quad(scene, v3(-b, b, -b), v3(0, 0, w), v3(w, 0, 0), black);    /* y = +b */
     }
-    memset(&med, 0, sizeof med);
-    med.sigma_t = 0.3f; med.albedo = v3(0.9f, 0.9f, 0.9f); med.g = 0.5f;
-    CHECK_OK(fogrt_scene_set_medium(scene, &med));
-    memset(&cam, 0, sizeof cam);
-    cam.position = v3(0, 0, 0);
-    cam.look_at = v3(0, 1.5f, 1);   /* 56 degrees up; the square spans +-18 around the z axis */
-    cam.fov_deg = 50.0f;
-    CHECK_OK(fogrt_scene_set_camera(scene, &cam));
+    set_medium(scene, 0.3f, v3(0.9f, 0.9f, 0.9f), 0.5f);
+    /* 56 degrees up; the square spans +-18 around the z axis */
+    set_camera(scene, v3(0, 0, 0), v3(0, 1.5f, 1), 50.0f);
     CHECK_OK(fogrt_scene_build(scene, NULL));
     return scene;
 }
@@ -677,11 +604,9 @@ static void open_fog_render(const fogrt_scene *scene, bool no_nee, bool no_mis, 
     CHECK_OK(fogrt_render(scene, &rd, &img, spp, NULL));
     TEST_ASSERT_EQUAL_UINT64(0, img.rejected);
     for (p = 0; p < w * h; ++p) {
-        double c = img.count[p];
-        double mp = (0.2126 * img.sum[3 * p] + 0.7152 * img.sum[3 * p + 1] + 0.0722 * img.sum[3 * p + 2]) / c;
         TEST_ASSERT_EQUAL_UINT32(spp, img.count[p]);
-        m += mp / (w * h);
-        var += fmax(img.sum_sq[p] / c - mp * mp, 0.0) / (c - 1.0) / ((double)w * h * w * h);
+        m += pixel_luminance(&img, p) / (w * h);
+        var += pixel_luminance_variance(&img, p) / ((double)w * h * w * h);
     }
     *mean = m;
     *se = sqrt(var);

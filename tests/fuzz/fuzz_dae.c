@@ -1,40 +1,11 @@
-/* libFuzzer target for fogrt_load_dae_memory: any input must load or fail with a
-   file:line message, without crashing, leaking or leaving the scene unusable.
-   Build and run: make fuzz-dae (see mk/cli.mk). Unless -DFUZZ_NO_BUILD, a successful load is also
-   built (fogrt_scene_build), so the BVH build is fuzzed with whatever the parser accepts
-   (this found the NaN binning of coordinates near FLT_MAX, now refused by fogrt.h). */
-#include <stdint.h>
-#include <stddef.h>
-#include <stdio.h>
-#define FOGRT_IMPLEMENTATION
-#include "fogrt.h"
-#define FOGRT_LOAD_IMPLEMENTATION
-#include "fogrt_load.h"
+/* libFuzzer target for fogrt_load_dae_memory: any input must load or fail with a file:line
+   message, without crashing, leaking or leaving the scene unusable; a successful load is
+   also built unless -DFUZZ_NO_BUILD (see fuzz_common.h).
+   Build and run: make fuzz-dae (see mk/cli.mk). */
+#include "fuzz_common.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    fogrt_scene *scene = NULL;
-    fogrt_load_report rep;
-    fogrt_scene_info before, after;
-    fogrt_result r;
-    if (fogrt_scene_create(NULL, &scene) != FOGRT_RESULT_OK) return 0;
-    fogrt_scene_get_info(scene, &before);
-    r = fogrt_load_dae_memory(scene, data, size, "fuzz.dae", NULL, &rep);
-    fogrt_scene_get_info(scene, &after);
-    if (r == FOGRT_RESULT_PARSE_ERROR) {
-        /* a parse error names a line and says why, and adds nothing */
-        if (rep.message[0] == 0 || rep.line < 0) __builtin_trap();
-        if (after.triangle_count != before.triangle_count || after.material_count != before.material_count ||
-            after.sphere_count != before.sphere_count || after.light_count != before.light_count) __builtin_trap();
-    }
-#ifndef FUZZ_NO_BUILD
-    if (r == FOGRT_RESULT_OK) {
-        /* a loaded scene must build (or be empty) */
-        r = fogrt_scene_build(scene, NULL);
-        if (r != FOGRT_RESULT_OK && r != FOGRT_RESULT_EMPTY_SCENE && r != FOGRT_RESULT_TOO_LARGE) __builtin_trap();
-    }
-#endif
-    fogrt_scene_destroy(scene);
-    return 0;
+    return fuzz_load_one(data, size, fogrt_load_dae_memory, "fuzz.dae");
 }

@@ -1,0 +1,136 @@
+/* test_util.h - small helpers shared by the test programs: the CHECK_OK assertion, vector
+   constructors, a test-side random number generator, scene building (materials, fog, camera,
+   quads), and the luminance, variance and standard-error formulas the statistical checks use.
+
+   Include it after "fogrt.h" (with FOGRT_IMPLEMENTATION) and "unity.h". Everything is static
+   inline (or a macro), so a test program pays nothing for the helpers it does not use and
+   gets no unused-function warnings. */
+#ifndef FOGRT_TESTS_TEST_UTIL_H
+#define FOGRT_TESTS_TEST_UTIL_H
+
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+/* ---- assertions ------------------------------------------------------------------------ */
+
+/* Asserts that a fogrt call returns FOGRT_RESULT_OK, naming the result it got instead. */
+#define CHECK_OK(call)                                                          \
+    do {                                                                        \
+        fogrt_result check_ok_r_ = (call);                                      \
+        TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, check_ok_r_,             \
+                                      fogrt_result_string(check_ok_r_));        \
+    } while (0)
+
+/* ---- vectors --------------------------------------------------------------------------- */
+
+static inline fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
+static inline float vdot(fogrt_vec3 a, fogrt_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+/* ---- random numbers of our own (SplitMix64) ---------------------------------------------
+   Test data that does not depend on the library's RNG, so a change there cannot change the
+   cases a test checks. */
+typedef struct test_rng { uint64_t s; } test_rng;
+static inline uint64_t rng_next(test_rng *r)
+{
+    uint64_t z = (r->s += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+static inline float rng_uniform(test_rng *r) { return (float)(rng_next(r) >> 40) * 0x1p-24f; }   /* [0,1) */
+
+/* ---- scene building: materials, fog, camera --------------------------------------------- */
+
+/* Adds a material of the given type, reflectance and emission (no transmittance, ior 0 = the
+   default) and returns its id. FOGRT_BSDF_DEFAULT is what a zeroed desc holds. */
+static inline uint32_t add_basic_material(fogrt_scene *scene, fogrt_bsdf_type type, fogrt_vec3 reflectance,
+                                          fogrt_vec3 emission)
+{
+    fogrt_material_desc m;
+    uint32_t id = 0;
+    memset(&m, 0, sizeof m);
+    m.type = type;
+    m.reflectance = reflectance;
+    m.emission = emission;
+    CHECK_OK(fogrt_scene_add_material(scene, &m, &id));
+    return id;
+}
+
+/* Fills the scene with homogeneous fog. */
+static inline void set_medium(fogrt_scene *scene, float sigma_t, fogrt_vec3 albedo, float g)
+{
+    fogrt_medium_desc med;
+    memset(&med, 0, sizeof med);
+    med.sigma_t = sigma_t; med.albedo = albedo; med.g = g;
+    CHECK_OK(fogrt_scene_set_medium(scene, &med));
+}
+
+/* A pinhole camera at `position` looking at `look_at`, with vertical field of view fov_deg
+   (0: fogrt's default, 45); the other fields zero (default up, no lens). */
+static inline void set_camera(fogrt_scene *scene, fogrt_vec3 position, fogrt_vec3 look_at, float fov_deg)
+{
+    fogrt_camera_desc cam;
+    memset(&cam, 0, sizeof cam);
+    cam.position = position; cam.look_at = look_at; cam.fov_deg = fov_deg;
+    CHECK_OK(fogrt_scene_set_camera(scene, &cam));
+}
+
+/* ---- scene building: quads ------------------------------------------------------------- */
+
+/* Adds the quad a, b, c, d (two triangles a b c and a c d, one mesh); its front side is the
+   one from which a, b, c, d run counter-clockwise. */
+static inline void add_quad_corners(fogrt_scene *scene, fogrt_vec3 a, fogrt_vec3 b, fogrt_vec3 c, fogrt_vec3 d,
+                                    uint32_t material)
+{
+    float pos[12];
+    static const uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
+    fogrt_mesh_desc md;
+    pos[0] = a.x; pos[1] = a.y; pos[2] = a.z; pos[3] = b.x; pos[4] = b.y; pos[5] = b.z;
+    pos[6] = c.x; pos[7] = c.y; pos[8] = c.z; pos[9] = d.x; pos[10] = d.y; pos[11] = d.z;
+    memset(&md, 0, sizeof md);
+    md.positions = pos; md.vertex_count = 4;
+    md.indices = idx; md.triangle_count = 2;
+    md.material = material;
+    CHECK_OK(fogrt_scene_add_mesh(scene, &md));
+}
+
+/* Adds the parallelogram p, p+e1, p+e1+e2, p+e2; its front side is along e1 x e2. */
+static inline void add_quad(fogrt_scene *scene, fogrt_vec3 p, fogrt_vec3 e1, fogrt_vec3 e2, uint32_t material)
+{
+    fogrt_vec3 corner[4];
+    int k;
+    for (k = 0; k < 4; ++k) {
+        float a = (k == 1 || k == 2) ? 1.0f : 0.0f, b = (k == 2 || k == 3) ? 1.0f : 0.0f;
+        corner[k] = v3(p.x + a * e1.x + b * e2.x, p.y + a * e1.y + b * e2.y, p.z + a * e1.z + b * e2.z);
+    }
+    add_quad_corners(scene, corner[0], corner[1], corner[2], corner[3], material);
+}
+
+/* ---- statistics of samples and images -------------------------------------------------- */
+
+/* Rec. 709 luminance, the weights fogrt uses for fogrt_image.sum_sq. */
+static inline double luminance(double r, double g, double b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
+
+/* The luminance of pixel p's mean. */
+static inline double pixel_luminance(const fogrt_image *img, int p)
+{
+    return luminance(img->sum[3 * p], img->sum[3 * p + 1], img->sum[3 * p + 2]) / img->count[p];
+}
+
+/* The variance of pixel p's mean luminance, from its sample variance: (E[L^2] - mean^2) / (n - 1),
+   clamped at 0 (rounding can make it slightly negative for a noise-free pixel). */
+static inline double pixel_luminance_variance(const fogrt_image *img, int p)
+{
+    double n = img->count[p], mean = pixel_luminance(img, p);
+    return fmax(img->sum_sq[p] / n - mean * mean, 0.0) / (n - 1.0);
+}
+
+/* The standard error of the mean of n samples, from their sum and sum of squares. */
+static inline double std_error_of_mean(double sum, double sum_sq, long n)
+{
+    double mean = sum / n;
+    return sqrt(fmax(sum_sq / n - mean * mean, 0.0) / (n - 1));
+}
+
+#endif /* FOGRT_TESTS_TEST_UTIL_H */
