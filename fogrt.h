@@ -981,7 +981,9 @@ FOGRT__PUBLIC float fogrt_sample_equiangular(float u, float delta, float h, floa
 {
     float theta_a = atan2f(a - delta, h), theta_b = atan2f(b - delta, h), t;
     if (!(theta_b > theta_a) || !(h > 0.0f)) { if (pdf) *pdf = 0.0f; return a; }
-    t = delta + h * tanf(theta_a + u * (theta_b - theta_a));
+    /* atan2f(inf, h) rounds to the float just above pi/2, where tanf turns negative: keep
+       the angle strictly inside (-pi/2, pi/2) (1.57079625f is the float just below pi/2) */
+    t = delta + h * tanf(FOGRT__CLAMP(theta_a + u * (theta_b - theta_a), -1.57079625f, 1.57079625f));
     t = FOGRT__CLAMP(t, a, b);
     /* pdf = h / ((theta_b - theta_a)(h^2 + (t - delta)^2)), written so h^2 cannot underflow */
     if (pdf) *pdf = 1.0f / ((theta_b - theta_a) * (h + (t - delta) * ((t - delta) / h)));

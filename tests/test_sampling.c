@@ -1,12 +1,14 @@
 /* test_sampling.c - do fogrt's samplers draw the distributions they claim?
 
    For each sampler: a chi-square goodness-of-fit test on a grid of cells (directions on the
-   sphere, or barycentric cells of a triangle), or a Kolmogorov-Smirnov test (free-flight
-   distances), each followed by a negative control: the same routine, the same samples, a
-   deliberately wrong model, which must be rejected. Then the deterministic companions:
-   moments, pdf normalisation by quadrature, sampler pdf = evaluated pdf, spot falloff
-   values, and extreme uniforms. tests/stats.h has the statistics; docs/testing.md explains
-   how to read a failure. Fixed seeds: a given build always passes or always fails.        */
+   sphere, barycentric cells of a triangle or of every triangle of an emissive mesh), or a
+   Kolmogorov-Smirnov test (free-flight and equiangular distances), each followed by a
+   negative control: the same routine, the same samples, a deliberately wrong model, which
+   must be rejected. Then the deterministic companions: moments, pdf normalisation by
+   quadrature, sampler pdf = evaluated pdf, the values and distances lights return, an
+   inverse-CDF sweep, spot falloff values, and extreme uniforms. tests/stats.h has the
+   statistics; docs/testing.md explains how to read a failure. Fixed seeds: a given build
+   always passes or always fails.                                                          */
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
 #include "unity.h"
@@ -466,6 +468,16 @@ static double cone_one_minus_cos(double r, double dist)
     return s2 / (1.0 + sqrt(1.0 - s2));
 }
 
+/* Uniform over the cone of directions from p that see a sphere of radius r around c (all
+   directions from inside), in double, independent of fogrt. */
+static double cone_model_pdf(const sphere_args *a, const double w[3], double r)
+{
+    double pc[3] = {(double)a->c.x - a->p.x, (double)a->c.y - a->p.y, (double)a->c.z - a->p.z};
+    double dist = sqrt(pc[0] * pc[0] + pc[1] * pc[1] + pc[2] * pc[2]);
+    if (dist <= r) return 1.0 / (4.0 * STATS_PI);
+    return ray_hits_sphere(a, w, r) ? 1.0 / (2.0 * STATS_PI * cone_one_minus_cos(r, dist)) : 0.0;
+}
+
 /* The model pdf: fogrt's pdf value inside the cone of the sphere (hit test in double), 0
    outside. With model_r != r (negative control) it is the uniform cone of a sphere of
    radius model_r, computed here in double. */
@@ -475,9 +487,7 @@ static double sphere_pdf_callback(const double w[3], void *user)
     if (a->model_r == a->r) {
         return ray_hits_sphere(a, w, a->r) ? fogrt_sphere_solid_angle_pdf(a->p, a->c, a->r) : 0.0;
     }
-    double pc[3] = {(double)a->c.x - a->p.x, (double)a->c.y - a->p.y, (double)a->c.z - a->p.z};
-    double dist = sqrt(pc[0] * pc[0] + pc[1] * pc[1] + pc[2] * pc[2]);
-    return ray_hits_sphere(a, w, a->model_r) ? 1.0 / (2.0 * STATS_PI * cone_one_minus_cos(a->model_r, dist)) : 0.0;
+    return cone_model_pdf(a, w, a->model_r);
 }
 
 /* fogrt_sample_sphere_solid_angle is uniform over the cone of directions that see the
@@ -599,54 +609,576 @@ static void test_triangle_chi2(void)
 }
 
 /* ==========================================================================================
-   Spot light with a radius
-   ========================================================================================== */
-typedef struct light_args { fogrt_vec3 c; float r; } light_args;
+   Point and spot lights with a radius: spherical emitters
+   ==========================================================================================
+   A light with radius R > 0 is a sphere of uniform radiance I(theta) / (pi R^2), where
+   I(theta) is the spot profile at x seen from the light's centre. fogrt__sample_point_light
+   draws wi uniformly in the cone the sphere subtends at x (every direction from inside),
+   returns the incident radiance divided by that pdf, and the distance to the emitting point. */
 
-/* A light of radius r is spread uniformly over a sphere (fogrt_light_desc): the position is
-   c + r * fogrt_sample_uniform_sphere(u1, u2). We return the direction (p - c) / r seen from
-   the centre, in double, so the float rounding of p shows up as a length error. */
-static fogrt_vec3 light_position_sampler(void *user, float u1, float u2, bool *ok)
+/* A scene holding one light (fogrt keeps its own copy, with the spot axis normalised). */
+static fogrt_scene *light_scene(const fogrt_light_desc *desc)
 {
-    const light_args *a = (const light_args *)user;
-    fogrt_vec3 w = fogrt_sample_uniform_sphere(u1, u2);
-    fogrt_vec3 p = v3(a->c.x + a->r * w.x, a->c.y + a->r * w.y, a->c.z + a->r * w.z);
-    double dx = ((double)p.x - a->c.x) / a->r, dy = ((double)p.y - a->c.y) / a->r, dz = ((double)p.z - a->c.z) / a->r;
-    *ok = true;
-    return v3((float)dx, (float)dy, (float)dz);
+    fogrt_scene *scene = NULL;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_light(scene, desc));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    return scene;
 }
 
-/* The classic mistake: theta uniform in [0, pi] instead of cos theta uniform. Exact cell
-   probability (theta1 - theta0)/pi times the phi share. */
-static double uniform_theta_cell(double c0, double c1, double p0, double p1, void *user)
+/* I(theta) / (pi R^2) per channel, in double: the spot profile clamp((cutoff - theta) /
+   (cutoff - beam), 0, 1) at the angle between the axis and x - centre (1 for a point light). */
+static void light_radiance_ref(const fogrt_light_desc *d, fogrt_vec3 x, double out[3])
 {
-    (void)user;
-    return (acos(c0) - acos(c1)) / STATS_PI * (p1 - p0) / (2.0 * STATS_PI);
+    double falloff = 1.0;
+    if (d->type == FOGRT_LIGHT_SPOT) {
+        double v[3] = {(double)x.x - d->position.x, (double)x.y - d->position.y, (double)x.z - d->position.z};
+        double a[3] = {d->direction.x, d->direction.y, d->direction.z};
+        double c = (v[0] * a[0] + v[1] * a[1] + v[2] * a[2]) /
+                   (sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]));
+        double theta = acos(fmax(-1.0, fmin(1.0, c))) * 180.0 / STATS_PI;
+        falloff = fmax(0.0, fmin(1.0, (d->cutoff_deg - theta) / ((double)d->cutoff_deg - d->beam_deg)));
+    }
+    double area = STATS_PI * (double)d->radius * d->radius;
+    out[0] = falloff * d->intensity.x / area;
+    out[1] = falloff * d->intensity.y / area;
+    out[2] = falloff * d->intensity.z / area;
 }
 
-/* Positions on a spot light with radius (r = 0.05 at an off-centre point) are uniform over
-   its sphere. Negative control: theta uniform instead of cos theta. Fails if the position
-   distribution is not area-uniform, which would make soft shadows lopsided. */
-static void test_spot_light_radius_positions_chi2(void)
+typedef struct point_light_args {
+    const fogrt_scene *scene;
+    const fogrt_light_desc *l;     /* the scene's copy */
+    sphere_args geom;              /* p = x, c = centre, r = R: the cone model in double */
+    double radiance[3];            /* I(theta) / (pi R^2) */
+    double cone_pdf;               /* 1 / (2 pi (1 - cos theta_max)), or 1 / (4 pi) inside */
+    long bad_value, bad_dist;
+    char first_bad[320];
+} point_light_args;
+
+/* Draws one direction with fogrt__sample_point_light and checks the two numbers that come
+   with it: value x cone pdf = I(theta) / (pi R^2) per channel (to 2e-6: a few float roundings
+   of pi R^2 pdf and of 1 - cos theta_max), and the distance, which must end on the near side
+   of the sphere (|y - c| = R to 1e-5 of the scene's size; t at most sqrt(d^2 - R^2), the
+   tangent length) or be 0 from inside. */
+static fogrt_vec3 point_light_sampler(void *user, float u1, float u2, bool *ok)
+{
+    point_light_args *a = (point_light_args *)user;
+    fogrt_vec3 wi = v3(0.0f, 0.0f, 0.0f);
+    float dist = -1.0f;
+    fogrt_vec3 value = fogrt__sample_point_light(a->scene, a->l, a->geom.p, u1, u2, &wi, &dist);
+    double val[3] = {value.x, value.y, value.z};
+    bool value_ok = true;
+    for (int k = 0; k < 3; k++)
+        if (!(fabs(val[k] * a->cone_pdf - a->radiance[k]) <= 2e-6 * a->radiance[k])) value_ok = false;
+    double pc[3] = {(double)a->geom.c.x - a->geom.p.x, (double)a->geom.c.y - a->geom.p.y,
+                    (double)a->geom.c.z - a->geom.p.z};
+    double d = sqrt(pc[0] * pc[0] + pc[1] * pc[1] + pc[2] * pc[2]), R = a->geom.r;
+    bool dist_ok;
+    if (d <= R) {
+        dist_ok = dist == 0.0f;
+    } else {
+        double y[3] = {-pc[0] + (double)wi.x * dist, -pc[1] + (double)wi.y * dist, -pc[2] + (double)wi.z * dist};
+        double radial = sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]) - R, tol = 1e-5 * (d + R);
+        dist_ok = fabs(radial) <= tol && dist >= d - R - tol && dist <= sqrt((d - R) * (d + R)) + tol;
+    }
+    if (!value_ok && a->bad_value++ == 0)
+        snprintf(a->first_bad, sizeof a->first_bad,
+                 "value (%.9g, %.9g, %.9g) x cone pdf %.9g != I(theta)/(pi R^2) = (%.9g, %.9g, %.9g)",
+                 val[0], val[1], val[2], a->cone_pdf, a->radiance[0], a->radiance[1], a->radiance[2]);
+    if (value_ok && !dist_ok && a->bad_dist++ == 0)
+        snprintf(a->first_bad, sizeof a->first_bad,
+                 "dist %.9g along wi (%.7g, %.7g, %.7g) does not end on the near side of the sphere (d=%.7g, R=%g)",
+                 (double)dist, (double)wi.x, (double)wi.y, (double)wi.z, d, R);
+    *ok = isfinite(val[0]) && val[0] > 0.0 && isfinite(dist);
+    return wi;
+}
+
+/* The model for the directions: uniform in the cone of the sphere of radius model_r (in
+   double, independent of fogrt), or over all directions from inside. */
+static double cone_model_callback(const double w[3], void *user)
+{
+    const sphere_args *a = (const sphere_args *)user;
+    return cone_model_pdf(a, w, a->model_r);
+}
+
+/* The classic mistake: theta uniform in [0, theta_max] instead of cos theta. Exact cell
+   probability: the share of [0, theta_max] inside the row, times the phi share. */
+static double angle_uniform_cone_cell(double c0, double c1, double p0, double p1, void *user)
+{
+    double theta_max = *(const double *)user;
+    double lo = acos(fmin(1.0, c1)), hi = fmin(acos(fmax(-1.0, c0)), theta_max);
+    return hi > lo ? (hi - lo) / theta_max * (p1 - p0) / (2.0 * STATS_PI) : 0.0;
+}
+
+/* Three lights with a radius: a point light seen from outside (a cone of 16 degrees), a spot
+   light whose profile is on its ramp at x, far away (a cone of 0.013 rad), and a point light
+   seen from inside its sphere. */
+static fogrt_light_desc radius_light(int k, fogrt_vec3 *x, const char **label)
+{
+    fogrt_light_desc d;
+    memset(&d, 0, sizeof d);
+    d.intensity = v3(3.0f, 2.0f, 0.5f);
+    if (k == 0) {
+        d.type = FOGRT_LIGHT_POINT; d.position = v3(1.0f, 2.0f, -0.5f); d.radius = 0.3f;
+        *x = v3(0.2f, 1.5f, 0.1f);
+        *label = "point light, x outside (cone of 16 deg)";
+    } else if (k == 1) {
+        d.type = FOGRT_LIGHT_SPOT; d.position = v3(0.5f, 3.0f, -1.0f); d.radius = 0.05f;
+        d.direction = v3(0.2f, -2.0f, 0.1f);          /* not unit length: fogrt normalises it */
+        d.cutoff_deg = 40.0f; d.beam_deg = 20.0f;
+        *x = v3(3.0f, 0.0f, -1.2f);                   /* 34 degrees off the axis: on the ramp */
+        *label = "spot light, x on the ramp, far (cone of 0.013 rad)";
+    } else {
+        d.type = FOGRT_LIGHT_POINT; d.position = v3(0.0f, 1.0f, 0.0f); d.radius = 1.0f;
+        *x = v3(0.3f, 1.2f, -0.4f);
+        *label = "point light, x inside the sphere";
+    }
+    return d;
+}
+
+/* Fills the arguments of point_light_sampler for the scene's light seen from x. */
+static void point_light_setup(point_light_args *a, const fogrt_scene *scene, fogrt_vec3 x)
+{
+    memset(a, 0, sizeof *a);
+    a->scene = scene;
+    a->l = &scene->lights[0];
+    a->geom.p = x;
+    a->geom.c = a->l->position;
+    a->geom.r = a->l->radius;
+    a->geom.model_r = a->l->radius;
+    light_radiance_ref(a->l, x, a->radiance);
+    double pc[3] = {(double)a->geom.c.x - x.x, (double)a->geom.c.y - x.y, (double)a->geom.c.z - x.z};
+    double d = sqrt(pc[0] * pc[0] + pc[1] * pc[1] + pc[2] * pc[2]);
+    a->cone_pdf = d <= a->geom.r ? 1.0 / (4.0 * STATS_PI)
+                                 : 1.0 / (2.0 * STATS_PI * cone_one_minus_cos(a->geom.r, d));
+}
+
+/* The directions fogrt__sample_point_light draws for a light with a radius are uniform in
+   the cone the sphere subtends at x (uniform over the sphere of directions from inside), and
+   every sample's value x cone pdf equals I(theta) / (pi R^2), with a distance that ends on
+   the near side of the sphere. Negative controls: theta uniform in the cone (outside), a
+   density 10% higher toward +z (inside). Fails if the emitter is sampled by area or by
+   angle instead of solid angle, the cone is mis-sized, the value is not radiance / pdf, or
+   the spot profile is not applied. */
+static void test_point_light_radius_directions_chi2(void)
 {
     stats_tally t = {0, 0, ""};
-    light_args a;
-    a.c = v3(2.5f, 4.0f, -1.0f);
-    a.r = 0.05f;
     stats_sphere_grid grid;
-    stats_grid_init(&grid, 30, 60);
-    double *observed = alloc_cells(&grid), *expected = alloc_cells(&grid);
-    dir_sampler s = {light_position_sampler, &a};
-    const long n = 300000;
-    long invalid = count_directions(&grid, s, n, 9000, observed);
-    stats_grid_expected_from_pdf(&grid, uniform_sphere_pdf_callback, NULL, (double)n, expected);
-    REPORT(t, grid_verdict("spot_radius_positions", "spot light position c + r fogrt_sample_uniform_sphere",
-                           "c=(2.5,4,-1), r=0.05", &grid, observed, expected, invalid, false));
-    stats_grid_expected_from_cells(&grid, uniform_theta_cell, NULL, (double)n, expected);
-    REPORT(t, grid_verdict("spot_radius_positions", "spot light position c + r fogrt_sample_uniform_sphere",
-                           "model: theta uniform in [0, pi]", &grid, observed, expected, invalid, true));
+    double *observed = NULL, *expected = NULL;
+    for (int k = 0; k < 3; k++) {
+        fogrt_vec3 x;
+        const char *label;
+        fogrt_light_desc desc = radius_light(k, &x, &label);
+        fogrt_scene *scene = light_scene(&desc);
+        point_light_args a;
+        point_light_setup(&a, scene, x);
+        double pc[3] = {(double)a.geom.c.x - x.x, (double)a.geom.c.y - x.y, (double)a.geom.c.z - x.z};
+        double d = sqrt(pc[0] * pc[0] + pc[1] * pc[1] + pc[2] * pc[2]);
+        bool inside = d <= a.geom.r;
+        double omc = inside ? 2.0 : cone_one_minus_cos(a.geom.r, d);
+        if (inside) {
+            stats_grid_init(&grid, 20, 40);
+        } else {
+            /* Frame z toward the centre; one catch-all row below the cone, then 40 equal rows
+               from 1.25 (1 - cos theta_max) below 1 up to 1 (as for the solid-angle test). */
+            double lo = 1.0 - 1.25 * omc;
+            stats_grid_init(&grid, 41, 20);
+            for (int i = 1; i <= 41; i++) grid.cos_edge[i] = lo + (1.0 - lo) * (i - 1) / 40.0;
+            grid.cos_edge[41] = 1.0;
+            stats_grid_set_axis(&grid, pc[0], pc[1], pc[2]);
+        }
+        if (!observed) {
+            stats_sphere_grid big;
+            stats_grid_init(&big, 41, 40);
+            observed = alloc_cells(&big);
+            expected = alloc_cells(&big);
+        }
+        dir_sampler s = {point_light_sampler, &a};
+        const long n = 100000;
+        long invalid = count_directions(&grid, s, n, 9000 + (uint64_t)k, observed);
+        double total = stats_grid_expected_from_pdf(&grid, cone_model_callback, &a.geom, (double)n, expected);
+        char name[64], param[200], msg[800];
+        snprintf(msg, sizeof msg, "%s: the cone model integrates to %.7f", label, total);
+        TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-4, 1.0, total, msg);
+        snprintf(msg, sizeof msg, "%s: %ld samples with a wrong value, %ld with a wrong distance; first: %s", label,
+                 a.bad_value, a.bad_dist, a.first_bad);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, a.bad_value + a.bad_dist, msg);
+        snprintf(name, sizeof name, "point_light_radius_%d", k);
+        snprintf(param, sizeof param, "%s: |c-x|=%.4g R=%g", label, d, (double)a.geom.r);
+        REPORT(t, grid_verdict(name, "fogrt__sample_point_light directions", param, &grid, observed, expected,
+                               invalid, false));
+        if (inside) {
+            stats_grid_expected_from_pdf(&grid, tilted_sphere_pdf, NULL, (double)n, expected);
+            snprintf(param, sizeof param, "%s, model: (1 + 0.1 z) / 4 pi", label);
+        } else {
+            double theta_max = 2.0 * asin(sqrt(0.5 * omc));
+            stats_grid_expected_from_cells(&grid, angle_uniform_cone_cell, &theta_max, (double)n, expected);
+            snprintf(param, sizeof param, "%s, model: theta uniform in [0, theta_max]", label);
+        }
+        REPORT(t, grid_verdict(name, "fogrt__sample_point_light directions", param, &grid, observed, expected,
+                               invalid, true));
+        fogrt_scene_destroy(scene);
+    }
     free(observed);
     free(expected);
+    TALLY_ASSERT(t);
+}
+
+/* A uniform sphere acts on the outside like a point at its centre: the irradiance it gives a
+   small surface at x with normal n is I(theta) (n . axis) / d^2 whenever the whole sphere is
+   above n's horizon, at every distance (the integral of w over the cone is pi sin^2 theta_max
+   times the axis). So the mean of value x (n . wi) over 1e5 samples must equal the point
+   light's I(theta) cos / d^2, within 4 standard errors plus 2e-6 relative (the float rounding
+   of the value, which is the same for every sample). Near (d = 1.5 R), medium, and far
+   (d = 200 R) lights, facing and tilted surfaces, a spot light on its ramp. Fails if the
+   radiance is not I/(pi R^2), the value is not radiance / pdf, or the cone is sampled
+   unevenly (the mean cosine changes). */
+static void test_point_light_radius_irradiance(void)
+{
+    struct { int type; float c[3], R, x[3], tilt_deg; } cs[] = {
+        {FOGRT_LIGHT_POINT, {0.0f, 0.0f, 0.0f}, 0.3f, {0.36f, 0.0f, 0.27f}, 0.0f},    /* d = 1.5 R */
+        {FOGRT_LIGHT_POINT, {0.0f, 0.0f, 0.0f}, 0.3f, {0.36f, 0.0f, 0.27f}, 45.0f},   /* 41.8 + 45 < 90 */
+        {FOGRT_LIGHT_POINT, {1.0f, 2.0f, -0.5f}, 0.3f, {0.2f, 1.5f, 0.1f}, 70.0f},    /* 15.6 + 70 < 90 */
+        {FOGRT_LIGHT_POINT, {1.0f, 2.0f, -0.5f}, 0.01f, {1.0f, 0.4f, 0.7f}, 0.0f},    /* d = 200 R */
+        {FOGRT_LIGHT_SPOT, {0.5f, 3.0f, -1.0f}, 0.05f, {3.0f, 0.0f, -1.2f}, 30.0f},   /* on the ramp */
+    };
+    char msg[400];
+    for (size_t k = 0; k < sizeof cs / sizeof cs[0]; k++) {
+        fogrt_light_desc desc;
+        memset(&desc, 0, sizeof desc);
+        desc.type = (fogrt_light_type)cs[k].type;
+        desc.position = v3(cs[k].c[0], cs[k].c[1], cs[k].c[2]);
+        desc.radius = cs[k].R;
+        desc.intensity = v3(3.0f, 2.0f, 0.5f);
+        desc.direction = v3(0.2f, -2.0f, 0.1f);
+        desc.cutoff_deg = 40.0f;
+        desc.beam_deg = 20.0f;
+        fogrt_scene *scene = light_scene(&desc);
+        fogrt_vec3 x = v3(cs[k].x[0], cs[k].x[1], cs[k].x[2]);
+        double I[3];
+        light_radiance_ref(&scene->lights[0], x, I);          /* I(theta) / (pi R^2) */
+        /* the normal: tilted by tilt_deg away from the axis toward the centre */
+        stats_sphere_grid frame;
+        stats_grid_init(&frame, 2, 2);
+        double pc[3] = {(double)desc.position.x - x.x, (double)desc.position.y - x.y, (double)desc.position.z - x.z};
+        double d2 = pc[0] * pc[0] + pc[1] * pc[1] + pc[2] * pc[2];
+        stats_grid_set_axis(&frame, pc[0], pc[1], pc[2]);
+        double tilt = cs[k].tilt_deg * STATS_PI / 180.0, nrm[3];
+        for (int i = 0; i < 3; i++) nrm[i] = cos(tilt) * frame.z[i] + sin(tilt) * frame.x[i];
+        fogrt_rng rng;
+        fogrt_rng_seed(&rng, 9500 + (uint64_t)k, 2);
+        const long n = 100000;
+        double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+        for (long s = 0; s < n; s++) {
+            float u1 = fogrt_rng_float(&rng), u2 = fogrt_rng_float(&rng), dist;
+            fogrt_vec3 wi;
+            fogrt_vec3 v = fogrt__sample_point_light(scene, &scene->lights[0], x, u1, u2, &wi, &dist);
+            double c = nrm[0] * wi.x + nrm[1] * wi.y + nrm[2] * wi.z;
+            double e[3] = {v.x * c, v.y * c, v.z * c};
+            for (int i = 0; i < 3; i++) { sum[i] += e[i]; sum2[i] += e[i] * e[i]; }
+        }
+        for (int i = 0; i < 3; i++) {
+            double want = I[i] * STATS_PI * (double)desc.radius * desc.radius * cos(tilt) / d2;   /* I cos / d^2 */
+            double mean = sum[i] / n, var = fmax(0.0, (sum2[i] - n * mean * mean) / (n - 1)), se = sqrt(var / n);
+            double tol = 4.0 * se + 2e-6 * want;
+            snprintf(msg, sizeof msg,
+                     "light with radius %g at d=%.4g (%s), surface tilted %g deg, channel %d: mean value x cos = %.9g, "
+                     "I cos/d^2 = %.9g, diff %.3g (s.e. %.2g, limit %.2g)",
+                     (double)desc.radius, sqrt(d2), cs[k].type == FOGRT_LIGHT_SPOT ? "spot" : "point",
+                     (double)cs[k].tilt_deg, i, mean, want, mean - want, se, tol);
+            if (i == 0) TEST_MESSAGE(msg);
+            TEST_ASSERT_TRUE_MESSAGE(want > 0.0, msg);
+            TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(tol, want, mean, msg);
+        }
+        fogrt_scene_destroy(scene);
+    }
+}
+
+/* ==========================================================================================
+   Area lights: emissive meshes and spheres
+   ==========================================================================================
+   Every emissive mesh is one area light: fogrt__sample_area_light picks one of its
+   triangles with probability area / total area (binary search in a CDF), then a uniform
+   point on it, and returns the emission, the direction and distance to the point, and the
+   solid-angle pdf dist^2 / (cos_l total area). An emissive sphere is sampled by the cone it
+   subtends. The test scene: mesh A (6 triangles: 4 emissive ones of areas 0.07 to 2.6 in
+   three planes, one black one and one degenerate one, neither of which may be picked), mesh
+   B (3 triangles of areas 2, 0.02 and 1: the second light, whose CDF does not start at 0),
+   and an emissive sphere. Each emissive triangle has its own material, with emission.x =
+   1 + its index, so the emission returned names the triangle that was picked.             */
+#define AREA_TRIS 9
+static const float AREA_V[AREA_TRIS][9] = {
+    /* mesh A */
+    {-1.0f, -1.0f, 0.0f,   0.0f, -1.0f, 0.0f,  -1.0f, 0.0f, 0.0f},     /* 0: area 0.5 */
+    { 0.0f, -1.0f, 0.0f,   2.0f, -1.0f, 0.0f,   0.0f, 0.5f, 0.0f},     /* 1: area 1.5 */
+    {-1.0f, 0.0f, 0.0f,    0.0f, 0.5f, 0.0f,   -1.0f, 1.0f, 0.0f},     /* 2: black */
+    { 1.0f, 1.0f, 0.0f,    1.5f, 1.0f, 0.0f,    2.0f, 1.0f, 0.0f},     /* 3: emissive, zero area */
+    {-1.5f, 1.0f, 0.2f,   -1.1f, 1.0f, 0.2f,   -1.5f, 1.3f, 0.4f},     /* 4: area 0.072, tilted */
+    { 0.5f, 0.8f, -0.5f,   3.0f, 0.8f, 0.0f,    0.5f, 2.8f, -0.2f},    /* 5: area 2.58, tilted */
+    /* mesh B, in the plane x = 3, facing -x */
+    { 3.0f, -1.0f, 0.0f,   3.0f, -1.0f, 2.0f,   3.0f, 1.0f, 0.0f},     /* 6: area 2 */
+    { 3.0f, 1.2f, 0.0f,    3.0f, 1.2f, 0.2f,    3.0f, 1.4f, 0.0f},     /* 7: area 0.02 */
+    { 3.0f, 1.5f, 0.5f,    3.0f, 1.5f, 1.5f,    3.0f, 3.5f, 0.5f},     /* 8: area 1 */
+};
+#define AREA_MESH_A 6                   /* triangles 0..5 are mesh A, 6..8 mesh B */
+static const float AREA_P[3] = {0.2f, 0.1f, 3.0f};           /* the receiving point */
+static const float AREA_SPHERE_C[3] = {-2.0f, 0.5f, 1.0f}, AREA_SPHERE_R = 0.6f;   /* |c - p| = 3 */
+
+/* Triangle geometry in double: edges, unit normal, area. */
+typedef struct tri_geom { double v0[3], e1[3], e2[3], n[3], area; } tri_geom;
+
+static tri_geom triangle_geometry(int t)
+{
+    tri_geom g;
+    for (int i = 0; i < 3; i++) {
+        g.v0[i] = AREA_V[t][i];
+        g.e1[i] = (double)AREA_V[t][3 + i] - AREA_V[t][i];
+        g.e2[i] = (double)AREA_V[t][6 + i] - AREA_V[t][i];
+    }
+    double c[3] = {g.e1[1] * g.e2[2] - g.e1[2] * g.e2[1], g.e1[2] * g.e2[0] - g.e1[0] * g.e2[2],
+                   g.e1[0] * g.e2[1] - g.e1[1] * g.e2[0]};
+    double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    g.area = 0.5 * len;
+    for (int i = 0; i < 3; i++) g.n[i] = len > 0.0 ? c[i] / len : 0.0;
+    return g;
+}
+
+static bool area_tri_emissive(int t) { return t != 2 && triangle_geometry(t).area > 0.0; }
+
+/* Builds the scene: mesh A, mesh B, the emissive sphere. */
+static fogrt_scene *area_light_scene(void)
+{
+    fogrt_scene *scene = NULL;
+    uint32_t mat[AREA_TRIS], sphere_mat;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
+    for (int t = 0; t < AREA_TRIS; t++) {
+        fogrt_material_desc m;
+        memset(&m, 0, sizeof m);
+        m.reflectance = v3(0.5f, 0.5f, 0.5f);
+        if (t != 2) m.emission = v3(1.0f + (float)t, 0.5f, 0.25f);
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_material(scene, &m, &mat[t]));
+    }
+    fogrt_material_desc sm;
+    memset(&sm, 0, sizeof sm);
+    sm.emission = v3(7.0f, 6.0f, 5.0f);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_material(scene, &sm, &sphere_mat));
+    for (int mesh = 0; mesh < 2; mesh++) {
+        int first = mesh == 0 ? 0 : AREA_MESH_A, count = mesh == 0 ? AREA_MESH_A : AREA_TRIS - AREA_MESH_A;
+        fogrt_mesh_desc md;
+        memset(&md, 0, sizeof md);
+        md.positions = &AREA_V[first][0];
+        md.vertex_count = 3 * (uint32_t)count;
+        md.triangle_count = (uint32_t)count;
+        md.triangle_materials = &mat[first];
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_mesh(scene, &md));
+    }
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK,
+                          fogrt_scene_add_sphere(scene, v3(AREA_SPHERE_C[0], AREA_SPHERE_C[1], AREA_SPHERE_C[2]),
+                                                 AREA_SPHERE_R, sphere_mat));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    return scene;
+}
+
+/* Points picked on mesh light L (0: mesh A, 1: mesh B) are uniform by area over the whole
+   mesh: a chi-square test on cells (triangle, K x K barycentric cell), with expected counts
+   n (area / total area) x (2/K^2 below the diagonal, 1/K^2 on it). Each sample must lie on
+   the triangle its emission names (plane distance and barycentric slack 1e-5), and its pdf
+   must equal dist^2 / (cos_l total area) computed in double (to 1e-5 + 4e-7 / cos_l: the
+   float direction's error in cos_l) and the MIS partner fogrt__area_light_pdf at that point.
+   Negative control: each triangle picked with the same probability (uniform by index).
+   Fails if the CDF is not by area, the binary search is off by one, a light reads another
+   light's CDF range, a black or degenerate triangle is picked, or the pdf forgets cos_l. */
+static void test_area_light_mesh_chi2(void)
+{
+    stats_tally t = {0, 0, ""};
+    enum { K = 10, MAXT = AREA_MESH_A };
+    fogrt_scene *scene = area_light_scene();
+    fogrt_vec3 p = v3(AREA_P[0], AREA_P[1], AREA_P[2]);
+    char msg[800];
+    snprintf(msg, sizeof msg, "area_light_count = %u, want 3 (mesh A, mesh B, sphere)", scene->area_light_count);
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(3, scene->area_light_count, msg);
+    for (int L = 0; L < 2; L++) {
+        int first = L == 0 ? 0 : AREA_MESH_A, last = L == 0 ? AREA_MESH_A : AREA_TRIS;
+        int cell_tri[MAXT], tri_cell[AREA_TRIS], T = 0;   /* emissive triangles of this light */
+        tri_geom geom[AREA_TRIS];
+        double total_area = 0.0;
+        for (int k = first; k < last; k++) {
+            geom[k] = triangle_geometry(k);
+            tri_cell[k] = -1;
+            if (!area_tri_emissive(k)) continue;
+            tri_cell[k] = T;
+            cell_tri[T++] = k;
+            total_area += geom[k].area;
+            /* set-up check: p sees the front of every emissive triangle (cos_l > 0 at each vertex) */
+            for (int v = 0; v < 3; v++) {
+                double q[3] = {(double)p.x - AREA_V[k][3 * v], (double)p.y - AREA_V[k][3 * v + 1],
+                               (double)p.z - AREA_V[k][3 * v + 2]};
+                TEST_ASSERT_TRUE_MESSAGE(q[0] * geom[k].n[0] + q[1] * geom[k].n[1] + q[2] * geom[k].n[2] > 0.0,
+                                         "test set-up: p must face every emissive triangle");
+            }
+        }
+        const fogrt__area_light *light = &scene->area_lights[L];
+        snprintf(msg, sizeof msg, "mesh light %d: %u triangles, area %.9g; want %d triangles, area %.9g", L,
+                 light->count, (double)light->area, T, total_area);
+        TEST_MESSAGE(msg);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE((uint32_t)T, light->count, msg);
+        TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-6 * total_area, total_area, (double)light->area, msg);
+
+        double observed[MAXT * K * K], expected[MAXT * K * K];
+        memset(observed, 0, sizeof observed);
+        fogrt_rng rng;
+        fogrt_rng_seed(&rng, 9700 + (uint64_t)L, 11);
+        const long n = L == 0 ? 200000 : 100000;
+        long invalid = 0, bad_pdf = 0, bad_mis = 0;
+        char first_bad[320] = "";
+        for (long s = 0; s < n; s++) {
+            fogrt_vec3 wi = v3(0.0f, 0.0f, 0.0f);
+            float dist = -1.0f, pdf = -1.0f;
+            fogrt_vec3 Le = fogrt__sample_area_light(scene, light, p, &rng, &wi, &dist, &pdf);
+            int k = (int)Le.x - 1;
+            if (!(pdf > 0.0f) || !(Le.x == (float)(k + 1)) || k < first || k >= last || tri_cell[k] < 0 ||
+                Le.y != 0.5f || Le.z != 0.25f || !isfinite(dist)) {
+                invalid++;
+                continue;
+            }
+            /* the point, its plane distance and barycentrics on triangle k, in double */
+            const tri_geom *g = &geom[k];
+            double q[3], y[3];
+            for (int i = 0; i < 3; i++) {
+                double pi_ = i == 0 ? p.x : (i == 1 ? p.y : p.z), wii = i == 0 ? wi.x : (i == 1 ? wi.y : wi.z);
+                y[i] = pi_ + wii * dist;
+                q[i] = y[i] - g->v0[i];
+            }
+            double a11 = g->e1[0] * g->e1[0] + g->e1[1] * g->e1[1] + g->e1[2] * g->e1[2];
+            double a22 = g->e2[0] * g->e2[0] + g->e2[1] * g->e2[1] + g->e2[2] * g->e2[2];
+            double a12 = g->e1[0] * g->e2[0] + g->e1[1] * g->e2[1] + g->e1[2] * g->e2[2];
+            double r1 = q[0] * g->e1[0] + q[1] * g->e1[1] + q[2] * g->e1[2];
+            double r2 = q[0] * g->e2[0] + q[1] * g->e2[1] + q[2] * g->e2[2];
+            double det = a11 * a22 - a12 * a12;
+            double b1 = (r1 * a22 - r2 * a12) / det, b2 = (r2 * a11 - r1 * a12) / det;
+            double plane = fabs(q[0] * g->n[0] + q[1] * g->n[1] + q[2] * g->n[2]);
+            const double slack = 1e-5;
+            if (plane > slack || b1 < -slack || b2 < -slack || b1 + b2 > 1.0 + slack) {
+                if (invalid++ == 0)
+                    snprintf(first_bad, sizeof first_bad, "point not on triangle %d: plane distance %.3g, b = (%.6g, %.6g)",
+                             k, plane, b1, b2);
+                continue;
+            }
+            int i = (int)floor(fmax(0.0, b1) * K), j = (int)floor(fmax(0.0, b2) * K);
+            if (i > K - 1) i = K - 1;
+            if (j > K - 1) j = K - 1;
+            while (i + j > K - 1) { if (i > j) i--; else j--; }   /* on (or a rounding past) the diagonal */
+            observed[(tri_cell[k] * K + i) * K + j] += 1.0;
+            /* the solid-angle pdf, in double */
+            double cos_l = -(wi.x * g->n[0] + wi.y * g->n[1] + wi.z * g->n[2]);
+            double want = (double)dist * dist / (cos_l * total_area), tol = (1e-5 + 4e-7 / cos_l) * want;
+            float mis = fogrt__area_light_pdf(scene, (uint32_t)k, p, v3((float)y[0], (float)y[1], (float)y[2]),
+                                              v3((float)g->n[0], (float)g->n[1], (float)g->n[2]));
+            if (!(fabs(pdf - want) <= tol) && bad_pdf++ == 0)
+                snprintf(first_bad, sizeof first_bad, "triangle %d: pdf %.9g, dist^2/(cos_l A) = %.9g (cos_l %.6f)", k,
+                         (double)pdf, want, cos_l);
+            if (!(fabs(mis - want) <= tol) && bad_mis++ == 0)
+                snprintf(first_bad, sizeof first_bad, "triangle %d: fogrt__area_light_pdf %.9g, want %.9g", k,
+                         (double)mis, want);
+        }
+        snprintf(msg, sizeof msg, "mesh light %d: %ld samples with a pdf other than dist^2/(cos_l A), %ld with "
+                 "another fogrt__area_light_pdf; first: %s", L, bad_pdf, bad_mis, first_bad);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, bad_pdf + bad_mis, msg);
+
+        double edge[MAXT * K + 1];
+        for (int r = 0; r <= T * K; r++) edge[r] = (double)r / K;   /* row r: triangle r / K, b1 cell r % K */
+        char name[64], param[200];
+        snprintf(name, sizeof name, "area_light_mesh_%d", L);
+        for (int neg = 0; neg < 2; neg++) {
+            for (int c = 0; c < T; c++) {
+                double share = neg ? 1.0 / T : geom[cell_tri[c]].area / total_area;
+                for (int i = 0; i < K; i++)
+                    for (int j = 0; j < K; j++)
+                        expected[(c * K + i) * K + j] = n * share * (i + j < K - 1 ? 2.0 : (i + j == K - 1 ? 1.0 : 0.0)) / (K * K);
+            }
+            snprintf(param, sizeof param, "mesh %c, %d emissive triangles of areas %.3g..%.3g, K=%d cells each%s",
+                     L == 0 ? 'A' : 'B', T, L == 0 ? geom[4].area : geom[7].area, L == 0 ? geom[5].area : geom[6].area,
+                     K, neg ? ", model: uniform by triangle index" : "");
+            if (!neg && invalid) {
+                snprintf(msg, sizeof msg, "mesh light %d: first invalid sample: %s", L,
+                         first_bad[0] ? first_bad : "black, zero-pdf or foreign triangle");
+                TEST_MESSAGE(msg);
+            }
+            REPORT(t, stats_chi2_verdict(name, "fogrt__sample_area_light points", param, T * K, K, edge,
+                                         "triangle + b1", edge, "b2", observed, expected, invalid, neg == 1));
+        }
+    }
+    fogrt_scene_destroy(scene);
+    TALLY_ASSERT(t);
+}
+
+/* An emissive sphere light is sampled by solid angle: directions uniform in the cone it
+   subtends at p, every pdf equal to fogrt_sphere_solid_angle_pdf, the emission of its
+   material, and a distance that ends on the near side of the sphere; from inside the sphere
+   (it emits outward only) the sample is unusable: black, pdf 0. Negative control: the cone
+   of a sphere 5% larger. Fails if the sphere is sampled by area, or the pdf is not that of
+   the cone (biasing MIS). */
+static void test_area_light_sphere_chi2(void)
+{
+    stats_tally t = {0, 0, ""};
+    fogrt_scene *scene = area_light_scene();
+    const fogrt__area_light *light = &scene->area_lights[2];
+    TEST_ASSERT_TRUE_MESSAGE(light->sphere != UINT32_MAX, "the third area light should be the sphere");
+    sphere_args a;
+    memset(&a, 0, sizeof a);
+    a.p = v3(AREA_P[0], AREA_P[1], AREA_P[2]);
+    a.c = v3(AREA_SPHERE_C[0], AREA_SPHERE_C[1], AREA_SPHERE_C[2]);
+    a.r = AREA_SPHERE_R;
+    a.model_r = a.r;
+    double pc[3] = {(double)a.c.x - a.p.x, (double)a.c.y - a.p.y, (double)a.c.z - a.p.z};
+    double d = sqrt(pc[0] * pc[0] + pc[1] * pc[1] + pc[2] * pc[2]), omc = cone_one_minus_cos(a.r, d);
+    stats_sphere_grid grid;
+    stats_grid_init(&grid, 41, 20);
+    for (int i = 1; i <= 41; i++) grid.cos_edge[i] = 1.0 - 1.25 * omc + 1.25 * omc * (i - 1) / 40.0;
+    grid.cos_edge[41] = 1.0;
+    stats_grid_set_axis(&grid, pc[0], pc[1], pc[2]);
+    double *observed = alloc_cells(&grid), *expected = alloc_cells(&grid);
+    fogrt_rng rng;
+    fogrt_rng_seed(&rng, 9800, 13);
+    const long n = 100000;
+    long invalid = 0, bad = 0;
+    char first_bad[320] = "", msg[800];
+    float want_pdf = fogrt_sphere_solid_angle_pdf(a.p, a.c, a.r);
+    for (long s = 0; s < n; s++) {
+        fogrt_vec3 wi = v3(0.0f, 0.0f, 0.0f);
+        float dist = -1.0f, pdf = -1.0f;
+        fogrt_vec3 Le = fogrt__sample_area_light(scene, light, a.p, &rng, &wi, &dist, &pdf);
+        int cell = pdf > 0.0f ? stats_grid_cell(&grid, wi.x, wi.y, wi.z) : -1;
+        if (cell < 0) { invalid++; continue; }
+        observed[cell] += 1.0;
+        double y[3] = {-pc[0] + (double)wi.x * dist, -pc[1] + (double)wi.y * dist, -pc[2] + (double)wi.z * dist};
+        double radial = sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]) - a.r, tol = 1e-5 * (d + a.r);
+        bool ok = pdf == want_pdf && Le.x == 7.0f && Le.y == 6.0f && Le.z == 5.0f && fabs(radial) <= tol &&
+                  dist <= sqrt((d - a.r) * (d + a.r)) + tol;
+        if (!ok && bad++ == 0)
+            snprintf(first_bad, sizeof first_bad, "pdf %.9g (want %.9g), Le (%g, %g, %g), dist %.9g: |y - c| - r = %.3g",
+                     (double)pdf, (double)want_pdf, (double)Le.x, (double)Le.y, (double)Le.z, (double)dist, radial);
+    }
+    snprintf(msg, sizeof msg, "sphere light: %ld samples with a wrong pdf, emission or distance; first: %s", bad, first_bad);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, bad, msg);
+    double total = stats_grid_expected_from_pdf(&grid, cone_model_callback, &a, (double)n, expected);
+    TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-4, 1.0, total, "the sphere's cone model does not integrate to 1");
+    REPORT(t, grid_verdict("area_light_sphere", "fogrt__sample_area_light sphere directions",
+                           "|c-p|=3 r=0.6 (cone of 11.5 deg)", &grid, observed, expected, invalid, false));
+    a.model_r = 1.05 * a.r;
+    stats_grid_expected_from_pdf(&grid, cone_model_callback, &a, (double)n, expected);
+    REPORT(t, grid_verdict("area_light_sphere", "fogrt__sample_area_light sphere directions",
+                           "model: the cone of a sphere of radius 0.63", &grid, observed, expected, invalid, true));
+    /* from inside the emitting sphere: nothing to sample */
+    fogrt_vec3 wi;
+    float dist, pdf = -1.0f;
+    fogrt_vec3 Le = fogrt__sample_area_light(scene, light, v3(-1.8f, 0.6f, 1.1f), &rng, &wi, &dist, &pdf);
+    snprintf(msg, sizeof msg, "from inside the sphere light: Le (%g, %g, %g), pdf %g; want black, 0", (double)Le.x,
+             (double)Le.y, (double)Le.z, (double)pdf);
+    TEST_ASSERT_TRUE_MESSAGE(pdf == 0.0f && Le.x == 0.0f && Le.y == 0.0f && Le.z == 0.0f, msg);
+    free(observed);
+    free(expected);
+    fogrt_scene_destroy(scene);
     TALLY_ASSERT(t);
 }
 
@@ -752,6 +1284,225 @@ static void test_exponential_pdf_and_inverse(void)
     }
     TEST_ASSERT_TRUE(isinf(fogrt_sample_exponential(0.5f, 0.0f)) && fogrt_sample_exponential(0.5f, 0.0f) > 0.0f);
     TEST_ASSERT_EQUAL_FLOAT(0.0f, fogrt_exponential_pdf(1.0f, 0.0f));
+}
+
+/* ==========================================================================================
+   Equiangular distance sampling toward a point light
+   ==========================================================================================
+   The light is at distance h from the ray's line, its closest approach at t = delta; on the
+   segment [a, b] (b may be +infinity) fogrt_sample_equiangular draws t with density
+   proportional to 1 / (h^2 + (t - delta)^2). With theta(t) = atan((t - delta) / h) the angle
+   seen from the light, the CDF is (theta(t) - theta(a)) / (theta(b) - theta(a)): theta is
+   uniform, which is how the sampler works and how the tests below measure it.              */
+typedef struct eq_case {
+    float delta, h, a, b;
+    float neg_delta, neg_h;     /* the negative control's model */
+    const char *label;
+} eq_case;
+
+/* The KS cases. Negative controls: h doubled where the light is over the segment; where it
+   lies beyond an end, the density there is about 1 / (t - delta)^2 whatever h is, so the
+   control moves the light 10% farther along the ray instead. */
+static const eq_case EQ_CASES[] = {
+    {1.0f, 0.5f, 0.0f, 3.0f, 1.0f, 1.0f, "light over the segment"},
+    {1.0f, 0.5f, 0.0f, INFINITY, 1.0f, 1.0f, "escaping ray, b = +inf"},
+    {-2.0f, 0.3f, 0.0f, 5.0f, -2.2f, 0.3f, "light behind the start"},
+    {9.0f, 0.4f, 0.0f, 4.0f, 9.5f, 0.4f, "light beyond the end"},
+    {0.7f, 1e-3f, 0.0f, 2.0f, 0.7f, 2e-3f, "light 1e-3 from the line"},
+    {-3.0f, 0.05f, 0.0f, INFINITY, -3.3f, 0.05f, "light behind the start, b = +inf"},
+};
+#define EQ_CASE_COUNT ((int)(sizeof EQ_CASES / sizeof EQ_CASES[0]))
+
+typedef struct eq_model { double delta, h, a, b, theta_a, range; } eq_model;   /* range = theta_b - theta_a */
+
+/* theta(t) in double; theta(+inf) = pi/2 exactly. */
+static double eq_theta(const eq_model *m, double t)
+{
+    return isinf(t) ? 0.5 * STATS_PI : atan2(t - m->delta, m->h);
+}
+
+static eq_model eq_model_of(float delta, float h, float a, float b)
+{
+    eq_model m;
+    m.delta = delta; m.h = h; m.a = a; m.b = b;
+    m.theta_a = eq_theta(&m, m.a);
+    m.range = eq_theta(&m, m.b) - m.theta_a;
+    return m;
+}
+
+static double eq_cdf(double t, void *user)
+{
+    const eq_model *m = (const eq_model *)user;
+    if (t <= m->a) return 0.0;
+    if (t >= m->b) return 1.0;
+    return (eq_theta(m, t) - m->theta_a) / m->range;
+}
+
+/* fogrt_sample_equiangular draws t with the exact equiangular CDF, for a light over the
+   segment, beyond either end, 1e-3 from the line, and for b = +inf (a ray escaping into open
+   fog): a KS test on 2e5 distances per case. Every sample also returns the pdf that
+   fogrt_equiangular_pdf gives at t (to 1e-6) and h / ((theta_b - theta_a)(h^2 + (t-delta)^2))
+   in double (to 1e-5 plus the float conditioning: 2.4e-7 / (theta_b - theta_a) from the two
+   atan2f, and the rounding of t - delta). Negative controls: see EQ_CASES. Fails if theta
+   is not uniform (e.g. t uniform, or h^2 where h belongs), the interval is clipped wrongly,
+   or b = +inf is mishandled. */
+static void test_equiangular_ks(void)
+{
+    stats_tally t = {0, 0, ""};
+    enum { N = 200000 };
+    double *x = (double *)malloc(sizeof(double) * N);
+    TEST_ASSERT_NOT_NULL(x);
+    char msg[800];
+    for (int k = 0; k < EQ_CASE_COUNT; k++) {
+        const eq_case *c = &EQ_CASES[k];
+        eq_model m = eq_model_of(c->delta, c->h, c->a, c->b);
+        double range = m.range;
+        fogrt_rng rng;
+        fogrt_rng_seed(&rng, 11000 + (uint64_t)k, 9);
+        long invalid = 0, bad_pdf = 0;
+        char first_bad[300] = "";
+        for (int i = 0; i < N; i++) {
+            float pdf = -1.0f, u = fogrt_rng_float(&rng);
+            float s = fogrt_sample_equiangular(u, c->delta, c->h, c->a, c->b, &pdf);
+            x[i] = s;
+            if (!isfinite(s) || !(s >= c->a && s <= c->b) || !(pdf > 0.0f) || !isfinite(pdf)) { invalid++; continue; }
+            double eval = fogrt_equiangular_pdf(s, c->delta, c->h, c->a, c->b);
+            double dt = (double)s - c->delta, den = (double)c->h * c->h + dt * dt;
+            double ref = c->h / (range * den);
+            double rel = 1e-5 + 2.4e-7 / range + 1.2e-7 * fmax(fabs((double)s), fabs((double)c->delta)) * 2.0 * fabs(dt) / den;
+            if (!(fabs(pdf - eval) <= 1e-6 * eval) || !(fabs(pdf - ref) <= rel * ref)) {
+                if (bad_pdf++ == 0)
+                    snprintf(first_bad, sizeof first_bad, "u=%.9g t=%.9g: pdf %.9g, fogrt_equiangular_pdf %.9g, double %.9g",
+                             (double)u, (double)s, (double)pdf, eval, ref);
+            }
+        }
+        snprintf(msg, sizeof msg, "equiangular %s: %ld of %d samples with a wrong pdf; first: %s", c->label, bad_pdf, N,
+                 first_bad);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, bad_pdf, msg);
+        char name[64], param[200];
+        snprintf(name, sizeof name, "equiangular_%d", k);
+        snprintf(param, sizeof param, "%s: delta=%g h=%g [%g, %g]", c->label, (double)c->delta, (double)c->h,
+                 (double)c->a, (double)c->b);
+        stats_ks_result r = stats_ks(x, N, eq_cdf, &m);
+        REPORT(t, stats_ks_verdict(name, "fogrt_sample_equiangular", param, &r, x, eq_cdf, &m, invalid, false));
+        eq_model wrong = eq_model_of(c->neg_delta, c->neg_h, c->a, c->b);
+        r = stats_ks(x, N, eq_cdf, &wrong);
+        snprintf(param, sizeof param, "%s: sampled with delta=%g h=%g, model delta=%g h=%g", c->label, (double)c->delta,
+                 (double)c->h, (double)c->neg_delta, (double)c->neg_h);
+        REPORT(t, stats_ks_verdict(name, "fogrt_sample_equiangular", param, &r, x, eq_cdf, &wrong, invalid, true));
+    }
+    free(x);
+    TALLY_ASSERT(t);
+}
+
+/* fogrt_equiangular_pdf(t) dt integrated over [a, b] (through t = delta + h sinh v, which
+   turns the 1 / (h^2 + (t - delta)^2) peak and the 1/t^2 tail into the smooth, exponentially
+   decaying 1 / cosh v; v up to 40 stands for b = +inf, the tail beyond is 1e-17) gives 1, to
+   2e-6 plus the float conditioning (2.4e-7 / (theta_b - theta_a) from atan2f, and
+   1.2e-7 (|delta| / h + 2) for evaluating at float t; composite Simpson, 8192 panels). The
+   pdf is 0 outside [a, b]. Fails on
+   a missing h in the numerator, theta_b - theta_a taken wrongly or b = +inf mishandled. */
+static double eq_pdf_in_v(const eq_case *c, double v)
+{
+    float s = (float)(c->delta + (double)c->h * sinh(v));
+    s = s < c->a ? c->a : (s > c->b ? c->b : s);      /* the end nodes must not round outside */
+    return fogrt_equiangular_pdf(s, c->delta, c->h, c->a, c->b) * (double)c->h * cosh(v);
+}
+
+/* Composite Simpson with a fixed number of panels: the integrand is smooth, but it is
+   evaluated at float t, so its rounding noise (1e-7 relative) would keep an adaptive rule
+   refining forever. With 8192 panels over at most 50 units of v the rule's own error is
+   below 1e-9. */
+static double eq_integrate_v(const eq_case *c, double va, double vb)
+{
+    const int panels = 8192;
+    double step = (vb - va) / panels, sum = eq_pdf_in_v(c, va) + eq_pdf_in_v(c, vb);
+    for (int i = 1; i < panels; i++) sum += (i % 2 ? 4.0 : 2.0) * eq_pdf_in_v(c, va + i * step);
+    return sum * step / 3.0;
+}
+
+static void test_equiangular_pdf_normalised(void)
+{
+    char msg[300];
+    for (int k = 0; k < EQ_CASE_COUNT; k++) {
+        const eq_case *c = &EQ_CASES[k];
+        double range = eq_model_of(c->delta, c->h, c->a, c->b).range;
+        double va = asinh(((double)c->a - c->delta) / c->h);
+        double vb = isinf(c->b) ? 40.0 : asinh(((double)c->b - c->delta) / c->h);
+        double integral = eq_integrate_v(c, va, vb);
+        double tol = 2e-6 + 2.4e-7 / range + 1.2e-7 * (fabs((double)c->delta) / c->h + 2.0);
+        snprintf(msg, sizeof msg, "equiangular %s: int fogrt_equiangular_pdf dt over [%g, %g] = %.9f (want 1 within %.2g)",
+                 c->label, (double)c->a, (double)c->b, integral, tol);
+        TEST_MESSAGE(msg);
+        TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(tol, 1.0, integral, msg);
+        TEST_ASSERT_EQUAL_FLOAT_MESSAGE(0.0f, fogrt_equiangular_pdf(c->a - 0.5f, c->delta, c->h, c->a, c->b), msg);
+        if (!isinf(c->b))
+            TEST_ASSERT_EQUAL_FLOAT_MESSAGE(0.0f, fogrt_equiangular_pdf(c->b + 0.5f, c->delta, c->h, c->a, c->b), msg);
+    }
+}
+
+/* fogrt_sample_equiangular is the inverse CDF to float accuracy, monotone, and inside
+   [a, b], over 12288 uniforms: a grid of 4096, the 4096 smallest floats from 0 and the 4096
+   largest below 1 (the RNG returns u up to 1 - 2^-24). Measured in theta, where the map is
+   well conditioned: theta(t) must equal theta_a + u (theta_b - theta_a) within 6e-7 rad (a
+   few float ulps of pi/2 for the two atan2f, the product and the sum) plus the rounding of t
+   seen in theta, 2.4e-7 (|t| + |t - delta|) h / (h^2 + (t - delta)^2). Cases: those of the
+   KS test, and lights 1e-4 from the line far behind the start (with b = 10 and b = +inf), at
+   the start of a segment of 1e4, 100 beyond a segment of 1, and b = 1e9. Fails if a theta
+   rounded past +-pi/2 wraps tan around to the other end of the segment (the sample jumps
+   from near b to a), or the formula loses the tail. */
+static void test_equiangular_inverse_cdf(void)
+{
+    static const eq_case extra[] = {
+        {-5.0f, 1e-4f, 0.0f, INFINITY, 0, 0, "light far behind the start, 1e-4 from the line, b = +inf"},
+        {-5.0f, 1e-4f, 0.0f, 10.0f, 0, 0, "light far behind the start, 1e-4 from the line"},
+        {0.0f, 1e-4f, 0.0f, 1e4f, 0, 0, "light at the start of a long segment"},
+        {100.0f, 0.1f, 0.0f, 1.0f, 0, 0, "light 100 beyond a segment of 1"},
+        {0.0f, 1.0f, 0.0f, 1e9f, 0, 0, "b = 1e9"},
+    };
+    enum { M = 3 * 4096 };
+    static double us[M];
+    int m = 0;
+    for (int k = 0; k < 4096; k++) us[m++] = k / 4096.0;
+    float lo = 0.0f, hi = 1.0f;
+    for (int k = 0; k < 4096; k++) { us[m++] = lo; lo = nextafterf(lo, 1.0f); }
+    for (int k = 0; k < 4096; k++) { hi = nextafterf(hi, 0.0f); us[m++] = hi; }
+    qsort(us, M, sizeof us[0], stats__double_cmp);
+    int failed_cases = 0, cases = 0;
+    char first[800] = "", msg[800];
+    for (int k = 0; k < EQ_CASE_COUNT + (int)(sizeof extra / sizeof extra[0]); k++) {
+        const eq_case *c = k < EQ_CASE_COUNT ? &EQ_CASES[k] : &extra[k - EQ_CASE_COUNT];
+        eq_model md = eq_model_of(c->delta, c->h, c->a, c->b);
+        double ta = md.theta_a, range = md.range;
+        long bad = 0;
+        char first_bad[300] = "";
+        float prev = -INFINITY;
+        for (int i = 0; i < M; i++) {
+            float u = (float)us[i], pdf = -1.0f;
+            float s = fogrt_sample_equiangular(u, c->delta, c->h, c->a, c->b, &pdf);
+            double dt = (double)s - c->delta, den = (double)c->h * c->h + dt * dt;
+            double err = fabs(eq_theta(&md, s) - (ta + (double)u * range));
+            double tol = 6e-7 + 2.4e-7 * (fabs((double)s) + fabs(dt)) * c->h / den;
+            bool ok = isfinite(s) && s >= c->a && s <= c->b && s >= prev && pdf > 0.0f && err <= tol;
+            if (!ok) {
+                if (bad++ == 0)
+                    snprintf(first_bad, sizeof first_bad, "u=%.9g: t=%.9g (previous u gave %.9g), theta off by %.3g "
+                             "rad (limit %.2g), pdf %g", (double)u, (double)s, (double)prev, err, tol, (double)pdf);
+            }
+            prev = s;
+        }
+        cases++;
+        snprintf(msg, sizeof msg, "equiangular inverse CDF, %s (delta=%g h=%g [%g, %g], theta_b - theta_a = %.3g): "
+                 "%ld of %d uniforms wrong%s%s", c->label, (double)c->delta, (double)c->h, (double)c->a, (double)c->b,
+                 range, bad, M, bad ? "; first: " : "", first_bad);
+        TEST_MESSAGE(msg);
+        if (bad && failed_cases++ == 0) memcpy(first, msg, sizeof first);
+    }
+    if (failed_cases) {
+        char fail[900];
+        snprintf(fail, sizeof fail, "%d of %d cases failed; first: %s", failed_cases, cases, first);
+        TEST_FAIL_MESSAGE(fail);
+    }
 }
 
 /* ==========================================================================================
@@ -881,10 +1632,16 @@ int main(void)
     RUN_TEST(test_uniform_sphere_chi2);
     RUN_TEST(test_sphere_solid_angle_chi2);
     RUN_TEST(test_triangle_chi2);
-    RUN_TEST(test_spot_light_radius_positions_chi2);
+    RUN_TEST(test_point_light_radius_directions_chi2);
+    RUN_TEST(test_point_light_radius_irradiance);
+    RUN_TEST(test_area_light_mesh_chi2);
+    RUN_TEST(test_area_light_sphere_chi2);
     RUN_TEST(test_spot_falloff_values);
     RUN_TEST(test_exponential_ks);
     RUN_TEST(test_exponential_pdf_and_inverse);
+    RUN_TEST(test_equiangular_ks);
+    RUN_TEST(test_equiangular_pdf_normalised);
+    RUN_TEST(test_equiangular_inverse_cdf);
     RUN_TEST(test_pdfs_normalised);
     RUN_TEST(test_extreme_uniforms);
     RUN_TEST(test_sidak_count_is_right);
