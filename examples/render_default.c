@@ -68,8 +68,12 @@ int main(int argc, char **argv)
     while (done < spp) {
         int n = done + batch > spp ? spp - done : batch;
         double elapsed = now_seconds() - t0;
-        /* time per sample so far predicts the next batch: stop before the budget runs out */
-        if (done > 0 && elapsed + elapsed / done * n > budget) break;
+        /* the time per sample so far sizes the next batch to what the budget still allows */
+        if (done > 0) {
+            int fits = (int)((budget - elapsed) / (elapsed / done));
+            if (fits < 1) break;
+            if (n > fits) n = fits;
+        }
         fogrt_render(scene, &rd, &img, n, &st);
         rays += st.rays;
         done += n;
