@@ -2142,8 +2142,11 @@ FOGRT__LD fogrt_result fogrt__ld_finish_mesh(fogrt__ld *L, fogrt_scene *scene, f
     return r;
 }
 
-FOGRT__LD_PUBLIC fogrt_result fogrt_load_obj_memory(fogrt_scene *scene, const void *data, size_t size, const char *name,
-                                                    const fogrt_load_options *options, fogrt_load_report *report)
+/* Both mesh formats load the same way: parse into a mesh buffer, then place and commit it. */
+typedef fogrt_result (*fogrt__ld_mesh_parser)(fogrt__ld *L, fogrt__ld_meshbuf *m, float **file_nrm);
+FOGRT__LD fogrt_result fogrt__ld_load_mesh(fogrt_scene *scene, const void *data, size_t size, const char *name,
+                                        const fogrt_load_options *options, fogrt_load_report *report,
+                                        fogrt__ld_mesh_parser parse)
 {
     fogrt__ld L;
     fogrt_load_report dummy;
@@ -2153,10 +2156,16 @@ FOGRT__LD_PUBLIC fogrt_result fogrt_load_obj_memory(fogrt_scene *scene, const vo
     if (!report) report = &dummy;
     memset(&m, 0, sizeof m);
     r = fogrt__ld_init(&L, data, size, name, options, report);
-    if (!r) r = fogrt__ld_obj_parse(&L, &m, &file_nrm);
+    if (!r) r = parse(&L, &m, &file_nrm);
     if (!r) r = fogrt__ld_finish_mesh(&L, scene, &m, file_nrm);
     fogrt__ld_destroy(&L);
     return r;
+}
+
+FOGRT__LD_PUBLIC fogrt_result fogrt_load_obj_memory(fogrt_scene *scene, const void *data, size_t size, const char *name,
+                                                    const fogrt_load_options *options, fogrt_load_report *report)
+{
+    return fogrt__ld_load_mesh(scene, data, size, name, options, report, fogrt__ld_obj_parse);
 }
 
 /* ---- PLY ---- */
@@ -2405,18 +2414,7 @@ FOGRT__LD fogrt_result fogrt__ply_parse(fogrt__ld *L, fogrt__ld_meshbuf *out, fl
 FOGRT__LD_PUBLIC fogrt_result fogrt_load_ply_memory(fogrt_scene *scene, const void *data, size_t size, const char *name,
                                                     const fogrt_load_options *options, fogrt_load_report *report)
 {
-    fogrt__ld L;
-    fogrt_load_report dummy;
-    fogrt__ld_meshbuf m;
-    float *file_nrm = NULL;
-    fogrt_result r;
-    if (!report) report = &dummy;
-    memset(&m, 0, sizeof m);
-    r = fogrt__ld_init(&L, data, size, name, options, report);
-    if (!r) r = fogrt__ply_parse(&L, &m, &file_nrm);
-    if (!r) r = fogrt__ld_finish_mesh(&L, scene, &m, file_nrm);
-    fogrt__ld_destroy(&L);
-    return r;
+    return fogrt__ld_load_mesh(scene, data, size, name, options, report, fogrt__ply_parse);
 }
 
 /* ------------------------------------------------------------------------------------------
