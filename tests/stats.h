@@ -730,4 +730,25 @@ static inline void stats_tally_add(stats_tally *t, const stats_verdict *v)
     }
 }
 
+/* Test-side helpers on top of the tally (they expand to Unity macros, so include unity.h first). */
+/* Ends a RUN_TEST that looped over cases: prints nothing new (each case printed its line)
+   and fails once, naming the first failing case. */
+#define TALLY_ASSERT(t)                                                                      \
+    do {                                                                                     \
+        if ((t).failures > 0) {                                                              \
+            char tally_msg_[900];                                                            \
+            snprintf(tally_msg_, sizeof tally_msg_, "%d of %d cases failed; first: %s",    \
+                     (t).failures, (t).cases, (t).first_failure);                           \
+            TEST_FAIL_MESSAGE(tally_msg_);                                                   \
+        }                                                                                    \
+    } while (0)
+
+/* Prints a verdict's line and adds it to the tally. */
+#define REPORT(t, v)                                                                         \
+    do {                                                                                     \
+        stats_verdict report_v_ = (v);                                                       \
+        TEST_MESSAGE(report_v_.message);                                                     \
+        stats_tally_add(&(t), &report_v_);                                                   \
+    } while (0)
+
 #endif /* FOGRT_TESTS_STATS_H */

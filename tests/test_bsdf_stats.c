@@ -42,22 +42,7 @@ static fogrt_material_desc make_material(fogrt_bsdf_type type, float ior)
     return m;
 }
 
-#define TALLY_ASSERT(t)                                                                      \
-    do {                                                                                     \
-        if ((t).failures > 0) {                                                              \
-            char tally_msg_[900];                                                            \
-            snprintf(tally_msg_, sizeof tally_msg_, "%d of %d cases failed; first: %s",    \
-                     (t).failures, (t).cases, (t).first_failure);                           \
-            TEST_FAIL_MESSAGE(tally_msg_);                                                   \
-        }                                                                                    \
-    } while (0)
-
-#define REPORT(t, v)                                                                         \
-    do {                                                                                     \
-        stats_verdict report_v_ = (v);                                                       \
-        TEST_MESSAGE(report_v_.message);                                                     \
-        stats_tally_add(&(t), &report_v_);                                                   \
-    } while (0)
+/* TALLY_ASSERT and REPORT live in stats.h. */
 
 /* ==========================================================================================
    Diffuse: chi-square against its own pdf

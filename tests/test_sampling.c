@@ -37,25 +37,7 @@ static const float HG_G[] = {-0.99f, -0.9f, -0.5f, -1e-4f, 0.0f, 1e-6f, 0.3f, 0.
 static const float HG_WO[4][3] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {-0.48f, 0.6f, 0.64f}};
 #define HG_WO_COUNT 4
 
-/* Ends a RUN_TEST that looped over cases: prints nothing new (each case printed its line)
-   and fails once, naming the first failing case. */
-#define TALLY_ASSERT(t)                                                                      \
-    do {                                                                                     \
-        if ((t).failures > 0) {                                                              \
-            char tally_msg_[900];                                                            \
-            snprintf(tally_msg_, sizeof tally_msg_, "%d of %d cases failed; first: %s",    \
-                     (t).failures, (t).cases, (t).first_failure);                           \
-            TEST_FAIL_MESSAGE(tally_msg_);                                                   \
-        }                                                                                    \
-    } while (0)
-
-/* Prints a verdict's line and adds it to the tally. */
-#define REPORT(t, v)                                                                         \
-    do {                                                                                     \
-        stats_verdict report_v_ = (v);                                                       \
-        TEST_MESSAGE(report_v_.message);                                                     \
-        stats_tally_add(&(t), &report_v_);                                                   \
-    } while (0)
+/* TALLY_ASSERT and REPORT live in stats.h. */
 
 /* ==========================================================================================
    Drawing samples into a sphere grid
