@@ -355,8 +355,9 @@ typedef struct fogrt_bvh_node {
 
 FOGRT_API void fogrt_scene_bvh(const fogrt_scene *scene, const fogrt_bvh_node **nodes,
                                uint32_t *node_count, const uint32_t **prim_index);
-/* SAH cost of the built tree (c_trav per inner node, c_int per primitive, weighted by
-   surface area relative to the root): lets the SAH and the volume heuristic be compared. */
+/* SAH cost of the built tree (1 per inner node, 1 per primitive in a leaf, each weighted by
+   its box's surface area relative to the root): lets the SAH and the volume heuristic be
+   compared on equal terms, whatever c_trav and c_int the build used. */
 FOGRT_API float fogrt_bvh_sah_cost(const fogrt_scene *scene);
 
 /* What the scene uses, found by fogrt_scene_build; the integrator skips everything else. */
@@ -1194,15 +1195,13 @@ FOGRT__PRIVATE fogrt_result fogrt__fail(const fogrt_scene *s, fogrt_result r, co
     return r;
 }
 
-/* Grow *ptr to hold at least need elements (doubling). Returns false when out of memory,
-   leaving the old array untouched. */
-FOGRT__PRIVATE bool fogrt__reserve(fogrt_scene *s, void **ptr, uint32_t cap, uint32_t new_cap, size_t elem)
+/* Move *ptr to a new array of new_cap elements, keeping its first used elements. Returns
+   false when out of memory, leaving the old array untouched. */
+FOGRT__PRIVATE bool fogrt__reserve(fogrt_scene *s, void **ptr, uint32_t used, uint32_t new_cap, size_t elem)
 {
-    void *p;
-    if (new_cap <= cap && *ptr) return true;
-    p = fogrt__alloc(&s->allocator, (size_t)new_cap * elem);
+    void *p = fogrt__alloc(&s->allocator, (size_t)new_cap * elem);
     if (!p) return false;
-    if (*ptr) { memcpy(p, *ptr, (size_t)cap * elem); fogrt__free(&s->allocator, *ptr); }
+    if (*ptr) { memcpy(p, *ptr, (size_t)used * elem); fogrt__free(&s->allocator, *ptr); }
     *ptr = p;
     return true;
 }
