@@ -25,14 +25,14 @@
         fogrt_scene_add_default(scene);            // the fog-filled Cornell box
         fogrt_scene_build(scene, NULL);            // BVH + feature analysis
         fogrt_image img;
-        fogrt_image_alloc(&img, 320, 240, NULL);
-        fogrt_render_desc rd = {0};                 // zero = defaults everywhere
-        rd.width = 320; rd.height = 240;
+        fogrt_image_alloc(&img, 320, 240, NULL);   // NULL: default allocator
+        fogrt_render_desc rd = fogrt_render_defaults();   // read back, change, pass on
+        rd.max_depth = 16;
         fogrt_render(scene, &rd, &img, 64, NULL);   // add 64 samples per pixel
         float *rgb = malloc(sizeof(float) * 3 * 320 * 240);
         fogrt_image_resolve(&img, rgb);             // linear RGB mean
         fogrt_write_pfm("fog.pfm", 320, 240, rgb);
-        fogrt_image_free(&img, NULL);
+        fogrt_image_free(&img);
         fogrt_scene_destroy(scene);
 
     OPTIONS (define before including the implementation)
@@ -41,9 +41,16 @@
     FOGRT_STATIC           make every function static (private to one translation unit)
     FOGRT_MALLOC(sz,u) / FOGRT_FREE(p,u)   default allocator (both or neither; default libc)
     FOGRT_ASSERT(c)        programmer-error check (default: assert)
-    FOGRT_NO_MEDIUM        strip the fog: no free-flight sampling, transmittance or phase code
-    FOGRT_NO_GLASS         strip the refraction and glass BSDFs (they load as mirrors)
-    FOGRT_NO_EXACT_FRESNEL strip the exact dielectric Fresnel (Schlick only)
+    FOGRT_NO_MEDIUM        strip the fog: no free-flight, transmittance, phase or equiangular
+                           code (fogrt_scene_set_medium with sigma_t > 0 fails)
+    FOGRT_NO_GLASS         strip the refraction and glass BSDFs, Fresnel and refraction
+                           (fogrt_scene_add_material of those types fails)
+    FOGRT_NO_EXACT_FRESNEL strip the exact dielectric Fresnel (a render asking for
+                           FOGRT_FRESNEL_EXACT fails)
+                           One policy for the three: what needs a stripped feature returns
+                           FOGRT_RESULT_UNSUPPORTED and logs one line naming the macro; the
+                           stripped public functions are not compiled (make check-compile
+                           checks with nm that their code is gone).
     FOGRT_NO_STDIO         strip the PFM/PPM writers (no <stdio.h>)
     FOGRT_BVH_BINS         compile-time default for fogrt_build_desc.bins (8)
     FOGRT_MAX_PATH_VERTICES  hard cap on path vertices, a safety net behind Russian roulette
@@ -310,7 +317,8 @@ FOGRT_API fogrt_result fogrt_scene_set_medium(fogrt_scene *scene, const fogrt_me
 /* Adds the embedded default scene: the CS184 Cornell box (walls x = +-1, z = +-1, floor
    y = 0, ceiling y = 1.5, red left wall, blue right wall, ceiling area light), a diffuse
    sphere, a glass sphere, a spot light, fog (sigma_t 0.3, albedo 0.9, g 0.6) and a camera.
-   (Built with FOGRT_NO_MEDIUM: the same scene without fog.) */
+   (Built with FOGRT_NO_MEDIUM: the same scene without fog; with FOGRT_NO_GLASS the glass
+   sphere is a mirror.) */
 FOGRT_API fogrt_result fogrt_scene_add_default(fogrt_scene *scene);
 
 /* ------------------------------------------------------------------------------------------
@@ -328,19 +336,26 @@ typedef enum fogrt_bvh_heuristic {
 #define FOGRT_BVH_BINS 8
 #endif
 
-/* fogrt_build_desc (all zero = defaults)
+/* fogrt_build_desc. Start from fogrt_build_defaults(): every field then means what it says
+   (a desc that did not come from it is refused; NULL means the defaults).
      heuristic       SAH
-     bins            FOGRT_BVH_BINS (8), at most 64
+     bins            FOGRT_BVH_BINS (8); 1..64 (1: one candidate plane per axis, at the
+                     middle of the centroid bounds)
      c_trav, c_int   traversal and intersection cost of the SAH, 1 and 1
-     max_leaf_size   4: largest leaf; a node is also split when the SAH prefers it       */
+     max_leaf_size   4 (>= 1): largest leaf; a node is also split when the SAH prefers it
+     resolved        set by fogrt_build_defaults(): the fields hold their real values      */
 typedef struct fogrt_build_desc {
     fogrt_bvh_heuristic heuristic;
     int bins;
     float c_trav;
     float c_int;
     int max_leaf_size;
+    bool resolved;
 } fogrt_build_desc;
 
+/* The defaults, resolved: read them back, change what you need, pass the desc on. */
+FOGRT_API fogrt_build_desc fogrt_build_defaults(void);
+/* NULL desc: the defaults. */
 FOGRT_API fogrt_result fogrt_scene_build(fogrt_scene *scene, const fogrt_build_desc *desc);
 
 /* BVH node, 32 bytes (tinybvh's layout). A leaf iff prim_count > 0; its primitives are
@@ -353,8 +368,8 @@ typedef struct fogrt_bvh_node {
     float bmax[3]; uint32_t prim_count;
 } fogrt_bvh_node;
 
-FOGRT_API void fogrt_scene_bvh(const fogrt_scene *scene, const fogrt_bvh_node **nodes,
-                               uint32_t *node_count, const uint32_t **prim_index);
+FOGRT_API void fogrt_scene_get_bvh(const fogrt_scene *scene, const fogrt_bvh_node **nodes,
+                                   uint32_t *node_count, const uint32_t **prim_index);
 /* SAH cost of the built tree (1 per inner node, 1 per primitive in a leaf, each weighted by
    its box's surface area relative to the root): lets the SAH and the volume heuristic be
    compared on equal terms, whatever c_trav and c_int the build used. */
@@ -372,7 +387,7 @@ enum {
     FOGRT_FEATURE_SPHERES     = 1u << 7,
     FOGRT_FEATURE_TRIANGLES   = 1u << 8
 };
-FOGRT_API uint32_t fogrt_scene_features(const fogrt_scene *scene);
+FOGRT_API uint32_t fogrt_scene_get_features(const fogrt_scene *scene);
 
 /* Counts and read-back, for tools and tests. */
 typedef struct fogrt_scene_info {
@@ -389,7 +404,7 @@ FOGRT_API fogrt_result fogrt_scene_get_light(const fogrt_scene *scene, uint32_t 
 FOGRT_API void fogrt_scene_get_camera(const fogrt_scene *scene, fogrt_camera_desc *out);
 FOGRT_API void fogrt_scene_get_medium(const fogrt_scene *scene, fogrt_medium_desc *out);
 /* Material of triangle i (i < triangle_count) or sphere i - triangle_count. */
-FOGRT_API uint32_t fogrt_scene_prim_material(const fogrt_scene *scene, uint32_t prim);
+FOGRT_API uint32_t fogrt_scene_get_prim_material(const fogrt_scene *scene, uint32_t prim);
 
 /* ------------------------------------------------------------------------------------------
    Ray queries (after fogrt_scene_build)
@@ -410,34 +425,45 @@ FOGRT_API bool fogrt_scene_occluded(const fogrt_scene *scene, fogrt_vec3 o, fogr
 FOGRT_API bool fogrt_scene_intersect_brute(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d,
                                            float tmin, float tmax, fogrt_hit *hit);
 /* Ray-triangle (Moller-Trumbore) and ray-sphere tests on their own. */
-FOGRT_API bool fogrt_intersect_triangle(fogrt_vec3 o, fogrt_vec3 d, fogrt_vec3 v0, fogrt_vec3 v1,
-                                        fogrt_vec3 v2, float tmin, float tmax, float *t, float *u, float *v);
-FOGRT_API bool fogrt_intersect_sphere(fogrt_vec3 o, fogrt_vec3 d, fogrt_vec3 center, float radius,
+FOGRT_API bool fogrt_intersect_triangle(fogrt_vec3 v0, fogrt_vec3 v1, fogrt_vec3 v2, fogrt_vec3 o,
+                                        fogrt_vec3 d, float tmin, float tmax, float *t, float *u, float *v);
+FOGRT_API bool fogrt_intersect_sphere(fogrt_vec3 center, float radius, fogrt_vec3 o, fogrt_vec3 d,
                                       float tmin, float tmax, float *t);
 
 /* ------------------------------------------------------------------------------------------
    Sampling routines: pure functions of their uniform numbers u in [0,1).
    Naming: fogrt_sample_X (the sampler), fogrt_X_pdf (its density), fogrt_invert_X.
    ------------------------------------------------------------------------------------------ */
+#ifndef FOGRT_NO_MEDIUM
 /* Free flight (paper eq. 4-6): t = -ln(1 - u) / sigma_t, written with log1p.
    sigma_t = 0 returns +infinity (the ray never collides).                                  */
-FOGRT_API float fogrt_sample_exponential(float u, float sigma_t);
-FOGRT_API float fogrt_exponential_pdf(float t, float sigma_t);        /* sigma_t exp(-sigma_t t) */
-FOGRT_API float fogrt_invert_exponential(float t, float sigma_t);     /* 1 - exp(-sigma_t t) */
+FOGRT_API float fogrt_sample_exponential(float sigma_t, float u);
+FOGRT_API float fogrt_exponential_pdf(float sigma_t, float t);        /* sigma_t exp(-sigma_t t) */
+FOGRT_API float fogrt_invert_exponential(float sigma_t, float t);     /* 1 - exp(-sigma_t t) */
 /* Beer-Lambert transmittance (paper eq. 7-8): T = exp(-sigma_t d). */
 FOGRT_API float fogrt_transmittance(float sigma_t, float distance);
 
 /* Henyey-Greenstein (paper eq. 9-12), physics convention: mu = cos(d, new direction).
    p(mu) = (1 - g^2) / (4 pi (1 + g^2 - 2 g mu)^1.5)  per steradian.                        */
-FOGRT_API float fogrt_hg_phase(float mu, float g);
+FOGRT_API float fogrt_hg_phase(float g, float mu);
 /* Inverse-CDF sample of mu, in a form with no division by g (exact at g = 0, stable at
    |g| -> 1): mu = (2u - (1-g))/D + 2g(1-g)(1+g)u(1-u)/D^2 with D = (1-g) + 2gu.             */
 FOGRT_API float fogrt_sample_hg_mu(float g, float u);
 /* Full direction sample around the propagation direction d = -wo; returns wi (unit) and the
-   pdf (per steradian, equal to the phase function, so the sample weight is exactly 1).    */
-FOGRT_API fogrt_vec3 fogrt_sample_hg(fogrt_vec3 wo, float g, float u1, float u2, float *pdf);
+   pdf (per steradian, equal to the phase function, so the sample weight is exactly 1).
+   sin(theta) comes from 1 - mu and 1 + mu formed without cancellation, so directions within
+   a few 1e-7 rad of the peak keep their angle even where mu rounds to +-1.                 */
+FOGRT_API fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf);
 /* Phase function / pdf for outward wo and wi: uses mu = -dot(wo, wi). */
-FOGRT_API float fogrt_hg_pdf(fogrt_vec3 wo, fogrt_vec3 wi, float g);
+FOGRT_API float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi);
+/* Equiangular distance sampling along a ray toward a point light (Kulla and Fajardo 2012):
+   the light at distance h from the ray's line, its closest approach at t = delta; samples
+   t in [a, b] (b may be +infinity) with pdf proportional to 1 / (h^2 + (t - delta)^2), which
+   cancels the light's 1/r^2. h must be > 0. Computed in double: t and the pdf are exact to
+   float resolution for h down to 1e-7 of |t - delta| (tests/test_sampling.c).             */
+FOGRT_API float fogrt_sample_equiangular(float delta, float h, float a, float b, float u, float *pdf);
+FOGRT_API float fogrt_equiangular_pdf(float delta, float h, float a, float b, float t);
+#endif
 
 /* Cosine-weighted hemisphere around +z (concentric disk map, then lift). pdf = cos/pi. */
 FOGRT_API fogrt_vec3 fogrt_sample_cosine_hemisphere(float u1, float u2);
@@ -450,28 +476,26 @@ FOGRT_API void fogrt_sample_triangle(float u1, float u2, float *b1, float *b2);
 /* Direction from p toward a sphere, uniform in the cone of directions the sphere subtends
    (solid angle sampling). Returns the unit direction; *pdf per steradian. If p is inside
    the sphere, samples the uniform sphere of directions instead.                            */
-FOGRT_API fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 p, fogrt_vec3 center, float radius,
+FOGRT_API fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 center, float radius, fogrt_vec3 p,
                                                      float u1, float u2, float *pdf);
-FOGRT_API float fogrt_sphere_solid_angle_pdf(fogrt_vec3 p, fogrt_vec3 center, float radius);
-/* Equiangular distance sampling along a ray toward a point light (Kulla and Fajardo 2012):
-   the light at distance h from the ray's line, its closest approach at t = delta; samples
-   t in [a, b] (b may be +infinity) with pdf proportional to 1 / (h^2 + (t - delta)^2), which
-   cancels the light's 1/r^2. h must be > 0. */
-FOGRT_API float fogrt_sample_equiangular(float u, float delta, float h, float a, float b, float *pdf);
-FOGRT_API float fogrt_equiangular_pdf(float t, float delta, float h, float a, float b);
+FOGRT_API float fogrt_sphere_solid_angle_pdf(fogrt_vec3 center, float radius, fogrt_vec3 p);
 /* Spot light profile: fraction of full intensity at angle theta (cos_theta) from the axis. */
-FOGRT_API float fogrt_spot_falloff(float cos_theta, float cutoff_deg, float beam_deg);
+FOGRT_API float fogrt_spot_falloff(float cutoff_deg, float beam_deg, float cos_theta);
 
-/* Fresnel reflectance of a dielectric; cos_i > 0 on the outside (incident medium ior 1),
-   cos_i < 0 from inside; eta = n_inside / n_outside. Both return 1 on total internal
-   reflection. */
-FOGRT_API float fogrt_fresnel_schlick(float cos_i, float eta);
-FOGRT_API float fogrt_fresnel_dielectric(float cos_i, float eta);
 /* Mirror wo about n (both unit): 2 (wo.n) n - wo. */
-FOGRT_API fogrt_vec3 fogrt_reflect(fogrt_vec3 wo, fogrt_vec3 n);
+FOGRT_API fogrt_vec3 fogrt_reflect(fogrt_vec3 n, fogrt_vec3 wo);
+#ifndef FOGRT_NO_GLASS
+/* Fresnel reflectance of a dielectric; eta = n_inside / n_outside; cos_i > 0 on the outside
+   (incident medium ior 1), cos_i < 0 from inside. Both return 1 on total internal
+   reflection; eta = 1 (no interface) gives 0 at every angle for the exact form.           */
+FOGRT_API float fogrt_fresnel_schlick(float eta, float cos_i);
+#ifndef FOGRT_NO_EXACT_FRESNEL
+FOGRT_API float fogrt_fresnel_dielectric(float eta, float cos_i);
+#endif
 /* Refract wo through a surface with normal n (wo on either side; eta = n_inside/n_outside,
    the inside being opposite n). Returns false on total internal reflection.             */
-FOGRT_API bool fogrt_refract(fogrt_vec3 wo, fogrt_vec3 n, float eta, fogrt_vec3 *wi);
+FOGRT_API bool fogrt_refract(fogrt_vec3 n, float eta, fogrt_vec3 wo, fogrt_vec3 *wi);
+#endif
 
 /* ------------------------------------------------------------------------------------------
    BSDFs, in the local shading frame (normal = +z)
@@ -494,12 +518,12 @@ typedef struct fogrt_bsdf_sample {
 
 /* Samples wi given wo; u_lobe chooses between reflection and refraction (glass), u1 and u2
    the direction. Returns false if no direction was produced (e.g. wo on the horizon).    */
-FOGRT_API bool fogrt_bsdf_sample_dir(const fogrt_material_desc *m, fogrt_fresnel fresnel,
-                                     fogrt_vec3 wo, float u_lobe, float u1, float u2,
-                                     fogrt_bsdf_sample *out);
+FOGRT_API bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel fresnel,
+                                 fogrt_vec3 wo, float u_lobe, float u1, float u2,
+                                 fogrt_bsdf_sample *out);
 /* f(wo, wi) without the cosine; zero for the specular BSDFs (they are deltas). */
 FOGRT_API fogrt_vec3 fogrt_bsdf_eval(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi);
-/* pdf of fogrt_bsdf_sample_dir producing wi; zero for the specular BSDFs. */
+/* pdf of fogrt_sample_bsdf producing wi; zero for the specular BSDFs. */
 FOGRT_API float fogrt_bsdf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi);
 
 /* ------------------------------------------------------------------------------------------
@@ -527,48 +551,67 @@ typedef struct fogrt_progress {
     int samples_per_pixel;         /* added by the current call */
 } fogrt_progress;
 
-/* fogrt_render_desc (all zero = defaults)
+/* fogrt_render_desc. Start from fogrt_render_defaults(): every field then means what it
+   says (max_depth 0 is emission only, nee false is no light sampling). A desc that did not
+   come from it (resolved false: a zeroed struct) is refused with a log line, since zero
+   is a meaningful value for half of these fields; NULL means the defaults.
      width, height     image size; must match the image (0: the image's size)
-     integrator        path
+     integrator        path (the paper's Algorithm 1), or direct (its one-bounce baseline)
      fresnel           Schlick
-     max_depth         bounces (surface or fog scattering events) after the camera ray;
-                       0 = 64, -1 = unlimited (Russian roulette still ends every path)
-     rr_depth          Russian roulette starts after this many bounces; 0 = 3
-     no_nee            true: no next-event estimation (light found only by hitting it, the
-                       paper's "without importance sampling")
-     no_mis            true: next-event estimation without multiple importance sampling
-                       (emitters found by BSDF/phase sampling are then not counted)
-     light_samples     samples per area light at each next-event estimate (CS184 -l); 0 = 1
-     seed              base seed of every random stream
+     max_depth         64: bounces (surface or fog scattering events) after the camera ray;
+                       0 = emission only (CS184 -m 0), -1 = unlimited (roulette still ends
+                       every path)
+     min_depth         0: light that bounced fewer times is not counted (CS184 -o 0 is
+                       min_depth = max_depth: only light that bounced exactly max_depth times)
+     rr_depth          3: Russian roulette starts after this many bounces (0: from the first)
+     nee               true: next-event estimation (light sampling); false: light is found
+                       only by hitting it, the paper's "without importance sampling"
+     mis               true: multiple importance sampling between light and BSDF/phase
+                       sampling; false: emitters found by BSDF/phase sampling do not count
+     equiangular       true: point and spot lights in fog are gathered along every fog
+                       segment by equiangular sampling (not in the paper); false: found only
+                       by next-event estimation at fog collisions, as the paper does
+     light_samples     1 (>= 1): samples per area light at each next-event estimate (CS184 -l)
+     seed              0: base seed of every random stream
      threads           0 = all OpenMP threads; ignored without OpenMP
-     progress          optional; called between row blocks; return false to cancel        */
+     progress          optional; called between row blocks; return false to cancel
+     resolved          set by fogrt_render_defaults(): the fields hold their real values   */
 typedef struct fogrt_render_desc {
     int width, height;
     fogrt_integrator integrator;
     fogrt_fresnel fresnel;
     int max_depth;
+    int min_depth;
     int rr_depth;
-    bool no_nee;
-    bool no_mis;
+    bool nee;
+    bool mis;
+    bool equiangular;
     int light_samples;
     uint64_t seed;
     int threads;
     bool (*progress)(const fogrt_progress *progress, void *user_data);
     void *user_data;
+    bool resolved;
 } fogrt_render_desc;
 
+/* The defaults, resolved: read them back, change what you need, pass the desc on. */
+FOGRT_API fogrt_render_desc fogrt_render_defaults(void);
+
 /* Accumulation buffer owned by the caller: per pixel the sum of sample radiance (RGB), the
-   sum of squared sample luminance, and the sample count. Adding samples is progressive. */
+   sum of squared sample luminance (both in double: no finite sample can overflow them), and
+   the sample count. Adding samples is progressive. */
 typedef struct fogrt_image {
     int width, height;
-    float *sum;          /* 3 * width * height */
-    float *sum_sq;       /* width * height: sum of luminance^2 */
+    double *sum;         /* 3 * width * height: sum of sample radiance (RGB) */
+    double *sum_sq;      /* width * height: sum of squared sample luminance */
     uint32_t *count;     /* width * height */
     uint64_t rejected;   /* non-finite samples seen and dropped */
+    fogrt_allocator allocator;   /* what fogrt_image_alloc used; fogrt_image_free uses it too */
 } fogrt_image;
 
+/* allocator NULL: FOGRT_MALLOC. The image remembers it for fogrt_image_free. */
 FOGRT_API fogrt_result fogrt_image_alloc(fogrt_image *img, int width, int height, const fogrt_allocator *allocator);
-FOGRT_API void fogrt_image_free(fogrt_image *img, const fogrt_allocator *allocator);
+FOGRT_API void fogrt_image_free(fogrt_image *img);
 FOGRT_API void fogrt_image_clear(fogrt_image *img);
 /* Mean radiance per pixel, 3 floats per pixel, rows from the top. */
 FOGRT_API void fogrt_image_resolve(const fogrt_image *img, float *rgb);
@@ -629,15 +672,16 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 
       IMPLEMENTATION
 
-   The chapters follow the order of the paper and of docs/tutorial.md:
-     1. Configuration and small helpers         7. The scene: storage and validation
-     2. Vector maths and the orthonormal basis  8. The BVH: binned SAH build (or volume heuristic)
-     3. Random numbers (PCG32)                  9. Ray queries: traversal and primitives
-     4. Sampling the free-flight distance      10. Lights: next-event estimation
-     5. The Henyey-Greenstein phase function   11. The camera
-     6. BSDFs and Fresnel                      12. The integrators: Algorithm 1, one bounce
-                                               13. Rendering, error estimate, output
-                                               14. The default scene
+   The chapters follow the order of the paper (docs/paper-map.md maps its equations and
+   Algorithm 1 to the functions below):
+     1. Configuration and small helpers          9. The BVH: binned SAH build (or volume heuristic)
+     2. Vector maths and the orthonormal basis  10. Ray queries: primitives and traversal
+     3. Random numbers (PCG32)                  11. The scene build: bounds, lights, features
+     4. Sampling the free-flight distance       12. Lights: next-event estimation
+     5. The Henyey-Greenstein phase function    13. The camera
+     6. Samplers for surfaces and lights        14. The integrators: Algorithm 1, one bounce
+     7. BSDFs and Fresnel                       15. Rendering, error estimate, output
+     8. The scene: storage and validation       16. The default scene
    ========================================================================================== */
 #ifdef FOGRT_IMPLEMENTATION
 #ifndef FOGRT_IMPLEMENTATION_INCLUDED
@@ -825,17 +869,18 @@ FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x)
    t = -ln(1 - u) / sigma_t; log1p keeps it accurate for small u. u < 1 always (the RNG never
    returns 1), so t is finite; the tail beyond 16.6 mean free paths is cut (bias ~ 6e-8).
    ------------------------------------------------------------------------------------------ */
-FOGRT__PUBLIC float fogrt_sample_exponential(float u, float sigma_t)
+#ifndef FOGRT_NO_MEDIUM
+FOGRT__PUBLIC float fogrt_sample_exponential(float sigma_t, float u)
 {
     if (!(sigma_t > 0.0f)) return INFINITY;            /* no medium: never collide */
     return -log1pf(-FOGRT__MIN(u, FOGRT__ONE_MINUS_EPS)) / sigma_t;
 }
-FOGRT__PUBLIC float fogrt_exponential_pdf(float t, float sigma_t)
+FOGRT__PUBLIC float fogrt_exponential_pdf(float sigma_t, float t)
 {
     if (!(sigma_t > 0.0f) || t < 0.0f) return 0.0f;
     return sigma_t * expf(-sigma_t * t);
 }
-FOGRT__PUBLIC float fogrt_invert_exponential(float t, float sigma_t)
+FOGRT__PUBLIC float fogrt_invert_exponential(float sigma_t, float t)
 {
     if (!(sigma_t > 0.0f) || t <= 0.0f) return 0.0f;
     return -expm1f(-sigma_t * t);
@@ -857,48 +902,80 @@ FOGRT__PRIVATE float fogrt__clamp_g(float g)
 }
 /* p(mu) = (1 - g^2) / (4 pi (1 + g^2 - 2 g mu)^(3/2)). The base 1 + g^2 - 2 g mu is written
    as a sum of non-negative terms, so it does not cancel near the peak when |g| -> 1:
-   g >= 0: (1 - g)^2 + 2g(1 - mu);  g < 0: (1 + g)^2 - 2g(1 + mu).                          */
-FOGRT__PUBLIC float fogrt_hg_phase(float mu, float g)
+   g >= 0: (1 - g)^2 + 2g(1 - mu);  g < 0: (1 + g)^2 - 2g(1 + mu).  The arguments are 1 - mu
+   and 1 + mu, so a caller that knows them exactly (the sampler) loses nothing.            */
+FOGRT__PRIVATE float fogrt__hg_phase_pm(float g, float one_minus_mu, float one_plus_mu)
 {
-    float base;
-    g = fogrt__clamp_g(g);
-    mu = FOGRT__CLAMP(mu, -1.0f, 1.0f);
-    base = g >= 0.0f ? (1.0f - g) * (1.0f - g) + 2.0f * g * (1.0f - mu)
-                     : (1.0f + g) * (1.0f + g) - 2.0f * g * (1.0f + mu);
+    float base = g >= 0.0f ? (1.0f - g) * (1.0f - g) + 2.0f * g * one_minus_mu
+                           : (1.0f + g) * (1.0f + g) - 2.0f * g * one_plus_mu;
     return FOGRT__INV_4PI * (1.0f - g) * (1.0f + g) / (base * sqrtf(base));
 }
-/* Inverse CDF. The textbook form mu = (1 + g^2 - s^2) / (2g), s = (1 - g^2)/(1 - g + 2gu),
-   divides by g and cancels badly for small |g| (error ~ 1e-7/|g|). Expanding it gives the
-   same mu with no division by g (see docs/sampling-notes):
+FOGRT__PUBLIC float fogrt_hg_phase(float g, float mu)
+{
+    mu = FOGRT__CLAMP(mu, -1.0f, 1.0f);
+    return fogrt__hg_phase_pm(fogrt__clamp_g(g), 1.0f - mu, 1.0f + mu);
+}
+/* Inverse CDF (eq. 11). The textbook form mu = (1 + g^2 - s^2) / (2g), s = (1 - g^2)/(1 - g
+   + 2gu), divides by g and cancels badly for small |g| (error ~ 1e-7/|g|). Expanding it
+   gives the same mu with no division by g:
      D = (1 - g) + 2 g u,  mu = (2u - (1 - g)) / D + 2 g (1 - g)(1 + g) u (1 - u) / D^2.
    g = 0 gives mu = 2u - 1 (isotropic) with no special branch; u = 0 gives -1, u -> 1 gives 1. */
+/* D = (1 - g) + 2 g u, as a sum of two non-negative terms: for g < 0 and u -> 1 the direct
+   form would cancel, so it is written (1 + g) - 2 g (1 - u) there. */
+FOGRT__PRIVATE float fogrt__hg_D(float g, float u)
+{
+    return g >= 0.0f ? (1.0f - g) + 2.0f * g * u : (1.0f + g) - 2.0f * g * (1.0f - u);
+}
 FOGRT__PUBLIC float fogrt_sample_hg_mu(float g, float u)
 {
     float D, mu;
     g = fogrt__clamp_g(g);
     u = FOGRT__CLAMP(u, 0.0f, 1.0f);
-    D = (1.0f - g) + 2.0f * g * u;
+    D = fogrt__hg_D(g, u);
     mu = (2.0f * u - (1.0f - g)) / D + 2.0f * g * (1.0f - g) * (1.0f + g) * u * (1.0f - u) / (D * D);
     return FOGRT__CLAMP(mu, -1.0f, 1.0f);
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg(fogrt_vec3 wo, float g, float u1, float u2, float *pdf)
+/* Near the peak (|g| -> 1) mu rounds to +-1 long before the angle is 0: at g = 0.99 about
+   one sample in 2000 would land exactly on the peak direction. The same expansion gives
+   the distances to both ends as products, with nothing that cancels:
+     1 - mu = (1 - g)^2 (1 - u) (1 + g + D) / D^2,   1 + mu = (1 + g)^2 u (1 - g + D) / D^2,
+   so sin(theta) = sqrt((1 - mu)(1 + mu)) keeps its full precision (eq. 11, rearranged). */
+FOGRT__PRIVATE void fogrt__sample_hg_pm(float g, float u, float *one_minus_mu, float *one_plus_mu)
 {
-    fogrt__v3 d = fogrt__neg(fogrt__normalize(wo));   /* propagation direction */
-    float mu = fogrt_sample_hg_mu(g, u1);
-    float sin_theta = sqrtf(FOGRT__MAX(0.0f, (1.0f - mu) * (1.0f + mu)));
-    float phi = 2.0f * FOGRT__PI * u2;
-    fogrt__frame f = fogrt__frame_from_z(d);
-    fogrt__v3 wi = fogrt__to_world(&f, fogrt__v(sin_theta * cosf(phi), sin_theta * sinf(phi), mu));
-    if (pdf) *pdf = fogrt_hg_phase(mu, g);
-    return fogrt__normalize(wi);
+    float D = fogrt__hg_D(g, u), D2 = D * D;
+    *one_minus_mu = FOGRT__CLAMP((1.0f - g) * (1.0f - g) * (1.0f - u) * (1.0f + g + D) / D2, 0.0f, 2.0f);
+    *one_plus_mu = FOGRT__CLAMP((1.0f + g) * (1.0f + g) * u * (1.0f - g + D) / D2, 0.0f, 2.0f);
 }
-FOGRT__PUBLIC float fogrt_hg_pdf(fogrt_vec3 wo, fogrt_vec3 wi, float g)
+/* A direction about axis z at polar angle theta (given by cos and sin) and azimuth 2 pi u
+   (eq. 12). */
+FOGRT__PRIVATE fogrt__v3 fogrt__around(const fogrt__frame *f, float cos_theta, float sin_theta, float u)
 {
-    return fogrt_hg_phase(-fogrt__dot(wo, wi), g);    /* mu = cos(d, wi) with d = -wo */
+    float phi = 2.0f * FOGRT__PI * u;
+    return fogrt__normalize(fogrt__to_world(f, fogrt__v(sin_theta * cosf(phi), sin_theta * sinf(phi), cos_theta)));
 }
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf)
+{
+    fogrt__frame f = fogrt__frame_from_z(fogrt__neg(fogrt__normalize(wo)));   /* z: propagation */
+    float omm, opm, mu;
+    g = fogrt__clamp_g(g);
+    fogrt__sample_hg_pm(g, FOGRT__CLAMP(u1, 0.0f, 1.0f), &omm, &opm);
+    mu = omm < opm ? 1.0f - omm : opm - 1.0f;          /* from the nearer end: no rounding */
+    if (pdf) *pdf = fogrt__hg_phase_pm(g, omm, opm);
+    return fogrt__around(&f, mu, sqrtf(omm * opm), u2);
+}
+FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi)
+{
+    return fogrt_hg_phase(g, -fogrt__dot(wo, wi));    /* mu = cos(d, wi) with d = -wo */
+}
+#endif /* FOGRT_NO_MEDIUM */
 
-/* Cosine-weighted hemisphere: Shirley-Chiu concentric map of the square to the disk, then
-   lift to the hemisphere (Malley's method). pdf = cos(theta) / pi. */
+/* ------------------------------------------------------------------------------------------
+   6. Samplers for surfaces and lights
+   The generic warps every other chapter uses: cosine-weighted hemisphere (diffuse BSDF),
+   uniform sphere, uniform triangle (area lights), the cone a sphere subtends (spherical
+   lights), the spot profile, and equiangular distance sampling (point lights in fog).
+   ------------------------------------------------------------------------------------------ */
+/* Shirley-Chiu concentric map of the square to the disk (also the thin lens). */
 FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *y)
 {
     float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f, r, phi;
@@ -908,6 +985,7 @@ FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *
     *x = r * cosf(phi);
     *y = r * sinf(phi);
 }
+/* Cosine-weighted hemisphere: the disk lifted to the hemisphere (Malley). pdf = cos / pi. */
 FOGRT__PUBLIC fogrt_vec3 fogrt_sample_cosine_hemisphere(float u1, float u2)
 {
     float x, y;
@@ -935,7 +1013,7 @@ FOGRT__PUBLIC void fogrt_sample_triangle(float u1, float u2, float *b1, float *b
 }
 /* Cone of directions subtended by a sphere: cos(theta_max) = sqrt(1 - r^2/d^2). 1 - cos is
    formed as sin^2 / (1 + cos), which stays accurate for a small or distant sphere. */
-FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 p, fogrt__v3 c, float r, float *dist)
+FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 c, float r, fogrt__v3 p, float *dist)
 {
     fogrt__v3 pc = fogrt__sub(c, p);
     float d2 = fogrt__dot(pc, pc), sin2_max, cos_max;
@@ -945,68 +1023,81 @@ FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 p, fogrt__v3 c, f
     cos_max = sqrtf(FOGRT__MAX(0.0f, 1.0f - sin2_max));
     return sin2_max / (1.0f + cos_max);
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 p, fogrt_vec3 center, float radius,
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 center, float radius, fogrt_vec3 p,
                                                          float u1, float u2, float *pdf)
 {
-    float dist, omc = fogrt__sphere_one_minus_cos_max(p, center, radius, &dist);
-    float one_minus_cos, cos_theta, sin_theta, phi;
+    float dist, omc = fogrt__sphere_one_minus_cos_max(center, radius, p, &dist), one_minus_cos;
     fogrt__frame f;
     if (omc <= 0.0f) {   /* inside: every direction sees the sphere */
         if (pdf) *pdf = FOGRT__INV_4PI;
         return fogrt_sample_uniform_sphere(u1, u2);
     }
     one_minus_cos = u1 * omc;
-    cos_theta = 1.0f - one_minus_cos;
-    sin_theta = sqrtf(FOGRT__MAX(0.0f, one_minus_cos * (2.0f - one_minus_cos)));
-    phi = 2.0f * FOGRT__PI * u2;
     f = fogrt__frame_from_z(fogrt__scale(fogrt__sub(center, p), 1.0f / dist));
     if (pdf) *pdf = 1.0f / (2.0f * FOGRT__PI * omc);
-    return fogrt__normalize(fogrt__to_world(&f, fogrt__v(sin_theta * cosf(phi), sin_theta * sinf(phi), cos_theta)));
+    return fogrt__around(&f, 1.0f - one_minus_cos, sqrtf(FOGRT__MAX(0.0f, one_minus_cos * (2.0f - one_minus_cos))), u2);
 }
-FOGRT__PUBLIC float fogrt_sphere_solid_angle_pdf(fogrt_vec3 p, fogrt_vec3 center, float radius)
+FOGRT__PUBLIC float fogrt_sphere_solid_angle_pdf(fogrt_vec3 center, float radius, fogrt_vec3 p)
 {
-    float dist, omc = fogrt__sphere_one_minus_cos_max(p, center, radius, &dist);
+    float dist, omc = fogrt__sphere_one_minus_cos_max(center, radius, p, &dist);
     return omc <= 0.0f ? FOGRT__INV_4PI : 1.0f / (2.0f * FOGRT__PI * omc);
 }
 /* Spot profile: full inside the beam, linear in the angle down to zero at the cutoff. */
-FOGRT__PUBLIC float fogrt_spot_falloff(float cos_theta, float cutoff_deg, float beam_deg)
+FOGRT__PUBLIC float fogrt_spot_falloff(float cutoff_deg, float beam_deg, float cos_theta)
 {
     float theta = acosf(FOGRT__CLAMP(cos_theta, -1.0f, 1.0f)) * (180.0f / FOGRT__PI);
     if (!(cutoff_deg > beam_deg)) return theta <= cutoff_deg ? 1.0f : 0.0f;   /* hard cone */
     return FOGRT__CLAMP((cutoff_deg - theta) / (cutoff_deg - beam_deg), 0.0f, 1.0f);
 }
 
+#ifndef FOGRT_NO_MEDIUM
 /* Equiangular: with theta the angle seen from the light, t = delta + h tan(theta) and theta is
-   uniform between theta_a = atan((a - delta)/h) and theta_b = atan((b - delta)/h). */
-FOGRT__PUBLIC float fogrt_sample_equiangular(float u, float delta, float h, float a, float b, float *pdf)
+   uniform between theta_a = atan((a - delta)/h) and theta_b = atan((b - delta)/h). Near the
+   ray's line (h much smaller than |t - delta|) theta sits next to +-pi/2, where a float angle
+   would lose the digits tan needs; in double the result is exact to float resolution down to
+   h ~ 1e-7 |t - delta|. The pdf, h / ((theta_b - theta_a)(h^2 + (t - delta)^2)), is written
+   as 1 / ((theta_b - theta_a)(h + (t - delta)^2 / h)) so h^2 cannot underflow.            */
+FOGRT__PRIVATE double fogrt__equiangular_span(double delta, double h, double a, double b, double *theta_a)
 {
-    float theta_a = atan2f(a - delta, h), theta_b = atan2f(b - delta, h), t;
-    if (!(theta_b > theta_a) || !(h > 0.0f)) { if (pdf) *pdf = 0.0f; return a; }
-    /* atan2f(inf, h) rounds to the float just above pi/2, where tanf turns negative: keep
-       the angle strictly inside (-pi/2, pi/2) (1.57079625f is the float just below pi/2) */
-    t = delta + h * tanf(FOGRT__CLAMP(theta_a + u * (theta_b - theta_a), -1.57079625f, 1.57079625f));
-    t = FOGRT__CLAMP(t, a, b);
-    /* pdf = h / ((theta_b - theta_a)(h^2 + (t - delta)^2)), written so h^2 cannot underflow */
-    if (pdf) *pdf = 1.0f / ((theta_b - theta_a) * (h + (t - delta) * ((t - delta) / h)));
+    *theta_a = atan2(a - delta, h);
+    return atan2(b - delta, h) - *theta_a;
+}
+FOGRT__PUBLIC float fogrt_sample_equiangular(float delta, float h, float a, float b, float u, float *pdf)
+{
+    double theta_a, span = fogrt__equiangular_span(delta, h, a, b, &theta_a), x;
+    float t;
+    if (!(span > 0.0) || !(h > 0.0f)) { if (pdf) *pdf = 0.0f; return a; }
+    x = theta_a + (double)u * span;
+    /* b = inf gives theta_b = pi/2 exactly in double, where tan is huge but positive: keep
+       the angle strictly below it so t stays finite and ordered */
+    if (!(b < INFINITY)) x = FOGRT__MIN(x, 1.5707963267948957);
+    t = u > 0.0f ? (float)FOGRT__CLAMP((double)delta + (double)h * tan(x), (double)a, (double)b) : a;
+    if (pdf) *pdf = fogrt_equiangular_pdf(delta, h, a, b, t);   /* at the t returned */
     return t;
 }
-FOGRT__PUBLIC float fogrt_equiangular_pdf(float t, float delta, float h, float a, float b)
+FOGRT__PUBLIC float fogrt_equiangular_pdf(float delta, float h, float a, float b, float t)
 {
-    float theta_a = atan2f(a - delta, h), theta_b = atan2f(b - delta, h);
-    if (!(theta_b > theta_a) || !(h > 0.0f) || t < a || t > b) return 0.0f;
-    return 1.0f / ((theta_b - theta_a) * (h + (t - delta) * ((t - delta) / h)));
+    double theta_a, span = fogrt__equiangular_span(delta, h, a, b, &theta_a);
+    if (!(span > 0.0) || !(h > 0.0f) || t < a || t > b) return 0.0f;
+    return (float)(1.0 / (span * (h + ((double)t - delta) * (((double)t - delta) / h))));
 }
+#endif
 
 /* ------------------------------------------------------------------------------------------
-   6. BSDFs and Fresnel
+   7. BSDFs and Fresnel
    All four BSDFs work in the local shading frame (normal +z). Diffuse and mirror reflect on
    both sides (they answer on the side wo is on); refraction and glass use the sign of wo.z
    to tell entering (wo.z > 0) from leaving (wo.z < 0).
    ------------------------------------------------------------------------------------------ */
+FOGRT__PUBLIC fogrt_vec3 fogrt_reflect(fogrt_vec3 n, fogrt_vec3 wo)
+{
+    return fogrt__sub(fogrt__scale(n, 2.0f * fogrt__dot(wo, n)), wo);
+}
+#ifndef FOGRT_NO_GLASS
 /* Schlick: F = R0 + (1 - R0)(1 - c)^5 with R0 = ((eta-1)/(eta+1))^2, and c the cosine on the
    optically thinner side: the incident cosine when entering, the transmitted one when
    leaving (using cos_i there would be wrong). Total internal reflection is tested first. */
-FOGRT__PUBLIC float fogrt_fresnel_schlick(float cos_i, float eta)
+FOGRT__PUBLIC float fogrt_fresnel_schlick(float eta, float cos_i)
 {
     float r0 = (eta - 1.0f) / (eta + 1.0f), c, m;
     r0 *= r0;
@@ -1023,28 +1114,25 @@ FOGRT__PUBLIC float fogrt_fresnel_schlick(float cos_i, float eta)
     return r0 + (1.0f - r0) * m * m * m * m * m;
 }
 #ifndef FOGRT_NO_EXACT_FRESNEL
-/* Exact unpolarised Fresnel of a dielectric: the mean of the s and p reflectances. */
-FOGRT__PUBLIC float fogrt_fresnel_dielectric(float cos_i, float eta)
+/* Exact unpolarised Fresnel of a dielectric: the mean of the s and p reflectances. The
+   transmitted cosine comes from cos_t^2 = (cos_i^2 + eta^2 - 1) / eta^2, which does not
+   round 1 - cos_i^2 to 1 at grazing angles (so eta = 1 gives cos_t = cos_i and F = 0). */
+FOGRT__PUBLIC float fogrt_fresnel_dielectric(float eta, float cos_i)
 {
-    float sin2_t, cos_t, r_par, r_perp;
+    float cos2_t, cos_t, r_par, r_perp;
     cos_i = FOGRT__CLAMP(cos_i, -1.0f, 1.0f);
     if (cos_i < 0.0f) { eta = 1.0f / eta; cos_i = -cos_i; }   /* from inside */
-    sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1.0f) return 1.0f;                          /* total internal reflection */
-    cos_t = sqrtf(1.0f - sin2_t);
+    if (eta == 1.0f) return 0.0f;                             /* no interface */
+    cos2_t = (cos_i * cos_i + (eta - 1.0f) * (eta + 1.0f)) / (eta * eta);
+    if (cos2_t <= 0.0f) return 1.0f;                          /* total internal reflection */
+    cos_t = sqrtf(cos2_t);
     r_par = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
     r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
     return 0.5f * (r_par * r_par + r_perp * r_perp);
 }
-#else
-FOGRT__PUBLIC float fogrt_fresnel_dielectric(float cos_i, float eta) { return fogrt_fresnel_schlick(cos_i, eta); }
 #endif
-FOGRT__PUBLIC fogrt_vec3 fogrt_reflect(fogrt_vec3 wo, fogrt_vec3 n)
-{
-    return fogrt__sub(fogrt__scale(n, 2.0f * fogrt__dot(wo, n)), wo);
-}
 /* Snell's law: wi = -wo/eta + (cos_i/eta - cos_t) n, after flipping n (and eta) to wo's side. */
-FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 wo, fogrt_vec3 n, float eta, fogrt_vec3 *wi)
+FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 n, float eta, fogrt_vec3 wo, fogrt_vec3 *wi)
 {
     float cos_i = fogrt__dot(n, wo), sin2_i, sin2_t, cos_t;
     if (cos_i < 0.0f) { eta = 1.0f / eta; cos_i = -cos_i; n = fogrt__neg(n); }
@@ -1055,74 +1143,73 @@ FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 wo, fogrt_vec3 n, float eta, fogrt_v
     *wi = fogrt__normalize(fogrt__add(fogrt__scale(wo, -1.0f / eta), fogrt__scale(n, cos_i / eta - cos_t)));
     return true;
 }
-
-FOGRT__PRIVATE float fogrt__fresnel(fogrt_fresnel mode, float cos_i, float eta)
+FOGRT__PRIVATE float fogrt__fresnel(fogrt_fresnel mode, float eta, float cos_i)
 {
 #ifndef FOGRT_NO_EXACT_FRESNEL
-    if (mode == FOGRT_FRESNEL_EXACT) return fogrt_fresnel_dielectric(cos_i, eta);
+    if (mode == FOGRT_FRESNEL_EXACT) return fogrt_fresnel_dielectric(eta, cos_i);
 #else
-    (void)mode;
+    (void)mode;   /* fogrt_render refuses FOGRT_FRESNEL_EXACT in this build */
 #endif
-    return fogrt_fresnel_schlick(cos_i, eta);
+    return fogrt_fresnel_schlick(eta, cos_i);
 }
+/* Refraction and glass: reflect with probability F (glass) or only on total internal
+   reflection (refraction), else refract. The probability is the lobe's discrete pdf. */
+FOGRT__PRIVATE void fogrt__sample_dielectric(const fogrt_material_desc *m, fogrt_fresnel fresnel, fogrt__v3 wo,
+                                             float u_lobe, fogrt_bsdf_sample *out)
+{
+    fogrt__v3 wt;
+    float eta = FOGRT__DEF(m->ior, 1.5f);
+    bool can_refract = fogrt_refract(fogrt__v(0.0f, 0.0f, 1.0f), eta, wo, &wt);
+    float F = m->type == FOGRT_BSDF_GLASS ? fogrt__fresnel(fresnel, eta, wo.z) : 0.0f;
+    if (!can_refract) F = 1.0f;
+    out->is_delta = true;
+    if (u_lobe < F) {                                    /* reflect with probability F */
+        out->wi = fogrt__v(-wo.x, -wo.y, wo.z);
+        out->weight = m->type == FOGRT_BSDF_GLASS ? m->reflectance : m->transmittance;
+        out->pdf = F;
+    } else {                                             /* refract with probability 1 - F */
+        out->wi = wt;
+        out->weight = m->transmittance;
+        out->pdf = 1.0f - F;
+        out->is_transmission = true;
+    }
+}
+#endif /* FOGRT_NO_GLASS */
 FOGRT__PRIVATE fogrt_bsdf_type fogrt__bsdf_type(const fogrt_material_desc *m)
 {
-    fogrt_bsdf_type t = m->type == FOGRT_BSDF_DEFAULT ? FOGRT_BSDF_DIFFUSE : m->type;
-#ifdef FOGRT_NO_GLASS
-    if (t == FOGRT_BSDF_REFRACTION || t == FOGRT_BSDF_GLASS) t = FOGRT_BSDF_MIRROR;
-#endif
-    return t;
+    return m->type == FOGRT_BSDF_DEFAULT ? FOGRT_BSDF_DIFFUSE : m->type;
 }
 FOGRT__PRIVATE bool fogrt__bsdf_is_delta(fogrt_bsdf_type t) { return t != FOGRT_BSDF_DIFFUSE; }
 
-FOGRT__PUBLIC bool fogrt_bsdf_sample_dir(const fogrt_material_desc *m, fogrt_fresnel fresnel,
-                                         fogrt_vec3 wo, float u_lobe, float u1, float u2,
-                                         fogrt_bsdf_sample *out)
+FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel fresnel,
+                                     fogrt_vec3 wo, float u_lobe, float u1, float u2,
+                                     fogrt_bsdf_sample *out)
 {
     fogrt_bsdf_type type = fogrt__bsdf_type(m);
-    float side = wo.z < 0.0f ? -1.0f : 1.0f;
+    fogrt__v3 wi;
     memset(out, 0, sizeof *out);
     if (wo.z == 0.0f) return false;                      /* exactly on the horizon */
-    switch (type) {
-    case FOGRT_BSDF_MIRROR:
+    if (type == FOGRT_BSDF_MIRROR) {
         out->wi = fogrt__v(-wo.x, -wo.y, wo.z);
         out->weight = m->reflectance; out->pdf = 1.0f; out->is_delta = true;
         return true;
+    }
 #ifndef FOGRT_NO_GLASS
-    case FOGRT_BSDF_REFRACTION:
-    case FOGRT_BSDF_GLASS: {
-        float eta = FOGRT__DEF(m->ior, 1.5f);
-        fogrt__v3 wt;
-        bool can_refract = fogrt_refract(wo, fogrt__v(0.0f, 0.0f, 1.0f), eta, &wt);
-        float F;
-        out->is_delta = true;
-        if (type == FOGRT_BSDF_GLASS) F = fogrt__fresnel(fresnel, wo.z, eta);
-        else F = can_refract ? 0.0f : 1.0f;              /* refraction only: reflect on TIR */
-        if (!can_refract) F = 1.0f;
-        if (u_lobe < F) {                                /* reflect with probability F */
-            out->wi = fogrt__v(-wo.x, -wo.y, wo.z);
-            out->weight = type == FOGRT_BSDF_GLASS ? m->reflectance : m->transmittance;
-            out->pdf = F;
-        } else {                                         /* refract with probability 1 - F */
-            out->wi = wt;
-            out->weight = m->transmittance;
-            out->pdf = 1.0f - F;
-            out->is_transmission = true;
-        }
+    if (type == FOGRT_BSDF_REFRACTION || type == FOGRT_BSDF_GLASS) {
+        fogrt__sample_dielectric(m, fresnel, wo, u_lobe, out);
         return true;
     }
+#else
+    if (type == FOGRT_BSDF_REFRACTION || type == FOGRT_BSDF_GLASS) return false;   /* stripped */
 #endif
-    default: {                                           /* diffuse: cosine-weighted */
-        fogrt__v3 wi = fogrt_sample_cosine_hemisphere(u1, u2);
-        (void)u_lobe; (void)fresnel;
-        if (wi.z <= 0.0f) return false;
-        wi.z *= side;
-        out->wi = wi;
-        out->weight = m->reflectance;                    /* (rho/pi) cos / (cos/pi) = rho */
-        out->pdf = fabsf(wi.z) * FOGRT__INV_PI;
-        return true;
-    }
-    }
+    (void)u_lobe; (void)fresnel;                         /* diffuse: cosine-weighted */
+    wi = fogrt_sample_cosine_hemisphere(u1, u2);
+    if (wi.z <= 0.0f) return false;
+    if (wo.z < 0.0f) wi.z = -wi.z;                       /* on wo's side */
+    out->wi = wi;
+    out->weight = m->reflectance;                        /* (rho/pi) cos / (cos/pi) = rho */
+    out->pdf = fabsf(wi.z) * FOGRT__INV_PI;
+    return true;
 }
 FOGRT__PUBLIC fogrt_vec3 fogrt_bsdf_eval(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi)
 {
@@ -1136,7 +1223,7 @@ FOGRT__PUBLIC float fogrt_bsdf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, 
 }
 
 /* ------------------------------------------------------------------------------------------
-   7. The scene: storage and validation
+   8. The scene: storage and validation
    Every add_* call validates all of its input before it changes anything, so an error
    leaves the scene exactly as it was.
    ------------------------------------------------------------------------------------------ */
@@ -1272,6 +1359,10 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_
     if (!fogrt__finite(m.ior) || m.ior < 0.0f)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "material.ior: must be > 0 (0 means the default 1.5)");
     if (m.type == FOGRT_BSDF_DEFAULT) m.type = FOGRT_BSDF_DIFFUSE;
+#ifdef FOGRT_NO_GLASS
+    if (m.type == FOGRT_BSDF_REFRACTION || m.type == FOGRT_BSDF_GLASS)
+        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "material.type: refraction and glass need a build without FOGRT_NO_GLASS");
+#endif
     m.ior = FOGRT__DEF(m.ior, 1.5f);
     if (s->material_count == 0xFFFFFFFEu) return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "too many materials");
     if (s->material_count + 1 > s->material_cap) {
@@ -1287,14 +1378,11 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh_desc *desc)
+/* Everything a mesh must satisfy, checked before anything is copied. */
+FOGRT__PRIVATE fogrt_result fogrt__check_mesh(const fogrt_scene *s, const fogrt_mesh_desc *desc)
 {
-    uint32_t i, k, n, first;
-    FOGRT_ASSERT(s && desc);
-    n = desc->triangle_count;
-    if (n == 0) return FOGRT_RESULT_OK;
+    uint32_t i, n = desc->triangle_count;
     if (!desc->positions) return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "mesh.positions: NULL");
-    /* Validate everything first. */
     if ((uint64_t)s->tri_count + s->sph_count + n > FOGRT__MAX_PRIMS)
         return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "mesh.triangle_count: too many triangles");
     if (!desc->indices && (uint64_t)n * 3 > desc->vertex_count)
@@ -1314,7 +1402,11 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh
         if (mat >= s->material_count)
             return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "mesh.material: material id out of range");
     }
-    /* Make room in every array, then copy. */
+    return FOGRT_RESULT_OK;
+}
+/* Room for n more triangles in every per-triangle array. */
+FOGRT__PRIVATE bool fogrt__reserve_triangles(fogrt_scene *s, uint32_t n)
+{
     if (s->tri_count + n > s->tri_cap) {
         uint32_t cap = fogrt__grow_cap(s->tri_cap, s->tri_count + n), c = s->tri_count;
         if (!fogrt__reserve(s, (void **)&s->tri_v, c * 3, cap * 3, sizeof(fogrt__v3)) ||
@@ -1323,10 +1415,21 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh
             !fogrt__reserve(s, (void **)&s->tri_material, c, cap, sizeof(uint32_t)) ||
             !fogrt__reserve(s, (void **)&s->tri_mesh, c, cap, sizeof(uint32_t))) {
             /* The arrays that did grow hold the old data; only tri_cap is the smaller of them. */
-            return FOGRT_RESULT_OUT_OF_MEMORY;
+            return false;
         }
         s->tri_cap = cap;
     }
+    return true;
+}
+FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh_desc *desc)
+{
+    uint32_t i, k, n, first;
+    fogrt_result r;
+    FOGRT_ASSERT(s && desc);
+    n = desc->triangle_count;
+    if (n == 0) return FOGRT_RESULT_OK;
+    if ((r = fogrt__check_mesh(s, desc)) != FOGRT_RESULT_OK) return r;
+    if (!fogrt__reserve_triangles(s, n)) return FOGRT_RESULT_OUT_OF_MEMORY;
     first = s->tri_count;
     for (i = 0; i < n; ++i) {
         uint32_t t = first + i;
@@ -1433,6 +1536,8 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_ca
     if (!fogrt__v3_finite(c.position) || !fogrt__v3_finite(c.look_at) || !fogrt__v3_finite(c.up))
         return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera.position/look_at/up: not finite");
     fwd = fogrt__sub(c.look_at, c.position);
+    if (!fogrt__finite(fogrt__dot(fwd, fwd)) || !fogrt__finite(fogrt__dot(c.up, c.up)))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera: look_at - position (or up) too long for float: its squared length overflows");
     if (fogrt__dot(fwd, fwd) == 0.0f)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera.look_at: equals camera.position");
     up = fogrt__cross(fogrt__normalize(fwd), fogrt__normalize(c.up));
@@ -1510,17 +1615,17 @@ FOGRT__PUBLIC void fogrt_scene_get_medium(const fogrt_scene *s, fogrt_medium_des
     FOGRT_ASSERT(s && out);
     *out = s->medium;
 }
-FOGRT__PUBLIC uint32_t fogrt_scene_prim_material(const fogrt_scene *s, uint32_t prim)
+FOGRT__PUBLIC uint32_t fogrt_scene_get_prim_material(const fogrt_scene *s, uint32_t prim)
 {
     FOGRT_ASSERT(s);
     if (prim < s->tri_count) return s->tri_material[prim];
     if (prim - s->tri_count < s->sph_count) return s->sph_material[prim - s->tri_count];
     return UINT32_MAX;
 }
-FOGRT__PUBLIC uint32_t fogrt_scene_features(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->features; }
+FOGRT__PUBLIC uint32_t fogrt_scene_get_features(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->features; }
 
 /* ------------------------------------------------------------------------------------------
-   8. The BVH: binned build with the surface area heuristic (or the paper's volume heuristic)
+   9. The BVH: binned build with the surface area heuristic (or the paper's volume heuristic)
    Each node splits its primitives by a plane through one of `bins` equal slices of the
    centroid bounds. For every candidate plane the heuristic weighs both sides:
      SAH:     cost = c_trav + c_int (A_l N_l + A_r N_r) / A   (A = surface area)
@@ -1579,10 +1684,54 @@ FOGRT__PRIVATE void fogrt__node_bounds(fogrt__build *b, fogrt_bvh_node *node, ui
     node->bmax[0] = bb.hi.x; node->bmax[1] = bb.hi.y; node->bmax[2] = bb.hi.z;
 }
 
+/* The heuristic's measure of one side: N A (SAH) or N V (the paper). */
+FOGRT__PRIVATE float fogrt__side_cost(const fogrt_build_desc *d, uint32_t n, const fogrt__aabb *box)
+{
+    return (float)n * (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(box) : fogrt__aabb_area(box));
+}
+/* One axis of the binned split search: drop every centroid into one of nbins slices of
+   [lo, hi], then sweep from the left and from the right to price the nbins - 1 planes
+   between the slices. Improves *best (and the plane *pos) where a plane is cheaper.
+   nbins = 1 prices the single plane through the middle of the centroid bounds.          */
+FOGRT__PRIVATE bool fogrt__split_axis(const fogrt__build *b, uint32_t first, uint32_t count, int axis,
+                                      float lo, float hi, int nbins, float *best, float *pos)
+{
+    enum { MAXB = 65 };
+    fogrt__aabb bin_box[MAXB], left_box = fogrt__aabb_empty(), right_box = fogrt__aabb_empty();
+    uint32_t bin_n[MAXB], left_n = 0, right_n = 0, i;
+    float left_cost[MAXB], scale;
+    bool improved = false;
+    int k;
+    if (nbins == 1) nbins = 2;                     /* one plane = two slices */
+    scale = (float)nbins / (hi - lo);
+    if (!(hi > lo) || !(scale > 0.0f && scale < FLT_MAX)) return false;   /* flat (or degenerate) extent */
+    for (k = 0; k < nbins; ++k) { bin_box[k] = fogrt__aabb_empty(); bin_n[k] = 0; }
+    for (i = 0; i < count; ++i) {
+        uint32_t p = b->idx[first + i];
+        float f = (fogrt__comp(b->centroid[p], axis) - lo) * scale;
+        int bi = f > 0.0f ? (f < (float)nbins ? (int)f : nbins - 1) : 0;   /* NaN -> bin 0 */
+        bin_n[bi]++;
+        fogrt__aabb_union(&bin_box[bi], &b->box[p]);
+    }
+    for (k = 0; k < nbins - 1; ++k) {
+        left_n += bin_n[k];
+        fogrt__aabb_union(&left_box, &bin_box[k]);
+        left_cost[k] = fogrt__side_cost(&b->desc, left_n, &left_box);
+    }
+    for (k = nbins - 1; k > 0; --k) {
+        float cost;
+        right_n += bin_n[k];
+        fogrt__aabb_union(&right_box, &bin_box[k]);
+        if (right_n == 0 || right_n == count) continue;
+        cost = left_cost[k - 1] + fogrt__side_cost(&b->desc, right_n, &right_box);
+        if (cost < *best) { *best = cost; *pos = lo + (float)k / scale; improved = true; }
+    }
+    return improved;
+}
+
 /* Find the best binned split of a node. Returns false if the node should stay a leaf. */
 FOGRT__PRIVATE bool fogrt__find_split(fogrt__build *b, const fogrt_bvh_node *node, int *out_axis, float *out_pos)
 {
-    enum { MAXB = 64 };
     const fogrt_build_desc *d = &b->desc;
     uint32_t first = node->left_first, count = node->prim_count, i;
     fogrt__aabb cb = fogrt__aabb_empty(), nb;
@@ -1592,40 +1741,9 @@ FOGRT__PRIVATE bool fogrt__find_split(fogrt__build *b, const fogrt_bvh_node *nod
     for (i = 0; i < count; ++i) fogrt__aabb_grow(&cb, b->centroid[b->idx[first + i]]);
     nb.lo = fogrt__v(node->bmin[0], node->bmin[1], node->bmin[2]);
     nb.hi = fogrt__v(node->bmax[0], node->bmax[1], node->bmax[2]);
-    for (axis = 0; axis < 3; ++axis) {
-        fogrt__aabb bin_box[MAXB], right_box;
-        uint32_t bin_n[MAXB], left_n = 0, right_n = 0;
-        float left_cost[MAXB], lo = fogrt__comp(cb.lo, axis), hi = fogrt__comp(cb.hi, axis), scale;
-        fogrt__aabb left_box = fogrt__aabb_empty();
-        int k;
-        scale = (float)nbins / (hi - lo);
-        if (!(hi > lo) || !(scale > 0.0f && scale < FLT_MAX)) continue;   /* flat (or degenerate) extent */
-        for (k = 0; k < nbins; ++k) { bin_box[k] = fogrt__aabb_empty(); bin_n[k] = 0; }
-        for (i = 0; i < count; ++i) {
-            uint32_t p = b->idx[first + i];
-            float f = (fogrt__comp(b->centroid[p], axis) - lo) * scale;
-            int bi = f > 0.0f ? (f < (float)nbins ? (int)f : nbins - 1) : 0;   /* NaN -> bin 0 */
-            bin_n[bi]++;
-            fogrt__aabb_union(&bin_box[bi], &b->box[p]);
-        }
-        /* Sweep from the left, then from the right, evaluating the nbins - 1 planes. */
-        for (k = 0; k < nbins - 1; ++k) {
-            left_n += bin_n[k];
-            fogrt__aabb_union(&left_box, &bin_box[k]);
-            left_cost[k] = (float)left_n * (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(&left_box)
-                                                                               : fogrt__aabb_area(&left_box));
-        }
-        right_box = fogrt__aabb_empty();
-        for (k = nbins - 1; k > 0; --k) {
-            float cost;
-            right_n += bin_n[k];
-            fogrt__aabb_union(&right_box, &bin_box[k]);
-            if (right_n == 0 || right_n == count) continue;
-            cost = left_cost[k - 1] + (float)right_n * (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(&right_box)
-                                                                                           : fogrt__aabb_area(&right_box));
-            if (cost < best) { best = cost; best_axis = axis; best_pos = lo + (float)k / scale; }
-        }
-    }
+    for (axis = 0; axis < 3; ++axis)
+        if (fogrt__split_axis(b, first, count, axis, fogrt__comp(cb.lo, axis), fogrt__comp(cb.hi, axis), nbins, &best, &best_pos))
+            best_axis = axis;
     *out_axis = best_axis;
     *out_pos = best_pos;
     if (best_axis < 0) return false;
@@ -1686,8 +1804,8 @@ FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count)
     }
 }
 
-FOGRT__PUBLIC void fogrt_scene_bvh(const fogrt_scene *s, const fogrt_bvh_node **nodes, uint32_t *node_count,
-                                   const uint32_t **prim_index)
+FOGRT__PUBLIC void fogrt_scene_get_bvh(const fogrt_scene *s, const fogrt_bvh_node **nodes, uint32_t *node_count,
+                                       const uint32_t **prim_index)
 {
     FOGRT_ASSERT(s);
     if (nodes) *nodes = s->nodes;
@@ -1716,7 +1834,7 @@ FOGRT__PUBLIC float fogrt_bvh_sah_cost(const fogrt_scene *s)
 }
 
 /* ------------------------------------------------------------------------------------------
-   9. Ray queries: primitives and BVH traversal
+   10. Ray queries: primitives and BVH traversal
    ------------------------------------------------------------------------------------------ */
 /* Moller-Trumbore with the edges precomputed. Every test is written so that a NaN (from a
    degenerate, zero-area triangle) fails it: degenerate triangles are never hit. A ray
@@ -1760,12 +1878,12 @@ FOGRT__HOT bool fogrt__hit_sphere(fogrt__v3 o, fogrt__v3 d, fogrt__v3 c, float r
     if (t1 > tmin && t1 < tmax) { *t = t1; return true; }
     return false;
 }
-FOGRT__PUBLIC bool fogrt_intersect_triangle(fogrt_vec3 o, fogrt_vec3 d, fogrt_vec3 v0, fogrt_vec3 v1,
-                                            fogrt_vec3 v2, float tmin, float tmax, float *t, float *u, float *v)
+FOGRT__PUBLIC bool fogrt_intersect_triangle(fogrt_vec3 v0, fogrt_vec3 v1, fogrt_vec3 v2, fogrt_vec3 o,
+                                            fogrt_vec3 d, float tmin, float tmax, float *t, float *u, float *v)
 {
     return fogrt__hit_triangle(o, d, v0, fogrt__sub(v1, v0), fogrt__sub(v2, v0), tmin, tmax, t, u, v);
 }
-FOGRT__PUBLIC bool fogrt_intersect_sphere(fogrt_vec3 o, fogrt_vec3 d, fogrt_vec3 center, float radius,
+FOGRT__PUBLIC bool fogrt_intersect_sphere(fogrt_vec3 center, float radius, fogrt_vec3 o, fogrt_vec3 d,
                                           float tmin, float tmax, float *t)
 {
     return fogrt__hit_sphere(o, d, center, radius, tmin, tmax, t);
@@ -1898,7 +2016,12 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
     return found;
 }
 
-/* The build: bounds, BVH, primitives in BVH order, area lights and the feature analysis. */
+/* ------------------------------------------------------------------------------------------
+   11. The scene build: bounds, the tree, the light tables and the feature analysis
+   fogrt_scene_build turns what was added into what the renderer reads: the BVH (chapter 9)
+   over every primitive, the primitives in BVH order in the form the traversal wants, one
+   table per area light (chapter 12), the ray offset scale, and the feature bits.
+   ------------------------------------------------------------------------------------------ */
 FOGRT__PRIVATE bool fogrt__material_used(const fogrt_scene *s, fogrt_bsdf_type type)
 {
     uint32_t i;
@@ -1911,29 +2034,24 @@ FOGRT__PRIVATE float fogrt__tri_area(const fogrt_scene *s, uint32_t t)
     const fogrt__v3 *v = &s->tri_v[3 * t];
     return 0.5f * fogrt__length(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
 }
-FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s)
+/* An emissive triangle that can be sampled: emission and a non-zero area. */
+FOGRT__PRIVATE bool fogrt__tri_emits(const fogrt_scene *s, uint32_t t)
 {
-    uint32_t i, n_tri = 0, n_groups = 0, n_sph = 0, g = 0, k = 0, prev_mesh = UINT32_MAX;
-    uint32_t n_prims = s->tri_count + s->sph_count;
+    return !fogrt__is_black(s->materials[s->tri_material[t]].emission) && fogrt__tri_area(s, t) > 0.0f;
+}
+FOGRT__PRIVATE bool fogrt__sphere_emits(const fogrt_scene *s, uint32_t i)
+{
+    return !fogrt__is_black(s->materials[s->sph_material[i]].emission);
+}
+/* Emissive triangles of one mesh form one light; a CDF over their areas picks one. */
+FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s)
+{
+    uint32_t i, g = 0, k = 0, prev_mesh = UINT32_MAX;
     for (i = 0; i < s->tri_count; ++i) {
-        if (fogrt__is_black(s->materials[s->tri_material[i]].emission) || !(fogrt__tri_area(s, i) > 0.0f)) continue;
-        if (s->tri_mesh[i] != prev_mesh) { n_groups++; prev_mesh = s->tri_mesh[i]; }
-        n_tri++;
-    }
-    for (i = 0; i < s->sph_count; ++i)
-        if (!fogrt__is_black(s->materials[s->sph_material[i]].emission)) n_sph++;
-    s->prim_light = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n_prims ? n_prims : 1));
-    s->area_lights = (fogrt__area_light *)fogrt__alloc(&s->allocator, sizeof(fogrt__area_light) * (n_groups + n_sph + 1));
-    s->light_prims = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n_tri + 1));
-    s->light_cdf = (float *)fogrt__alloc(&s->allocator, sizeof(float) * (n_tri + 1));
-    if (!s->prim_light || !s->area_lights || !s->light_prims || !s->light_cdf) return false;
-    for (i = 0; i < n_prims; ++i) s->prim_light[i] = UINT32_MAX;
-    /* Emissive triangles of one mesh form one light; a CDF over their areas picks one. */
-    prev_mesh = UINT32_MAX;
-    for (i = 0; i < s->tri_count; ++i) {
-        float area = fogrt__tri_area(s, i);
         fogrt__area_light *L;
-        if (fogrt__is_black(s->materials[s->tri_material[i]].emission) || !(area > 0.0f)) continue;
+        float area;
+        if (!fogrt__tri_emits(s, i)) continue;
+        area = fogrt__tri_area(s, i);
         if (s->tri_mesh[i] != prev_mesh) {
             L = &s->area_lights[g++];
             L->first = k; L->count = 0; L->sphere = UINT32_MAX; L->area = 0.0f;
@@ -1952,9 +2070,28 @@ FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s)
         for (k = 0; k < L->count; ++k) s->light_cdf[L->first + k] /= L->area;
         s->light_cdf[L->first + L->count - 1] = 1.0f;
     }
-    for (i = 0; i < s->sph_count; ++i) {
+    return g;
+}
+FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s)
+{
+    uint32_t i, n_tri = 0, n_groups = 0, n_sph = 0, g, prev_mesh = UINT32_MAX;
+    uint32_t n_prims = s->tri_count + s->sph_count;
+    for (i = 0; i < s->tri_count; ++i) {
+        if (!fogrt__tri_emits(s, i)) continue;
+        if (s->tri_mesh[i] != prev_mesh) { n_groups++; prev_mesh = s->tri_mesh[i]; }
+        n_tri++;
+    }
+    for (i = 0; i < s->sph_count; ++i) n_sph += fogrt__sphere_emits(s, i);
+    s->prim_light = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n_prims ? n_prims : 1));
+    s->area_lights = (fogrt__area_light *)fogrt__alloc(&s->allocator, sizeof(fogrt__area_light) * (n_groups + n_sph + 1));
+    s->light_prims = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n_tri + 1));
+    s->light_cdf = (float *)fogrt__alloc(&s->allocator, sizeof(float) * (n_tri + 1));
+    if (!s->prim_light || !s->area_lights || !s->light_prims || !s->light_cdf) return false;
+    for (i = 0; i < n_prims; ++i) s->prim_light[i] = UINT32_MAX;
+    g = fogrt__mesh_lights(s);
+    for (i = 0; i < s->sph_count; ++i) {      /* an emissive sphere is a light of its own */
         fogrt__area_light *L;
-        if (fogrt__is_black(s->materials[s->sph_material[i]].emission)) continue;
+        if (!fogrt__sphere_emits(s, i)) continue;
         L = &s->area_lights[g];
         L->first = 0; L->count = 0; L->sphere = i;
         L->area = 4.0f * FOGRT__PI * s->sph_r[i] * s->sph_r[i];
@@ -1964,69 +2101,45 @@ FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s)
     return true;
 }
 
-FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
+/* The box of primitive i (triangles first, then spheres). */
+FOGRT__PRIVATE fogrt__aabb fogrt__prim_box(const fogrt_scene *s, uint32_t i)
 {
-    fogrt__build b;
-    uint32_t n, i, k;
+    fogrt__aabb bb = fogrt__aabb_empty();
+    uint32_t k;
+    if (i < s->tri_count) {
+        for (k = 0; k < 3; ++k) fogrt__aabb_grow(&bb, s->tri_v[3 * i + k]);
+    } else {
+        fogrt__v3 c = s->sph_c[i - s->tri_count];
+        float r = s->sph_r[i - s->tri_count];
+        bb.lo = fogrt__sub(c, fogrt__v(r, r, r));
+        bb.hi = fogrt__add(c, fogrt__v(r, r, r));
+    }
+    return bb;
+}
+/* Boxes and centroids of every primitive, the scene's bounds, and the sizes derived from
+   them: the ray offset floor and the point-light distance clamp (chapter 12). */
+FOGRT__PRIVATE void fogrt__bounds(fogrt_scene *s, fogrt__build *b, uint32_t n)
+{
+    fogrt__aabb sb = fogrt__aabb_empty();
+    uint32_t i;
     float diag;
-    FOGRT_ASSERT(s);
-    memset(&b, 0, sizeof b);
-    if (desc) b.desc = *desc;
-    if ((unsigned)b.desc.heuristic >= (unsigned)FOGRT_BVH_NUM || b.desc.bins < 0 || b.desc.bins > 64 ||
-        b.desc.max_leaf_size < 0 || !(b.desc.c_trav >= 0.0f) || !(b.desc.c_int >= 0.0f) ||
-        !fogrt__finite(b.desc.c_trav) || !fogrt__finite(b.desc.c_int))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: heuristic, bins (0..64), max_leaf_size, c_trav or c_int out of range");
-    if (b.desc.heuristic == FOGRT_BVH_DEFAULT) b.desc.heuristic = FOGRT_BVH_SAH;
-    b.desc.bins = FOGRT__MAX(2, FOGRT__DEF(b.desc.bins, FOGRT_BVH_BINS));
-    b.desc.c_trav = FOGRT__DEF(b.desc.c_trav, 1.0f);
-    b.desc.c_int = FOGRT__DEF(b.desc.c_int, 1.0f);
-    b.desc.max_leaf_size = FOGRT__DEF(b.desc.max_leaf_size, 4);
-    fogrt__free_built(s);
-    n = s->tri_count + s->sph_count;
-    if (n == 0 && s->light_count == 0 && !s->has_env)
-        return fogrt__fail(s, FOGRT_RESULT_EMPTY_SCENE, "scene: no geometry and no light");
-    b.box = (fogrt__aabb *)fogrt__alloc(&s->allocator, sizeof(fogrt__aabb) * (n + 1));
-    b.centroid = (fogrt__v3 *)fogrt__alloc(&s->allocator, sizeof(fogrt__v3) * (n + 1));
-    s->nodes = (fogrt_bvh_node *)fogrt__alloc(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
-    s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
-    s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
-    if (!b.box || !b.centroid || !s->nodes || !s->prim_index || !s->prims || !fogrt__build_lights(s)) {
-        fogrt__free(&s->allocator, b.box); fogrt__free(&s->allocator, b.centroid);
-        fogrt__free_built(s);
-        return FOGRT_RESULT_OUT_OF_MEMORY;
+    for (i = 0; i < n; ++i) {
+        b->box[i] = fogrt__prim_box(s, i);
+        b->centroid[i] = fogrt__scale(fogrt__add(b->box[i].lo, b->box[i].hi), 0.5f);
+        fogrt__aabb_union(&sb, &b->box[i]);
+        s->prim_index[i] = i;
     }
-    /* Bounds and centroids of every primitive, and of the scene. */
-    {
-        fogrt__aabb sb = fogrt__aabb_empty();
-        for (i = 0; i < n; ++i) {
-            fogrt__aabb *bb = &b.box[i];
-            *bb = fogrt__aabb_empty();
-            if (i < s->tri_count) {
-                for (k = 0; k < 3; ++k) fogrt__aabb_grow(bb, s->tri_v[3 * i + k]);
-            } else {
-                fogrt__v3 c = s->sph_c[i - s->tri_count];
-                float r = s->sph_r[i - s->tri_count];
-                bb->lo = fogrt__sub(c, fogrt__v(r, r, r));
-                bb->hi = fogrt__add(c, fogrt__v(r, r, r));
-            }
-            b.centroid[i] = fogrt__scale(fogrt__add(bb->lo, bb->hi), 0.5f);
-            fogrt__aabb_union(&sb, bb);
-            s->prim_index[i] = i;
-        }
-        if (n == 0) { sb.lo = fogrt__v(0, 0, 0); sb.hi = fogrt__v(0, 0, 0); }
-        s->bmin = sb.lo; s->bmax = sb.hi;
-    }
+    if (n == 0) { sb.lo = fogrt__v(0, 0, 0); sb.hi = fogrt__v(0, 0, 0); }
+    s->bmin = sb.lo; s->bmax = sb.hi;
     diag = fogrt__length(fogrt__sub(s->bmax, s->bmin));
     if (!(diag > 0.0f)) diag = 1.0f;
     s->eps = 1e-6f * diag;
     s->r2_min = (1e-4f * diag) * (1e-4f * diag);
-    /* The tree. */
-    b.nodes = s->nodes;
-    b.idx = s->prim_index;
-    if (n > 0) fogrt__bvh_build(&b, n);
-    else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
-    s->node_count = b.node_count;
-    /* Primitives in BVH order, in the form the traversal wants. */
+}
+/* Primitives in BVH order, in the form the traversal wants. */
+FOGRT__PRIVATE void fogrt__pack_prims(fogrt_scene *s, uint32_t n)
+{
+    uint32_t i;
     for (i = 0; i < n; ++i) {
         uint32_t id = s->prim_index[i];
         fogrt__prim *p = &s->prims[i];
@@ -2040,42 +2153,110 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
             p->c = fogrt__v(0.0f, 0.0f, 0.0f);
         }
     }
-    fogrt__free(&s->allocator, b.box);
-    fogrt__free(&s->allocator, b.centroid);
-    /* What the scene uses: the integrator tests these bits and skips the rest. */
-    s->features = 0;
+}
+/* What the scene uses. The integrator reads FOGRT_FEATURE_MEDIUM to skip every fog step;
+   the rest are a report (the code they name runs only where a primitive or light of that
+   kind exists anyway: no glass, no Fresnel; no spheres, no sphere test; no light, no
+   shadow ray). make callgrind measures both claims against the strip macros.             */
+FOGRT__PRIVATE uint32_t fogrt__features(const fogrt_scene *s)
+{
+    uint32_t f = 0, i;
 #ifndef FOGRT_NO_MEDIUM
-    if (s->medium.sigma_t > 0.0f) s->features |= FOGRT_FEATURE_MEDIUM;
+    if (s->medium.sigma_t > 0.0f) f |= FOGRT_FEATURE_MEDIUM;
 #endif
-    if (fogrt__material_used(s, FOGRT_BSDF_GLASS)) s->features |= FOGRT_FEATURE_FRESNEL | FOGRT_FEATURE_REFRACTION;
-    if (fogrt__material_used(s, FOGRT_BSDF_REFRACTION)) s->features |= FOGRT_FEATURE_REFRACTION;
-    if (s->area_light_count) s->features |= FOGRT_FEATURE_AREA_LIGHTS;
+    if (fogrt__material_used(s, FOGRT_BSDF_GLASS)) f |= FOGRT_FEATURE_FRESNEL | FOGRT_FEATURE_REFRACTION;
+    if (fogrt__material_used(s, FOGRT_BSDF_REFRACTION)) f |= FOGRT_FEATURE_REFRACTION;
+    if (s->area_light_count) f |= FOGRT_FEATURE_AREA_LIGHTS;
     for (i = 0; i < s->light_count; ++i) {
-        s->features |= FOGRT_FEATURE_POINT_LIGHTS;
-        if (s->lights[i].type == FOGRT_LIGHT_SPOT) s->features |= FOGRT_FEATURE_SPOT_LIGHTS;
+        f |= FOGRT_FEATURE_POINT_LIGHTS;
+        if (s->lights[i].type == FOGRT_LIGHT_SPOT) f |= FOGRT_FEATURE_SPOT_LIGHTS;
     }
-    if (s->has_env) s->features |= FOGRT_FEATURE_ENVIRONMENT;
-    if (s->sph_count) s->features |= FOGRT_FEATURE_SPHERES;
-    if (s->tri_count) s->features |= FOGRT_FEATURE_TRIANGLES;
-    s->built = true;
+    if (s->has_env) f |= FOGRT_FEATURE_ENVIRONMENT;
+    if (s->sph_count) f |= FOGRT_FEATURE_SPHERES;
+    if (s->tri_count) f |= FOGRT_FEATURE_TRIANGLES;
+    return f;
+}
+
+FOGRT__PUBLIC fogrt_build_desc fogrt_build_defaults(void)
+{
+    fogrt_build_desc d;
+    memset(&d, 0, sizeof d);
+    d.heuristic = FOGRT_BVH_SAH;
+    d.bins = FOGRT_BVH_BINS;
+    d.c_trav = 1.0f;
+    d.c_int = 1.0f;
+    d.max_leaf_size = 4;
+    d.resolved = true;
+    return d;
+}
+/* The desc (NULL: the defaults), checked. Like the render desc it must come from
+   fogrt_build_defaults(): in a zeroed desc, c_trav 0 would mean "traversal is free". */
+FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fogrt_build_desc *in, fogrt_build_desc *d)
+{
+    *d = in ? *in : fogrt_build_defaults();
+    if (!d->resolved)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: not from fogrt_build_defaults()");
+    if ((unsigned)d->heuristic >= (unsigned)FOGRT_BVH_NUM || d->bins < 1 || d->bins > 64 ||
+        d->max_leaf_size < 1 || !(d->c_trav >= 0.0f) || !(d->c_int >= 0.0f) ||
+        !fogrt__finite(d->c_trav) || !fogrt__finite(d->c_int))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: heuristic, bins (1..64), max_leaf_size (>= 1), c_trav or c_int out of range");
+    if (d->heuristic == FOGRT_BVH_DEFAULT) d->heuristic = FOGRT_BVH_SAH;
     return FOGRT_RESULT_OK;
 }
 
+FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
+{
+    fogrt__build b;
+    uint32_t n;
+    fogrt_result r;
+    FOGRT_ASSERT(s);
+    memset(&b, 0, sizeof b);
+    if ((r = fogrt__resolve_build(s, desc, &b.desc)) != FOGRT_RESULT_OK) return r;
+    fogrt__free_built(s);
+    n = s->tri_count + s->sph_count;
+    if (n == 0 && s->light_count == 0 && !s->has_env)
+        return fogrt__fail(s, FOGRT_RESULT_EMPTY_SCENE, "scene: no geometry and no light");
+    b.box = (fogrt__aabb *)fogrt__alloc(&s->allocator, sizeof(fogrt__aabb) * (n + 1));
+    b.centroid = (fogrt__v3 *)fogrt__alloc(&s->allocator, sizeof(fogrt__v3) * (n + 1));
+    s->nodes = (fogrt_bvh_node *)fogrt__alloc(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
+    s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
+    s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
+    if (b.box && b.centroid && s->nodes && s->prim_index && s->prims && fogrt__build_lights(s)) {
+        fogrt__bounds(s, &b, n);
+        b.nodes = s->nodes;
+        b.idx = s->prim_index;
+        if (n > 0) fogrt__bvh_build(&b, n);
+        else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
+        s->node_count = b.node_count;
+        fogrt__pack_prims(s, n);
+        s->features = fogrt__features(s);
+        s->built = true;
+    } else {
+        fogrt__free_built(s);
+    }
+    fogrt__free(&s->allocator, b.box);
+    fogrt__free(&s->allocator, b.centroid);
+    return s->built ? FOGRT_RESULT_OK : FOGRT_RESULT_OUT_OF_MEMORY;
+}
+
 /* ------------------------------------------------------------------------------------------
-   10. Lights: next-event estimation
+   12. Lights: next-event estimation (paper eq. 3 and 13)
    At every scattering vertex (a surface or a point in the fog) each light is sampled and a
    shadow ray decides visibility. In the fog the shadow ray also carries the transmittance
-   exp(-sigma_t r) in closed form. Area lights are combined with BSDF / phase sampling by
-   multiple importance sampling (power heuristic, Veach 1997), counting the light_samples
-   samples per light: w_light = (n p_light)^2 / ((n p_light)^2 + p_bsdf^2).
+   exp(-sigma_t r) in closed form (eq. 8). Area lights are combined with BSDF / phase
+   sampling by multiple importance sampling (power heuristic, Veach 1997), counting the
+   light_samples samples per light: w_light = (n p_light)^2 / ((n p_light)^2 + p_bsdf^2).
+   The lights are numbered as one list: the point and spot lights first, then the area
+   lights (emissive meshes and spheres), so one function samples any of them.
    Point lights: irradiance I / r^2 is unbounded as r -> 0, so r^2 is clamped from below at
    (1e-4 x scene diagonal)^2 (a documented bias that only touches points that close), and a
    point exactly at the light receives nothing from it (its direction is undefined). A light
    with a radius is a spherical emitter instead and has no such spike.
    ------------------------------------------------------------------------------------------ */
 typedef struct fogrt__settings {
-    int max_depth, rr_depth, light_samples;
-    bool nee, mis, direct_only;
+    int max_depth, min_depth, rr_depth, light_samples;
+    bool nee, mis, equiangular;
+    fogrt_integrator integrator;
     fogrt_fresnel fresnel;
 } fogrt__settings;
 
@@ -2088,6 +2269,11 @@ typedef struct fogrt__vertex {
     fogrt__v3 ng;              /* surface: geometric normal on the side of wo */
     const fogrt_material_desc *m;
 } fogrt__vertex;
+
+/* A light sample seen from a point: the direction and distance to the emitting point, the
+   radiance arriving from it and the solid-angle pdf of the sample. Point and spot lights
+   are deltas: Le is already the radiance divided by the pdf, and pdf is 1. */
+typedef struct fogrt__light_sample { fogrt__v3 wi, Le; float dist, pdf; bool delta; } fogrt__light_sample;
 
 FOGRT__PRIVATE float fogrt__power_heuristic(float a, float b)
 {
@@ -2111,14 +2297,18 @@ FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt_
 /* What the vertex sends toward -wi from light arriving along wi: f |cos| at a surface (in
    world space, with the geometric-side test against light leaks), the phase function in the
    fog. *pdf is the density with which BSDF / phase sampling would have chosen wi. */
-FOGRT__PRIVATE fogrt__v3 fogrt__vertex_f(const fogrt__vertex *v, fogrt__v3 wi, float g, float *pdf)
+FOGRT__PRIVATE fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf)
 {
     fogrt__v3 wo_l, wi_l;
+#ifndef FOGRT_NO_MEDIUM
     if (v->is_medium) {
-        float p = fogrt_hg_pdf(v->wo, wi, g);
+        float p = fogrt_hg_pdf(s->medium.g, v->wo, wi);
         *pdf = p;
         return fogrt__v(p, p, p);
     }
+#else
+    (void)s;
+#endif
     if (fogrt__dot(wi, v->ng) <= 0.0f) { *pdf = 0.0f; return fogrt__v(0.0f, 0.0f, 0.0f); }
     wo_l = fogrt__to_local(&v->frame, v->wo);
     wi_l = fogrt__to_local(&v->frame, wi);
@@ -2126,91 +2316,99 @@ FOGRT__PRIVATE fogrt__v3 fogrt__vertex_f(const fogrt__vertex *v, fogrt__v3 wi, f
     return fogrt__scale(fogrt_bsdf_eval(v->m, wo_l, wi_l), fabsf(wi_l.z));
 }
 
-/* Visibility times transmittance between the vertex and a point at distance dist along wi.
-   The shadow ray starts at the offset origin and aims at the target itself, stopping
-   far_offset short of it (the target may lie on a surface: the emitter). */
-FOGRT__PRIVATE float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float dist,
-                                   float far_offset, uint64_t *rays)
+/* Visibility times transmittance (eq. 8) between the vertex and the light sample's point.
+   The shadow ray starts at the offset origin and aims at the target itself, stopping a ray
+   offset short of it (the target may lie on a surface: the emitter). */
+FOGRT__PRIVATE float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, const fogrt__light_sample *ls,
+                                   uint64_t *rays)
 {
-    fogrt__v3 y = fogrt__madd(v->p, wi, dist);
-    fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, wi);
+    fogrt__v3 y = fogrt__madd(v->p, ls->wi, ls->dist);
+    fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, ls->wi);
     fogrt__v3 to = fogrt__sub(y, o);
-    float len = fogrt__length(to), tmax = len - far_offset;
+    float len = fogrt__length(to), tmax = len - fogrt__offset_size(s, y);
     ++*rays;
     if (tmax > 0.0f && fogrt__traverse(s, o, fogrt__scale(to, 1.0f / len), 0.0f, tmax, NULL, true)) return 0.0f;
 #ifndef FOGRT_NO_MEDIUM
-    if (v->in_medium) return fogrt_transmittance(s->medium.sigma_t, dist);
+    if (v->in_medium) return fogrt_transmittance(s->medium.sigma_t, ls->dist);
 #endif
     return 1.0f;
 }
 
-/* (Forced inline: it has two callers, and as a call it cost a fog-free render 2%.)
-   Light arriving at x from point or spot light l: a direction wi, the distance to the
-   emitting point, and the incident radiance divided by the sampling pdf (for a point light,
-   simply I(theta) / r^2). A light with a radius is a sphere of radiance I(theta)/(pi R^2),
-   sampled uniformly in the cone it subtends (inside it: every direction). Returns black when
-   x gets nothing. The spot profile is evaluated from the light's centre. */
-FOGRT__HOT fogrt__v3 fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l, fogrt__v3 x,
-                                                   float u1, float u2, fogrt__v3 *wi, float *dist)
+/* Point or spot light l seen from x: for a point light simply I(theta) / r^2 along the
+   direction to it. A light with a radius is a sphere of radiance I(theta)/(pi R^2), sampled
+   uniformly in the cone it subtends (inside it: every direction). The spot profile is
+   evaluated from the light's centre. Returns false when x gets nothing. */
+FOGRT__PRIVATE bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l, fogrt__v3 x,
+                                              const float *u, fogrt__light_sample *ls)
 {
     fogrt__v3 to = fogrt__sub(l->position, x), I = l->intensity;
     float d2 = fogrt__dot(to, to), d, pdf, t;
-    if (!(d2 > 0.0f)) return fogrt__v(0.0f, 0.0f, 0.0f);   /* x is the light: no direction */
+    if (!(d2 > 0.0f)) return false;                    /* x is the light: no direction */
     d = sqrtf(d2);
     if (l->type == FOGRT_LIGHT_SPOT)
-        I = fogrt__scale(I, fogrt_spot_falloff(-fogrt__dot(to, l->direction) / d, l->cutoff_deg, l->beam_deg));
-    if (fogrt__is_black(I)) return I;
+        I = fogrt__scale(I, fogrt_spot_falloff(l->cutoff_deg, l->beam_deg, -fogrt__dot(to, l->direction) / d));
+    if (fogrt__is_black(I)) return false;
+    ls->pdf = 1.0f;
+    ls->delta = true;
     if (!(l->radius > 0.0f)) {
-        *wi = fogrt__scale(to, 1.0f / d);
-        *dist = d;
-        return fogrt__scale(I, 1.0f / FOGRT__MAX(d2, s->r2_min));
+        ls->wi = fogrt__scale(to, 1.0f / d);
+        ls->dist = d;
+        ls->Le = fogrt__scale(I, 1.0f / FOGRT__MAX(d2, s->r2_min));
+        return true;
     }
-    *wi = fogrt_sample_sphere_solid_angle(x, l->position, l->radius, u1, u2, &pdf);
+    ls->wi = fogrt_sample_sphere_solid_angle(l->position, l->radius, x, u[0], u[1], &pdf);
     if (d <= l->radius) t = 0.0f;                        /* inside the emitter */
-    else if (!fogrt__hit_sphere(x, *wi, l->position, l->radius, 0.0f, INFINITY, &t)) t = fogrt__dot(to, *wi);
-    *dist = t;
-    return fogrt__scale(I, 1.0f / (FOGRT__PI * l->radius * l->radius * pdf));
+    else if (!fogrt__hit_sphere(x, ls->wi, l->position, l->radius, 0.0f, INFINITY, &t)) t = fogrt__dot(to, ls->wi);
+    ls->dist = t;
+    ls->Le = fogrt__scale(I, 1.0f / (FOGRT__PI * l->radius * l->radius * pdf));
+    return true;
 }
 
-/* Sample a point on area light a as seen from p: returns Le, direction, distance and the
-   solid-angle pdf (0 when the sample is unusable: back side, or p inside an emitting sphere). */
-FOGRT__PRIVATE fogrt__v3 fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area_light *a, fogrt__v3 p,
-                                                  fogrt_rng *rng, fogrt__v3 *wi, float *dist, float *pdf)
+/* A point y on a mesh light: a triangle chosen by area (binary search in the CDF), then a
+   uniform point on it. *ny is its geometric normal. */
+FOGRT__PRIVATE uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__area_light *a, const float *u,
+                                                 fogrt__v3 *y, fogrt__v3 *ny)
 {
-    fogrt__v3 zero = fogrt__v(0.0f, 0.0f, 0.0f), y, ny, to;
-    float u0 = fogrt_rng_float(rng), u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng), d2, cos_l;
-    uint32_t tri, mat;
-    *pdf = 0.0f;
-    if (a->sphere != UINT32_MAX) {                       /* a sphere: sample its cone */
+    uint32_t lo = 0, hi = a->count - 1, tri;
+    const fogrt__v3 *v;
+    float b1, b2;
+    while (lo < hi) { uint32_t mid = (lo + hi) / 2; if (s->light_cdf[a->first + mid] <= u[0]) lo = mid + 1; else hi = mid; }
+    tri = s->light_prims[a->first + lo];
+    v = &s->tri_v[3 * tri];
+    fogrt_sample_triangle(u[1], u[2], &b1, &b2);
+    *y = fogrt__add(v[0], fogrt__add(fogrt__scale(fogrt__sub(v[1], v[0]), b1), fogrt__scale(fogrt__sub(v[2], v[0]), b2)));
+    *ny = fogrt__normalize(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
+    return tri;
+}
+/* Area light a seen from p: an emissive sphere is sampled in the cone it subtends, a mesh
+   by area (pdf 1/A, turned into solid angle). False when the sample is unusable: the back
+   of a one-sided emitter, or p inside an emitting sphere. */
+FOGRT__PRIVATE bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area_light *a, fogrt__v3 p,
+                                             const float *u, fogrt__light_sample *ls)
+{
+    fogrt__v3 y, ny, to;
+    float d2, cos_l;
+    ls->delta = false;
+    if (a->sphere != UINT32_MAX) {
         fogrt__v3 c = s->sph_c[a->sphere];
         float r = s->sph_r[a->sphere], t;
-        if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r) return zero;   /* emits outward only */
-        *wi = fogrt_sample_sphere_solid_angle(p, c, r, u1, u2, pdf);
-        if (!fogrt__hit_sphere(p, *wi, c, r, 0.0f, INFINITY, &t)) t = fogrt__dot(fogrt__sub(c, p), *wi);
-        *dist = t;
-        return s->materials[s->sph_material[a->sphere]].emission;
+        if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r) return false;   /* emits outward only */
+        ls->wi = fogrt_sample_sphere_solid_angle(c, r, p, u[1], u[2], &ls->pdf);
+        if (!fogrt__hit_sphere(p, ls->wi, c, r, 0.0f, INFINITY, &t)) t = fogrt__dot(fogrt__sub(c, p), ls->wi);
+        ls->dist = t;
+        ls->Le = s->materials[s->sph_material[a->sphere]].emission;
+        return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
     }
-    {   /* a mesh: pick a triangle by area (binary search in the CDF), then a point on it */
-        uint32_t lo = 0, hi = a->count - 1;
-        const fogrt__v3 *v;
-        float b1, b2;
-        while (lo < hi) { uint32_t mid = (lo + hi) / 2; if (s->light_cdf[a->first + mid] <= u0) lo = mid + 1; else hi = mid; }
-        tri = s->light_prims[a->first + lo];
-        v = &s->tri_v[3 * tri];
-        fogrt_sample_triangle(u1, u2, &b1, &b2);
-        y = fogrt__add(v[0], fogrt__add(fogrt__scale(fogrt__sub(v[1], v[0]), b1), fogrt__scale(fogrt__sub(v[2], v[0]), b2)));
-        ny = fogrt__normalize(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
-        mat = s->tri_material[tri];
-    }
+    ls->Le = s->materials[s->tri_material[fogrt__sample_mesh_point(s, a, u, &y, &ny)]].emission;
     to = fogrt__sub(y, p);
     d2 = fogrt__dot(to, to);
-    if (!(d2 > 0.0f)) return zero;
-    *dist = sqrtf(d2);
-    *wi = fogrt__scale(to, 1.0f / *dist);
-    cos_l = -fogrt__dot(*wi, ny);
-    if (!(cos_l > 0.0f)) return zero;                    /* the back of a one-sided emitter */
-    *pdf = d2 / (cos_l * a->area);                       /* area pdf 1/A -> solid angle */
-    return s->materials[mat].emission;
+    if (!(d2 > 0.0f)) return false;
+    ls->dist = sqrtf(d2);
+    ls->wi = fogrt__scale(to, 1.0f / ls->dist);
+    cos_l = -fogrt__dot(ls->wi, ny);
+    if (!(cos_l > 0.0f)) return false;                   /* the back of a one-sided emitter */
+    ls->pdf = d2 / (cos_l * a->area);                    /* area pdf 1/A -> solid angle */
+    return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
 }
 
 /* The solid-angle pdf with which next-event estimation would have sampled the emitter point
@@ -2227,7 +2425,7 @@ FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, 
         fogrt__v3 c = s->sph_c[a->sphere];
         float r = s->sph_r[a->sphere];
         if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r) return 0.0f;
-        return fogrt_sphere_solid_angle_pdf(p, c, r);
+        return fogrt_sphere_solid_angle_pdf(c, r, p);
     }
     to = fogrt__sub(y, p);
     d2 = fogrt__dot(to, to);
@@ -2235,53 +2433,63 @@ FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, 
     return cos_l > 0.0f ? d2 / (cos_l * a->area) : 0.0f;
 }
 
+/* The one light list: lights 0 .. light_count-1 are the point and spot lights, the rest the
+   area lights. A point light is sampled once (it is one direction), any other light
+   light_samples times; a point light needs two uniforms (the sphere of a light with a
+   radius), an area light three (the triangle, then the point on it). */
+FOGRT__PRIVATE uint32_t fogrt__light_total(const fogrt_scene *s) { return s->light_count + s->area_light_count; }
+FOGRT__PRIVATE int fogrt__light_sample_count(const fogrt_scene *s, const fogrt__settings *st, uint32_t i)
+{
+    return i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->light_samples;
+}
+FOGRT__PRIVATE void fogrt__draw(const fogrt_scene *s, uint32_t light, fogrt_rng *rng, float *u)
+{
+    u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng);
+    u[2] = light < s->light_count ? 0.0f : fogrt_rng_float(rng);
+}
+FOGRT__PRIVATE bool fogrt__sample_light(const fogrt_scene *s, uint32_t i, fogrt__v3 x, const float *u, fogrt__light_sample *ls)
+{
+    if (i < s->light_count) return fogrt__sample_point_light(s, &s->lights[i], x, u, ls);
+    return fogrt__sample_area_light(s, &s->area_lights[i - s->light_count], x, u, ls);
+}
+/* One light sample's share of the light reflected at v (eq. 13): f Le T V w / (n pdf),
+   with w the MIS weight (1 for a delta light, or with MIS off). */
+FOGRT__PRIVATE fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v,
+                                                   const fogrt__light_sample *ls, int n, uint64_t *rays)
+{
+    fogrt__v3 f;
+    float pdf_b, tr, w;
+    f = fogrt__vertex_f(s, v, ls->wi, &pdf_b);
+    if (fogrt__is_black(f)) return f;
+    tr = fogrt__shadow(s, v, ls, rays);
+    if (tr == 0.0f) return fogrt__v(0.0f, 0.0f, 0.0f);
+    w = ls->delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls->pdf, pdf_b);
+    return fogrt__scale(fogrt__mul(f, ls->Le), tr * w / (ls->pdf * (float)n));
+}
 /* Next-event estimation at vertex v (CS184 style: every light is sampled, area lights with
-   light_samples samples each). Returns the reflected radiance, before the path weight. */
-FOGRT__PRIVATE fogrt__v3 fogrt__direct(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v,
-                                       bool point_lights, fogrt_rng *rng, uint64_t *rays)
+   light_samples samples each). At a fog vertex the point and spot lights are left out when
+   the equiangular estimator (chapter 14) gathers them along the ray instead: the two never
+   count the same light twice. Returns the reflected radiance, before the path weight. */
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v,
+                                              fogrt_rng *rng, uint64_t *rays)
 {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
-    float g = s->medium.g;
-    uint32_t i;
-    int j;
-    /* Point and spot lights (one with a radius is an extended emitter: light_samples samples). */
-    for (i = 0; point_lights && i < s->light_count; ++i) {
-        const fogrt_light_desc *l = &s->lights[i];
-        int n = l->radius > 0.0f ? st->light_samples : 1;
+    uint32_t i = v->is_medium && st->equiangular ? s->light_count : 0, total = fogrt__light_total(s);
+    for (; i < total; ++i) {
+        int j, n = fogrt__light_sample_count(s, st, i);
         for (j = 0; j < n; ++j) {
-            fogrt__v3 wi, Li, f;
-            float dist = 0.0f, pdf_b, tr, u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng);
-            Li = fogrt__sample_point_light(s, l, v->p, u1, u2, &wi, &dist);
-            if (fogrt__is_black(Li)) continue;
-            f = fogrt__vertex_f(v, wi, g, &pdf_b);
-            if (fogrt__is_black(f)) continue;
-            tr = fogrt__shadow(s, v, wi, dist, fogrt__offset_size(s, fogrt__madd(v->p, wi, dist)), rays);
-            if (tr == 0.0f) continue;
-            L = fogrt__add(L, fogrt__scale(fogrt__mul(f, Li), tr / (float)n));
-        }
-    }
-    /* Area lights, with MIS against BSDF / phase sampling. */
-    for (i = 0; i < s->area_light_count; ++i) {
-        const fogrt__area_light *a = &s->area_lights[i];
-        int n = st->light_samples;
-        for (j = 0; j < n; ++j) {
-            fogrt__v3 wi, Le, f;
-            float dist = 0.0f, pdf_l, pdf_b, tr, w;
-            Le = fogrt__sample_area_light(s, a, v->p, rng, &wi, &dist, &pdf_l);
-            if (!(pdf_l > 0.0f) || fogrt__is_black(Le)) continue;
-            f = fogrt__vertex_f(v, wi, g, &pdf_b);
-            if (fogrt__is_black(f)) continue;
-            tr = fogrt__shadow(s, v, wi, dist, fogrt__offset_size(s, fogrt__madd(v->p, wi, dist)), rays);
-            if (tr == 0.0f) continue;
-            w = st->mis ? fogrt__power_heuristic((float)n * pdf_l, pdf_b) : 1.0f;
-            L = fogrt__add(L, fogrt__scale(fogrt__mul(f, Le), tr * w / (pdf_l * (float)n)));
+            fogrt__light_sample ls;
+            float u[3];
+            fogrt__draw(s, i, rng, u);
+            if (fogrt__sample_light(s, i, v->p, u, &ls))
+                L = fogrt__add(L, fogrt__light_contribution(s, st, v, &ls, n, rays));
         }
     }
     return L;
 }
 
 /* ------------------------------------------------------------------------------------------
-   11. The camera: pinhole or thin lens
+   13. The camera: pinhole or thin lens
    ------------------------------------------------------------------------------------------ */
 typedef struct fogrt__camera { fogrt__v3 pos, right, up, fwd; float tan_x, tan_y, lens, focal; } fogrt__camera;
 
@@ -2336,21 +2544,65 @@ FOGRT__PUBLIC void fogrt_camera_ray(const fogrt_scene *s, int width, int height,
 }
 
 /* ------------------------------------------------------------------------------------------
-   12. The integrators: the paper's Algorithm 1, and the one-bounce baseline
-   One loop serves both. Each pass of the loop follows the ray to its next event:
-     a. Free flight: if the ray travels in fog, sample a collision distance t (chapter 4). If
-        t comes before the surface, the event is a fog collision: the path weight is multiplied
-        by the albedo sigma_s/sigma_t (transmittance and pdf cancel). Otherwise the ray reaches
-        the surface with probability T and weight T/T = 1. Point and spot lights are added
-        along the way by equiangular sampling (chapter 10).
-     b. At a surface: add its emission (weighted by MIS when next-event estimation could have
-        found it too) and set up the shading frame.
-     c. At the scattering vertex, fog or surface: sample the lights (phase function or BSDF).
-     d. Draw the new direction: Henyey-Greenstein in the fog, the BSDF on a surface.
-     e. Russian roulette ends long paths without bias.
+   14. The integrators: the paper's Algorithm 1, and the one-bounce baseline
+   A path is followed event by event. Each pass of fogrt__radiance_path is one line of the
+   paper's Algorithm 1, one named function per step:
+     a. fogrt__free_flight: in fog, sample a collision distance t (eq. 4-6). If t comes
+        before the surface, the event is a fog collision and the path weight is multiplied by
+        the albedo sigma_s/sigma_t (transmittance and pdf cancel); otherwise the ray reaches
+        the surface with probability T and weight T/T = 1. Point and spot lights are gathered
+        along the way by equiangular sampling (fogrt__equiangular, not in the paper).
+     b. fogrt__surface_event: at a surface, add its emission (weighted by MIS when next-event
+        estimation could have found it too) and set up the shading frame.
+     c. fogrt__light_step: at the scattering vertex, fog or surface, sample the lights
+        (eq. 3 / 13, chapter 12).
+     d. fogrt__scatter: the new direction: Henyey-Greenstein in the fog (eq. 11-12), the BSDF
+        on a surface (chapter 7).
+     e. fogrt__roulette: Russian roulette ends long paths without bias.
    Path weights are kept as throughput beta = prod f |cos| / pdf; the image is sum beta Le.
    A scene without fog never enters step a: it pays one well-predicted branch per bounce.
+   The one-bounce baseline (fogrt__radiance_direct) uses the same steps: it follows the
+   camera ray through mirrors and glass to the first scattering vertex, samples the lights
+   there, and takes one more step that only adds the emission it finds.
    ------------------------------------------------------------------------------------------ */
+typedef struct fogrt__path {
+    fogrt__v3 o, d;            /* the ray being followed (d unit) */
+    fogrt__v3 beta;            /* throughput */
+    fogrt__v3 L;               /* radiance gathered so far */
+    fogrt__v3 prev_p;          /* the vertex the ray left, and the solid-angle pdf of its */
+    float prev_pdf;            /*   direction: the BSDF/phase half of MIS at an emitter */
+    bool prev_delta;           /* camera ray or specular bounce: emission counts in full */
+    bool in_medium;            /* the ray travels in fog */
+    bool entering;             /* surface: wo is on the front side of the geometry */
+    int bounces;               /* scattering events so far */
+    fogrt_bsdf_type type;      /* surface: the BSDF of v */
+    fogrt__vertex v;           /* the vertex just found */
+    fogrt_rng *rng;
+    uint64_t *rays;
+} fogrt__path;
+
+FOGRT__PRIVATE void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, fogrt__v3 o, fogrt__v3 d,
+                                      fogrt_rng *rng, uint64_t *rays)
+{
+    memset(P, 0, sizeof *P);
+    P->o = o; P->d = d; P->prev_p = o;
+    P->beta = fogrt__v(1.0f, 1.0f, 1.0f);
+    P->prev_delta = true;
+    P->in_medium = (s->features & FOGRT_FEATURE_MEDIUM) != 0;   /* the camera sits in the fog */
+    P->type = FOGRT_BSDF_DIFFUSE;
+    P->rng = rng; P->rays = rays;
+}
+/* Light that reaches the camera after `bounces` scattering events (min_depth drops the
+   shorter paths: CS184's -o 0). */
+FOGRT__PRIVATE void fogrt__gather(fogrt__path *P, const fogrt__settings *st, int bounces, fogrt__v3 c)
+{
+    if (bounces >= st->min_depth) P->L = fogrt__add(P->L, c);
+}
+FOGRT__PRIVATE bool fogrt__is_scattering(const fogrt__path *P)
+{
+    return P->v.is_medium || !fogrt__bsdf_is_delta(P->type);
+}
+
 FOGRT__PRIVATE void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, const fogrt_hit *h,
                                          fogrt__v3 *p, fogrt__v3 *ng, fogrt__v3 *ns)
 {
@@ -2418,171 +2670,265 @@ FOGRT__PRIVATE bool fogrt__clip_to_cone(const fogrt_light_desc *l, fogrt__v3 o, 
     return true;
 }
 
-/* Single scattering from point and spot lights along one fog segment [0, t_max] of the ray,
-   by equiangular sampling: an estimator of its own, so fog vertices leave point lights out of
-   their next-event estimate (the two never count the same light twice). Per light:
-     sigma_s T(t) p(wo, wi) I(theta) / r^2 T(r) V / pdf(t).                                  */
-FOGRT__PRIVATE fogrt__v3 fogrt__point_lights_in_fog(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o,
-                                                    fogrt__v3 d, float t_max, fogrt_rng *rng, uint64_t *rays)
+/* Single scattering from point and spot lights along one fog segment [0, t_max] of the
+   ray, by equiangular sampling: per light, a distance t with pdf ~ 1/r^2 (chapter 6), then
+   the light seen from the fog point x(t) as at any fog vertex (chapter 12), weighted by
+   sigma_s T(t) / pdf(t). A spot light only lights its cone: only the part of the ray inside
+   it is sampled. */
+FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
+                                            float t_max)
 {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
     float sigma_t = s->medium.sigma_t;
     uint32_t i;
-    int j;
+    fogrt__vertex v;
+    memset(&v, 0, sizeof v);
+    v.wo = fogrt__neg(P->d); v.is_medium = true; v.in_medium = true;
     for (i = 0; i < s->light_count; ++i) {
         const fogrt_light_desc *l = &s->lights[i];
-        int n = l->radius > 0.0f ? st->light_samples : 1;
+        int j, n = fogrt__light_sample_count(s, st, i);
         for (j = 0; j < n; ++j) {
-            fogrt__v3 oc = fogrt__sub(l->position, o), x, wi, Li;
-            fogrt__vertex v;
-            float delta, h, t, pdf_t, dist = 0.0f, tr, phase;
-            float u0 = fogrt_rng_float(rng), u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng);
-            float t_lo = 0.0f, t_hi = t_max;
-            /* a spot light only lights its cone: sample only the part of the ray inside it */
-            if (l->type == FOGRT_LIGHT_SPOT && !fogrt__clip_to_cone(l, o, d, &t_lo, &t_hi)) continue;
-            delta = fogrt__dot(oc, d);
-            h = FOGRT__MAX(fogrt__length(fogrt__cross(oc, d)), sqrtf(s->r2_min));  /* ray through the light */
-            t = fogrt_sample_equiangular(u0, delta, h, t_lo, t_hi, &pdf_t);
+            fogrt__v3 oc = fogrt__sub(l->position, P->o);
+            fogrt__light_sample ls;
+            float u[3], t, pdf_t, t_lo = 0.0f, t_hi = t_max, h;
+            u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
+            if (l->type == FOGRT_LIGHT_SPOT && !fogrt__clip_to_cone(l, P->o, P->d, &t_lo, &t_hi)) continue;
+            h = FOGRT__MAX(fogrt__length(fogrt__cross(oc, P->d)), sqrtf(s->r2_min));  /* ray through the light */
+            t = fogrt_sample_equiangular(fogrt__dot(oc, P->d), h, t_lo, t_hi, u[0], &pdf_t);
             if (!(pdf_t > 0.0f)) continue;
-            x = fogrt__madd(o, d, t);
-            Li = fogrt__sample_point_light(s, l, x, u1, u2, &wi, &dist);
-            if (fogrt__is_black(Li)) continue;
-            phase = fogrt_hg_pdf(fogrt__neg(d), wi, s->medium.g);
-            v.p = x; v.is_medium = true; v.in_medium = true;
-            tr = fogrt__shadow(s, &v, wi, dist, fogrt__offset_size(s, fogrt__madd(x, wi, dist)), rays);
-            if (tr == 0.0f) continue;
-            tr *= sigma_t * fogrt_transmittance(sigma_t, t) * phase / (pdf_t * (float)n);
-            L = fogrt__add(L, fogrt__scale(fogrt__mul(Li, s->medium.albedo), tr));
+            v.p = fogrt__madd(P->o, P->d, t);
+            if (!fogrt__sample_point_light(s, l, v.p, u + 1, &ls)) continue;
+            L = fogrt__add(L, fogrt__scale(fogrt__mul(fogrt__light_contribution(s, st, &v, &ls, n, P->rays), s->medium.albedo),
+                                           sigma_t * fogrt_transmittance(sigma_t, t) / pdf_t));
         }
     }
     return L;
 }
+
+/* a. Free flight through the fog (eq. 4-6): does the ray collide before t_surface? On a
+   collision the vertex is set and the weight takes the albedo. may_scatter: the path may
+   still bounce (else the equiangular lights, which are light after one more bounce, are
+   not gathered). */
+FOGRT__PRIVATE bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                       float t_surface, bool may_scatter)
+{
+    float t;
+    if (!P->in_medium) return false;
+    t = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(P->rng));
+    if (st->nee && st->equiangular && s->light_count > 0 && may_scatter)
+        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, t_surface)));
+    if (!(t < t_surface)) return false;                  /* reaches the surface: T / T = 1 */
+    P->beta = fogrt__mul(P->beta, s->medium.albedo);     /* sigma_s T / (sigma_t T) */
+    memset(&P->v, 0, sizeof P->v);
+    P->v.p = fogrt__madd(P->o, P->d, t); P->v.wo = fogrt__neg(P->d);
+    P->v.is_medium = true; P->v.in_medium = true;
+    return true;
+}
 #endif
 
-FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
-                                         fogrt_rng *rng, uint64_t *rays)
+/* b. A surface: its emission (the Le of eq. 3; weighted by MIS when next-event estimation
+   could have found it too), then its shading frame. Returns false when the path ends here
+   (the depth limit, or a black diffuse surface). */
+FOGRT__PRIVATE bool fogrt__surface_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                         const fogrt_hit *hit, int limit)
 {
-    fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f), beta = fogrt__v(1.0f, 1.0f, 1.0f), prev_p = o;
-    float prev_pdf = 0.0f;        /* solid-angle pdf of the direction just sampled */
-    bool prev_delta = true;       /* camera ray or specular bounce: emission counts in full */
-    bool in_medium = (s->features & FOGRT_FEATURE_MEDIUM) != 0;   /* the camera sits in the fog */
-    int bounces = 0, limit = st->max_depth;
-    uint32_t vertex;
-    fogrt__vertex v;
-    for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
-        fogrt_hit hit;
-        bool found, entering = false, collided = false;
-        fogrt__v3 ng = fogrt__v(0.0f, 0.0f, 1.0f), ns, wo = fogrt__neg(d);
-        fogrt_bsdf_type type = FOGRT_BSDF_DIFFUSE;
-        float u_lobe, u1, u2;
-        ++*rays;
-        found = fogrt__traverse(s, o, d, 0.0f, INFINITY, &hit, false);
-#ifndef FOGRT_NO_MEDIUM
-        /* a. Free flight through the fog (paper eq. 4-6): collide before the surface? */
-        if (in_medium) {
-            float t = fogrt_sample_exponential(fogrt_rng_float(rng), s->medium.sigma_t);
-            if (st->nee && s->light_count > 0 && bounces < limit)     /* point lights: equiangular */
-                L = fogrt__add(L, fogrt__mul(beta, fogrt__point_lights_in_fog(s, st, o, d, found ? hit.t : INFINITY, rng, rays)));
-            if (t < (found ? hit.t : INFINITY)) {                    /* a fog collision */
-                collided = true;
-                beta = fogrt__mul(beta, s->medium.albedo);           /* sigma_s T / (sigma_t T) */
-                v.p = fogrt__madd(o, d, t); v.wo = wo;
-                v.is_medium = true; v.in_medium = true; v.m = NULL;
-            }                                                        /* else: T / T = 1 */
-        }
-#endif
-        if (!collided) {
-            if (!found) {                             /* escaped: the environment */
-                if (s->has_env && (!s->env_upper_only || d.y > 0.0f)) L = fogrt__add(L, fogrt__mul(beta, s->env));
-                break;
-            }
-            /* b. A surface: its emission, then its shading frame. */
-            fogrt__surface_frame(s, o, d, &hit, &v.p, &ng, &ns);
-            v.m = &s->materials[fogrt_scene_prim_material(s, hit.prim)];
-            if (!fogrt__is_black(v.m->emission) && fogrt__dot(d, ng) < 0.0f) {   /* front side emits */
-                float w = 1.0f;
-                if (!prev_delta && st->nee)
-                    w = st->mis ? fogrt__power_heuristic(prev_pdf, (float)st->light_samples *
-                                                         fogrt__area_light_pdf(s, hit.prim, prev_p, v.p, ng)) : 0.0f;
-                L = fogrt__add(L, fogrt__scale(fogrt__mul(beta, v.m->emission), w));
-            }
-            type = fogrt__bsdf_type(v.m);
-            if (bounces >= limit || (type == FOGRT_BSDF_DIFFUSE && fogrt__is_black(v.m->reflectance))) break;
-            entering = fogrt__dot(wo, ng) > 0.0f;
-            if (type == FOGRT_BSDF_REFRACTION || type == FOGRT_BSDF_GLASS) {
-                /* refractive: keep the outward normal, so wo.z < 0 in the frame means "inside" */
-            } else {                                  /* reflective: two-sided */
-                if (!entering) { ng = fogrt__neg(ng); ns = fogrt__neg(ns); }
-                if (fogrt__dot(wo, ns) <= 0.0f) ns = ng;
-            }
-            v.frame = fogrt__frame_from_z(ns);
-            v.ng = ng; v.wo = wo; v.is_medium = false; v.in_medium = in_medium;
-        }
-        /* c. The scattering vertex (in the fog or on a surface): sample the lights. */
-        if (bounces >= limit || fogrt__is_black(beta)) break;
-        if (v.is_medium || !fogrt__bsdf_is_delta(type)) {
-            if (st->nee) L = fogrt__add(L, fogrt__mul(beta, fogrt__direct(s, st, &v, !v.is_medium, rng, rays)));
-            if (st->direct_only) limit = bounces + 1;   /* one bounce: the next ray only adds emission (MIS) */
-        }
-        /* d. The new direction: Henyey-Greenstein in the fog, the BSDF on a surface. */
-        prev_p = v.p;
-#ifndef FOGRT_NO_MEDIUM
-        if (v.is_medium) {
-            u1 = fogrt_rng_float(rng); u2 = fogrt_rng_float(rng);
-            d = fogrt_sample_hg(wo, s->medium.g, u1, u2, &prev_pdf);  /* weight p / pdf = 1 */
-            prev_delta = false;
-            o = v.p;
-        } else
-#endif
-        {
-            fogrt_bsdf_sample bs;
-            u_lobe = fogrt_rng_float(rng); u1 = fogrt_rng_float(rng); u2 = fogrt_rng_float(rng);
-            if (!fogrt_bsdf_sample_dir(v.m, st->fresnel, fogrt__to_local(&v.frame, wo), u_lobe, u1, u2, &bs)) break;
-            d = fogrt__normalize(fogrt__to_world(&v.frame, bs.wi));
-            /* A shading normal can send a direction through the geometric surface: drop it. */
-            if (bs.is_transmission ? (fogrt__dot(d, ng) * fogrt__dot(wo, ng) >= 0.0f) : (fogrt__dot(d, ng) * fogrt__dot(wo, ng) <= 0.0f)) break;
-            beta = fogrt__mul(beta, bs.weight);
-            prev_pdf = bs.pdf; prev_delta = bs.is_delta;
-            /* Refraction moves the ray into or out of the object: fog exists only outside. */
-            if (bs.is_transmission) in_medium = !entering && (s->features & FOGRT_FEATURE_MEDIUM) != 0;
-            o = fogrt__offset(s, v.p, ng, d);
-        }
-        /* e. Russian roulette (after rr_depth bounces): continue with probability q. */
-        bounces++;
-        if (bounces > st->rr_depth) {
-            float q = FOGRT__MIN(0.95f, fogrt__max3(beta));
-            if (!(fogrt_rng_float(rng) < q)) break;
-            beta = fogrt__scale(beta, 1.0f / q);
-        }
+    fogrt__v3 ng, ns, wo = fogrt__neg(P->d);
+    const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit->prim)];
+    fogrt__surface_frame(s, P->o, P->d, hit, &P->v.p, &ng, &ns);
+    if (!fogrt__is_black(m->emission) && fogrt__dot(P->d, ng) < 0.0f) {   /* the front side emits */
+        float w = 1.0f;
+        if (!P->prev_delta && st->nee)
+            w = st->mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->light_samples *
+                                                 fogrt__area_light_pdf(s, hit->prim, P->prev_p, P->v.p, ng)) : 0.0f;
+        fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(P->beta, m->emission), w));
     }
-    return L;
+    P->type = fogrt__bsdf_type(m);
+    if (P->bounces >= limit || (P->type == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance))) return false;
+    P->entering = fogrt__dot(wo, ng) > 0.0f;
+    if (P->type != FOGRT_BSDF_REFRACTION && P->type != FOGRT_BSDF_GLASS) {   /* reflective: two-sided */
+        if (!P->entering) { ng = fogrt__neg(ng); ns = fogrt__neg(ns); }
+        if (fogrt__dot(wo, ns) <= 0.0f) ns = ng;
+    }   /* refractive: keep the outward normal, so wo.z < 0 in the frame means "inside" */
+    P->v.frame = fogrt__frame_from_z(ns);
+    P->v.ng = ng; P->v.wo = wo; P->v.m = m;
+    P->v.is_medium = false; P->v.in_medium = P->in_medium;
+    return true;
+}
+
+/* a + b: follow the ray to its next event, a fog collision or a surface. False when the
+   path ends: the ray escaped (the environment is added), or the surface ends it. */
+FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit)
+{
+    fogrt_hit hit;
+    bool found;
+    ++*P->rays;
+    found = fogrt__traverse(s, P->o, P->d, 0.0f, INFINITY, &hit, false);
+#ifndef FOGRT_NO_MEDIUM
+    if (fogrt__free_flight(s, st, P, found ? hit.t : INFINITY, P->bounces < limit)) return true;
+#endif
+    if (found) return fogrt__surface_event(s, st, P, &hit, limit);
+    if (s->has_env && (!s->env_upper_only || P->d.y > 0.0f))      /* escaped: the environment */
+        fogrt__gather(P, st, P->bounces, fogrt__mul(P->beta, s->env));
+    return false;
+}
+
+/* c. Light sampling at the scattering vertex (next-event estimation, chapter 12); a mirror
+   or glass vertex cannot be reached by a light sample and is skipped. */
+FOGRT__PRIVATE void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
+{
+    if (st->nee && fogrt__is_scattering(P))
+        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__sample_lights(s, st, &P->v, P->rng, P->rays)));
+}
+
+/* d. The new direction from a surface: sample the BSDF in the shading frame. */
+FOGRT__PRIVATE bool fogrt__scatter_surface(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
+{
+    fogrt_bsdf_sample bs;
+    const fogrt__v3 ng = P->v.ng, wo = P->v.wo;
+    float u_lobe = fogrt_rng_float(P->rng), u1 = fogrt_rng_float(P->rng), u2 = fogrt_rng_float(P->rng);
+    if (!fogrt_sample_bsdf(P->v.m, st->fresnel, fogrt__to_local(&P->v.frame, wo), u_lobe, u1, u2, &bs)) return false;
+    P->d = fogrt__normalize(fogrt__to_world(&P->v.frame, bs.wi));
+    /* A shading normal can send a direction through the geometric surface: drop it. */
+    if (bs.is_transmission ? (fogrt__dot(P->d, ng) * fogrt__dot(wo, ng) >= 0.0f)
+                           : (fogrt__dot(P->d, ng) * fogrt__dot(wo, ng) <= 0.0f)) return false;
+    P->beta = fogrt__mul(P->beta, bs.weight);
+    P->prev_pdf = bs.pdf; P->prev_delta = bs.is_delta;
+    /* Refraction moves the ray into or out of the object: fog exists only outside. */
+    if (bs.is_transmission) P->in_medium = !P->entering && (s->features & FOGRT_FEATURE_MEDIUM) != 0;
+    P->o = fogrt__offset(s, P->v.p, ng, P->d);
+    return true;
+}
+/* d. The new direction: Henyey-Greenstein in the fog (eq. 11-12, weight p / pdf = 1), the
+   BSDF on a surface. */
+FOGRT__PRIVATE bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
+{
+    P->prev_p = P->v.p;
+#ifndef FOGRT_NO_MEDIUM
+    if (P->v.is_medium) {
+        float u1 = fogrt_rng_float(P->rng), u2 = fogrt_rng_float(P->rng);
+        P->d = fogrt_sample_hg(s->medium.g, P->v.wo, u1, u2, &P->prev_pdf);
+        P->prev_delta = false;
+        P->o = P->v.p;
+        return true;
+    }
+#endif
+    return fogrt__scatter_surface(s, st, P);
+}
+
+/* e. Russian roulette after rr_depth bounces: continue with probability q, weight 1/q. */
+FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__path *P)
+{
+    float q;
+    P->bounces++;
+    if (P->bounces <= st->rr_depth) return true;
+    q = FOGRT__MIN(0.95f, fogrt__max3(P->beta));
+    if (!(fogrt_rng_float(P->rng) < q)) return false;
+    P->beta = fogrt__scale(P->beta, 1.0f / q);
+    return true;
+}
+
+/* Algorithm 1: global illumination with Russian roulette and next-event estimation. */
+FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o,
+                                              fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
+{
+    fogrt__path P;
+    uint32_t vertex;
+    fogrt__path_start(s, &P, o, d, rng, rays);
+    for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
+        if (!fogrt__next_event(s, st, &P, st->max_depth)) break;              /* a, b */
+        if (P.bounces >= st->max_depth || fogrt__is_black(P.beta)) break;
+        fogrt__light_step(s, st, &P);                                          /* c */
+        if (!fogrt__scatter(s, st, &P)) break;                                 /* d */
+        if (!fogrt__roulette(st, &P)) break;                                   /* e */
+    }
+    return P.L;
+}
+
+/* The paper's baseline: direct lighting at the first scattering vertex only. */
+FOGRT__PRIVATE fogrt__v3 fogrt__radiance_direct(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o,
+                                                fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
+{
+    fogrt__path P;
+    uint32_t vertex;
+    fogrt__path_start(s, &P, o, d, rng, rays);
+    for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {   /* through mirrors and glass */
+        if (!fogrt__next_event(s, st, &P, st->max_depth)) return P.L;
+        if (P.bounces >= st->max_depth || fogrt__is_black(P.beta)) return P.L;
+        if (fogrt__is_scattering(&P)) break;
+        if (!fogrt__scatter(s, st, &P) || !fogrt__roulette(st, &P)) return P.L;
+    }
+    if (vertex == FOGRT_MAX_PATH_VERTICES) return P.L;
+    fogrt__light_step(s, st, &P);
+    /* One more step, which only adds the emission it finds (its MIS half: without it the
+       light sample above would count area lights at half weight). */
+    if (fogrt__scatter(s, st, &P) && fogrt__roulette(st, &P))
+        (void)fogrt__next_event(s, st, &P, P.bounces);
+    return P.L;
 }
 
 /* ------------------------------------------------------------------------------------------
-   13. Rendering, the error estimate, and output
+   15. Rendering, the error estimate, and output
+   Every pixel accumulates, in double, the sum of its sample radiance and of its squared
+   luminance: a double cannot overflow for any finite float sample (2^32 samples of 3.4e38,
+   squared, stay below 1e87), so the image and its error estimate stay finite.
    ------------------------------------------------------------------------------------------ */
-FOGRT__PRIVATE fogrt__settings fogrt__settings_from(const fogrt_render_desc *d)
+FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void)
 {
-    fogrt__settings st;
-    st.max_depth = d->max_depth == 0 ? 64 : (d->max_depth < 0 ? 0x7FFFFFFF : d->max_depth);
-    st.rr_depth = d->rr_depth > 0 ? d->rr_depth : 3;
-    st.light_samples = d->light_samples > 0 ? d->light_samples : 1;
-    st.nee = !d->no_nee;
-    st.mis = !d->no_mis;
-    st.direct_only = d->integrator == FOGRT_INTEGRATOR_DIRECT;
-    st.fresnel = d->fresnel;
-    return st;
+    fogrt_render_desc d;
+    memset(&d, 0, sizeof d);
+    d.integrator = FOGRT_INTEGRATOR_PATH;
+    d.fresnel = FOGRT_FRESNEL_SCHLICK;
+    d.max_depth = 64;
+    d.min_depth = 0;
+    d.rr_depth = 3;
+    d.nee = true;
+    d.mis = true;
+    d.equiangular = true;
+    d.light_samples = 1;
+    d.resolved = true;
+    return d;
+}
+/* The settings the integrators read, from a desc (NULL: the defaults). A desc must come
+   from fogrt_render_defaults(): a zeroed one would silently mean "max depth 0, no light
+   sampling", so it is refused with a message saying so. */
+FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fogrt_render_desc *in,
+                                                  fogrt__settings *st, fogrt_render_desc *out)
+{
+    fogrt_render_desc d = in ? *in : fogrt_render_defaults();
+    if (!d.resolved)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: not from fogrt_render_defaults() (a zeroed desc would mean max_depth 0 and no light sampling)");
+    if (d.max_depth < -1 || d.min_depth < 0 || d.rr_depth < 0 || d.light_samples < 1 ||
+        (unsigned)d.integrator >= (unsigned)FOGRT_INTEGRATOR_NUM || (unsigned)d.fresnel >= (unsigned)FOGRT_FRESNEL_NUM)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: max_depth (>= -1), min_depth (>= 0), rr_depth (>= 0), light_samples (>= 1), integrator or fresnel out of range");
+#ifdef FOGRT_NO_EXACT_FRESNEL
+    if (d.fresnel == FOGRT_FRESNEL_EXACT)
+        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: fresnel exact needs a build without FOGRT_NO_EXACT_FRESNEL");
+#endif
+    st->max_depth = d.max_depth < 0 ? 0x7FFFFFFF : d.max_depth;
+    st->min_depth = d.min_depth;
+    st->rr_depth = d.rr_depth;
+    st->light_samples = d.light_samples;
+    st->nee = d.nee;
+    st->mis = d.mis;
+    st->equiangular = d.equiangular;
+    st->integrator = d.integrator == FOGRT_INTEGRATOR_DIRECT ? FOGRT_INTEGRATOR_DIRECT : FOGRT_INTEGRATOR_PATH;
+    st->fresnel = d.fresnel;
+    if (out) *out = d;
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
+                                         fogrt_rng *rng, uint64_t *rays)
+{
+    return st->integrator == FOGRT_INTEGRATOR_DIRECT ? fogrt__radiance_direct(s, st, o, d, rng, rays)
+                                                     : fogrt__radiance_path(s, st, o, d, rng, rays);
 }
 FOGRT__PUBLIC fogrt_vec3 fogrt_trace(const fogrt_scene *s, const fogrt_render_desc *desc, fogrt_vec3 o, fogrt_vec3 d,
                                      fogrt_rng *rng, uint64_t *ray_count)
 {
-    fogrt_render_desc zero;
     fogrt__settings st;
     uint64_t rays = 0;
     FOGRT_ASSERT(s && rng);
-    memset(&zero, 0, sizeof zero);
-    st = fogrt__settings_from(desc ? desc : &zero);
-    if (!s->built) return fogrt__v(0.0f, 0.0f, 0.0f);
+    if (!s->built || fogrt__resolve_render(s, desc, &st, NULL) != FOGRT_RESULT_OK) return fogrt__v(0.0f, 0.0f, 0.0f);
     o = fogrt__radiance(s, &st, o, fogrt__normalize(d), rng, &rays);
     if (ray_count) *ray_count += rays;
     return o;
@@ -2593,30 +2939,34 @@ FOGRT__PUBLIC fogrt_result fogrt_image_alloc(fogrt_image *img, int width, int he
     size_t n;
     FOGRT_ASSERT(img);
     memset(img, 0, sizeof *img);
+    if (a) img->allocator = *a;
     if (width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
     if ((uint64_t)width * (uint64_t)height > ((uint64_t)1 << 31) / 16) return FOGRT_RESULT_TOO_LARGE;
     n = (size_t)width * (size_t)height;
-    img->sum = (float *)fogrt__alloc(a, sizeof(float) * 3 * n);
-    img->sum_sq = (float *)fogrt__alloc(a, sizeof(float) * n);
-    img->count = (uint32_t *)fogrt__alloc(a, sizeof(uint32_t) * n);
-    if (!img->sum || !img->sum_sq || !img->count) { fogrt_image_free(img, a); return FOGRT_RESULT_OUT_OF_MEMORY; }
+    img->sum = (double *)fogrt__alloc(&img->allocator, sizeof(double) * 3 * n);
+    img->sum_sq = (double *)fogrt__alloc(&img->allocator, sizeof(double) * n);
+    img->count = (uint32_t *)fogrt__alloc(&img->allocator, sizeof(uint32_t) * n);
+    if (!img->sum || !img->sum_sq || !img->count) { fogrt_image_free(img); return FOGRT_RESULT_OUT_OF_MEMORY; }
     img->width = width; img->height = height;
     fogrt_image_clear(img);
     return FOGRT_RESULT_OK;
 }
-FOGRT__PUBLIC void fogrt_image_free(fogrt_image *img, const fogrt_allocator *a)
+FOGRT__PUBLIC void fogrt_image_free(fogrt_image *img)
 {
+    fogrt_allocator a;
     if (!img) return;
-    fogrt__free(a, img->sum); fogrt__free(a, img->sum_sq); fogrt__free(a, img->count);
+    a = img->allocator;
+    fogrt__free(&a, img->sum); fogrt__free(&a, img->sum_sq); fogrt__free(&a, img->count);
     memset(img, 0, sizeof *img);
+    img->allocator = a;
 }
 FOGRT__PUBLIC void fogrt_image_clear(fogrt_image *img)
 {
     size_t n;
     FOGRT_ASSERT(img);
     n = (size_t)img->width * (size_t)img->height;
-    if (img->sum) memset(img->sum, 0, sizeof(float) * 3 * n);
-    if (img->sum_sq) memset(img->sum_sq, 0, sizeof(float) * n);
+    if (img->sum) memset(img->sum, 0, sizeof(double) * 3 * n);
+    if (img->sum_sq) memset(img->sum_sq, 0, sizeof(double) * n);
     if (img->count) memset(img->count, 0, sizeof(uint32_t) * n);
     img->rejected = 0;
 }
@@ -2626,12 +2976,13 @@ FOGRT__PUBLIC void fogrt_image_resolve(const fogrt_image *img, float *rgb)
     FOGRT_ASSERT(img && rgb);
     n = (size_t)img->width * (size_t)img->height;
     for (i = 0; i < n; ++i) {
-        float inv = img->count[i] ? 1.0f / (float)img->count[i] : 0.0f;
-        rgb[3 * i + 0] = img->sum[3 * i + 0] * inv;
-        rgb[3 * i + 1] = img->sum[3 * i + 1] * inv;
-        rgb[3 * i + 2] = img->sum[3 * i + 2] * inv;
+        double inv = img->count[i] ? 1.0 / (double)img->count[i] : 0.0;
+        rgb[3 * i + 0] = (float)(img->sum[3 * i + 0] * inv);
+        rgb[3 * i + 1] = (float)(img->sum[3 * i + 1] * inv);
+        rgb[3 * i + 2] = (float)(img->sum[3 * i + 2] * inv);
     }
 }
+FOGRT__PRIVATE double fogrt__luminance_d(double r, double g, double b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
 /* Relative RMS error of the image, estimated from the samples themselves: each pixel's mean
    has variance s^2 / n (s^2 the sample variance of its luminance), so
      relative error = sqrt(sum_p s_p^2 / n_p) / sqrt(sum_p mean_p^2).
@@ -2645,86 +2996,110 @@ FOGRT__PUBLIC void fogrt_image_error(const fogrt_image *img, fogrt_error_estimat
     n = (size_t)img->width * (size_t)img->height;
     for (i = 0; i < n; ++i) {
         double c = img->count[i], mean, var;
-        fogrt__v3 sum;
         if (c < 1.0) continue;
-        sum = fogrt__v(img->sum[3 * i], img->sum[3 * i + 1], img->sum[3 * i + 2]);
-        mean = (double)fogrt__luminance(sum) / c;
+        mean = fogrt__luminance_d(img->sum[3 * i], img->sum[3 * i + 1], img->sum[3 * i + 2]) / c;
         lum_sum += mean;
         mean_sq_sum += mean * mean;
         out->samples += img->count[i];
         if (c < 2.0) continue;
-        var = ((double)img->sum_sq[i] / c - mean * mean) * c / (c - 1.0);
+        var = (img->sum_sq[i] / c - mean * mean) * c / (c - 1.0);
         if (var > 0.0) var_sum += var / c;
     }
     out->relative_error = mean_sq_sum > 0.0 ? sqrt(var_sum / mean_sq_sum) : 0.0;
+    if (!(out->relative_error < DBL_MAX)) out->relative_error = DBL_MAX;   /* never NaN or Inf */
     out->mean_luminance = n ? lum_sum / (double)n : 0.0;
     out->rejected = img->rejected;
+}
+
+/* What one fogrt_render call needs on every thread. */
+typedef struct fogrt__job {
+    const fogrt_scene *s;
+    fogrt__settings st;
+    fogrt__camera cam;
+    fogrt_image *img;
+    uint64_t base;
+    int spp;
+} fogrt__job;
+
+/* One row of pixels, spp samples each. Every sample has its own random stream, derived from
+   (seed, pixel, sample index): the image does not depend on the thread that renders it.
+   The NaN firewall: a non-finite sample is counted, never added. */
+FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *rays, uint64_t *rejected)
+{
+    fogrt_image *img = job->img;
+    int x, k, width = img->width, height = img->height;
+    for (x = 0; x < width; ++x) {
+        size_t pix = (size_t)y * (size_t)width + (size_t)x;
+        for (k = 0; k < job->spp; ++k) {
+            uint64_t key = ((uint64_t)pix << 32) | (uint64_t)(img->count[pix] + (uint32_t)k);
+            fogrt_rng rng;
+            fogrt__v3 o, d, Lr;
+            float jx, jy, l1, l2;
+            double lum;
+            fogrt_rng_seed(&rng, fogrt__hash64(key ^ job->base), 0);
+            jx = fogrt_rng_float(&rng); jy = fogrt_rng_float(&rng);
+            l1 = fogrt_rng_float(&rng); l2 = fogrt_rng_float(&rng);
+            fogrt__camera_generate(&job->cam, width, height, (float)x + jx, (float)y + jy, l1, l2, &o, &d);
+            Lr = fogrt__radiance(job->s, &job->st, o, d, &rng, rays);
+            if (!fogrt__v3_finite(Lr)) { ++*rejected; continue; }
+            lum = fogrt__luminance_d(Lr.x, Lr.y, Lr.z);
+            img->sum[3 * pix + 0] += Lr.x;
+            img->sum[3 * pix + 1] += Lr.y;
+            img->sum[3 * pix + 2] += Lr.z;
+            img->sum_sq[pix] += lum * lum;
+        }
+        img->count[pix] += (uint32_t)job->spp;
+    }
+}
+FOGRT__PRIVATE bool fogrt__report(const fogrt_render_desc *d, int rows_done, int rows_total, int spp)
+{
+    fogrt_progress p;
+    p.rows_done = rows_done; p.rows_total = rows_total; p.samples_per_pixel = spp;
+    return d->progress(&p, d->user_data);
+}
+FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt_render_desc *d, const fogrt_image *img, int spp)
+{
+    if (!s->built) return fogrt__fail(s, FOGRT_RESULT_NOT_BUILT, "render: the scene changed since fogrt_scene_build");
+    if (img->width <= 0 || img->height <= 0 || !img->sum || !img->sum_sq || !img->count ||
+        (d->width && d->width != img->width) || (d->height && d->height != img->height))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: image size does not match render desc width/height");
+    if (spp < 0) return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: samples_per_pixel < 0");
+    return FOGRT_RESULT_OK;
 }
 
 FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render_desc *desc, fogrt_image *img,
                                         int spp, fogrt_render_stats *stats)
 {
-    fogrt_render_desc zero;
-    fogrt__settings st;
-    fogrt__camera cam;
-    int width, height, block;
-    uint64_t rays = 0, rejected = 0, base;
-    fogrt_result result = FOGRT_RESULT_OK;
+    fogrt__job job;
+    fogrt_render_desc d;
+    fogrt_result result;
+    uint64_t rays = 0, rejected = 0;
+    int y, height, block, rows_done = 0, cancelled = 0, last_report = 0;
     FOGRT_ASSERT(s && img);
-    memset(&zero, 0, sizeof zero);
-    if (!desc) desc = &zero;
     if (stats) memset(stats, 0, sizeof *stats);
-    if (!s->built) return fogrt__fail(s, FOGRT_RESULT_NOT_BUILT, "render: the scene changed since fogrt_scene_build");
-    width = img->width; height = img->height;
-    if (width <= 0 || height <= 0 || !img->sum || !img->sum_sq || !img->count ||
-        (desc->width && desc->width != width) || (desc->height && desc->height != height))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: image size does not match render desc width/height");
-    if (spp < 0 || desc->max_depth < -1 || desc->rr_depth < 0 || desc->light_samples < 0 ||
-        (unsigned)desc->integrator >= (unsigned)FOGRT_INTEGRATOR_NUM || (unsigned)desc->fresnel >= (unsigned)FOGRT_FRESNEL_NUM)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: samples_per_pixel, max_depth, rr_depth, light_samples, integrator or fresnel out of range");
-    st = fogrt__settings_from(desc);
-    cam = fogrt__camera_setup(s, width, height);
-    base = fogrt__hash64(desc->seed);
+    if ((result = fogrt__resolve_render(s, desc, &job.st, &d)) != FOGRT_RESULT_OK) return result;
+    if ((result = fogrt__check_image(s, &d, img, spp)) != FOGRT_RESULT_OK) return result;
+    job.s = s; job.img = img; job.spp = spp;
+    job.cam = fogrt__camera_setup(s, img->width, img->height);
+    job.base = fogrt__hash64(d.seed);
+    height = img->height;
     /* One parallel loop over the rows, handed out one at a time (rows differ in cost). The
        progress callback runs on the calling thread (OpenMP thread 0) whenever another block
        of rows is done; if it asks to stop, the rows not yet started are skipped. */
     block = height >= 32 ? height / 32 : 1;
     {
-        int y, rows_done = 0, cancelled = 0, last_report = 0;
 #ifdef _OPENMP
-        int nthreads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
+        int nthreads = d.threads > 0 ? d.threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) reduction(+ : rays, rejected)
 #endif
         for (y = 0; y < height; ++y) {
-            int x, k, stop, done;
+            int stop, done;
 #ifdef _OPENMP
 #pragma omp atomic read
 #endif
             stop = cancelled;
             if (stop || spp == 0) continue;
-            for (x = 0; x < width; ++x) {
-                size_t pix = (size_t)y * (size_t)width + (size_t)x;
-                for (k = 0; k < spp; ++k) {
-                    /* One random stream per (seed, pixel, sample index): thread-independent. */
-                    uint64_t key = ((uint64_t)pix << 32) | (uint64_t)(img->count[pix] + (uint32_t)k);
-                    fogrt_rng rng;
-                    fogrt__v3 o, d, Lr;
-                    float jx, jy, l1, l2, lum;
-                    fogrt_rng_seed(&rng, fogrt__hash64(key ^ base), 0);
-                    jx = fogrt_rng_float(&rng); jy = fogrt_rng_float(&rng);
-                    l1 = fogrt_rng_float(&rng); l2 = fogrt_rng_float(&rng);
-                    fogrt__camera_generate(&cam, width, height, (float)x + jx, (float)y + jy, l1, l2, &o, &d);
-                    Lr = fogrt__radiance(s, &st, o, d, &rng, &rays);
-                    /* The NaN firewall: a non-finite sample is counted, never added. */
-                    if (!fogrt__v3_finite(Lr)) { rejected++; continue; }
-                    lum = fogrt__luminance(Lr);
-                    img->sum[3 * pix + 0] += Lr.x;
-                    img->sum[3 * pix + 1] += Lr.y;
-                    img->sum[3 * pix + 2] += Lr.z;
-                    img->sum_sq[pix] += lum * lum;
-                }
-                img->count[pix] += (uint32_t)spp;
-            }
+            fogrt__render_row(&job, y, &rays, &rejected);
 #ifdef _OPENMP
 #pragma omp atomic capture
 #endif
@@ -2732,11 +3107,9 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
 #ifdef _OPENMP
             if (omp_get_thread_num() != 0) continue;
 #endif
-            if (desc->progress && (done - last_report >= block || done == height)) {
-                fogrt_progress p;
+            if (d.progress && (done - last_report >= block || done == height)) {
                 last_report = done;
-                p.rows_done = done; p.rows_total = height; p.samples_per_pixel = spp;
-                if (!desc->progress(&p, desc->user_data)) {
+                if (!fogrt__report(&d, done, height, spp)) {
 #ifdef _OPENMP
 #pragma omp atomic write
 #endif
@@ -2744,16 +3117,13 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
                 }
             }
         }
-        if (cancelled) result = FOGRT_RESULT_CANCELLED;
-        else if (desc->progress && last_report != height && spp > 0) {   /* the final report */
-            fogrt_progress p;
-            p.rows_done = height; p.rows_total = height; p.samples_per_pixel = spp;
-            if (!desc->progress(&p, desc->user_data)) result = FOGRT_RESULT_CANCELLED;
-        }
     }
+    if (cancelled) result = FOGRT_RESULT_CANCELLED;
+    else if (d.progress && last_report != height && spp > 0 && !fogrt__report(&d, height, height, spp))
+        result = FOGRT_RESULT_CANCELLED;                 /* the final report */
     img->rejected += rejected;
     if (stats) {
-        stats->camera_rays = (uint64_t)width * (uint64_t)height * (uint64_t)(spp > 0 ? spp : 0);
+        stats->camera_rays = (uint64_t)img->width * (uint64_t)height * (uint64_t)spp;
         stats->rays = rays;
         stats->rejected = rejected;
     }
@@ -2816,7 +3186,7 @@ FOGRT__PUBLIC fogrt_result fogrt_write_ppm(const char *path, int width, int heig
 #endif
 
 /* ------------------------------------------------------------------------------------------
-   14. The default scene: the CS184 Cornell box, filled with fog
+   16. The default scene: the CS184 Cornell box, filled with fog
    ------------------------------------------------------------------------------------------ */
 FOGRT__PRIVATE fogrt_result fogrt__add_quad(fogrt_scene *s, fogrt__v3 a, fogrt__v3 b, fogrt__v3 c, fogrt__v3 d, uint32_t mat)
 {
@@ -2849,7 +3219,11 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
     md.reflectance = fogrt__v(0.0f, 0.0f, 0.0f);
     md.emission = fogrt__v(8.5f, 6.0f, 2.0f);     FOGRT__TRY(fogrt_scene_add_material(s, &md, &lamp));
     memset(&md, 0, sizeof md);
+#ifndef FOGRT_NO_GLASS
     md.type = FOGRT_BSDF_GLASS; md.ior = 1.5f;
+#else
+    md.type = FOGRT_BSDF_MIRROR;                  /* a build without glass: a mirror sphere */
+#endif
     md.reflectance = fogrt__v(1.0f, 1.0f, 1.0f); md.transmittance = fogrt__v(1.0f, 1.0f, 1.0f);
     FOGRT__TRY(fogrt_scene_add_material(s, &md, &glass));
     /* The box: x in [-1, 1], y in [0, 1.5], z in [-1, 1], open toward +z (the camera). */

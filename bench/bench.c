@@ -502,7 +502,7 @@ static void bench_geometry_run(const bench_geometry *g, const bench_options *opt
         times[rep] = now_seconds() - t0;
     }
     build_median = median(times, opt->build_reps);
-    fogrt_scene_bvh(scene, &nodes, &node_count, &prim_index);
+    fogrt_scene_get_bvh(scene, &nodes, &node_count, &prim_index);
     sah = fogrt_bvh_sah_cost(scene);
     printf("build     fogrt  %8.4f s  (median of %d; %u nodes, SAH cost %.2f)\n",
            build_median, opt->build_reps, node_count, sah);
@@ -622,7 +622,7 @@ static void bench_render(const bench_options *opt)
     check(fogrt_scene_add_default(scene), "fogrt_scene_add_default");
     check(fogrt_scene_build(scene, NULL), "fogrt_scene_build");
     check(fogrt_image_alloc(&img, width, height, NULL), "fogrt_image_alloc");
-    memset(&rd, 0, sizeof rd);
+    rd = fogrt_render_defaults();
     rd.width = width; rd.height = height; rd.seed = 1;
 
     /* Choose the samples per pixel so that one render on 2 threads takes about render_seconds. */
@@ -654,7 +654,7 @@ static void bench_render(const bench_options *opt)
                (double)rays / (double)(samples ? samples : 1));
     }
     printf("(median of %d renders; Mrays/s counts camera, bounce and shadow rays)\n", reps);
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
 }
 

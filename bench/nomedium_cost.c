@@ -52,7 +52,7 @@ int main(void)
     check(fogrt_scene_build(scene, NULL), "fogrt_scene_build");
     check(fogrt_image_alloc(&img, WIDTH, HEIGHT, NULL), "fogrt_image_alloc");
 
-    memset(&rd, 0, sizeof rd);
+    rd = fogrt_render_defaults();
     rd.width = WIDTH; rd.height = HEIGHT;
     rd.seed = 2024; rd.threads = 1;
     /* Called through a volatile pointer so that the compiler cannot inline fogrt_render into
@@ -76,11 +76,11 @@ int main(void)
 #else
            "normal build (sigma_t = 0)",
 #endif
-           WIDTH, HEIGHT, SPP, (unsigned)fogrt_scene_features(scene),
+           WIDTH, HEIGHT, SPP, (unsigned)fogrt_scene_get_features(scene),
            (unsigned long long)stats.rays, mean, (unsigned)checksum);
 
     free(rgb);
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
     return 0;
 }

@@ -597,7 +597,7 @@ int main(int argc, char **argv)
     }
 
     /* Build */
-    memset(&bd, 0, sizeof bd);
+    bd = fogrt_build_defaults();
     bd.heuristic = o.bvh;
     r = fogrt_scene_build(scene, &bd);
     if (r) {
@@ -612,7 +612,7 @@ int main(int argc, char **argv)
     if (!r) {
         rgb = (float *)malloc(sizeof(float) * 3 * (size_t)o.width * (size_t)o.height);
         rgb8 = (unsigned char *)malloc(3 * (size_t)o.width * (size_t)o.height);
-        if (!rgb || !rgb8) { fogrt_image_free(&img, NULL); r = FOGRT_RESULT_OUT_OF_MEMORY; }
+        if (!rgb || !rgb8) { fogrt_image_free(&img); r = FOGRT_RESULT_OUT_OF_MEMORY; }
     }
     if (r) {
         fprintf(stderr, "fogrt: -r %d %d: image too large to allocate (%s)\n", o.width, o.height, fogrt_result_string(r));
@@ -622,13 +622,13 @@ int main(int argc, char **argv)
     }
 
     /* Render */
-    memset(&rd, 0, sizeof rd);
+    rd = fogrt_render_defaults();
     rd.width = o.width; rd.height = o.height;
     rd.integrator = o.integrator;
     rd.fresnel = o.fresnel;
     rd.max_depth = o.max_depth;
     rd.light_samples = o.light_samples;
-    rd.no_nee = o.hemisphere;
+    rd.nee = !o.hemisphere;
     rd.seed = o.seed;
     rd.threads = o.threads;
     memset(&ps, 0, sizeof ps);
@@ -667,7 +667,7 @@ int main(int argc, char **argv)
     }
     (void)spp_done;
     free(rgb); free(rgb8);
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
     return status;
 }

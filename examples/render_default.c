@@ -39,7 +39,7 @@ int main(int argc, char **argv)
     fogrt_scene_desc sd = {0};
     fogrt_scene *scene = NULL;
     fogrt_image img;
-    fogrt_render_desc rd = {0};
+    fogrt_render_desc rd = fogrt_render_defaults();
     fogrt_render_stats st;
     fogrt_error_estimate err;
     fogrt_result r;
@@ -74,7 +74,10 @@ int main(int argc, char **argv)
             if (fits < 1) break;
             if (n > fits) n = fits;
         }
-        fogrt_render(scene, &rd, &img, n, &st);
+        if ((r = fogrt_render(scene, &rd, &img, n, &st)) != FOGRT_RESULT_OK) {
+            fprintf(stderr, "render_default: %s\n", fogrt_result_string(r));
+            break;
+        }
         rays += st.rays;
         done += n;
         fogrt_image_error(&img, &err);
@@ -98,7 +101,7 @@ int main(int argc, char **argv)
            (double)width * height * done / seconds, err.relative_error,
            (unsigned long long)err.rejected, png, pfm);
     free(rgb); free(rgb8);
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
     return 0;
 }

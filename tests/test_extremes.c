@@ -64,7 +64,7 @@ static fogrt_scene *default_with_fog(float sigma_t, float albedo, float g, log_c
 static fogrt_render_desc small_desc(int w, int h)
 {
     fogrt_render_desc rd;
-    memset(&rd, 0, sizeof rd);
+    rd = fogrt_render_defaults();
     rd.width = w; rd.height = h; rd.seed = 77;
     rd.threads = 1;   /* tiny images: a parallel region per row would cost more than it saves */
     return rd;
@@ -95,7 +95,7 @@ static render_result render_checked(fogrt_scene *scene, const fogrt_render_desc 
         }
         TEST_ASSERT_TRUE_MESSAGE(finite_nonneg(img.sum_sq[p]), what);
     }
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     return r;
 }
 
@@ -153,7 +153,7 @@ static void test_g_matrix(void)
             TEST_ASSERT_TRUE_MESSAGE(isfinite(mu) && mu >= -1.0f && mu <= 1.0f, msg);
             TEST_ASSERT_TRUE_MESSAGE(mu >= prev_mu, msg);   /* an inverse CDF is monotone */
             if (a == 0) TEST_ASSERT_TRUE_MESSAGE(mu == -1.0f, msg);
-            TEST_ASSERT_TRUE_MESSAGE(finite_nonneg(fogrt_hg_phase(mu, gc->g)) && fogrt_hg_phase(mu, gc->g) > 0.0f, msg);
+            TEST_ASSERT_TRUE_MESSAGE(finite_nonneg(fogrt_hg_phase(gc->g, mu)) && fogrt_hg_phase(gc->g, mu) > 0.0f, msg);
             prev_mu = mu;
         }
         /* full direction samples */
@@ -162,8 +162,8 @@ static void test_g_matrix(void)
             for (a = 0; a < COUNT(U_ALL); ++a) {
                 for (b = 0; b < COUNT(U_ALL); ++b) {
                     float pdf = -1.0f, pdf_eval;
-                    fogrt_vec3 wi = fogrt_sample_hg(wo, gc->g, U_ALL[a], U_ALL[b], &pdf);
-                    pdf_eval = fogrt_hg_pdf(wo, wi, gc->g);
+                    fogrt_vec3 wi = fogrt_sample_hg(gc->g, wo, U_ALL[a], U_ALL[b], &pdf);
+                    pdf_eval = fogrt_hg_pdf(gc->g, wo, wi);
                     snprintf(msg, sizeof msg, "g %.9g wo %d u %g %g: wi (%g %g %g) |wi| %.9g pdf %g eval %g",
                              gc->g, j, U_ALL[a], U_ALL[b], wi.x, wi.y, wi.z, len3(wi), pdf, pdf_eval);
                     TEST_ASSERT_TRUE_MESSAGE(is_unit(wi), msg);
@@ -188,8 +188,8 @@ static void test_g_renders(void)
             fogrt_scene *scene = default_with_fog(0.8f, 0.9f, G_CASES[i].g, NULL);
             fogrt_render_desc rd = small_desc(16, 12);
             char what[160];
-            rd.no_nee = mode == 1;
-            rd.no_mis = mode == 2;
+            rd.nee = !(mode == 1);
+            rd.mis = !(mode == 2);
             snprintf(what, sizeof what, "g %.9g mode %d", G_CASES[i].g, mode);
             (void)render_checked(scene, &rd, 2, what);
             fogrt_scene_destroy(scene);
@@ -220,7 +220,7 @@ static void test_sigma_sampling(void)
     for (i = 0; i < COUNT(SIGMA_CASES); ++i) {
         float sigma_t = SIGMA_CASES[i];
         for (a = 0; a < COUNT(U_ALL); ++a) {
-            float t = fogrt_sample_exponential(U_ALL[a], sigma_t);
+            float t = fogrt_sample_exponential(sigma_t, U_ALL[a]);
             char msg[320];
             snprintf(msg, sizeof msg, "sigma_t %g u %.9g: t %g", sigma_t, U_ALL[a], t);
             if (sigma_t == 0.0f) {
@@ -231,9 +231,9 @@ static void test_sigma_sampling(void)
             if (U_ALL[a] == 0.0f) TEST_ASSERT_TRUE_MESSAGE(t == 0.0f, msg);
             /* -ln(2^-24) = 16.64 mean free paths at most */
             TEST_ASSERT_TRUE_MESSAGE(t * sigma_t <= 16.7f, msg);
-            TEST_ASSERT_TRUE_MESSAGE(finite_nonneg(fogrt_exponential_pdf(t, sigma_t)), msg);
+            TEST_ASSERT_TRUE_MESSAGE(finite_nonneg(fogrt_exponential_pdf(sigma_t, t)), msg);
             {
-                float cdf = fogrt_invert_exponential(t, sigma_t);
+                float cdf = fogrt_invert_exponential(sigma_t, t);
                 TEST_ASSERT_TRUE_MESSAGE(isfinite(cdf) && cdf >= 0.0f && cdf <= 1.0f, msg);
                 /* the inverse of the sampler gives u back (to float precision in 1 - u) */
                 TEST_ASSERT_TRUE_MESSAGE(fabsf(cdf - U_ALL[a]) <= 2e-6f, msg);
@@ -264,8 +264,8 @@ static void test_sigma_renders(void)
             render_result r;
             char what[160];
             uint64_t bound;
-            rd.max_depth = v == 0 ? 0 : -1;
-            rd.no_nee = v == 2;
+            rd.max_depth = v == 0 ? 64 : -1;
+            rd.nee = !(v == 2);
             snprintf(what, sizeof what, "sigma_t %g variant %d", SIGMA_CASES[i], v);
             r = render_checked(scene, &rd, 2, what);
             bound = v == 0 ? r.stats.camera_rays * 65u * 4u : r.stats.camera_rays * 200u;
@@ -303,8 +303,8 @@ static void test_equiangular_extremes(void)
     int a, k;
     for (k = 0; k < COUNT(eq); ++k) {
         for (a = 0; a < COUNT(U_ALL); ++a) {
-            float pdf = -1.0f, t = fogrt_sample_equiangular(U_ALL[a], eq[k].delta, eq[k].h, eq[k].a, eq[k].b, &pdf);
-            float pdf_eval = fogrt_equiangular_pdf(t, eq[k].delta, eq[k].h, eq[k].a, eq[k].b);
+            float pdf = -1.0f, t = fogrt_sample_equiangular(eq[k].delta, eq[k].h, eq[k].a, eq[k].b, U_ALL[a], &pdf);
+            float pdf_eval = fogrt_equiangular_pdf(eq[k].delta, eq[k].h, eq[k].a, eq[k].b, t);
             char msg[320];
             snprintf(msg, sizeof msg, "equiangular case %d u %.9g: t %.9g pdf %g eval %g", k, U_ALL[a], t, pdf, pdf_eval);
             TEST_ASSERT_TRUE_MESSAGE(isfinite(t) && t >= eq[k].a && t <= eq[k].b, msg);
@@ -348,8 +348,8 @@ static void test_samplers_at_extreme_uniforms(void)
             for (k = 0; k < COUNT(cones); ++k) {
                 float pdf = -1.0f, pdf_eval, d2, cos_max, cos_w;
                 fogrt_vec3 pc = v3(cones[k].c.x - cones[k].p.x, cones[k].c.y - cones[k].p.y, cones[k].c.z - cones[k].p.z);
-                w = fogrt_sample_sphere_solid_angle(cones[k].p, cones[k].c, cones[k].r, u1, u2, &pdf);
-                pdf_eval = fogrt_sphere_solid_angle_pdf(cones[k].p, cones[k].c, cones[k].r);
+                w = fogrt_sample_sphere_solid_angle(cones[k].c, cones[k].r, cones[k].p, u1, u2, &pdf);
+                pdf_eval = fogrt_sphere_solid_angle_pdf(cones[k].c, cones[k].r, cones[k].p);
                 snprintf(msg, sizeof msg, "sphere cone %d u %g %g: w (%g %g %g) pdf %g eval %g",
                          k, u1, u2, w.x, w.y, w.z, pdf, pdf_eval);
                 TEST_ASSERT_TRUE_MESSAGE(is_unit(w), msg);
@@ -396,7 +396,7 @@ static const fogrt_vec3 BSDF_WO[] = {
     { 1.0f, 0.0f, 0.0f },             /* exactly on the horizon: may return false */
 };
 
-/* fogrt_bsdf_sample_dir fed u = 0 and 1 - 2^-24 in all three uniforms, for every BSDF, ior,
+/* fogrt_sample_bsdf fed u = 0 and 1 - 2^-24 in all three uniforms, for every BSDF, ior,
    Fresnel mode and incident direction. When it returns true: wi unit and on the side its
    lobe says; weight finite and non-negative; pdf finite and positive; for non-delta lobes the
    pdf matches fogrt_bsdf_pdf and eval is finite. Refraction at ior 1 passes straight through. */
@@ -418,7 +418,7 @@ static void test_bsdf_sample_extremes(void)
                     bool ok;
                     char msg[320];
                     memset(&bs, 0x7f, sizeof bs);   /* garbage in: the call must overwrite */
-                    ok = fogrt_bsdf_sample_dir(&m, fr ? FOGRT_FRESNEL_EXACT : FOGRT_FRESNEL_SCHLICK,
+                    ok = fogrt_sample_bsdf(&m, fr ? FOGRT_FRESNEL_EXACT : FOGRT_FRESNEL_SCHLICK,
                                                wo, U_EDGES[a], U_EDGES[b], U_EDGES[c], &bs);
                     snprintf(msg, sizeof msg, "bsdf %d ior %g wo %d fresnel %d u %d%d%d: ok %d wi (%g %g %g) "
                              "w (%g %g %g) pdf %g delta %d trans %d", (int)m.type, m.ior, j, fr, a, b, c,
@@ -477,10 +477,10 @@ static void test_refraction_extremes(void)
     int i;
     for (i = 0; i < COUNT(cases); ++i) {
         fogrt_vec3 wi = v3(9, 9, 9);
-        bool refracted = fogrt_refract(cases[i].wo, cases[i].n, cases[i].eta, &wi);
+        bool refracted = fogrt_refract(cases[i].n, cases[i].eta, cases[i].wo, &wi);
         float cos_i = cases[i].wo.z;   /* n = +z */
-        float Fs = fogrt_fresnel_schlick(cos_i, cases[i].eta);
-        float Fe = fogrt_fresnel_dielectric(cos_i, cases[i].eta);
+        float Fs = fogrt_fresnel_schlick(cases[i].eta, cos_i);
+        float Fe = fogrt_fresnel_dielectric(cases[i].eta, cos_i);
         char msg[320];
         snprintf(msg, sizeof msg, "case %d eta %g: refracted %d wi (%g %g %g) F schlick %g exact %g",
                  i, cases[i].eta, refracted, wi.x, wi.y, wi.z, Fs, Fe);
@@ -508,11 +508,11 @@ static void test_refraction_extremes(void)
         }
     }
     /* normal incidence into ior 1.5: both formulas give 0.04 */
-    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.04f, fogrt_fresnel_dielectric(1.0f, 1.5f));
-    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.04f, fogrt_fresnel_schlick(1.0f, 1.5f));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.04f, fogrt_fresnel_dielectric(1.5f, 1.0f));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.04f, fogrt_fresnel_schlick(1.5f, 1.0f));
     /* grazing: everything reflects */
-    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 1.0f, fogrt_fresnel_dielectric(1e-7f, 1.5f));
-    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 1.0f, fogrt_fresnel_schlick(1e-7f, 1.5f));
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 1.0f, fogrt_fresnel_dielectric(1.5f, 1e-7f));
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 1.0f, fogrt_fresnel_schlick(1.5f, 1e-7f));
 }
 
 /* Glass and refraction spheres with ior 1, 1.5 and 10, in and out of fog, both Fresnel
@@ -642,7 +642,7 @@ static void test_trace_extreme_rays(void)
         fogrt_render_desc rd;
         fogrt_rng rng;
         CHECK_OK(fogrt_scene_build(scene, NULL));
-        memset(&rd, 0, sizeof rd);
+        rd = fogrt_render_defaults();
         fogrt_rng_seed(&rng, 5, (uint64_t)f);
         for (i = 0; i < COUNT(rays); ++i) {
             for (k = 0; k < 64; ++k) {
@@ -713,10 +713,10 @@ static void test_degenerate_triangles(void)
     CHECK_OK(fogrt_render(plain, &rd, &a, 2, NULL));
     CHECK_OK(fogrt_render(with, &rd, &b, 2, NULL));
     TEST_ASSERT_EQUAL_UINT64(0, b.rejected);
-    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(a.sum, b.sum, sizeof(float) * 3 * 16 * 12,
+    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(a.sum, b.sum, sizeof(double) * 3 * 16 * 12,
                                      "degenerate triangles changed the image");
-    fogrt_image_free(&a, NULL);
-    fogrt_image_free(&b, NULL);
+    fogrt_image_free(&a);
+    fogrt_image_free(&b);
     /* an emitting sliver: a light of tiny area */
     md.positions = sliver; md.vertex_count = 3; md.triangle_count = 1;
     CHECK_OK(fogrt_scene_add_mesh(with, &md));
@@ -802,7 +802,7 @@ static void test_scene_scale(void)
                 quad_var[si][qq] += pixel_luminance_variance(&img, p) / ((w * h / 4.0) * (w * h / 4.0));
             }
         }
-        fogrt_image_free(&img, NULL);
+        fogrt_image_free(&img);
         fogrt_scene_destroy(scene);
     }
     for (si = 1; si < 3; ++si) {
@@ -903,7 +903,7 @@ static void test_spot_cutoffs(void)
     };
     int i;
     for (i = 0; i < COUNT(prof); ++i) {
-        float f = fogrt_spot_falloff(prof[i].cos_theta, prof[i].cutoff, prof[i].beam);
+        float f = fogrt_spot_falloff(prof[i].cutoff, prof[i].beam, prof[i].cos_theta);
         char msg[320];
         snprintf(msg, sizeof msg, "spot cos %g cutoff %g beam %g: %g expected %g", prof[i].cos_theta,
                  prof[i].cutoff, prof[i].beam, f, prof[i].expected);
@@ -1000,7 +1000,7 @@ static void test_zero_intensity_light(void)
             l.cutoff_deg = 40.0f; l.beam_deg = 20.0f;
             scene = floor_with_light(l, f ? 0.8f : 0.0f);
             rd.integrator = mode == 2 ? FOGRT_INTEGRATOR_DIRECT : FOGRT_INTEGRATOR_PATH;
-            rd.no_nee = mode == 1;
+            rd.nee = !(mode == 1);
             r = render_checked(scene, &rd, 2, "zero intensity");
             TEST_ASSERT_TRUE_MESSAGE(r.mean == 0.0, "a light of intensity 0 must give a black image");
             fogrt_scene_destroy(scene);
@@ -1056,16 +1056,16 @@ static void assert_same_snapshot(const snapshot *a, const snapshot *b, const cha
 }
 
 /* Renders 8 x 6 at 2 spp into a fresh image and returns a copy of its sums (caller frees). */
-static float *render_copy(const fogrt_scene *scene)
+static double *render_copy(const fogrt_scene *scene)
 {
     fogrt_image img;
     fogrt_render_desc rd = small_desc(8, 6);
-    float *copy = (float *)malloc(sizeof(float) * 3 * 8 * 6);
+    double *copy = (double *)malloc(sizeof(double) * 3 * 8 * 6);
     TEST_ASSERT_NOT_NULL(copy);
     CHECK_OK(fogrt_image_alloc(&img, 8, 6, NULL));
     CHECK_OK(fogrt_render(scene, &rd, &img, 2, NULL));
-    memcpy(copy, img.sum, sizeof(float) * 3 * 8 * 6);
-    fogrt_image_free(&img, NULL);
+    memcpy(copy, img.sum, sizeof(double) * 3 * 8 * 6);
+    fogrt_image_free(&img);
     return copy;
 }
 
@@ -1145,7 +1145,7 @@ static void test_invalid_parameters(void)
     fogrt_scene *scene = default_with_fog(0.3f, 0.9f, 0.6f, NULL);
     log_counts logc = { 0, 0 };
     snapshot before, after;
-    float *img_before, *img_after;
+    double *img_before, *img_after;
     int i;
     /* a scene with a logger: rebuild it through fogrt_scene_desc */
     fogrt_scene_destroy(scene);
@@ -1207,10 +1207,10 @@ static void test_invalid_parameters(void)
     {
         /* a bad build desc does not throw the built scene away */
         fogrt_build_desc bd;
-        memset(&bd, 0, sizeof bd);
+        bd = fogrt_build_defaults();
         bd.bins = 65;                                                          /* more than 64 bins */
         EXPECT_ERROR(fogrt_scene_build(scene, &bd), FOGRT_RESULT_INVALID_ARGUMENT, "build bins");
-        memset(&bd, 0, sizeof bd);
+        bd = fogrt_build_defaults();
         bd.c_int = -1.0f;                                                      /* negative cost */
         EXPECT_ERROR(fogrt_scene_build(scene, &bd), FOGRT_RESULT_INVALID_ARGUMENT, "build cost");
     }
@@ -1277,7 +1277,7 @@ static void test_invalid_render_requests(void)
         CHECK_OK(fogrt_scene_set_medium(scene, &med));
         TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_NOT_BUILT, fogrt_render(scene, &rd, &img, 1, NULL));
     }
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
 }
 
@@ -1337,7 +1337,7 @@ static void test_out_of_memory(void)
                         fogrt_render_desc rd = small_desc(4, 3);
                         CHECK_OK(fogrt_render(scene, &rd, &img, 1, NULL));
                         TEST_ASSERT_EQUAL_UINT64(0, img.rejected);
-                        fogrt_image_free(&img, &sd.allocator);
+                        fogrt_image_free(&img);
                     }
                 }
             }

@@ -154,7 +154,7 @@ static image_stats render_stats(fogrt_scene *scene, const fogrt_render_desc *rd_
         TEST_ASSERT_TRUE(fabs(e.mean_luminance - s.mean[1]) <= 1e-4 * (s.mean[1] + 1e-6));
         TEST_ASSERT_TRUE(fabs(e.relative_error * sqrt(sum_m2) / (w * h) - s.std_error) <= 1e-3 * s.std_error + 1e-7);
     }
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     if (rs_out) *rs_out = rs;
     return s;
 }
@@ -190,10 +190,10 @@ static void assert_mean(const image_stats *s, double expected, double rel_tol, d
 static fogrt_render_desc base_desc(bool no_nee, bool no_mis)
 {
     fogrt_render_desc rd;
-    memset(&rd, 0, sizeof rd);
+    rd = fogrt_render_defaults();
     rd.max_depth = -1;      /* no depth cap: it would bias long fog walks */
-    rd.no_nee = no_nee;
-    rd.no_mis = no_mis;
+    rd.nee = !(no_nee);
+    rd.mis = !(no_mis);
     rd.seed = 1234;
     return rd;
 }
@@ -334,7 +334,7 @@ static void test_white_furnace_light_samples(void)
     fogrt_scene_destroy(scene);
     /* without MIS: thin fog and many samples (heavy tail, see above) */
     scene = make_furnace(0.0f, 0.3f, v3(1, 1, 1), 0.5f);
-    rd.no_mis = true;
+    rd.mis = false;
     s = render_stats(scene, &rd, 16, 16, 32, 1.0, NULL);
     assert_mean(&s, 1.0, 0.1, -1.0, "light_samples 4, no MIS");
     fogrt_scene_destroy(scene);
@@ -429,7 +429,7 @@ static void test_chromatic_albedo(void)
         TEST_ASSERT_TRUE_MESSAGE(fabs(s.mean[0] - 1.0) <= 0.01, msg);
         TEST_ASSERT_TRUE_MESSAGE(s.mean[2] < s.mean[1] && s.mean[1] < s.mean[0], msg);
     }
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
 }
 
@@ -463,15 +463,15 @@ typedef struct wall_case { float rho, sigma_t; int mode, rr_depth, w, h, spp; do
 static void test_reflective_walls(void)
 {
     static const wall_case cases[] = {
-        { 0.5f, 0.0f, NO_NEE, 0, 16, 16, 16, 0.03 },        /* no fog: 2 */
-        { 0.5f, 0.0f, NEE_MIS, 0, 16, 16, 16, 0.03 },
-        { 0.5f, 0.0f, NEE_NO_MIS, 0, 16, 16, 64, 0.1 },  /* heavy tail: looser */
-        { 0.5f, 1.0f, NO_NEE, 0, 16, 16, 32, 0.03 },        /* fog and walls: still 2 */
-        { 0.5f, 1.0f, NEE_MIS, 0, 16, 16, 32, 0.03 },
-        { 0.8f, 0.0f, NO_NEE, 0, 16, 16, 64, 0.03 },      /* 5: long paths, roulette does the work */
-        { 0.8f, 0.0f, NEE_MIS, 0, 16, 16, 64, 0.03 },
-        { 0.8f, 1.0f, NO_NEE, 0, 16, 16, 64, 0.03 },
-        { 0.8f, 1.0f, NEE_MIS, 0, 16, 16, 64, 0.03 },
+        { 0.5f, 0.0f, NO_NEE, 3, 16, 16, 16, 0.03 },        /* no fog: 2 */
+        { 0.5f, 0.0f, NEE_MIS, 3, 16, 16, 16, 0.03 },
+        { 0.5f, 0.0f, NEE_NO_MIS, 3, 16, 16, 64, 0.1 },  /* heavy tail: looser */
+        { 0.5f, 1.0f, NO_NEE, 3, 16, 16, 32, 0.03 },        /* fog and walls: still 2 */
+        { 0.5f, 1.0f, NEE_MIS, 3, 16, 16, 32, 0.03 },
+        { 0.8f, 0.0f, NO_NEE, 3, 16, 16, 64, 0.03 },      /* 5: long paths, roulette does the work */
+        { 0.8f, 0.0f, NEE_MIS, 3, 16, 16, 64, 0.03 },
+        { 0.8f, 1.0f, NO_NEE, 3, 16, 16, 64, 0.03 },
+        { 0.8f, 1.0f, NEE_MIS, 3, 16, 16, 64, 0.03 },
         { 0.6f, 0.5f, NO_NEE, 1, 16, 16, 32, 0.03 },      /* roulette from the first bounce: 2.5 */
         { 0.6f, 0.5f, NEE_MIS, 1, 16, 16, 32, 0.03 },
     };

@@ -96,7 +96,7 @@ static void assert_vec3(float tol, float x, float y, float z, fogrt_vec3 v, cons
 static fogrt_material_desc prim_material(const fogrt_scene *s, uint32_t prim)
 {
     fogrt_material_desc m;
-    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_material(s, fogrt_scene_prim_material(s, prim), &m));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_material(s, fogrt_scene_get_prim_material(s, prim), &m));
     return m;
 }
 static bool same_colour(fogrt_vec3 a, float r, float g, float b)
@@ -647,8 +647,8 @@ static void test_dae_point_and_spot(void)
     TEST_ASSERT_FLOAT_WITHIN(1e-5f, 30.0f, l.cutoff_deg);
     TEST_ASSERT_FLOAT_WITHIN(1e-5f, 22.5f, l.beam_deg);
     mid = 0.5f * (l.cutoff_deg + l.beam_deg) * 3.14159265f / 180.0f;
-    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 0.5f, fogrt_spot_falloff(cosf(mid), l.cutoff_deg, l.beam_deg));
-    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f, fogrt_spot_falloff(cosf(0.3f), l.cutoff_deg, l.beam_deg));
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 0.5f, fogrt_spot_falloff(l.cutoff_deg, l.beam_deg, cosf(mid)));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f, fogrt_spot_falloff(l.cutoff_deg, l.beam_deg, cosf(0.3f)));
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_light(s, 2, &l));
     TEST_ASSERT_FLOAT_WITHIN(1e-5f, 90.0f, l.cutoff_deg);
     TEST_ASSERT_FLOAT_WITHIN(1e-5f, 90.0f, l.beam_deg);

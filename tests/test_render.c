@@ -84,7 +84,7 @@ static fogrt_scene *area_light_box(float sigma_t, bool specular, float lamp_half
 static fogrt_render_desc render_desc(int width, int height, uint64_t seed)
 {
     fogrt_render_desc rd;
-    memset(&rd, 0, sizeof rd);
+    rd = fogrt_render_defaults();
     rd.width = width;
     rd.height = height;
     rd.seed = seed;
@@ -119,8 +119,8 @@ static void assert_same_image(const fogrt_image *a, const fogrt_image *b, const 
     size_t n = pixels(a);
     TEST_ASSERT_EQUAL_INT(a->width, b->width);
     TEST_ASSERT_EQUAL_INT(a->height, b->height);
-    TEST_ASSERT_TRUE_MESSAGE(memcmp(a->sum, b->sum, sizeof(float) * 3 * n) == 0, what);
-    TEST_ASSERT_TRUE_MESSAGE(memcmp(a->sum_sq, b->sum_sq, sizeof(float) * n) == 0, what);
+    TEST_ASSERT_TRUE_MESSAGE(memcmp(a->sum, b->sum, sizeof(double) * 3 * n) == 0, what);
+    TEST_ASSERT_TRUE_MESSAGE(memcmp(a->sum_sq, b->sum_sq, sizeof(double) * n) == 0, what);
     TEST_ASSERT_TRUE_MESSAGE(memcmp(a->count, b->count, sizeof(uint32_t) * n) == 0, what);
     TEST_ASSERT_EQUAL_UINT64_MESSAGE(a->rejected, b->rejected, what);
 }
@@ -145,7 +145,7 @@ static batch_estimate batch_mean(const fogrt_scene *scene, const fogrt_render_de
         m = image_mean(&img);
         sum += m;
         sum_sq += m * m;
-        fogrt_image_free(&img, NULL);
+        fogrt_image_free(&img);
     }
     e.mean = sum / batches;
     e.std_error = sqrt(fmax(0.0, (sum_sq / batches - e.mean * e.mean) * batches / (batches - 1.0)) / batches);
@@ -211,7 +211,7 @@ static void test_default_scene_renders(void)
     TEST_ASSERT_TRUE(err.mean_luminance > 0.0);
     TEST_ASSERT_TRUE(err.relative_error > 0.0 && err.relative_error < 10.0);
     free(rgb);
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
 }
 
@@ -230,8 +230,8 @@ static void test_threads_bit_identical(void)
 #ifndef _OPENMP
     TEST_MESSAGE("built without OpenMP: both renders ran on one thread");
 #endif
-    fogrt_image_free(&one, NULL);
-    fogrt_image_free(&two, NULL);
+    fogrt_image_free(&one);
+    fogrt_image_free(&two);
     fogrt_scene_destroy(scene);
 }
 
@@ -250,8 +250,8 @@ static void test_split_samples_identical(void)
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_render(scene, &rd, &split, 1, NULL));
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_render(scene, &rd, &split, 3, NULL));
     assert_same_image(&once, &split, "4 spp vs 1 + 3 spp after fogrt_image_clear");
-    fogrt_image_free(&once, NULL);
-    fogrt_image_free(&split, NULL);
+    fogrt_image_free(&once);
+    fogrt_image_free(&split);
     fogrt_scene_destroy(scene);
 }
 
@@ -269,11 +269,11 @@ static void test_seeds(void)
     render_new(scene, &rd, 2, &c, NULL);
     assert_same_image(&a, &b, "same seed");
     n = pixels(&a);
-    for (i = 0; i < n; i++) differ += memcmp(&a.sum[3 * i], &c.sum[3 * i], 3 * sizeof(float)) != 0;
+    for (i = 0; i < n; i++) differ += memcmp(&a.sum[3 * i], &c.sum[3 * i], 3 * sizeof(double)) != 0;
     TEST_ASSERT_GREATER_THAN(n * 9 / 10, differ);
-    fogrt_image_free(&a, NULL);
-    fogrt_image_free(&b, NULL);
-    fogrt_image_free(&c, NULL);
+    fogrt_image_free(&a);
+    fogrt_image_free(&b);
+    fogrt_image_free(&c);
     fogrt_scene_destroy(scene);
 }
 
@@ -326,7 +326,7 @@ static void test_progress_and_cancel(void)
         rows_with_samples += counted == 16;
     }
     TEST_ASSERT_EQUAL_INT(log.last_rows_done, rows_with_samples);
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
 }
 
@@ -382,9 +382,9 @@ static void test_error_estimate(void)
     TEST_MESSAGE(msg);
     TEST_ASSERT_TRUE_MESSAGE(ratio >= 0.7 && ratio <= 1.4, msg);
     free(a); free(b);
-    fogrt_image_free(&i4, NULL);
-    fogrt_image_free(&i16, NULL);
-    fogrt_image_free(&j16, NULL);
+    fogrt_image_free(&i4);
+    fogrt_image_free(&i16);
+    fogrt_image_free(&j16);
     fogrt_scene_destroy(scene);
 }
 
@@ -401,12 +401,12 @@ static void test_nee_unbiased_without_fog(void)
     fogrt_scene *scene = area_light_box(0.0f, true, 0.7f);
     fogrt_render_desc rd = render_desc(24, 18, 0);
     batch_estimate with_mis, without_mis, no_nee;
-    TEST_ASSERT_EQUAL_UINT32(0, fogrt_scene_features(scene) & FOGRT_FEATURE_MEDIUM);
+    TEST_ASSERT_EQUAL_UINT32(0, fogrt_scene_get_features(scene) & FOGRT_FEATURE_MEDIUM);
     with_mis = batch_mean(scene, &rd, 8, 10, 100);
-    rd.no_mis = true;
+    rd.mis = false;
     without_mis = batch_mean(scene, &rd, 8, 10, 200);
-    rd.no_mis = false;
-    rd.no_nee = true;
+    rd.mis = true;
+    rd.nee = false;
     no_nee = batch_mean(scene, &rd, 8, 10, 300);
     assert_means_agree(with_mis, no_nee, "NEE + MIS vs no NEE");
     assert_means_agree(without_mis, no_nee, "NEE without MIS vs no NEE");
@@ -420,9 +420,9 @@ static void test_nee_unbiased_in_fog(void)
     fogrt_scene *scene = area_light_box(0.6f, true, 0.7f);
     fogrt_render_desc rd = render_desc(24, 18, 0);
     batch_estimate with_nee, no_nee;
-    TEST_ASSERT_TRUE(fogrt_scene_features(scene) & FOGRT_FEATURE_MEDIUM);
+    TEST_ASSERT_TRUE(fogrt_scene_get_features(scene) & FOGRT_FEATURE_MEDIUM);
     with_nee = batch_mean(scene, &rd, 8, 10, 400);
-    rd.no_nee = true;
+    rd.nee = false;
     no_nee = batch_mean(scene, &rd, 8, 10, 500);
     assert_means_agree(with_nee, no_nee, "in fog: NEE + MIS vs no NEE");
     fogrt_scene_destroy(scene);
@@ -447,11 +447,11 @@ static void test_direct_integrator(void)
         rd.integrator = FOGRT_INTEGRATOR_PATH;
         rd.max_depth = 1;
         path1 = batch_mean(scene, &rd, 8, 10, 700);
-        rd.max_depth = 0;
+        rd.max_depth = 64;
         full = batch_mean(scene, &rd, 8, 4, 800);
         rd.integrator = FOGRT_INTEGRATOR_DIRECT;
         direct = batch_mean(scene, &rd, 8, 10, 600);
-        rd.no_mis = true;
+        rd.mis = false;
         direct_no_mis = batch_mean(scene, &rd, 8, 10, 900);
         snprintf(what, sizeof what, "sigma_t %g: DIRECT (no MIS) vs PATH with max_depth 1", sigmas[k]);
         assert_means_agree(direct_no_mis, path1, what);
@@ -475,7 +475,7 @@ static void test_direct_default_scene(void)
     TEST_ASSERT_EQUAL_UINT64(0, img.rejected);
     for (i = 0; i < 3 * pixels(&img); i++) TEST_ASSERT_FLOAT_IS_DETERMINATE(img.sum[i]);
     TEST_ASSERT_TRUE(image_mean(&img) > 0.0);
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
 }
 
@@ -529,9 +529,9 @@ static void test_thin_lens(void)
     TEST_ASSERT_EQUAL_UINT64(0, lens.rejected);
     for (i = 0; i < 3 * pixels(&lens); i++) TEST_ASSERT_FLOAT_IS_DETERMINATE(lens.sum[i]);
     TEST_ASSERT_TRUE(image_mean(&lens) > 0.0);
-    TEST_ASSERT_FALSE(memcmp(pin.sum, lens.sum, sizeof(float) * 3 * pixels(&pin)) == 0);
-    fogrt_image_free(&pin, NULL);
-    fogrt_image_free(&lens, NULL);
+    TEST_ASSERT_FALSE(memcmp(pin.sum, lens.sum, sizeof(double) * 3 * pixels(&pin)) == 0);
+    fogrt_image_free(&pin);
+    fogrt_image_free(&lens);
     fogrt_scene_destroy(scene);
 }
 
@@ -592,7 +592,7 @@ static void test_environment_only(void)
     L = fogrt_trace(scene, NULL, v3(0, 0, 0), v3(0.6f, 0.8f, 0), &rng, NULL);
     TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f, L.y);
     free(rgb);
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
 }
 

@@ -14,6 +14,32 @@
 #include "unity.h"
 #include "stats.h"
 
+/* The private light samplers of fogrt.h (chapter 12) with their uniforms drawn here and the
+   sample unpacked: the value (radiance / pdf for a point light, Le for an area light), the
+   direction, the distance and the pdf. A failed sample is black with pdf 0. */
+static fogrt_vec3 sample_point_light_(const fogrt_scene *s, const fogrt_light_desc *l, fogrt_vec3 x, float u1,
+                                      float u2, fogrt_vec3 *wi, float *dist)
+{
+    float u[2];
+    fogrt__light_sample ls;
+    u[0] = u1; u[1] = u2;
+    *wi = fogrt__v(0.0f, 0.0f, 0.0f); *dist = 0.0f;
+    if (!fogrt__sample_point_light(s, l, x, u, &ls)) return fogrt__v(0.0f, 0.0f, 0.0f);
+    *wi = ls.wi; *dist = ls.dist;
+    return ls.Le;
+}
+static fogrt_vec3 sample_area_light_(const fogrt_scene *s, const fogrt__area_light *a, fogrt_vec3 p, fogrt_rng *rng,
+                                     fogrt_vec3 *wi, float *dist, float *pdf)
+{
+    float u[3];
+    fogrt__light_sample ls;
+    u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng); u[2] = fogrt_rng_float(rng);
+    *pdf = 0.0f;
+    if (!fogrt__sample_area_light(s, a, p, u, &ls)) return fogrt__v(0.0f, 0.0f, 0.0f);
+    *wi = ls.wi; *dist = ls.dist; *pdf = ls.pdf;
+    return ls.Le;
+}
+
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -138,7 +164,7 @@ static fogrt_vec3 hg_sampler(void *user, float u1, float u2, bool *ok)
 {
     const hg_args *a = (const hg_args *)user;
     float pdf = 0.0f;
-    fogrt_vec3 wi = fogrt_sample_hg(a->wo, a->g, u1, u2, &pdf);
+    fogrt_vec3 wi = fogrt_sample_hg(a->g, a->wo, u1, u2, &pdf);
     *ok = pdf > 0.0f && isfinite(pdf);
     return wi;
 }
@@ -203,7 +229,7 @@ static double hg_pdf_callback(const double w[3], void *user)
     const hg_pdf_args *a = (const hg_pdf_args *)user;
     fogrt_vec3 wi = v3((float)w[0], (float)w[1], (float)w[2]);
     fogrt_vec3 wo = a->flip ? v3(-a->wo.x, -a->wo.y, -a->wo.z) : a->wo;
-    return fogrt_hg_pdf(wo, wi, a->g);
+    return fogrt_hg_pdf(a->g, wo, wi);
 }
 
 /* fogrt_sample_hg agrees with fogrt_hg_pdf on a plain world grid (expected counts by
@@ -260,7 +286,7 @@ static void test_hg_mean_cosine_is_g(void)
         double sum = 0.0, sum2 = 0.0;
         for (long i = 0; i < n; i++) {
             float u1 = fogrt_rng_float(&rng), u2 = fogrt_rng_float(&rng);
-            fogrt_vec3 wi = fogrt_sample_hg(wo, g, u1, u2, NULL);
+            fogrt_vec3 wi = fogrt_sample_hg(g, wo, u1, u2, NULL);
             double mu = (wi.x * d[0] + wi.y * d[1] + wi.z * d[2]) / (dl * len3(wi));
             sum += mu;
             sum2 += mu * mu;
@@ -273,7 +299,7 @@ static void test_hg_mean_cosine_is_g(void)
     }
 }
 
-/* The pdf that fogrt_sample_hg returns equals fogrt_hg_pdf(wo, wi, g) and the HG formula
+/* The pdf that fogrt_sample_hg returns equals fogrt_hg_pdf(g, wo, wi) and the HG formula
    in double at the returned direction. The tolerance follows the conditioning: near the
    peak of a strong lobe the pdf changes by 3|g|/(1+g^2-2g mu) relative per unit of mu, and
    the float direction carries mu errors of a few 1e-7. */
@@ -290,8 +316,8 @@ static void test_hg_sample_pdf_matches_eval(void)
                 float u1 = fogrt_rng_float(&rng), u2 = fogrt_rng_float(&rng), pdf = -1.0f;
                 if (i == 0) u1 = 0.0f;
                 if (i == 1) u1 = 1.0f - 0x1p-24f;
-                fogrt_vec3 wi = fogrt_sample_hg(wo, g, u1, u2, &pdf);
-                float eval = fogrt_hg_pdf(wo, wi, g);
+                fogrt_vec3 wi = fogrt_sample_hg(g, wo, u1, u2, &pdf);
+                float eval = fogrt_hg_pdf(g, wo, wi);
                 double mu = -((double)wo.x * wi.x + (double)wo.y * wi.y + (double)wo.z * wi.z) / (len3(wo) * len3(wi));
                 double ref = hg_phase_ref(mu, g);
                 double base = g >= 0.0f ? (1.0 - g) * (1.0 - g) + 2.0 * g * (1.0 - mu)
@@ -308,7 +334,7 @@ static void test_hg_sample_pdf_matches_eval(void)
 
 static double hg_phase_callback(double mu, void *user)
 {
-    return fogrt_hg_phase((float)mu, *(const float *)user);
+    return fogrt_hg_phase(*(const float *)user, (float)mu);
 }
 
 /* fogrt_hg_phase integrates to 1 over the sphere, 2 pi int p(mu) dmu (adaptive Simpson on
@@ -322,10 +348,10 @@ static void test_hg_phase_normalised(void)
     for (size_t k = 0; k < sizeof gs / sizeof gs[0]; k++) {
         float g = gs[k];
         double integral = 2.0 * STATS_PI * stats_integrate_1d(hg_phase_callback, &g, -1.0, 1.0, 1e-8, 30);
-        snprintf(msg, sizeof msg, "2 pi int fogrt_hg_phase(mu, %g) dmu = %.9f (want 1 within 1e-6)", (double)g, integral);
+        snprintf(msg, sizeof msg, "2 pi int fogrt_hg_phase(%g, mu) dmu = %.9f (want 1 within 1e-6)", (double)g, integral);
         TEST_MESSAGE(msg);
         TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-6, 1.0, integral, msg);
-        TEST_ASSERT_TRUE_MESSAGE(fogrt_hg_phase(-1.0f, g) > 0.0f && fogrt_hg_phase(1.0f, g) > 0.0f, msg);
+        TEST_ASSERT_TRUE_MESSAGE(fogrt_hg_phase(g, -1.0f) > 0.0f && fogrt_hg_phase(g, 1.0f) > 0.0f, msg);
     }
 }
 
@@ -431,14 +457,14 @@ static fogrt_vec3 sphere_sampler(void *user, float u1, float u2, bool *ok)
 {
     sphere_args *a = (sphere_args *)user;
     float pdf = 0.0f;
-    fogrt_vec3 w = fogrt_sample_sphere_solid_angle(a->p, a->c, a->r, u1, u2, &pdf);
+    fogrt_vec3 w = fogrt_sample_sphere_solid_angle(a->c, a->r, a->p, u1, u2, &pdf);
     double l = len3(w), wd[3] = {w.x / l, w.y / l, w.z / l};
     /* Every direction must hit the sphere (with 1e-4 relative slack for float rounding at
        the rim); a miss is an invalid sample. */
     if (!ray_hits_sphere(a, wd, a->r * (1.0 + 1e-4))) { a->misses++; *ok = false; }
     else *ok = pdf > 0.0f && isfinite(pdf);
     /* The pdf returned with the sample is the one fogrt_sphere_solid_angle_pdf reports. */
-    if (pdf != fogrt_sphere_solid_angle_pdf(a->p, a->c, a->r)) a->bad_pdf++;
+    if (pdf != fogrt_sphere_solid_angle_pdf(a->c, a->r, a->p)) a->bad_pdf++;
     return w;
 }
 
@@ -467,7 +493,7 @@ static double sphere_pdf_callback(const double w[3], void *user)
 {
     const sphere_args *a = (const sphere_args *)user;
     if (a->model_r == a->r) {
-        return ray_hits_sphere(a, w, a->r) ? fogrt_sphere_solid_angle_pdf(a->p, a->c, a->r) : 0.0;
+        return ray_hits_sphere(a, w, a->r) ? fogrt_sphere_solid_angle_pdf(a->c, a->r, a->p) : 0.0;
     }
     return cone_model_pdf(a, w, a->model_r);
 }
@@ -647,7 +673,7 @@ static fogrt_vec3 point_light_sampler(void *user, float u1, float u2, bool *ok)
     point_light_args *a = (point_light_args *)user;
     fogrt_vec3 wi = v3(0.0f, 0.0f, 0.0f);
     float dist = -1.0f;
-    fogrt_vec3 value = fogrt__sample_point_light(a->scene, a->l, a->geom.p, u1, u2, &wi, &dist);
+    fogrt_vec3 value = sample_point_light_(a->scene, a->l, a->geom.p, u1, u2, &wi, &dist);
     double val[3] = {value.x, value.y, value.z};
     bool value_ok = true;
     for (int k = 0; k < 3; k++)
@@ -854,7 +880,7 @@ static void test_point_light_radius_irradiance(void)
         for (long s = 0; s < n; s++) {
             float u1 = fogrt_rng_float(&rng), u2 = fogrt_rng_float(&rng), dist;
             fogrt_vec3 wi;
-            fogrt_vec3 v = fogrt__sample_point_light(scene, &scene->lights[0], x, u1, u2, &wi, &dist);
+            fogrt_vec3 v = sample_point_light_(scene, &scene->lights[0], x, u1, u2, &wi, &dist);
             double c = nrm[0] * wi.x + nrm[1] * wi.y + nrm[2] * wi.z;
             double e[3] = {v.x * c, v.y * c, v.z * c};
             for (int i = 0; i < 3; i++) { sum[i] += e[i]; sum2[i] += e[i] * e[i]; }
@@ -1016,7 +1042,7 @@ static void test_area_light_mesh_chi2(void)
         for (long s = 0; s < n; s++) {
             fogrt_vec3 wi = v3(0.0f, 0.0f, 0.0f);
             float dist = -1.0f, pdf = -1.0f;
-            fogrt_vec3 Le = fogrt__sample_area_light(scene, light, p, &rng, &wi, &dist, &pdf);
+            fogrt_vec3 Le = sample_area_light_(scene, light, p, &rng, &wi, &dist, &pdf);
             int k = (int)Le.x - 1;
             if (!(pdf > 0.0f) || !(Le.x == (float)(k + 1)) || k < first || k >= last || tri_cell[k] < 0 ||
                 Le.y != 0.5f || Le.z != 0.25f || !isfinite(dist)) {
@@ -1125,11 +1151,11 @@ static void test_area_light_sphere_chi2(void)
     const long n = 100000;
     long invalid = 0, bad = 0;
     char first_bad[320] = "", msg[800];
-    float want_pdf = fogrt_sphere_solid_angle_pdf(a.p, a.c, a.r);
+    float want_pdf = fogrt_sphere_solid_angle_pdf(a.c, a.r, a.p);
     for (long s = 0; s < n; s++) {
         fogrt_vec3 wi = v3(0.0f, 0.0f, 0.0f);
         float dist = -1.0f, pdf = -1.0f;
-        fogrt_vec3 Le = fogrt__sample_area_light(scene, light, a.p, &rng, &wi, &dist, &pdf);
+        fogrt_vec3 Le = sample_area_light_(scene, light, a.p, &rng, &wi, &dist, &pdf);
         int cell = pdf > 0.0f ? stats_grid_cell(&grid, wi.x, wi.y, wi.z) : -1;
         if (cell < 0) { invalid++; continue; }
         observed[cell] += 1.0;
@@ -1154,7 +1180,7 @@ static void test_area_light_sphere_chi2(void)
     /* from inside the emitting sphere: nothing to sample */
     fogrt_vec3 wi;
     float dist, pdf = -1.0f;
-    fogrt_vec3 Le = fogrt__sample_area_light(scene, light, v3(-1.8f, 0.6f, 1.1f), &rng, &wi, &dist, &pdf);
+    fogrt_vec3 Le = sample_area_light_(scene, light, v3(-1.8f, 0.6f, 1.1f), &rng, &wi, &dist, &pdf);
     snprintf(msg, sizeof msg, "from inside the sphere light: Le (%g, %g, %g), pdf %g; want black, 0", (double)Le.x,
              (double)Le.y, (double)Le.z, (double)pdf);
     TEST_ASSERT_TRUE_MESSAGE(pdf == 0.0f && Le.x == 0.0f && Le.y == 0.0f && Le.z == 0.0f, msg);
@@ -1164,7 +1190,7 @@ static void test_area_light_sphere_chi2(void)
     TALLY_ASSERT(t);
 }
 
-/* fogrt_spot_falloff(cos theta, cutoff, beam) equals clamp((cutoff - theta)/(cutoff - beam),
+/* fogrt_spot_falloff(cutoff, beam, cos theta) equals clamp((cutoff - theta)/(cutoff - beam),
    0, 1), and for beam == cutoff a hard cone, at angles inside the beam, on the ramp and
    outside, for cutoffs of 0, 30, 45, 90 and 180 degrees. The expected value is computed in
    double from the same float cosine, so only fogrt's own rounding remains (1e-5). Fails
@@ -1187,15 +1213,15 @@ static void test_spot_falloff_values(void)
         double theta = acos((double)cos_theta) * 180.0 / STATS_PI, want;
         if (c[k].cutoff > c[k].beam) want = fmin(1.0, fmax(0.0, (c[k].cutoff - theta) / (c[k].cutoff - c[k].beam)));
         else want = theta <= c[k].cutoff ? 1.0 : 0.0;
-        float got = fogrt_spot_falloff(cos_theta, c[k].cutoff, c[k].beam);
-        snprintf(msg, sizeof msg, "fogrt_spot_falloff(cos %g deg, cutoff %g, beam %g) = %.7f, want %.7f (nominal %.7f)",
+        float got = fogrt_spot_falloff(c[k].cutoff, c[k].beam, cos_theta);
+        snprintf(msg, sizeof msg, "fogrt_spot_falloff(cutoff %g, beam %g, cos %g deg) = %.7f, want %.7f (nominal %.7f)",
                  (double)c[k].theta, (double)c[k].cutoff, (double)c[k].beam, (double)got, want, c[k].want);
         TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-6, c[k].want, want, "test table: nominal value disagrees with the formula");
         TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-5, want, (double)got, msg);
     }
     /* cutoff 0: a zero-width cone; on the axis itself only "finite, in [0, 1]" is defined. */
-    float axis = fogrt_spot_falloff(1.0f, 0.0f, 0.0f);
-    TEST_ASSERT_TRUE_MESSAGE(axis >= 0.0f && axis <= 1.0f, "fogrt_spot_falloff(1, 0, 0) outside [0, 1]");
+    float axis = fogrt_spot_falloff(0.0f, 0.0f, 1.0f);
+    TEST_ASSERT_TRUE_MESSAGE(axis >= 0.0f && axis <= 1.0f, "fogrt_spot_falloff(0, 0, 1) outside [0, 1]");
 }
 
 /* ==========================================================================================
@@ -1223,7 +1249,7 @@ static void test_exponential_ks(void)
         fogrt_rng_seed(&rng, 10000 + (uint64_t)k, 5);
         long invalid = 0;
         for (int i = 0; i < N; i++) {
-            float d = fogrt_sample_exponential(fogrt_rng_float(&rng), sig[k]);
+            float d = fogrt_sample_exponential(sig[k], fogrt_rng_float(&rng));
             if (!(d >= 0.0f) || !isfinite(d)) invalid++;
             x[i] = d;
         }
@@ -1254,18 +1280,18 @@ static void test_exponential_pdf_and_inverse(void)
     char msg[200];
     for (int k = 0; k < 4; k++) {
         for (int i = 0; i < 6; i++) {
-            float t = fogrt_sample_exponential(us[i], sig[k]);
-            float back = fogrt_invert_exponential(t, sig[k]);
+            float t = fogrt_sample_exponential(sig[k], us[i]);
+            float back = fogrt_invert_exponential(sig[k], t);
             double pdf_want = sig[k] * exp(-(double)sig[k] * t);
             snprintf(msg, sizeof msg, "sigma_t=%g u=%.9g: t=%.9g, invert=%.9g, pdf=%.9g want %.9g", (double)sig[k],
-                     (double)us[i], (double)t, (double)back, (double)fogrt_exponential_pdf(t, sig[k]), pdf_want);
+                     (double)us[i], (double)t, (double)back, (double)fogrt_exponential_pdf(sig[k], t), pdf_want);
             TEST_ASSERT_TRUE_MESSAGE(isfinite(t) && t >= 0.0f, msg);
             TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(2e-7 + 4e-7 * us[i], (double)us[i], (double)back, msg);
-            TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-5 * pdf_want, pdf_want, (double)fogrt_exponential_pdf(t, sig[k]), msg);
+            TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-5 * pdf_want, pdf_want, (double)fogrt_exponential_pdf(sig[k], t), msg);
         }
     }
-    TEST_ASSERT_TRUE(isinf(fogrt_sample_exponential(0.5f, 0.0f)) && fogrt_sample_exponential(0.5f, 0.0f) > 0.0f);
-    TEST_ASSERT_EQUAL_FLOAT(0.0f, fogrt_exponential_pdf(1.0f, 0.0f));
+    TEST_ASSERT_TRUE(isinf(fogrt_sample_exponential(0.0f, 0.5f)) && fogrt_sample_exponential(0.0f, 0.5f) > 0.0f);
+    TEST_ASSERT_EQUAL_FLOAT(0.0f, fogrt_exponential_pdf(0.0f, 1.0f));
 }
 
 /* ==========================================================================================
@@ -1345,10 +1371,10 @@ static void test_equiangular_ks(void)
         char first_bad[300] = "";
         for (int i = 0; i < N; i++) {
             float pdf = -1.0f, u = fogrt_rng_float(&rng);
-            float s = fogrt_sample_equiangular(u, c->delta, c->h, c->a, c->b, &pdf);
+            float s = fogrt_sample_equiangular(c->delta, c->h, c->a, c->b, u, &pdf);
             x[i] = s;
             if (!isfinite(s) || !(s >= c->a && s <= c->b) || !(pdf > 0.0f) || !isfinite(pdf)) { invalid++; continue; }
-            double eval = fogrt_equiangular_pdf(s, c->delta, c->h, c->a, c->b);
+            double eval = fogrt_equiangular_pdf(c->delta, c->h, c->a, c->b, s);
             double dt = (double)s - c->delta, den = (double)c->h * c->h + dt * dt;
             double ref = c->h / (range * den);
             double rel = 1e-5 + 2.4e-7 / range + 1.2e-7 * fmax(fabs((double)s), fabs((double)c->delta)) * 2.0 * fabs(dt) / den;
@@ -1388,7 +1414,7 @@ static double eq_pdf_in_v(const eq_case *c, double v)
 {
     float s = (float)(c->delta + (double)c->h * sinh(v));
     s = s < c->a ? c->a : (s > c->b ? c->b : s);      /* the end nodes must not round outside */
-    return fogrt_equiangular_pdf(s, c->delta, c->h, c->a, c->b) * (double)c->h * cosh(v);
+    return fogrt_equiangular_pdf(c->delta, c->h, c->a, c->b, s) * (double)c->h * cosh(v);
 }
 
 /* Composite Simpson with a fixed number of panels: the integrand is smooth, but it is
@@ -1417,9 +1443,9 @@ static void test_equiangular_pdf_normalised(void)
                  c->label, (double)c->a, (double)c->b, integral, tol);
         TEST_MESSAGE(msg);
         TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(tol, 1.0, integral, msg);
-        TEST_ASSERT_EQUAL_FLOAT_MESSAGE(0.0f, fogrt_equiangular_pdf(c->a - 0.5f, c->delta, c->h, c->a, c->b), msg);
+        TEST_ASSERT_EQUAL_FLOAT_MESSAGE(0.0f, fogrt_equiangular_pdf(c->delta, c->h, c->a, c->b, c->a - 0.5f), msg);
         if (!isinf(c->b))
-            TEST_ASSERT_EQUAL_FLOAT_MESSAGE(0.0f, fogrt_equiangular_pdf(c->b + 0.5f, c->delta, c->h, c->a, c->b), msg);
+            TEST_ASSERT_EQUAL_FLOAT_MESSAGE(0.0f, fogrt_equiangular_pdf(c->delta, c->h, c->a, c->b, c->b + 0.5f), msg);
     }
 }
 
@@ -1461,7 +1487,7 @@ static void test_equiangular_inverse_cdf(void)
         float prev = -INFINITY;
         for (int i = 0; i < M; i++) {
             float u = (float)us[i], pdf = -1.0f;
-            float s = fogrt_sample_equiangular(u, c->delta, c->h, c->a, c->b, &pdf);
+            float s = fogrt_sample_equiangular(c->delta, c->h, c->a, c->b, u, &pdf);
             double dt = (double)s - c->delta, den = (double)c->h * c->h + dt * dt;
             double err = fabs(eq_theta(&md, s) - (ta + (double)u * range));
             double tol = 6e-7 + 2.4e-7 * (fabs((double)s) + fabs(dt)) * c->h / den;
@@ -1524,7 +1550,7 @@ static void test_pdfs_normalised(void)
         double dist = sqrt(36.0 + 64.0);
         cone_args a;
         a.cos_max = sqrt(1.0 - (double)r * r / (dist * dist));
-        a.pdf = fogrt_sphere_solid_angle_pdf(p, c, r);
+        a.pdf = fogrt_sphere_solid_angle_pdf(c, r, p);
         double integral = 2.0 * STATS_PI * stats_integrate_1d(cone_pdf_1d, &a, -1.0, 1.0, 1e-12, 60);
         double exact = 2.0 * STATS_PI * cone_one_minus_cos(r, dist) * a.pdf;
         snprintf(msg, sizeof msg, "sphere solid angle pdf, r/|c-p| = %g: integral over the cone %.7f (closed form %.7f)",
@@ -1534,7 +1560,7 @@ static void test_pdfs_normalised(void)
         TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-5, 1.0, integral, msg);
     }
     /* From inside, the uniform sphere. */
-    float inside = fogrt_sphere_solid_angle_pdf(v3(0.1f, 0.0f, 0.0f), v3(0.0f, 0.0f, 0.0f), 1.0f);
+    float inside = fogrt_sphere_solid_angle_pdf(v3(0.0f, 0.0f, 0.0f), 1.0f, v3(0.1f, 0.0f, 0.0f));
     TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-6, 1.0, 4.0 * STATS_PI * inside, "solid angle pdf from inside the sphere");
 }
 
@@ -1560,7 +1586,7 @@ static void test_extreme_uniforms(void)
                 for (int w = 0; w < HG_WO_COUNT; w++) {
                     float pdf = -1.0f;
                     fogrt_vec3 wo = v3(HG_WO[w][0], HG_WO[w][1], HG_WO[w][2]);
-                    fogrt_vec3 wi = fogrt_sample_hg(wo, gx[gi], u1, u2, &pdf);
+                    fogrt_vec3 wi = fogrt_sample_hg(gx[gi], wo, u1, u2, &pdf);
                     snprintf(msg, sizeof msg, "fogrt_sample_hg g=%g wo#%d u=(%.9g, %.9g): wi=(%g,%g,%g) pdf=%g",
                              (double)gx[gi], w, (double)u1, (double)u2, (double)wi.x, (double)wi.y, (double)wi.z,
                              (double)pdf);
@@ -1575,16 +1601,16 @@ static void test_extreme_uniforms(void)
             TEST_ASSERT_TRUE_MESSAGE(fogrt_sample_cosine_hemisphere(u1, u2).z >= 0.0f, msg);
             assert_unit(fogrt_sample_uniform_sphere(u1, u2), msg);
             float pdf = -1.0f;
-            assert_unit(fogrt_sample_sphere_solid_angle(v3(0, 0, 0), v3(0, 0, 5), 1.0f, u1, u2, &pdf), msg);
+            assert_unit(fogrt_sample_sphere_solid_angle(v3(0, 0, 5), 1.0f, v3(0, 0, 0), u1, u2, &pdf), msg);
             TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf > 0.0f, msg);
-            assert_unit(fogrt_sample_sphere_solid_angle(v3(0, 0, 0), v3(0, 0, -100), 0.1f, u1, u2, &pdf), msg);
+            assert_unit(fogrt_sample_sphere_solid_angle(v3(0, 0, -100), 0.1f, v3(0, 0, 0), u1, u2, &pdf), msg);
             TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf > 0.0f, msg);
-            assert_unit(fogrt_sample_sphere_solid_angle(v3(0, 0, 0), v3(0, 0, 0.5f), 1.0f, u1, u2, &pdf), msg);
+            assert_unit(fogrt_sample_sphere_solid_angle(v3(0, 0, 0.5f), 1.0f, v3(0, 0, 0), u1, u2, &pdf), msg);
             TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf > 0.0f, msg);
             float b1 = -1.0f, b2 = -1.0f;
             fogrt_sample_triangle(u1, u2, &b1, &b2);
             TEST_ASSERT_TRUE_MESSAGE(b1 >= 0.0f && b2 >= 0.0f && b1 + b2 <= 1.0f, msg);
-            float tdist = fogrt_sample_exponential(u1, 0.3f);
+            float tdist = fogrt_sample_exponential(0.3f, u1);
             TEST_ASSERT_TRUE_MESSAGE(isfinite(tdist) && tdist >= 0.0f, msg);
         }
     }

@@ -218,7 +218,7 @@ static void take_snapshot(const fogrt_scene *scene, scene_snapshot *s)
     for (i = 0; i < s->info.light_count; i++)
         TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_light(scene, i, &s->lights[i]));
     for (i = 0; i < s->info.triangle_count + s->info.sphere_count; i++)
-        s->prim_materials[i] = fogrt_scene_prim_material(scene, i);
+        s->prim_materials[i] = fogrt_scene_get_prim_material(scene, i);
     fogrt_scene_get_camera(scene, &s->camera);
     fogrt_scene_get_medium(scene, &s->medium);
 }
@@ -344,11 +344,11 @@ static void test_counting_allocator(void)
 
     /* The image through the same allocator; render into it so per-thread scratch is used. */
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_image_alloc(&img, 8, 6, &sd.allocator));
-    memset(&rd, 0, sizeof rd);
+    rd = fogrt_render_defaults();
     rd.width = 8;
     rd.height = 6;
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_render(scene, &rd, &img, 1, NULL));
-    fogrt_image_free(&img, &sd.allocator);
+    fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
 
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, counter.bad_frees, "freed a pointer the allocator did not give");
@@ -489,11 +489,11 @@ static void test_add_geometry(void)
     TEST_ASSERT_EQUAL_UINT32(4, info.triangle_count);
     TEST_ASSERT_EQUAL_UINT32(1, info.sphere_count);
     TEST_ASSERT_EQUAL_UINT32(2, info.material_count);
-    TEST_ASSERT_EQUAL_UINT32(m0, fogrt_scene_prim_material(scene, 0));
-    TEST_ASSERT_EQUAL_UINT32(m0, fogrt_scene_prim_material(scene, 1));
-    TEST_ASSERT_EQUAL_UINT32(m1, fogrt_scene_prim_material(scene, 2));
-    TEST_ASSERT_EQUAL_UINT32(m0, fogrt_scene_prim_material(scene, 3));
-    TEST_ASSERT_EQUAL_UINT32(m1, fogrt_scene_prim_material(scene, 4));
+    TEST_ASSERT_EQUAL_UINT32(m0, fogrt_scene_get_prim_material(scene, 0));
+    TEST_ASSERT_EQUAL_UINT32(m0, fogrt_scene_get_prim_material(scene, 1));
+    TEST_ASSERT_EQUAL_UINT32(m1, fogrt_scene_get_prim_material(scene, 2));
+    TEST_ASSERT_EQUAL_UINT32(m0, fogrt_scene_get_prim_material(scene, 3));
+    TEST_ASSERT_EQUAL_UINT32(m1, fogrt_scene_get_prim_material(scene, 4));
 
     /* After the build, the bounds cover the quad, the soup and the sphere, and a ray down
        the z axis at (0.25, 0.25) hits the soup's far triangle at z = 3 first. */
@@ -814,7 +814,7 @@ static void test_bad_build_desc(void)
     fogrt_scene *scene = full_scene(&log);
     fogrt_build_desc bd;
     fogrt_scene_info info;
-    memset(&bd, 0, sizeof bd);
+    bd = fogrt_build_defaults();
     bd.bins = 65;
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_ARGUMENT, fogrt_scene_build(scene, &bd));
     TEST_ASSERT_EQUAL_INT(1, log.count[FOGRT_LOG_ERROR]);
@@ -842,7 +842,7 @@ static void test_render_not_built(void)
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_default(scene));
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_image_alloc(&img, 4, 3, NULL));
     fogrt_image_clear(&img);
-    memset(&rd, 0, sizeof rd);
+    rd = fogrt_render_defaults();
     rd.width = 4;
     rd.height = 3;
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_NOT_BUILT, fogrt_render(scene, &rd, &img, 1, NULL));
@@ -857,7 +857,7 @@ static void test_render_not_built(void)
     rd.width = 5;   /* does not match the 4x3 image */
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_ARGUMENT, fogrt_render(scene, &rd, &img, 1, NULL));
     for (i = 0; i < 4 * 3; i++) TEST_ASSERT_EQUAL_UINT32(1, img.count[i]);
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
 }
 
@@ -876,7 +876,7 @@ static void test_empty_scene(void)
 static uint32_t features_of(fogrt_scene *scene)
 {
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
-    return fogrt_scene_features(scene);
+    return fogrt_scene_get_features(scene);
 }
 
 static void assert_features(uint32_t expected, uint32_t got, const char *what)

@@ -58,7 +58,7 @@ static void test_trace_through_absorbing_fog(void)
         double sum[3] = { 0, 0, 0 };
         double T = exp(-(double)sigmas[i] * WALL_Z);
         uint64_t rays = 0;
-        memset(&rd, 0, sizeof rd);
+        rd = fogrt_render_defaults();
         fogrt_rng_seed(&rng, 7, (uint64_t)i);
         for (k = 0; k < n; ++k) {
             fogrt_vec3 L = fogrt_trace(scene, &rd, v3(0, 0, 0), v3(0, 0, 1), &rng, &rays);
@@ -96,7 +96,7 @@ static void test_render_through_absorbing_fog(void)
         fogrt_scene *scene = make_wall_scene(sigmas[i], 70.0f);
         fogrt_render_desc rd;
         fogrt_image img;
-        memset(&rd, 0, sizeof rd);
+        rd = fogrt_render_defaults();
         rd.width = w; rd.height = h; rd.seed = 42;
         CHECK_OK(fogrt_image_alloc(&img, w, h, NULL));
         CHECK_OK(fogrt_render(scene, &rd, &img, spp, NULL));
@@ -126,7 +126,7 @@ static void test_render_through_absorbing_fog(void)
                 }
             }
         }
-        fogrt_image_free(&img, NULL);
+        fogrt_image_free(&img);
         fogrt_scene_destroy(scene);
     }
 }
@@ -161,8 +161,8 @@ static void test_transmittance_values(void)
         TEST_ASSERT_TRUE_MESSAGE(isfinite(T) && T >= 0.0f && T <= 1.0f, msg);
         TEST_ASSERT_TRUE_MESSAGE(fabs(T - cases[i].expected) <= 1e-6 * cases[i].expected + 1e-37, msg);
         if (isfinite(cases[i].d)) {
-            float cdf = fogrt_invert_exponential(cases[i].d, cases[i].sigma_t);
-            float pdf = fogrt_exponential_pdf(cases[i].d, cases[i].sigma_t);
+            float cdf = fogrt_invert_exponential(cases[i].sigma_t, cases[i].d);
+            float pdf = fogrt_exponential_pdf(cases[i].sigma_t, cases[i].d);
             TEST_ASSERT_TRUE_MESSAGE(fabs(cdf - (1.0 - cases[i].expected)) <= 1e-6, msg);
             TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf >= 0.0f, msg);
             TEST_ASSERT_TRUE_MESSAGE(fabs(pdf - cases[i].sigma_t * cases[i].expected)
@@ -244,7 +244,7 @@ static void test_point_light_on_plane_trace(void)
         for (integ = 0; integ < 2; ++integ) {
             fogrt_render_desc rd;
             fogrt_rng rng;
-            memset(&rd, 0, sizeof rd);
+            rd = fogrt_render_defaults();
             rd.integrator = integ ? FOGRT_INTEGRATOR_DIRECT : FOGRT_INTEGRATOR_PATH;
             fogrt_rng_seed(&rng, 3, (uint64_t)(s * 2 + integ));
             for (i = 0; i < 5; ++i) {
@@ -275,7 +275,7 @@ static void test_point_light_through_fog(void)
     fogrt_rng rng;
     double sum[3] = { 0, 0, 0 }, Tcam = exp(-sigma_t * h);
     int k, c;
-    memset(&rd, 0, sizeof rd);
+    rd = fogrt_render_defaults();
     fogrt_rng_seed(&rng, 11, 0);
     for (k = 0; k < n; ++k) {
         fogrt_vec3 L = fogrt_trace(scene, &rd, v3(1.0f, h, 0.5f), v3(0, -1, 0), &rng, NULL);
@@ -305,7 +305,7 @@ static void test_direct_and_path_images_agree(void)
     int integ, x, y, a, b, c;
     for (integ = 0; integ < 2; ++integ) {
         fogrt_render_desc rd;
-        memset(&rd, 0, sizeof rd);
+        rd = fogrt_render_defaults();
         rd.width = w; rd.height = h; rd.seed = 5;
         rd.integrator = integ ? FOGRT_INTEGRATOR_DIRECT : FOGRT_INTEGRATOR_PATH;
         CHECK_OK(fogrt_image_alloc(&img[integ], w, h, NULL));
@@ -347,7 +347,7 @@ static void test_direct_and_path_images_agree(void)
     }
     for (integ = 0; integ < 2; ++integ) {
         free(rgb[integ]);
-        fogrt_image_free(&img[integ], NULL);
+        fogrt_image_free(&img[integ]);
     }
     fogrt_scene_destroy(scene);
 }
@@ -410,7 +410,7 @@ static void test_single_scattering_point_and_spot(void)
         CHECK_OK(fogrt_scene_add_light(scene, &l));
         set_medium(scene, sigma_t, v3(albedo, albedo, albedo), g);
         CHECK_OK(fogrt_scene_build(scene, NULL));
-        memset(&rd, 0, sizeof rd);
+        rd = fogrt_render_defaults();
         rd.max_depth = 1;
         rd.light_samples = 4;
         fogrt_rng_seed(&rng, 17, (uint64_t)i);
@@ -517,10 +517,10 @@ static void test_fog_shadow_behind_plate(void)
         double ref_b = area ? 0.0 : plate_single_scattering(o_b);   /* 0: not computed */
         for (integ = 0; integ < 2; ++integ) {
             fogrt_render_desc rd;
-            memset(&rd, 0, sizeof rd);
+            rd = fogrt_render_defaults();
             /* PATH with one bounce, or DIRECT (one bounce by construction, default depth) */
             rd.integrator = integ ? FOGRT_INTEGRATOR_DIRECT : FOGRT_INTEGRATOR_PATH;
-            rd.max_depth = integ ? 0 : 1;
+            rd.max_depth = integ ? 64 : 1;
             for (ray = 0; ray < 2; ++ray) {
                 fogrt_rng rng;
                 double sum = 0.0, sum_sq = 0.0, mean, se;
@@ -597,9 +597,9 @@ static void open_fog_render(const fogrt_scene *scene, bool no_nee, bool no_mis, 
     fogrt_image img;
     double m = 0.0, var = 0.0;
     int p;
-    memset(&rd, 0, sizeof rd);
+    rd = fogrt_render_defaults();
     rd.width = w; rd.height = h; rd.seed = seed;
-    rd.no_nee = no_nee; rd.no_mis = no_mis;
+    rd.nee = !(no_nee); rd.mis = !(no_mis);
     CHECK_OK(fogrt_image_alloc(&img, w, h, NULL));
     CHECK_OK(fogrt_render(scene, &rd, &img, spp, NULL));
     TEST_ASSERT_EQUAL_UINT64(0, img.rejected);
@@ -610,7 +610,7 @@ static void open_fog_render(const fogrt_scene *scene, bool no_nee, bool no_mis, 
     }
     *mean = m;
     *se = sqrt(var);
-    fogrt_image_free(&img, NULL);
+    fogrt_image_free(&img);
 }
 
 /* One emitter in open fog: paths from fog points mostly find no surface, yet they go on
