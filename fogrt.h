@@ -828,6 +828,14 @@ FOGRT__PRIVATE fogrt__v3 fogrt__to_world(const fogrt__frame *f, fogrt__v3 v)
 {
     return fogrt__add(fogrt__add(fogrt__scale(f->s, v.x), fogrt__scale(f->t, v.y)), fogrt__scale(f->n, v.z));
 }
+/* The direction at polar angle theta (given by its cosine and sine) from the frame's n and
+   azimuth 2 pi u: how every sampler of a cone or lobe (HG eq. 12, spheres) turns its two
+   angles into a direction. */
+FOGRT__PRIVATE fogrt__v3 fogrt__around(const fogrt__frame *f, float cos_theta, float sin_theta, float u)
+{
+    float phi = 2.0f * FOGRT__PI * u;
+    return fogrt__normalize(fogrt__to_world(f, fogrt__v(sin_theta * cosf(phi), sin_theta * sinf(phi), cos_theta)));
+}
 
 /* ------------------------------------------------------------------------------------------
    3. Random numbers: PCG32 (M. O'Neill, pcg-random.org), one stream per (pixel, sample)
@@ -946,13 +954,6 @@ FOGRT__PRIVATE void fogrt__sample_hg_pm(float g, float u, float *one_minus_mu, f
     *one_minus_mu = FOGRT__CLAMP((1.0f - g) * (1.0f - g) * (1.0f - u) * (1.0f + g + D) / D2, 0.0f, 2.0f);
     *one_plus_mu = FOGRT__CLAMP((1.0f + g) * (1.0f + g) * u * (1.0f - g + D) / D2, 0.0f, 2.0f);
 }
-/* A direction about axis z at polar angle theta (given by cos and sin) and azimuth 2 pi u
-   (eq. 12). */
-FOGRT__PRIVATE fogrt__v3 fogrt__around(const fogrt__frame *f, float cos_theta, float sin_theta, float u)
-{
-    float phi = 2.0f * FOGRT__PI * u;
-    return fogrt__normalize(fogrt__to_world(f, fogrt__v(sin_theta * cosf(phi), sin_theta * sinf(phi), cos_theta)));
-}
 FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf)
 {
     fogrt__frame f = fogrt__frame_from_z(fogrt__neg(fogrt__normalize(wo)));   /* z: propagation */
@@ -1062,6 +1063,11 @@ FOGRT__PRIVATE double fogrt__equiangular_span(double delta, double h, double a, 
     *theta_a = atan2(a - delta, h);
     return atan2(b - delta, h) - *theta_a;
 }
+FOGRT__PRIVATE float fogrt__equiangular_density(double span, float delta, float h, float t)
+{
+    double dt = (double)t - (double)delta;
+    return (float)(1.0 / (span * ((double)h + dt * (dt / (double)h))));
+}
 FOGRT__PUBLIC float fogrt_sample_equiangular(float delta, float h, float a, float b, float u, float *pdf)
 {
     double theta_a, span = fogrt__equiangular_span(delta, h, a, b, &theta_a), x;
@@ -1072,14 +1078,14 @@ FOGRT__PUBLIC float fogrt_sample_equiangular(float delta, float h, float a, floa
        the angle strictly below it so t stays finite and ordered */
     if (!(b < INFINITY)) x = FOGRT__MIN(x, 1.5707963267948957);
     t = u > 0.0f ? (float)FOGRT__CLAMP((double)delta + (double)h * tan(x), (double)a, (double)b) : a;
-    if (pdf) *pdf = fogrt_equiangular_pdf(delta, h, a, b, t);   /* at the t returned */
+    if (pdf) *pdf = fogrt__equiangular_density(span, delta, h, t);   /* at the t returned */
     return t;
 }
 FOGRT__PUBLIC float fogrt_equiangular_pdf(float delta, float h, float a, float b, float t)
 {
     double theta_a, span = fogrt__equiangular_span(delta, h, a, b, &theta_a);
     if (!(span > 0.0) || !(h > 0.0f) || t < a || t > b) return 0.0f;
-    return (float)(1.0 / (span * (h + ((double)t - delta) * (((double)t - delta) / h))));
+    return fogrt__equiangular_density(span, delta, h, t);
 }
 #endif
 
@@ -2179,14 +2185,8 @@ FOGRT__PRIVATE uint32_t fogrt__features(const fogrt_scene *s)
 
 FOGRT__PUBLIC fogrt_build_desc fogrt_build_defaults(void)
 {
-    fogrt_build_desc d;
-    memset(&d, 0, sizeof d);
-    d.heuristic = FOGRT_BVH_SAH;
-    d.bins = FOGRT_BVH_BINS;
-    d.c_trav = 1.0f;
-    d.c_int = 1.0f;
-    d.max_leaf_size = 4;
-    d.resolved = true;
+    /* heuristic, bins, c_trav, c_int, max_leaf_size, resolved */
+    static const fogrt_build_desc d = { FOGRT_BVH_SAH, FOGRT_BVH_BINS, 1.0f, 1.0f, 4, true };
     return d;
 }
 /* The desc (NULL: the defaults), checked. Like the render desc it must come from
@@ -2334,12 +2334,14 @@ FOGRT__PRIVATE float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v,
     return 1.0f;
 }
 
-/* Point or spot light l seen from x: for a point light simply I(theta) / r^2 along the
+/* (Forced inline, with the light contribution below: each has two callers, next-event
+   estimation and the equiangular estimator, and as calls they cost a fog-free render 1%.)
+   Point or spot light l seen from x: for a point light simply I(theta) / r^2 along the
    direction to it. A light with a radius is a sphere of radiance I(theta)/(pi R^2), sampled
    uniformly in the cone it subtends (inside it: every direction). The spot profile is
    evaluated from the light's centre. Returns false when x gets nothing. */
-FOGRT__PRIVATE bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l, fogrt__v3 x,
-                                              const float *u, fogrt__light_sample *ls)
+FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l, fogrt__v3 x,
+                                          const float *u, fogrt__light_sample *ls)
 {
     fogrt__v3 to = fogrt__sub(l->position, x), I = l->intensity;
     float d2 = fogrt__dot(to, to), d, pdf, t;
@@ -2454,8 +2456,8 @@ FOGRT__PRIVATE bool fogrt__sample_light(const fogrt_scene *s, uint32_t i, fogrt_
 }
 /* One light sample's share of the light reflected at v (eq. 13): f Le T V w / (n pdf),
    with w the MIS weight (1 for a delta light, or with MIS off). */
-FOGRT__PRIVATE fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v,
-                                                   const fogrt__light_sample *ls, int n, uint64_t *rays)
+FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v,
+                                               const fogrt__light_sample *ls, int n, uint64_t *rays)
 {
     fogrt__v3 f;
     float pdf_b, tr, w;
@@ -2874,18 +2876,15 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance_direct(const fogrt_scene *s, const fogr
    ------------------------------------------------------------------------------------------ */
 FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void)
 {
-    fogrt_render_desc d;
-    memset(&d, 0, sizeof d);
-    d.integrator = FOGRT_INTEGRATOR_PATH;
-    d.fresnel = FOGRT_FRESNEL_SCHLICK;
-    d.max_depth = 64;
-    d.min_depth = 0;
-    d.rr_depth = 3;
-    d.nee = true;
-    d.mis = true;
-    d.equiangular = true;
-    d.light_samples = 1;
-    d.resolved = true;
+    static const fogrt_render_desc d = {
+        0, 0,                                           /* width, height: the image's */
+        FOGRT_INTEGRATOR_PATH, FOGRT_FRESNEL_SCHLICK,
+        64, 0, 3,                                       /* max_depth, min_depth, rr_depth */
+        true, true, true,                               /* nee, mis, equiangular */
+        1, 0, 0,                                        /* light_samples, seed, threads */
+        NULL, NULL,                                     /* progress, user_data */
+        true                                            /* resolved */
+    };
     return d;
 }
 /* The settings the integrators read, from a desc (NULL: the defaults). A desc must come
@@ -3043,9 +3042,9 @@ FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *ra
             Lr = fogrt__radiance(job->s, &job->st, o, d, &rng, rays);
             if (!fogrt__v3_finite(Lr)) { ++*rejected; continue; }
             lum = fogrt__luminance_d(Lr.x, Lr.y, Lr.z);
-            img->sum[3 * pix + 0] += Lr.x;
-            img->sum[3 * pix + 1] += Lr.y;
-            img->sum[3 * pix + 2] += Lr.z;
+            img->sum[3 * pix + 0] += (double)Lr.x;
+            img->sum[3 * pix + 1] += (double)Lr.y;
+            img->sum[3 * pix + 2] += (double)Lr.z;
             img->sum_sq[pix] += lum * lum;
         }
         img->count[pix] += (uint32_t)job->spp;
@@ -3067,6 +3066,49 @@ FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt
     return FOGRT_RESULT_OK;
 }
 
+/* One parallel loop over the rows, handed out one at a time (rows differ in cost). The
+   progress callback runs on the calling thread (OpenMP thread 0) whenever another block of
+   rows is done; if it asks to stop, the rows not yet started are skipped. Returns false
+   when cancelled. */
+FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render_desc *d, uint64_t *rays_out,
+                                       uint64_t *rejected_out)
+{
+    uint64_t rays = 0, rejected = 0;
+    int y, height = job->img->height, block = height >= 32 ? height / 32 : 1;
+    int rows_done = 0, cancelled = 0, last_report = 0;
+#ifdef _OPENMP
+    int nthreads = d->threads > 0 ? d->threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) reduction(+ : rays, rejected)
+#endif
+    for (y = 0; y < height; ++y) {
+        int stop, done;
+#ifdef _OPENMP
+#pragma omp atomic read
+#endif
+        stop = cancelled;
+        if (stop) continue;
+        fogrt__render_row(job, y, &rays, &rejected);
+#ifdef _OPENMP
+#pragma omp atomic capture
+#endif
+        done = ++rows_done;
+#ifdef _OPENMP
+        if (omp_get_thread_num() != 0) continue;
+#endif
+        if (d->progress && (done - last_report >= block || done == height)) {
+            last_report = done;
+            stop = !fogrt__report(d, done, height, job->spp);
+#ifdef _OPENMP
+#pragma omp atomic write
+#endif
+            cancelled = stop;
+        }
+    }
+    *rays_out = rays; *rejected_out = rejected;
+    if (cancelled) return false;
+    return !(d->progress && last_report != height && !fogrt__report(d, height, height, job->spp));   /* the final report */
+}
+
 FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render_desc *desc, fogrt_image *img,
                                         int spp, fogrt_render_stats *stats)
 {
@@ -3074,7 +3116,6 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
     fogrt_render_desc d;
     fogrt_result result;
     uint64_t rays = 0, rejected = 0;
-    int y, height, block, rows_done = 0, cancelled = 0, last_report = 0;
     FOGRT_ASSERT(s && img);
     if (stats) memset(stats, 0, sizeof *stats);
     if ((result = fogrt__resolve_render(s, desc, &job.st, &d)) != FOGRT_RESULT_OK) return result;
@@ -3082,48 +3123,10 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
     job.s = s; job.img = img; job.spp = spp;
     job.cam = fogrt__camera_setup(s, img->width, img->height);
     job.base = fogrt__hash64(d.seed);
-    height = img->height;
-    /* One parallel loop over the rows, handed out one at a time (rows differ in cost). The
-       progress callback runs on the calling thread (OpenMP thread 0) whenever another block
-       of rows is done; if it asks to stop, the rows not yet started are skipped. */
-    block = height >= 32 ? height / 32 : 1;
-    {
-#ifdef _OPENMP
-        int nthreads = d.threads > 0 ? d.threads : omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) reduction(+ : rays, rejected)
-#endif
-        for (y = 0; y < height; ++y) {
-            int stop, done;
-#ifdef _OPENMP
-#pragma omp atomic read
-#endif
-            stop = cancelled;
-            if (stop || spp == 0) continue;
-            fogrt__render_row(&job, y, &rays, &rejected);
-#ifdef _OPENMP
-#pragma omp atomic capture
-#endif
-            done = ++rows_done;
-#ifdef _OPENMP
-            if (omp_get_thread_num() != 0) continue;
-#endif
-            if (d.progress && (done - last_report >= block || done == height)) {
-                last_report = done;
-                if (!fogrt__report(&d, done, height, spp)) {
-#ifdef _OPENMP
-#pragma omp atomic write
-#endif
-                    cancelled = 1;
-                }
-            }
-        }
-    }
-    if (cancelled) result = FOGRT_RESULT_CANCELLED;
-    else if (d.progress && last_report != height && spp > 0 && !fogrt__report(&d, height, height, spp))
-        result = FOGRT_RESULT_CANCELLED;                 /* the final report */
+    if (spp > 0 && !fogrt__render_rows(&job, &d, &rays, &rejected)) result = FOGRT_RESULT_CANCELLED;
     img->rejected += rejected;
     if (stats) {
-        stats->camera_rays = (uint64_t)img->width * (uint64_t)height * (uint64_t)spp;
+        stats->camera_rays = (uint64_t)img->width * (uint64_t)img->height * (uint64_t)spp;
         stats->rays = rays;
         stats->rejected = rejected;
     }

@@ -1,19 +1,24 @@
 #!/bin/sh
-# callgrind.sh: does a fog-free scene pay for the fog code?  (`make callgrind` runs this.)
+# callgrind.sh: does a scene pay for a feature it does not use?  (`make callgrind` runs this.)
 #
-# Builds bench/nomedium_cost.c twice, normally and with -DFOGRT_NO_MEDIUM, both without OpenMP
-# (one thread, so the count is deterministic), runs each under valgrind's callgrind counting
-# only the instructions executed inside fogrt_render (--toggle-collect), and prints both totals
-# and their ratio. Exits non-zero if the normal build executes more than LIMIT_PERCENT (3)
-# percent more instructions than the FOGRT_NO_MEDIUM build for the same fog-free render.
+# For each feature, builds bench/strip_cost.c twice, normally and with the macro that strips
+# the feature, both without OpenMP (one thread, so the count is deterministic), runs each
+# under valgrind's callgrind counting only the instructions executed inside fogrt_render
+# (--toggle-collect) on a scene that does not use the feature, and prints both totals and
+# their ratio:
+#   FOGRT_NO_MEDIUM          a fog-free scene                      (strip_cost medium)
+#   FOGRT_NO_GLASS           a scene without glass or refraction   (strip_cost glass)
+#   FOGRT_NO_EXACT_FRESNEL   a render with Schlick's Fresnel       (strip_cost exact)
+# Exits non-zero if any normal build executes more than LIMIT_PERCENT (1) percent more
+# instructions than its stripped build.
 #
-# Environment: CC (cc), CFLAGS (-O2 -g), BUILD (build), LIMIT_PERCENT (3). Run from the repo root.
+# Environment: CC (cc), CFLAGS (-O2 -g), BUILD (build), LIMIT_PERCENT (1). Run from the repo root.
 set -eu
 
 CC=${CC:-cc}
 CFLAGS=${CFLAGS:--O2 -g}
 BUILD=${BUILD:-build}
-LIMIT_PERCENT=${LIMIT_PERCENT:-3}
+LIMIT_PERCENT=${LIMIT_PERCENT:-1}
 WARN="-std=c99 -Wall -Wextra -pedantic -Wshadow"
 OUT="$BUILD/bench"
 case $OUT in /*) ;; *) OUT="./$OUT" ;; esac
@@ -21,21 +26,15 @@ case $OUT in /*) ;; *) OUT="./$OUT" ;; esac
 sh tools/need-package.sh valgrind /usr/bin/valgrind
 mkdir -p "$OUT"
 
-# The two builds: identical flags except for the strip macro.
-# shellcheck disable=SC2086  # CFLAGS and WARN are word lists
-$CC $WARN $CFLAGS -I. -o "$OUT/nomedium_cost" bench/nomedium_cost.c -lm
-# shellcheck disable=SC2086
-$CC $WARN $CFLAGS -I. -DFOGRT_NO_MEDIUM -o "$OUT/nomedium_cost_stripped" bench/nomedium_cost.c -lm
-
-# run NAME: callgrind over one build; prints the program's own line, returns the total (Ir)
-# in the file $OUT/NAME.total.
+# run NAME MODE: callgrind over one build; its total (Ir inside fogrt_render) goes to
+# $OUT/NAME.total, its own output line to $OUT/NAME.txt.
 run() {
-    name=$1
+    name=$1 mode=$2
     rm -f "$OUT/callgrind.$name.out"
     valgrind --tool=callgrind --toggle-collect=fogrt_render \
-        --callgrind-out-file="$OUT/callgrind.$name.out" "$OUT/$name" \
+        --callgrind-out-file="$OUT/callgrind.$name.out" "$OUT/$name" "$mode" \
         >"$OUT/$name.txt" 2>"$OUT/$name.valgrind.log" || {
-        echo "callgrind.sh: $name failed under valgrind, see $OUT/$name.valgrind.log:" >&2
+        echo "callgrind.sh: $name $mode failed under valgrind, see $OUT/$name.valgrind.log:" >&2
         cat "$OUT/$name.txt" >&2
         grep -v '^==' "$OUT/$name.valgrind.log" >&2
         exit 1
@@ -50,24 +49,34 @@ run() {
     echo "$total" >"$OUT/$name.total"
 }
 
-run nomedium_cost
-run nomedium_cost_stripped
-normal=$(cat "$OUT/nomedium_cost.total")
-stripped=$(cat "$OUT/nomedium_cost_stripped.total")
+# pair MACRO MODE WHAT: the normal and the stripped build on one scene; prints the ratio and
+# returns non-zero above the limit.
+status=0
+pair() {
+    macro=$1 mode=$2 what=$3
+    # shellcheck disable=SC2086  # CFLAGS and WARN are word lists
+    $CC $WARN $CFLAGS -I. -DSTRIP_COST_BUILD='"normal build"' -o "$OUT/strip_cost_$mode" bench/strip_cost.c -lm
+    # shellcheck disable=SC2086
+    $CC $WARN $CFLAGS -I. -D"$macro" -DSTRIP_COST_BUILD="\"$macro build\"" -o "$OUT/strip_cost_${mode}_stripped" bench/strip_cost.c -lm
+    run "strip_cost_$mode" "$mode"
+    run "strip_cost_${mode}_stripped" "$mode"
+    echo "$what, instructions inside fogrt_render:"
+    echo "  $(cat "$OUT/strip_cost_$mode.txt")"
+    echo "  $(cat "$OUT/strip_cost_${mode}_stripped.txt")"
+    if [ "$(sed 's/.*checksum //' "$OUT/strip_cost_$mode.txt")" != \
+         "$(sed 's/.*checksum //' "$OUT/strip_cost_${mode}_stripped.txt")" ]; then
+        echo "  note: the two builds render different images (checksums differ)"
+    fi
+    awk -v n="$(cat "$OUT/strip_cost_$mode.total")" -v s="$(cat "$OUT/strip_cost_${mode}_stripped.total")" \
+        -v lim="$LIMIT_PERCENT" -v m="$macro" 'BEGIN {
+        r = n / s
+        printf "  normal build %15.0f Ir, %s build %15.0f Ir: ratio %.4f (%+.2f%%; limit +%s%%)\n", n, m, s, r, 100 * (r - 1), lim
+        if (r > 1 + lim / 100) { print "  FAIL: the scene pays for code it does not use"; exit 1 }
+        print "  OK"
+    }' || status=1
+}
 
-echo "fog-free render of the default scene (sigma_t = 0), instructions inside fogrt_render:"
-echo "  $(cat "$OUT/nomedium_cost.txt")"
-echo "  $(cat "$OUT/nomedium_cost_stripped.txt")"
-# The two builds should render the same picture (the same random numbers, the same paths).
-if [ "$(sed 's/.*checksum //' "$OUT/nomedium_cost.txt")" != \
-     "$(sed 's/.*checksum //' "$OUT/nomedium_cost_stripped.txt")" ]; then
-    echo "  note: the two builds render different images (checksums differ)"
-fi
-awk -v n="$normal" -v s="$stripped" -v lim="$LIMIT_PERCENT" 'BEGIN {
-    r = n / s
-    printf "  normal build          %15.0f Ir\n", n
-    printf "  FOGRT_NO_MEDIUM build %15.0f Ir\n", s
-    printf "  ratio normal / stripped = %.4f (%+.2f%%; limit +%s%%)\n", r, 100 * (r - 1), lim
-    if (r > 1 + lim / 100) { print "  FAIL: the fog-free scene pays for the fog code"; exit 1 }
-    print "  OK"
-}'
+pair FOGRT_NO_MEDIUM medium "fog-free default scene (sigma_t = 0)"
+pair FOGRT_NO_GLASS glass "a fog-filled box without glass (a mirror and a diffuse sphere)"
+pair FOGRT_NO_EXACT_FRESNEL exact "the default scene rendered with Schlick's Fresnel"
+exit $status

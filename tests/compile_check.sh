@@ -13,6 +13,9 @@
 #   - FOGRT_STATIC (every function static: must not warn about unused functions)
 #   - all 16 combinations of FOGRT_NO_MEDIUM, FOGRT_NO_GLASS, FOGRT_NO_EXACT_FRESNEL and
 #     FOGRT_NO_STDIO (compile only), with gcc, and the full strip as C++
+#   - what each strip macro claims to remove is gone from the object file (nm): the public
+#     functions of the feature are defined without the macro and absent with it
+# The C checks use -Wshadow -Wconversion -Wcast-qual on top of -Wall -Wextra -pedantic.
 # Exit status 1 if any check failed.
 #
 # Compilers can be overridden: GCC=gcc-13 CLANG=clang-17 GXX=g++-13 sh tests/compile_check.sh
@@ -32,7 +35,7 @@ TMP=$(mktemp -d) || exit 2
 trap 'rm -rf "$TMP"' EXIT
 trap 'exit 130' INT TERM
 
-CWARN="-std=c99 -Wall -Wextra -pedantic -Wshadow -Werror"
+CWARN="-std=c99 -Wall -Wextra -pedantic -Wshadow -Wconversion -Wcast-qual -Werror"
 XXWARN="-std=c++11 -Wall -Wextra -pedantic -Werror"
 
 passed=0
@@ -87,9 +90,8 @@ int main(void)
 {
     fogrt_scene *scene = NULL;
     fogrt_image img;
-    fogrt_render_desc rd;
+    fogrt_render_desc rd = fogrt_render_defaults();
     fogrt_result r;
-    memset(&rd, 0, sizeof rd);
     rd.width = 8;
     rd.height = 6;
     if (fogrt_scene_create(NULL, &scene) != FOGRT_RESULT_OK) return 1;
@@ -98,7 +100,7 @@ int main(void)
     if (r == FOGRT_RESULT_OK) r = fogrt_image_alloc(&img, 8, 6, NULL);
     if (r == FOGRT_RESULT_OK) {
         r = fogrt_render(scene, &rd, &img, 1, NULL);
-        fogrt_image_free(&img, NULL);
+        fogrt_image_free(&img);
     }
     fogrt_scene_destroy(scene);
     if (r != FOGRT_RESULT_OK) {
@@ -207,6 +209,32 @@ fi
 if have "$GXX"; then
     run "$GXX strip: all four" $GXX $XXWARN -DFOGRT_NO_MEDIUM -DFOGRT_NO_GLASS -DFOGRT_NO_EXACT_FRESNEL \
         -DFOGRT_NO_STDIO -I"$ROOT" -c "$TMP/impl.cc" -o "$TMP/strip_cxx.o"
+fi
+
+
+# ---- the strip macros really strip (nm) -----------------------------------------------------
+# strip_nm MACRO SYMBOL...: each SYMBOL is defined (T) or called (U: fopen) in the normal
+# object file and absent from the one built with MACRO.
+strip_nm() {
+    macro=$1
+    shift
+    $GCC -std=c99 -O2 -I"$ROOT" -c "$TMP/impl.c" -o "$TMP/nm_normal.o" || return 1
+    $GCC -std=c99 -O2 -D"$macro" -I"$ROOT" -c "$TMP/impl.c" -o "$TMP/nm_stripped.o" || return 1
+    for sym in "$@"; do
+        nm "$TMP/nm_normal.o" | grep -q " [TU] $sym\$" || { echo "$sym missing from the normal build"; return 1; }
+        if nm "$TMP/nm_stripped.o" | grep -q " $sym\$"; then echo "$sym still in the $macro build"; return 1; fi
+    done
+}
+if have "$GCC" && have nm; then
+    run "nm: FOGRT_NO_MEDIUM removes free flight, transmittance, HG and equiangular" strip_nm FOGRT_NO_MEDIUM \
+        fogrt_sample_exponential fogrt_exponential_pdf fogrt_invert_exponential fogrt_transmittance \
+        fogrt_hg_phase fogrt_sample_hg_mu fogrt_sample_hg fogrt_hg_pdf fogrt_sample_equiangular fogrt_equiangular_pdf
+    run "nm: FOGRT_NO_GLASS removes Fresnel and refraction" strip_nm FOGRT_NO_GLASS \
+        fogrt_fresnel_schlick fogrt_fresnel_dielectric fogrt_refract
+    run "nm: FOGRT_NO_EXACT_FRESNEL removes the exact Fresnel" strip_nm FOGRT_NO_EXACT_FRESNEL fogrt_fresnel_dielectric
+    run "nm: FOGRT_NO_STDIO removes the file writers" strip_nm FOGRT_NO_STDIO fogrt_write_pfm fogrt_write_ppm fopen
+else
+    skip "nm checks: gcc or nm not installed"
 fi
 
 echo "compile: $passed passed, $failed failed, $skipped skipped"

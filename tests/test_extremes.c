@@ -396,6 +396,77 @@ static const fogrt_vec3 BSDF_WO[] = {
     { 1.0f, 0.0f, 0.0f },             /* exactly on the horizon: may return false */
 };
 
+/* Exact Fresnel at index ratio 1 (no interface): 0 at every angle, grazing ones included
+   (1 - cos^2 must not round to 1 and look like total internal reflection); and at eta 1.5
+   near grazing, the float value against the formula in double (the transmitted cosine from
+   cos_t^2 = (cos_i^2 + eta^2 - 1) / eta^2). */
+static double fresnel_double(double eta, double c)
+{
+    double ct, rp, rs;
+    if (c < 0.0) { eta = 1.0 / eta; c = -c; }
+    ct = (c * c + eta * eta - 1.0) / (eta * eta);
+    if (ct <= 0.0) return 1.0;
+    ct = sqrt(ct);
+    rp = (eta * c - ct) / (eta * c + ct);
+    rs = (c - eta * ct) / (c + eta * ct);
+    return 0.5 * (rp * rp + rs * rs);
+}
+static void test_fresnel_grazing(void)
+{
+    static const float cosines[] = { 1.0f, 0.5f, 1e-2f, 1e-4f, 3e-5f, 1e-6f, 1e-9f, 0.0f, -1e-9f, -1e-6f, -1e-4f, -0.5f, -1.0f };
+    int i;
+    for (i = 0; i < COUNT(cosines); ++i) {
+        char msg[160];
+        float f1 = fogrt_fresnel_dielectric(1.0f, cosines[i]), f15 = fogrt_fresnel_dielectric(1.5f, cosines[i]);
+        double want = fresnel_double(1.5, (double)cosines[i]);
+        snprintf(msg, sizeof msg, "cos %g: F(eta 1) = %g (want 0), F(eta 1.5) = %.9g (double %.9g)",
+                 (double)cosines[i], (double)f1, (double)f15, want);
+        TEST_ASSERT_TRUE_MESSAGE(f1 == 0.0f, msg);
+        TEST_ASSERT_TRUE_MESSAGE(cosines[i] == 0.0f ? f15 == 1.0f : fabs(f15 - want) <= 2e-6 + 1e-5 * want, msg);
+    }
+}
+
+/* Equiangular sampling with the light almost on the ray's line: h from 1e-2 down to 1e-7 of
+   the segment. t must agree with the inverse CDF evaluated in long double to a few float ulps
+   (relative to the segment's scale), and the pdf with the exact pdf at the returned t to
+   1e-5; this is the accuracy the header states. */
+static void test_equiangular_near_line(void)
+{
+    static const double hs[] = { 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7 };
+    const float delta = 0.37f, a = 0.0f, b = 1.0f;
+    int i, k;
+    for (i = 0; i < COUNT(hs); ++i) {
+        float h = (float)hs[i];
+        long double ta = atan2l((long double)a - delta, (long double)h), tb = atan2l((long double)b - delta, (long double)h);
+        double worst_t = 0.0, worst_pdf = 0.0;
+        char msg[200];
+        for (k = 1; k < 4096; ++k) {
+            float u = (float)k / 4096.0f, pdf, t = fogrt_sample_equiangular(delta, h, a, b, u, &pdf);
+            long double tr = delta + (long double)h * tanl(ta + (long double)u * (tb - ta)), dt = (long double)t - delta;
+            long double pr = (long double)h / ((tb - ta) * ((long double)h * h + dt * dt));
+            double et = (double)fabsl((long double)t - tr) / 5.96e-8, ep = (double)(fabsl((long double)pdf - pr) / pr);
+            if (et > worst_t) worst_t = et;
+            if (ep > worst_pdf) worst_pdf = ep;
+        }
+        snprintf(msg, sizeof msg, "h %g: worst |t - t_exact| %.2f x 2^-24, worst pdf error %.2g", hs[i], worst_t, worst_pdf);
+        TEST_MESSAGE(msg);
+        TEST_ASSERT_TRUE_MESSAGE(worst_t <= 4.0 && worst_pdf <= 1e-5, msg);
+        if (hs[i] == 1e-4) {   /* negative control: the same sampler with float angles misses the bound */
+            float fa = atan2f(a - delta, h), fb = atan2f(b - delta, h);
+            double worst_float = 0.0;
+            for (k = 1; k < 4096; ++k) {
+                float u = (float)k / 4096.0f, t = delta + h * tanf(fa + u * (fb - fa));
+                long double tr = delta + (long double)h * tanl(ta + (long double)u * (tb - ta));
+                double et = (double)fabsl((long double)t - tr) / 5.96e-8;
+                if (et > worst_float) worst_float = et;
+            }
+            snprintf(msg, sizeof msg, "negative control, float angles at h 1e-4: worst error %.1f x 2^-24 (must exceed 4)", worst_float);
+            TEST_MESSAGE(msg);
+            TEST_ASSERT_TRUE_MESSAGE(worst_float > 4.0, msg);
+        }
+    }
+}
+
 /* fogrt_sample_bsdf fed u = 0 and 1 - 2^-24 in all three uniforms, for every BSDF, ior,
    Fresnel mode and incident direction. When it returns true: wi unit and on the side its
    lobe says; weight finite and non-negative; pdf finite and positive; for non-delta lobes the
@@ -1359,6 +1430,8 @@ int main(void)
     RUN_TEST(test_sigma_renders);
     RUN_TEST(test_samplers_at_extreme_uniforms);
     RUN_TEST(test_equiangular_extremes);
+    RUN_TEST(test_equiangular_near_line);
+    RUN_TEST(test_fresnel_grazing);
     RUN_TEST(test_bsdf_sample_extremes);
     RUN_TEST(test_refraction_extremes);
     RUN_TEST(test_specular_renders);

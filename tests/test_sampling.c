@@ -270,6 +270,96 @@ static void test_hg_chi2_against_pdf(void)
     TALLY_ASSERT(t);
 }
 
+/* ==========================================================================================
+   Henyey-Greenstein at |g| >= 0.99: the peak, resolved
+   ========================================================================================== */
+/* P(angle to the peak < theta) for HG with |g| = a, the peak being d (g > 0) or -d (g < 0).
+   Written with 1 - cos(theta) = 2 sin^2(theta / 2), so it is exact in double down to any
+   angle: P = (1 + a) 2 s / (B (B + 1 - a)), s = sin^2(theta/2), B = sqrt((1 - a)^2 + 4 a s). */
+static double hg_peak_cdf(double a, double theta)
+{
+    double s = sin(0.5 * theta), B;
+    s *= s;
+    B = sqrt((1.0 - a) * (1.0 - a) + 4.0 * a * s);
+    return (1.0 + a) * 2.0 * s / (B * (B + 1.0 - a));
+}
+
+/* The textbook direction sample, as fogrt did before: mu from the inverse CDF, then
+   sin(theta) = sqrt((1 - mu)(1 + mu)) in float. Near the peak mu rounds to 1 and the angle
+   collapses to 0: the negative control of the peak test. */
+static fogrt_vec3 hg_sample_textbook(float g, fogrt_vec3 wo, float u1, float u2)
+{
+    float mu = fogrt_sample_hg_mu(g, u1), s = sqrtf((1.0f - mu) * (1.0f + mu)), phi = 6.2831853f * u2;
+    fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));
+    return fogrt__normalize(fogrt__to_world(&f, fogrt__v(s * cosf(phi), s * sinf(phi), mu)));
+}
+
+/* Rows: the angle to the peak, log-spaced from 1e-6 rad (cell 0: below it) to pi, so that the
+   cells next to the peak are tiny; columns: 4 azimuth slices around the peak. Expected
+   counts from the exact CDF above. The angle of a float direction w from the peak p is
+   2 asin(|w - p| / 2), which keeps its precision at small angles. Fails if samples pile up
+   on the peak direction (mu rounding to 1, sin(theta) = 0) or leave a hole around it. */
+#define HG_PEAK_ROWS 40
+#define HG_PEAK_COLS 4
+static long hg_peak_counts(float g, fogrt_vec3 wo, bool textbook, long n, uint64_t seed, const double *edge,
+                           double *observed)
+{
+    fogrt_rng rng;
+    long invalid = 0;
+    fogrt_vec3 d = fogrt__normalize(fogrt__neg(wo)), p = g > 0.0f ? d : fogrt__neg(d);
+    fogrt__frame f = fogrt__frame_from_z(p);
+    fogrt_rng_seed(&rng, seed, 3);
+    memset(observed, 0, sizeof(double) * HG_PEAK_ROWS * HG_PEAK_COLS);
+    for (long i = 0; i < n; i++) {
+        float u1 = fogrt_rng_float(&rng), u2 = fogrt_rng_float(&rng), pdf;
+        fogrt_vec3 w = textbook ? hg_sample_textbook(g, wo, u1, u2) : fogrt_sample_hg(g, wo, u1, u2, &pdf);
+        double dx = (double)w.x - p.x, dy = (double)w.y - p.y, dz = (double)w.z - p.z;
+        double theta = 2.0 * asin(fmin(1.0, 0.5 * sqrt(dx * dx + dy * dy + dz * dz)));
+        double phi = atan2(fogrt__dot(w, f.t), fogrt__dot(w, f.s)) + STATS_PI;
+        int row = 0, col = (int)(phi / (2.0 * STATS_PI) * HG_PEAK_COLS);
+        if (!isfinite(theta) || !(fabs(fogrt__dot(w, w) - 1.0f) < 1e-5f)) { invalid++; continue; }
+        while (row < HG_PEAK_ROWS - 1 && theta >= edge[row + 1]) row++;
+        observed[row * HG_PEAK_COLS + (col < HG_PEAK_COLS ? col : HG_PEAK_COLS - 1)] += 1.0;
+    }
+    return invalid;
+}
+static void test_hg_peak_resolved(void)
+{
+    static const float gs[4] = {0.99f, -0.99f, 0.999f, -0.999f};
+    static const int wos[3] = {0, 2, 3};                  /* +z, x axis, a generic direction */
+    double edge[HG_PEAK_ROWS + 1], col_edge[HG_PEAK_COLS + 1], observed[HG_PEAK_ROWS * HG_PEAK_COLS],
+           expected[HG_PEAK_ROWS * HG_PEAK_COLS];
+    stats_tally t = {0, 0, ""};
+    const long n = 400000;
+    edge[0] = 0.0;
+    for (int r = 1; r < HG_PEAK_ROWS; r++) edge[r] = 1e-6 * pow(STATS_PI / 1e-6, (r - 1.0) / (HG_PEAK_ROWS - 1.0));
+    edge[HG_PEAK_ROWS] = STATS_PI;
+    for (int c = 0; c <= HG_PEAK_COLS; c++) col_edge[c] = -STATS_PI + 2.0 * STATS_PI * c / HG_PEAK_COLS;
+    for (int k = 0; k < 4; k++) {
+        double a = fabs((double)gs[k]);
+        for (int r = 0; r < HG_PEAK_ROWS; r++)
+            for (int c = 0; c < HG_PEAK_COLS; c++)
+                expected[r * HG_PEAK_COLS + c] = (double)n * (hg_peak_cdf(a, edge[r + 1]) - hg_peak_cdf(a, edge[r])) / HG_PEAK_COLS;
+        for (int w = 0; w < 3; w++) {
+            fogrt_vec3 wo = v3(HG_WO[wos[w]][0], HG_WO[wos[w]][1], HG_WO[wos[w]][2]);
+            char name[64], param[128];
+            long invalid = hg_peak_counts(gs[k], wo, false, n, 4100 + (uint64_t)(10 * k + w), edge, observed);
+            snprintf(name, sizeof name, "hg_peak_g%g_wo%d", (double)gs[k], wos[w]);
+            snprintf(param, sizeof param, "g=%g, wo=(%g,%g,%g), angle to the peak log-spaced from 1e-6 rad",
+                     (double)gs[k], (double)wo.x, (double)wo.y, (double)wo.z);
+            REPORT(t, stats_chi2_verdict(name, "fogrt_sample_hg near its peak", param, HG_PEAK_ROWS, HG_PEAK_COLS,
+                                         edge, "angle to peak", col_edge, "phi", observed, expected, invalid, false));
+            if (w == 0 && a < 0.995) {   /* negative control: sin(theta) from a rounded mu */
+                invalid = hg_peak_counts(gs[k], wo, true, n, 4100 + (uint64_t)(10 * k + w), edge, observed);
+                snprintf(param, sizeof param, "g=%g, textbook sin(theta) = sqrt((1-mu)(1+mu)) in float", (double)gs[k]);
+                REPORT(t, stats_chi2_verdict(name, "HG direction with a rounded mu", param, HG_PEAK_ROWS, HG_PEAK_COLS,
+                                             edge, "angle to peak", col_edge, "phi", observed, expected, invalid, true));
+            }
+        }
+    }
+    TALLY_ASSERT(t);
+}
+
 /* The mean cosine between d = -wo and the sampled direction equals g, within 4 standard
    errors (from the sample variance). This pins the sign convention on its own: g > 0 must
    scatter forward. Fails if g's sign is flipped or the lobe has the wrong width. */
@@ -1633,6 +1723,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_hg_chi2_exact_cdf);
     RUN_TEST(test_hg_chi2_against_pdf);
+    RUN_TEST(test_hg_peak_resolved);
     RUN_TEST(test_hg_mean_cosine_is_g);
     RUN_TEST(test_hg_sample_pdf_matches_eval);
     RUN_TEST(test_hg_phase_normalised);
