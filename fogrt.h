@@ -52,6 +52,7 @@
                            stripped public functions are not compiled (make check-compile
                            checks with nm that their code is gone).
     FOGRT_NO_STDIO         strip the PFM/PPM writers (no <stdio.h>)
+    FOGRT_TRACE            compile the path event trace (fogrt_trace_path); off: no hook exists
     FOGRT_BVH_BINS         compile-time default for fogrt_build_desc.bins (8)
     FOGRT_MAX_PATH_VERTICES  hard cap on path vertices, a safety net behind Russian roulette
                            (default 100000; never reached in practice, see Russian roulette)
@@ -642,6 +643,65 @@ FOGRT_API fogrt_vec3 fogrt_trace(const fogrt_scene *scene, const fogrt_render_de
 /* Camera ray through image position (px, py) in pixels (0..width, 0..height, y down). */
 FOGRT_API void fogrt_camera_ray(const fogrt_scene *scene, int width, int height, float px, float py,
                                 float lens_u1, float lens_u2, fogrt_vec3 *o, fogrt_vec3 *d);
+
+/* ------------------------------------------------------------------------------------------
+   Following one path, event by event (define FOGRT_TRACE before the implementation)
+   fogrt_trace_path renders one pixel sample exactly as fogrt_render does (the same random
+   stream) and calls back at every step of Algorithm 1. Without FOGRT_TRACE the hooks are
+   not compiled at all: the renderer does not pay for them (make callgrind shows it).
+   ------------------------------------------------------------------------------------------ */
+typedef enum fogrt_trace_kind {
+    FOGRT_TRACE_CAMERA,        /* the camera ray: p = origin, d = direction */
+    FOGRT_TRACE_FREE_FLIGHT,   /* eq. 6: u[0] -> t; t_max = the surface (inf: none); flag: a fog collision */
+    FOGRT_TRACE_SURFACE,       /* the ray reached primitive prim at p; bsdf */
+    FOGRT_TRACE_ESCAPE,        /* the ray left the scene along d */
+    FOGRT_TRACE_LIGHT_SAMPLE,  /* next-event estimation (eq. 3/13) toward light: d = wi, t = distance,
+                                  Le, pdf, f (phase or BSDF |cos|), pdf_other (BSDF/phase pdf of wi),
+                                  transmittance (eq. 8, 0 if blocked), mis_weight; value = f Le T w / pdf */
+    FOGRT_TRACE_EQUIANGULAR,   /* a point on the segment for light: u[0] -> t, pdf; then the light sample
+                                  fields as above; value includes sigma_s T(t) / pdf */
+    FOGRT_TRACE_PHASE_SAMPLE,  /* eq. 11-12: u[0] -> cos_theta, u[1] -> phi; pdf; d = the new direction */
+    FOGRT_TRACE_BSDF_SAMPLE,   /* u[0] picks the lobe (fresnel: its F), u[1], u[2] the direction;
+                                  lobe; pdf; value = the weight f |cos| / pdf; d = the new direction */
+    FOGRT_TRACE_ROULETTE,      /* continue with probability q if u[0] < q; flag: survived */
+    FOGRT_TRACE_CONTRIBUTION,  /* value (beta included) added to the pixel; source names it; flag: false
+                                  when min_depth drops it */
+    FOGRT_TRACE_END,           /* value = the sample's radiance */
+    FOGRT_TRACE_NUM,
+    FOGRT_TRACE_FORCE_U32 = 0x7FFFFFFF
+} fogrt_trace_kind;
+
+typedef enum fogrt_trace_lobe { FOGRT_LOBE_DIFFUSE, FOGRT_LOBE_REFLECT, FOGRT_LOBE_REFRACT } fogrt_trace_lobe;
+
+typedef struct fogrt_trace_event {
+    fogrt_trace_kind kind;
+    int bounce;                /* scattering events before this one */
+    fogrt_vec3 p, d;
+    fogrt_vec3 beta;           /* the path throughput after the step */
+    fogrt_vec3 value, Le, f;
+    float u[3];
+    float t, t_max, pdf, pdf_other, cos_theta, phi, transmittance, mis_weight, q, fresnel;
+    uint32_t light;            /* light index: point and spot lights first, then area lights */
+    uint32_t prim;
+    fogrt_bsdf_type bsdf;
+    fogrt_trace_lobe lobe;
+    bool flag;
+    const char *source;        /* contribution: "emission", "environment", "light sample", "equiangular" */
+} fogrt_trace_event;
+
+typedef void (*fogrt_trace_fn)(const fogrt_trace_event *event, void *user_data);
+
+#ifdef FOGRT_TRACE
+/* Renders sample number sample_index of pixel (x, y) of a width x height image (the same
+   sample fogrt_render adds there) and calls fn at each event. Returns its radiance. */
+FOGRT_API fogrt_vec3 fogrt_trace_path(const fogrt_scene *scene, const fogrt_render_desc *desc, int width,
+                                      int height, int x, int y, uint32_t sample_index, fogrt_trace_fn fn,
+                                      void *user_data);
+#ifndef FOGRT_NO_STDIO
+/* One readable line (no newline) for an event, naming the paper's equation it applies. */
+FOGRT_API void fogrt_trace_describe(const fogrt_trace_event *event, char *buffer, size_t size);
+#endif
+#endif
 
 /* ------------------------------------------------------------------------------------------
    Output helpers (no dependencies)
@@ -2258,7 +2318,19 @@ typedef struct fogrt__settings {
     bool nee, mis, equiangular;
     fogrt_integrator integrator;
     fogrt_fresnel fresnel;
+#ifdef FOGRT_TRACE
+    fogrt_trace_fn trace;      /* fogrt_trace_path's callback (NULL in fogrt_render) */
+    void *trace_user;
+#endif
 } fogrt__settings;
+/* A trace hook: with FOGRT_TRACE a call to one of the fogrt__trace_* functions of chapter
+   14 when a callback is set (every hook site has the settings in scope as st), without it
+   nothing at all. */
+#ifdef FOGRT_TRACE
+#define FOGRT__HOOK(call) do { if (st->trace) call; } while (0)
+#else
+#define FOGRT__HOOK(call) ((void)0)
+#endif
 
 /* A scattering vertex: a point in the medium, or a surface point with its shading frame. */
 typedef struct fogrt__vertex {
@@ -2269,6 +2341,23 @@ typedef struct fogrt__vertex {
     fogrt__v3 ng;              /* surface: geometric normal on the side of wo */
     const fogrt_material_desc *m;
 } fogrt__vertex;
+
+/* The state of a path as the integrators of chapter 14 follow it. */
+typedef struct fogrt__path {
+    fogrt__v3 o, d;            /* the ray being followed (d unit) */
+    fogrt__v3 beta;            /* throughput */
+    fogrt__v3 L;               /* radiance gathered so far */
+    fogrt__v3 prev_p;          /* the vertex the ray left, and the solid-angle pdf of its */
+    float prev_pdf;            /*   direction: the BSDF/phase half of MIS at an emitter */
+    bool prev_delta;           /* camera ray or specular bounce: emission counts in full */
+    bool in_medium;            /* the ray travels in fog */
+    bool entering;             /* surface: wo is on the front side of the geometry */
+    int bounces;               /* scattering events so far */
+    fogrt_bsdf_type type;      /* surface: the BSDF of v */
+    fogrt__vertex v;           /* the vertex just found */
+    fogrt_rng *rng;
+    uint64_t *rays;
+} fogrt__path;
 
 /* A light sample seen from a point: the direction and distance to the emitting point, the
    radiance arriving from it and the solid-angle pdf of the sample. Point and spot lights
@@ -2456,25 +2545,33 @@ FOGRT__PRIVATE bool fogrt__sample_light(const fogrt_scene *s, uint32_t i, fogrt_
 }
 /* One light sample's share of the light reflected at v (eq. 13): f Le T V w / (n pdf),
    with w the MIS weight (1 for a delta light, or with MIS off). */
-FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v,
-                                               const fogrt__light_sample *ls, int n, uint64_t *rays)
+#ifdef FOGRT_TRACE
+FOGRT__PRIVATE void fogrt__trace_light(const fogrt__settings *st, const fogrt__path *P, const fogrt__vertex *v,
+                                       uint32_t light, const fogrt__light_sample *ls, fogrt__v3 f, float pdf_b,
+                                       float tr, float w, fogrt__v3 value);
+#endif
+FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
+                                               const fogrt__vertex *v, uint32_t light, const fogrt__light_sample *ls, int n)
 {
-    fogrt__v3 f;
-    float pdf_b, tr, w;
+    fogrt__v3 f, c = fogrt__v(0.0f, 0.0f, 0.0f);
+    float pdf_b, tr = 0.0f, w = 0.0f;
     f = fogrt__vertex_f(s, v, ls->wi, &pdf_b);
-    if (fogrt__is_black(f)) return f;
-    tr = fogrt__shadow(s, v, ls, rays);
-    if (tr == 0.0f) return fogrt__v(0.0f, 0.0f, 0.0f);
-    w = ls->delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls->pdf, pdf_b);
-    return fogrt__scale(fogrt__mul(f, ls->Le), tr * w / (ls->pdf * (float)n));
+    if (!fogrt__is_black(f)) tr = fogrt__shadow(s, v, ls, P->rays);
+    if (tr != 0.0f) {
+        w = ls->delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls->pdf, pdf_b);
+        c = fogrt__scale(fogrt__mul(f, ls->Le), tr * w / (ls->pdf * (float)n));
+    }
+    FOGRT__HOOK(fogrt__trace_light(st, P, v, light, ls, f, pdf_b, tr, w, c));
+    (void)light;
+    return c;
 }
 /* Next-event estimation at vertex v (CS184 style: every light is sampled, area lights with
    light_samples samples each). At a fog vertex the point and spot lights are left out when
    the equiangular estimator (chapter 14) gathers them along the ray instead: the two never
    count the same light twice. Returns the reflected radiance, before the path weight. */
-FOGRT__PRIVATE fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v,
-                                              fogrt_rng *rng, uint64_t *rays)
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P)
 {
+    const fogrt__vertex *v = &P->v;
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
     uint32_t i = v->is_medium && st->equiangular ? s->light_count : 0, total = fogrt__light_total(s);
     for (; i < total; ++i) {
@@ -2482,9 +2579,9 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt_
         for (j = 0; j < n; ++j) {
             fogrt__light_sample ls;
             float u[3];
-            fogrt__draw(s, i, rng, u);
+            fogrt__draw(s, i, P->rng, u);
             if (fogrt__sample_light(s, i, v->p, u, &ls))
-                L = fogrt__add(L, fogrt__light_contribution(s, st, v, &ls, n, rays));
+                L = fogrt__add(L, fogrt__light_contribution(s, st, P, v, i, &ls, n));
         }
     }
     return L;
@@ -2567,21 +2664,6 @@ FOGRT__PUBLIC void fogrt_camera_ray(const fogrt_scene *s, int width, int height,
    camera ray through mirrors and glass to the first scattering vertex, samples the lights
    there, and takes one more step that only adds the emission it finds.
    ------------------------------------------------------------------------------------------ */
-typedef struct fogrt__path {
-    fogrt__v3 o, d;            /* the ray being followed (d unit) */
-    fogrt__v3 beta;            /* throughput */
-    fogrt__v3 L;               /* radiance gathered so far */
-    fogrt__v3 prev_p;          /* the vertex the ray left, and the solid-angle pdf of its */
-    float prev_pdf;            /*   direction: the BSDF/phase half of MIS at an emitter */
-    bool prev_delta;           /* camera ray or specular bounce: emission counts in full */
-    bool in_medium;            /* the ray travels in fog */
-    bool entering;             /* surface: wo is on the front side of the geometry */
-    int bounces;               /* scattering events so far */
-    fogrt_bsdf_type type;      /* surface: the BSDF of v */
-    fogrt__vertex v;           /* the vertex just found */
-    fogrt_rng *rng;
-    uint64_t *rays;
-} fogrt__path;
 
 FOGRT__PRIVATE void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, fogrt__v3 o, fogrt__v3 d,
                                       fogrt_rng *rng, uint64_t *rays)
@@ -2594,11 +2676,100 @@ FOGRT__PRIVATE void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, fogr
     P->type = FOGRT_BSDF_DIFFUSE;
     P->rng = rng; P->rays = rays;
 }
+#ifdef FOGRT_TRACE
+/* Tracing a path (FOGRT_TRACE): each hook below fills one fogrt_trace_event and hands it to
+   the callback. None of this exists without FOGRT_TRACE. */
+FOGRT__PRIVATE fogrt_trace_event fogrt__event(fogrt_trace_kind kind, const fogrt__path *P)
+{
+    fogrt_trace_event e;
+    memset(&e, 0, sizeof e);
+    e.kind = kind;
+    e.bounce = P->bounces;
+    e.p = P->o; e.d = P->d; e.beta = P->beta;
+    return e;
+}
+FOGRT__PRIVATE void fogrt__emit(const fogrt__settings *st, const fogrt_trace_event *e)
+{
+    if (st->trace) st->trace(e, st->trace_user);
+}
+FOGRT__PRIVATE void fogrt__trace_free_flight(const fogrt__settings *st, const fogrt__path *P, float u, float t,
+                                             float t_surface, bool collided)
+{
+    fogrt_trace_event e = fogrt__event(FOGRT_TRACE_FREE_FLIGHT, P);
+    e.u[0] = u; e.t = t; e.t_max = t_surface; e.flag = collided;
+    fogrt__emit(st, &e);
+}
+FOGRT__PRIVATE void fogrt__trace_surface(const fogrt__settings *st, const fogrt__path *P, uint32_t prim)
+{
+    fogrt_trace_event e = fogrt__event(FOGRT_TRACE_SURFACE, P);
+    e.p = P->v.p; e.prim = prim; e.bsdf = P->type;
+    fogrt__emit(st, &e);
+}
+FOGRT__PRIVATE void fogrt__trace_simple(const fogrt__settings *st, const fogrt__path *P, fogrt_trace_kind kind)
+{
+    fogrt_trace_event e = fogrt__event(kind, P);
+    fogrt__emit(st, &e);
+}
+FOGRT__PRIVATE void fogrt__trace_light(const fogrt__settings *st, const fogrt__path *P, const fogrt__vertex *v,
+                                       uint32_t light, const fogrt__light_sample *ls, fogrt__v3 f, float pdf_b,
+                                       float tr, float w, fogrt__v3 value)
+{
+    fogrt_trace_event e = fogrt__event(FOGRT_TRACE_LIGHT_SAMPLE, P);
+    e.p = v->p; e.d = ls->wi; e.t = ls->dist; e.Le = ls->Le; e.pdf = ls->pdf; e.f = f; e.pdf_other = pdf_b;
+    e.transmittance = tr; e.mis_weight = w; e.value = value; e.light = light;
+    fogrt__emit(st, &e);
+}
+FOGRT__PRIVATE void fogrt__trace_equiangular(const fogrt__settings *st, const fogrt__path *P, uint32_t light,
+                                             float u, float t, float pdf, float weight)
+{
+    fogrt_trace_event e = fogrt__event(FOGRT_TRACE_EQUIANGULAR, P);
+    e.light = light; e.u[0] = u; e.t = t; e.pdf = pdf; e.value = fogrt__v(weight, weight, weight);
+    fogrt__emit(st, &e);
+}
+#ifndef FOGRT_NO_MEDIUM
+FOGRT__PRIVATE void fogrt__trace_phase(const fogrt__settings *st, const fogrt__path *P, float g, float u1, float u2)
+{
+    fogrt_trace_event e = fogrt__event(FOGRT_TRACE_PHASE_SAMPLE, P);
+    e.u[0] = u1; e.u[1] = u2; e.cos_theta = fogrt_sample_hg_mu(g, u1); e.phi = 2.0f * FOGRT__PI * u2;
+    e.pdf = P->prev_pdf;
+    fogrt__emit(st, &e);
+}
+#endif
+FOGRT__PRIVATE void fogrt__trace_bsdf(const fogrt__settings *st, const fogrt__path *P, const float *u,
+                                      const fogrt_bsdf_sample *bs, float cos_o)
+{
+    fogrt_trace_event e = fogrt__event(FOGRT_TRACE_BSDF_SAMPLE, P);
+    memcpy(e.u, u, sizeof e.u);
+    e.p = P->v.p; e.bsdf = P->type; e.pdf = bs->pdf; e.value = bs->weight;
+    e.lobe = bs->is_transmission ? FOGRT_LOBE_REFRACT : (bs->is_delta ? FOGRT_LOBE_REFLECT : FOGRT_LOBE_DIFFUSE);
+#ifndef FOGRT_NO_GLASS
+    if (P->type == FOGRT_BSDF_GLASS) e.fresnel = fogrt__fresnel(st->fresnel, FOGRT__DEF(P->v.m->ior, 1.5f), cos_o);
+#else
+    (void)cos_o;
+#endif
+    fogrt__emit(st, &e);
+}
+FOGRT__PRIVATE void fogrt__trace_roulette(const fogrt__settings *st, const fogrt__path *P, float q, float u, bool survived)
+{
+    fogrt_trace_event e = fogrt__event(FOGRT_TRACE_ROULETTE, P);
+    e.q = q; e.u[0] = u; e.flag = survived;
+    fogrt__emit(st, &e);
+}
+FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__settings *st, const fogrt__path *P, fogrt__v3 c, bool counted,
+                                        const char *source)
+{
+    fogrt_trace_event e = fogrt__event(FOGRT_TRACE_CONTRIBUTION, P);
+    e.value = c; e.flag = counted; e.source = source;
+    fogrt__emit(st, &e);
+}
+#endif
 /* Light that reaches the camera after `bounces` scattering events (min_depth drops the
-   shorter paths: CS184's -o 0). */
-FOGRT__PRIVATE void fogrt__gather(fogrt__path *P, const fogrt__settings *st, int bounces, fogrt__v3 c)
+   shorter paths: CS184's -o 0). source says what it is, for the trace. */
+FOGRT__PRIVATE void fogrt__gather(fogrt__path *P, const fogrt__settings *st, int bounces, fogrt__v3 c, const char *source)
 {
     if (bounces >= st->min_depth) P->L = fogrt__add(P->L, c);
+    if (!fogrt__is_black(c)) FOGRT__HOOK(fogrt__trace_gather(st, P, c, bounces >= st->min_depth, source));
+    (void)source;
 }
 FOGRT__PRIVATE bool fogrt__is_scattering(const fogrt__path *P)
 {
@@ -2699,8 +2870,9 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
             t = fogrt_sample_equiangular(fogrt__dot(oc, P->d), h, t_lo, t_hi, u[0], &pdf_t);
             if (!(pdf_t > 0.0f)) continue;
             v.p = fogrt__madd(P->o, P->d, t);
+            FOGRT__HOOK(fogrt__trace_equiangular(st, P, i, u[0], t, pdf_t, sigma_t * fogrt_transmittance(sigma_t, t) / pdf_t));
             if (!fogrt__sample_point_light(s, l, v.p, u + 1, &ls)) continue;
-            L = fogrt__add(L, fogrt__scale(fogrt__mul(fogrt__light_contribution(s, st, &v, &ls, n, P->rays), s->medium.albedo),
+            L = fogrt__add(L, fogrt__scale(fogrt__mul(fogrt__light_contribution(s, st, P, &v, i, &ls, n), s->medium.albedo),
                                            sigma_t * fogrt_transmittance(sigma_t, t) / pdf_t));
         }
     }
@@ -2714,11 +2886,13 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
 FOGRT__PRIVATE bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                        float t_surface, bool may_scatter)
 {
-    float t;
+    float u, t;
     if (!P->in_medium) return false;
-    t = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(P->rng));
+    u = fogrt_rng_float(P->rng);
+    t = fogrt_sample_exponential(s->medium.sigma_t, u);
+    FOGRT__HOOK(fogrt__trace_free_flight(st, P, u, t, t_surface, t < t_surface));
     if (st->nee && st->equiangular && s->light_count > 0 && may_scatter)
-        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, t_surface)));
+        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, t_surface)), "equiangular");
     if (!(t < t_surface)) return false;                  /* reaches the surface: T / T = 1 */
     P->beta = fogrt__mul(P->beta, s->medium.albedo);     /* sigma_s T / (sigma_t T) */
     memset(&P->v, 0, sizeof P->v);
@@ -2737,14 +2911,15 @@ FOGRT__PRIVATE bool fogrt__surface_event(const fogrt_scene *s, const fogrt__sett
     fogrt__v3 ng, ns, wo = fogrt__neg(P->d);
     const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit->prim)];
     fogrt__surface_frame(s, P->o, P->d, hit, &P->v.p, &ng, &ns);
+    P->type = fogrt__bsdf_type(m);
+    FOGRT__HOOK(fogrt__trace_surface(st, P, hit->prim));
     if (!fogrt__is_black(m->emission) && fogrt__dot(P->d, ng) < 0.0f) {   /* the front side emits */
         float w = 1.0f;
         if (!P->prev_delta && st->nee)
             w = st->mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->light_samples *
                                                  fogrt__area_light_pdf(s, hit->prim, P->prev_p, P->v.p, ng)) : 0.0f;
-        fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(P->beta, m->emission), w));
+        fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(P->beta, m->emission), w), "emission");
     }
-    P->type = fogrt__bsdf_type(m);
     if (P->bounces >= limit || (P->type == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance))) return false;
     P->entering = fogrt__dot(wo, ng) > 0.0f;
     if (P->type != FOGRT_BSDF_REFRACTION && P->type != FOGRT_BSDF_GLASS) {   /* reflective: two-sided */
@@ -2769,8 +2944,9 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
     if (fogrt__free_flight(s, st, P, found ? hit.t : INFINITY, P->bounces < limit)) return true;
 #endif
     if (found) return fogrt__surface_event(s, st, P, &hit, limit);
+    FOGRT__HOOK(fogrt__trace_simple(st, P, FOGRT_TRACE_ESCAPE));
     if (s->has_env && (!s->env_upper_only || P->d.y > 0.0f))      /* escaped: the environment */
-        fogrt__gather(P, st, P->bounces, fogrt__mul(P->beta, s->env));
+        fogrt__gather(P, st, P->bounces, fogrt__mul(P->beta, s->env), "environment");
     return false;
 }
 
@@ -2779,7 +2955,7 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
 FOGRT__PRIVATE void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
 {
     if (st->nee && fogrt__is_scattering(P))
-        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__sample_lights(s, st, &P->v, P->rng, P->rays)));
+        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__sample_lights(s, st, P)), "light sample");
 }
 
 /* d. The new direction from a surface: sample the BSDF in the shading frame. */
@@ -2787,8 +2963,10 @@ FOGRT__PRIVATE bool fogrt__scatter_surface(const fogrt_scene *s, const fogrt__se
 {
     fogrt_bsdf_sample bs;
     const fogrt__v3 ng = P->v.ng, wo = P->v.wo;
-    float u_lobe = fogrt_rng_float(P->rng), u1 = fogrt_rng_float(P->rng), u2 = fogrt_rng_float(P->rng);
-    if (!fogrt_sample_bsdf(P->v.m, st->fresnel, fogrt__to_local(&P->v.frame, wo), u_lobe, u1, u2, &bs)) return false;
+    fogrt__v3 wo_l = fogrt__to_local(&P->v.frame, wo);
+    float u[3];
+    u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
+    if (!fogrt_sample_bsdf(P->v.m, st->fresnel, wo_l, u[0], u[1], u[2], &bs)) return false;
     P->d = fogrt__normalize(fogrt__to_world(&P->v.frame, bs.wi));
     /* A shading normal can send a direction through the geometric surface: drop it. */
     if (bs.is_transmission ? (fogrt__dot(P->d, ng) * fogrt__dot(wo, ng) >= 0.0f)
@@ -2798,6 +2976,7 @@ FOGRT__PRIVATE bool fogrt__scatter_surface(const fogrt_scene *s, const fogrt__se
     /* Refraction moves the ray into or out of the object: fog exists only outside. */
     if (bs.is_transmission) P->in_medium = !P->entering && (s->features & FOGRT_FEATURE_MEDIUM) != 0;
     P->o = fogrt__offset(s, P->v.p, ng, P->d);
+    FOGRT__HOOK(fogrt__trace_bsdf(st, P, u, &bs, wo_l.z));
     return true;
 }
 /* d. The new direction: Henyey-Greenstein in the fog (eq. 11-12, weight p / pdf = 1), the
@@ -2811,6 +2990,7 @@ FOGRT__PRIVATE bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *
         P->d = fogrt_sample_hg(s->medium.g, P->v.wo, u1, u2, &P->prev_pdf);
         P->prev_delta = false;
         P->o = P->v.p;
+        FOGRT__HOOK(fogrt__trace_phase(st, P, s->medium.g, u1, u2));
         return true;
     }
 #endif
@@ -2820,13 +3000,14 @@ FOGRT__PRIVATE bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *
 /* e. Russian roulette after rr_depth bounces: continue with probability q, weight 1/q. */
 FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__path *P)
 {
-    float q;
+    float q, u;
     P->bounces++;
     if (P->bounces <= st->rr_depth) return true;
     q = FOGRT__MIN(0.95f, fogrt__max3(P->beta));
-    if (!(fogrt_rng_float(P->rng) < q)) return false;
-    P->beta = fogrt__scale(P->beta, 1.0f / q);
-    return true;
+    u = fogrt_rng_float(P->rng);
+    if (u < q) P->beta = fogrt__scale(P->beta, 1.0f / q);
+    FOGRT__HOOK(fogrt__trace_roulette(st, P, q, u, u < q));
+    return u < q;
 }
 
 /* Algorithm 1: global illumination with Russian roulette and next-event estimation. */
@@ -2912,6 +3093,9 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
     st->equiangular = d.equiangular;
     st->integrator = d.integrator == FOGRT_INTEGRATOR_DIRECT ? FOGRT_INTEGRATOR_DIRECT : FOGRT_INTEGRATOR_PATH;
     st->fresnel = d.fresnel;
+#ifdef FOGRT_TRACE
+    st->trace = NULL; st->trace_user = NULL;
+#endif
     if (out) *out = d;
     return FOGRT_RESULT_OK;
 }
@@ -3020,9 +3204,33 @@ typedef struct fogrt__job {
     int spp;
 } fogrt__job;
 
-/* One row of pixels, spp samples each. Every sample has its own random stream, derived from
-   (seed, pixel, sample index): the image does not depend on the thread that renders it.
-   The NaN firewall: a non-finite sample is counted, never added. */
+/* Sample number `index` of pixel (x, y). Every sample has its own random stream, derived
+   from (seed, pixel, sample index): the image does not depend on the thread that renders
+   it. The pixel filter is a box: the camera ray goes through a uniform point of the pixel. */
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_pixel(const fogrt__job *job, int width, int height, int x, int y,
+                                             uint32_t index, uint64_t *rays)
+{
+    uint64_t key = (((uint64_t)y * (uint64_t)width + (uint64_t)x) << 32) | (uint64_t)index;
+    fogrt_rng rng;
+    fogrt__v3 o, d;
+    float jx, jy, l1, l2;
+    fogrt_rng_seed(&rng, fogrt__hash64(key ^ job->base), 0);
+    jx = fogrt_rng_float(&rng); jy = fogrt_rng_float(&rng);
+    l1 = fogrt_rng_float(&rng); l2 = fogrt_rng_float(&rng);
+    fogrt__camera_generate(&job->cam, width, height, (float)x + jx, (float)y + jy, l1, l2, &o, &d);
+#ifdef FOGRT_TRACE
+    if (job->st.trace) {
+        fogrt_trace_event e;
+        memset(&e, 0, sizeof e);
+        e.kind = FOGRT_TRACE_CAMERA; e.p = o; e.d = d; e.beta = fogrt__v(1.0f, 1.0f, 1.0f);
+        e.u[0] = jx; e.u[1] = jy;
+        job->st.trace(&e, job->st.trace_user);
+    }
+#endif
+    return fogrt__radiance(job->s, &job->st, o, d, &rng, rays);
+}
+/* One row of pixels, spp samples each. The NaN firewall: a non-finite sample is counted,
+   never added. */
 FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *rays, uint64_t *rejected)
 {
     fogrt_image *img = job->img;
@@ -3030,16 +3238,8 @@ FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *ra
     for (x = 0; x < width; ++x) {
         size_t pix = (size_t)y * (size_t)width + (size_t)x;
         for (k = 0; k < job->spp; ++k) {
-            uint64_t key = ((uint64_t)pix << 32) | (uint64_t)(img->count[pix] + (uint32_t)k);
-            fogrt_rng rng;
-            fogrt__v3 o, d, Lr;
-            float jx, jy, l1, l2;
+            fogrt__v3 Lr = fogrt__sample_pixel(job, width, height, x, y, img->count[pix] + (uint32_t)k, rays);
             double lum;
-            fogrt_rng_seed(&rng, fogrt__hash64(key ^ job->base), 0);
-            jx = fogrt_rng_float(&rng); jy = fogrt_rng_float(&rng);
-            l1 = fogrt_rng_float(&rng); l2 = fogrt_rng_float(&rng);
-            fogrt__camera_generate(&job->cam, width, height, (float)x + jx, (float)y + jy, l1, l2, &o, &d);
-            Lr = fogrt__radiance(job->s, &job->st, o, d, &rng, rays);
             if (!fogrt__v3_finite(Lr)) { ++*rejected; continue; }
             lum = fogrt__luminance_d(Lr.x, Lr.y, Lr.z);
             img->sum[3 * pix + 0] += (double)Lr.x;
@@ -3132,6 +3332,84 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
     }
     return result;
 }
+
+#ifdef FOGRT_TRACE
+FOGRT__PUBLIC fogrt_vec3 fogrt_trace_path(const fogrt_scene *s, const fogrt_render_desc *desc, int width,
+                                          int height, int x, int y, uint32_t sample_index, fogrt_trace_fn fn,
+                                          void *user_data)
+{
+    fogrt__job job;
+    fogrt_render_desc d;
+    fogrt_trace_event e;
+    uint64_t rays = 0;
+    fogrt__v3 L;
+    FOGRT_ASSERT(s);
+    memset(&job, 0, sizeof job);
+    if (!s->built || fogrt__resolve_render(s, desc, &job.st, &d) != FOGRT_RESULT_OK ||
+        width <= 0 || height <= 0 || x < 0 || y < 0 || x >= width || y >= height)
+        return fogrt__v(0.0f, 0.0f, 0.0f);
+    job.st.trace = fn; job.st.trace_user = user_data;
+    job.s = s;
+    job.cam = fogrt__camera_setup(s, width, height);
+    job.base = fogrt__hash64(d.seed);
+    L = fogrt__sample_pixel(&job, width, height, x, y, sample_index, &rays);
+    memset(&e, 0, sizeof e);
+    e.kind = FOGRT_TRACE_END; e.value = L;
+    if (fn) fn(&e, user_data);
+    return L;
+}
+#ifndef FOGRT_NO_STDIO
+FOGRT__PRIVATE const char *fogrt__bsdf_name(fogrt_bsdf_type t)
+{
+    static const char *names[FOGRT_BSDF_NUM] = { "diffuse", "diffuse", "mirror", "refraction", "glass" };
+    return (unsigned)t < (unsigned)FOGRT_BSDF_NUM ? names[t] : "?";
+}
+#define FOGRT__V3F(v) (double)(v).x, (double)(v).y, (double)(v).z
+FOGRT__PUBLIC void fogrt_trace_describe(const fogrt_trace_event *e, char *buf, size_t size)
+{
+    static const char *lobes[3] = { "diffuse", "reflect", "refract" };
+    switch (e->kind) {
+    case FOGRT_TRACE_CAMERA:
+        snprintf(buf, size, "camera ray: pixel offset (%.3f, %.3f), o = (%.4g, %.4g, %.4g), d = (%.4f, %.4f, %.4f)",
+                 (double)e->u[0], (double)e->u[1], FOGRT__V3F(e->p), FOGRT__V3F(e->d)); break;
+    case FOGRT_TRACE_FREE_FLIGHT:
+        snprintf(buf, size, "free flight (eq. 6): u = %.6f -> t = -ln(1 - u) / sigma_t = %.5g; surface at %.5g -> %s",
+                 (double)e->u[0], (double)e->t, (double)e->t_max, e->flag ? "FOG COLLISION (weight x albedo)" : "reaches the surface (weight T/T = 1)"); break;
+    case FOGRT_TRACE_SURFACE:
+        snprintf(buf, size, "surface: primitive %u (%s) at (%.4g, %.4g, %.4g)", (unsigned)e->prim, fogrt__bsdf_name(e->bsdf), FOGRT__V3F(e->p)); break;
+    case FOGRT_TRACE_ESCAPE:
+        snprintf(buf, size, "escape: the ray leaves the scene along (%.4f, %.4f, %.4f)", FOGRT__V3F(e->d)); break;
+    case FOGRT_TRACE_LIGHT_SAMPLE:
+        snprintf(buf, size, "light sample (eq. 3/13) toward light %u: wi = (%.4f, %.4f, %.4f), r = %.4g, Le = (%.4g, %.4g, %.4g), "
+                 "pdf %.4g; f = %.4g (bsdf/phase pdf %.4g); T*V (eq. 8) = %.4g; MIS w = %.4f -> (%.4g, %.4g, %.4g)",
+                 (unsigned)e->light, FOGRT__V3F(e->d), (double)e->t, FOGRT__V3F(e->Le), (double)e->pdf, (double)e->f.y,
+                 (double)e->pdf_other, (double)e->transmittance, (double)e->mis_weight, FOGRT__V3F(e->value)); break;
+    case FOGRT_TRACE_EQUIANGULAR:
+        snprintf(buf, size, "equiangular toward light %u: u = %.6f -> t = %.5g, pdf %.4g; weight sigma_s T(t) / pdf = %.4g",
+                 (unsigned)e->light, (double)e->u[0], (double)e->t, (double)e->pdf, (double)e->value.y); break;
+    case FOGRT_TRACE_PHASE_SAMPLE:
+        snprintf(buf, size, "phase sample: u1 = %.6f -> cos theta = %.6f (eq. 11), u2 = %.6f -> phi = %.4f (eq. 12); pdf = p = %.4g; new d = (%.4f, %.4f, %.4f)",
+                 (double)e->u[0], (double)e->cos_theta, (double)e->u[1], (double)e->phi, (double)e->pdf, FOGRT__V3F(e->d)); break;
+    case FOGRT_TRACE_BSDF_SAMPLE:
+        snprintf(buf, size, "BSDF sample (%s): u = (%.4f, %.4f, %.4f) -> %s%s%.4g; pdf %.4g, weight (%.4g, %.4g, %.4g); new d = (%.4f, %.4f, %.4f)",
+                 fogrt__bsdf_name(e->bsdf), (double)e->u[0], (double)e->u[1], (double)e->u[2], lobes[e->lobe],
+                 e->bsdf == FOGRT_BSDF_GLASS ? ", Fresnel F = " : "", e->bsdf == FOGRT_BSDF_GLASS ? (double)e->fresnel : 0.0,
+                 (double)e->pdf, FOGRT__V3F(e->value), FOGRT__V3F(e->d)); break;
+    case FOGRT_TRACE_ROULETTE:
+        snprintf(buf, size, "Russian roulette: continue with q = %.4f; u = %.4f -> %s", (double)e->q, (double)e->u[0],
+                 e->flag ? "survives (weight / q)" : "path ends"); break;
+    case FOGRT_TRACE_CONTRIBUTION:
+        snprintf(buf, size, "+ %s: (%.5g, %.5g, %.5g) added to the pixel%s", e->source ? e->source : "light",
+                 FOGRT__V3F(e->value), e->flag ? "" : " (not counted: below min_depth)"); break;
+    case FOGRT_TRACE_END:
+        snprintf(buf, size, "= sample radiance (%.5g, %.5g, %.5g)", FOGRT__V3F(e->value)); break;
+    default:
+        snprintf(buf, size, "unknown event %d", (int)e->kind); break;
+    }
+}
+#undef FOGRT__V3F
+#endif
+#endif
 
 /* Output helpers. The sRGB curve: 12.92 x below 0.0031308, else 1.055 x^(1/2.4) - 0.055. */
 FOGRT__PUBLIC void fogrt_tonemap_rgb8(const float *rgb, int width, int height, float exposure,

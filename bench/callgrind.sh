@@ -10,7 +10,8 @@
 #   FOGRT_NO_GLASS           a scene without glass or refraction   (strip_cost glass)
 #   FOGRT_NO_EXACT_FRESNEL   a render with Schlick's Fresnel       (strip_cost exact)
 # Exits non-zero if any normal build executes more than LIMIT_PERCENT (1) percent more
-# instructions than its stripped build.
+# instructions than its stripped build. Last, the path trace hooks: a normal build must
+# execute exactly as many instructions as one whose header has the hook lines deleted.
 #
 # Environment: CC (cc), CFLAGS (-O2 -g), BUILD (build), LIMIT_PERCENT (1). Run from the repo root.
 set -eu
@@ -76,7 +77,32 @@ pair() {
     }' || status=1
 }
 
+# The trace hooks (FOGRT_TRACE) must cost nothing when off: the normal build against one
+# whose header has every hook line deleted must execute exactly as many instructions.
+hooks() {
+    mkdir -p "$OUT/nohooks"
+    sed '/FOGRT__HOOK(fogrt__trace/d' fogrt.h >"$OUT/nohooks/fogrt.h"
+    # shellcheck disable=SC2086
+    $CC $WARN $CFLAGS -I. -DSTRIP_COST_BUILD='"normal build"' -o "$OUT/strip_cost_trace" bench/strip_cost.c -lm
+    # shellcheck disable=SC2086
+    $CC $WARN $CFLAGS -I"$OUT/nohooks" -DSTRIP_COST_BUILD='"header without trace hooks"' -o "$OUT/strip_cost_trace_stripped" bench/strip_cost.c -lm
+    # shellcheck disable=SC2086
+    $CC $WARN $CFLAGS -I. -DFOGRT_TRACE -DSTRIP_COST_BUILD='"FOGRT_TRACE build, no callback"' -o "$OUT/strip_cost_trace_on" bench/strip_cost.c -lm
+    run strip_cost_trace exact
+    run strip_cost_trace_stripped exact
+    run strip_cost_trace_on exact
+    echo "trace hooks (the default scene), instructions inside fogrt_render:"
+    awk -v n="$(cat "$OUT/strip_cost_trace.total")" -v s="$(cat "$OUT/strip_cost_trace_stripped.total")" \
+        -v t="$(cat "$OUT/strip_cost_trace_on.total")" 'BEGIN {
+        printf "  normal build %15.0f Ir, header without the hook lines %15.0f Ir: %+.4f%% (must be 0)\n", n, s, 100 * (n / s - 1)
+        printf "  (for comparison: FOGRT_TRACE compiled in, no callback set: %15.0f Ir, %+.2f%%)\n", t, 100 * (t / s - 1)
+        if (n != s) { print "  FAIL: the hooks cost something when FOGRT_TRACE is off"; exit 1 }
+        print "  OK"
+    }' || status=1
+}
+
 pair FOGRT_NO_MEDIUM medium "fog-free default scene (sigma_t = 0)"
 pair FOGRT_NO_GLASS glass "a fog-filled box without glass (a mirror and a diffuse sphere)"
 pair FOGRT_NO_EXACT_FRESNEL exact "the default scene rendered with Schlick's Fresnel"
+hooks
 exit $status
