@@ -1,6 +1,10 @@
 #!/bin/sh
 # test_cli.sh - the `fogrt` command line: bad input gives exit status 2 and one message naming
-# the flag or file:line, without writing an image; good input renders and writes the image.
+# the flag or file:line, without writing an image; good input renders and writes the image;
+# then one block per point of issues 15, 11 (point 1) and 17: Ctrl-C/SIGTERM, atomic and
+# checked writes, the free camera, exposure and JPG, CS184 framing, -m 0 / -o 0, the -a rate
+# image, the progress line and --log/--reference, black scenes, ceilings and limits.
+# Takes about 30 s (a 2-second interrupt, a 6-second progress log).
 #
 #   sh tests/test_cli.sh build/fogrt        (make cli-test; part of make test)
 #
@@ -64,7 +68,8 @@ expect 2 "-s"           "zero samples"            -- -s 0 -f "$out"
 expect 2 "-s"           "missing value"           -- -f "$out" -s
 expect 2 "-l"           "zero light samples"      -- -l 0 -f "$out"
 expect 2 "-t"           "negative threads"        -- -t -2 -f "$out"
-expect 2 "-m"           "zero depth"              -- -m 0 -f "$out"
+expect 2 "-m"           "negative depth"          -- -m -1 -f "$out"
+expect 2 "-o"           "-o other than 0 or 1"    -- -o 2 -f "$out"
 expect 2 "-b"           "negative lens radius"    -- -b -0.1 -f "$out"
 expect 2 "-d"           "zero focal distance"     -- -d 0 -f "$out"
 expect 2 "-a"           "adaptive tolerance 0"    -- -a 8 0 -f "$out"
@@ -77,8 +82,8 @@ expect 2 "--bvh"        "unknown bvh"             -- --bvh kd -f "$out"
 expect 2 "--seed"       "negative seed"           -- --seed -1 -f "$out"
 expect 2 "--time"       "zero time"               -- --time 0 -f "$out"
 expect 2 "--target-error" "negative target error" -- --target-error -1 -f "$out"
-expect 2 "-f"           "unknown image type"      -- -f "$tmp/out.jpg"
-expect 2 "-f"           "unwritable output"       -- -f "$tmp/no/such/dir/out.png"
+expect 2 "-f"           "unknown image type"      -- -f "$tmp/out.gif"
+expect 1 "no/such/dir/out.png" "output in a missing directory (before rendering)" -- -f "$tmp/no/such/dir/out.png"; one_line_no_image "missing output directory"
 expect 2 "only one scene" "two scene files"       -- -f "$out" a.dae b.dae
 
 # ---- scene files: missing, malformed, truncated, unknown type (exit 2, file:line named) ----
@@ -97,7 +102,8 @@ expect 2 "short.cam:2:" "malformed -c file"       -- -f "$out" -c "$tmp/short.ca
 
 # ---- help ----
 expect 0 "" "help" -- -h
-for flag in -s -l -t -m -r -f -b -d -a -H -c -g -h --density --albedo --g --integrator --fresnel --bvh --seed --time --target-error --quiet; do
+for flag in -s -l -t -m -o -r -f -b -d -a -H -c -g -h --density --albedo --g --integrator --fresnel --bvh --seed --time --target-error --quiet \
+            --camera-pos --look-at --up --fov --cs184-framing --print-camera --exposure --log --reference --equiangular --mis; do
     check "grep -qF -- ' $flag ' '$tmp/out'" "-h does not document $flag"
 done
 defaults=$(grep -c 'default' "$tmp/out")
@@ -107,7 +113,7 @@ check "[ $defaults -ge 20 ]" "-h names a default for every flag (found $defaults
 expect 0 "spp" "default scene to PNG with a summary line" -- -s 1 -r 32 24 -f "$tmp/a.png"
 check "[ \"\$(head -c 4 '$tmp/a.png' | od -An -c | tr -d ' ')\" = '211PNG' ]" "a.png is not a PNG"
 check "grep -q 'rel. error' '$tmp/err'" "the summary line has no error estimate"
-expect 0 "" "quiet dae to PFM" -- --quiet -s 2 -r 40 30 -f "$tmp/b.pfm" tests/data/dae_area_light.dae
+expect 0 "" "quiet dae to PFM" -- --quiet -s 2 -r 40 30 -f "$tmp/b.pfm" tests/data/dae_mirror_node.dae
 check "[ ! -s '$tmp/err' ]" "--quiet still printed something"
 check "[ \"\$(head -c 2 '$tmp/b.pfm')\" = 'PF' ]" "b.pfm is not a PFM"
 expect 0 "" "obj in the Cornell box to PPM" -- --quiet -s 1 -r 24 18 -f "$tmp/c.ppm" tests/data/obj_polygons.obj
@@ -122,9 +128,269 @@ for f in a.png b.pfm c.ppm d.png e.png f.png g.png h.png; do
     check "[ -s '$tmp/$f' ]" "$f was not written"
 done
 # the same seed gives the same image, on 1 or 2 threads
-"$fogrt" --quiet -s 2 -r 20 16 --seed 3 -t 1 -f "$tmp/t1.pfm" tests/data/dae_area_light.dae
-"$fogrt" --quiet -s 2 -r 20 16 --seed 3 -t 2 -f "$tmp/t2.pfm" tests/data/dae_area_light.dae
+"$fogrt" --quiet -s 2 -r 20 16 --seed 3 -t 1 -f "$tmp/t1.pfm" tests/data/dae_mirror_node.dae
+"$fogrt" --quiet -s 2 -r 20 16 --seed 3 -t 2 -f "$tmp/t2.pfm" tests/data/dae_mirror_node.dae
 check "cmp -s '$tmp/t1.pfm' '$tmp/t2.pfm'" "the image depends on the thread count"
+
+# ==== the fogrt command in real use (issues 15, 11 point 1, 17): one block per point ====
+# pfm_stats FILE: "W H pixels_nonzero sum_r sum_g sum_b floats" of a PFM (od reads the floats).
+pfm_stats() {
+    hdr=$(head -n 3 "$1" | wc -c)
+    dims=$(head -n 2 "$1" | tail -n 1)
+    tail -c +$((hdr + 1)) "$1" | od -An -v -f | awk -v dims="$dims" '
+        { for (i = 1; i <= NF; i++) { c = n % 3; s[c] += $i; if ($i != 0) nz[int(n / 3)] = 1; n++ } }
+        END { k = 0; for (p in nz) k++; printf "%s %d %.9g %.9g %.9g %d\n", dims, k, s[0], s[1], s[2], n }'
+}
+# pfm_ok FILE W H: a PFM of that size with the whole pixel block
+pfm_ok() {
+    [ "$(head -c 2 "$1" 2>/dev/null)" = "PF" ] || return 1
+    [ "$(head -n 2 "$1" | tail -n 1)" = "$2 $3" ] || return 1
+    hdr=$(head -n 3 "$1" | wc -c)
+    [ "$(wc -c <"$1")" -eq $((hdr + $2 * $3 * 12)) ]
+}
+now() { date +%s.%N; }
+fogrt_abs=$(cd "$(dirname "$fogrt")" && pwd)/$(basename "$fogrt")
+lit=tests/data/dae_mirror_node.dae
+
+# -- interrupt_256spp: SIGINT 2 s into a 256-spp render writes the image so far, exits 130 --
+"$fogrt" -s 256 -r 320 240 -f "$tmp/int.pfm" --log "$tmp/int.csv" 2>"$tmp/int.err" &
+pid=$!
+sleep 2
+t_sig=$(now)
+kill -INT "$pid"
+wait "$pid"
+st=$?
+t_end=$(now)
+stop=$(echo "$t_end $t_sig" | awk '{ printf "%.2f", $1 - $2 }')
+check "[ $st -eq 130 ]" "interrupt_256spp: exit status $st, expected 130"
+check "pfm_ok '$tmp/int.pfm' 320 240" "interrupt_256spp: no complete 320x240 PFM was written"
+check "grep -q 'interrupted: wrote' '$tmp/int.err'" "interrupt_256spp: the summary does not say interrupted"
+check "tail -n 1 '$tmp/int.csv' | grep -q ',interrupted$'" "interrupt_256spp: the --log has no interrupted row"
+check "awk 'BEGIN { exit !($stop < 2.5) }'" "interrupt_256spp: took $stop s to stop after SIGINT (limit 2.5 s)"
+spp_int=$(grep -o '[0-9.]*/256 spp' "$tmp/int.err" | head -1)
+set -- $(pfm_stats "$tmp/int.pfm")
+check "[ $3 -gt 0 ]" "interrupt_256spp: the written image is black"
+echo "test_cli.sh: interrupt_256spp: stopped ${stop} s after SIGINT, wrote int.pfm with ${spp_int:-?}, exit $st"
+# -- interrupt_sigterm: the same for SIGTERM --
+"$fogrt" -s 256 -r 160 120 -f "$tmp/term.pfm" 2>"$tmp/term.err" &
+pid=$!
+sleep 1
+kill -TERM "$pid"; wait "$pid"; st=$?
+check "[ $st -eq 130 ] && pfm_ok '$tmp/term.pfm' 160 120" "interrupt_sigterm: exit $st or no image"
+# -- interrupt_twice: a second Ctrl-C quits at once, leaving no temporary file --
+mkdir -p "$tmp/twice"
+"$fogrt" -s 256 -r 320 240 -f "$tmp/twice/x.png" 2>"$tmp/twice.err" &
+pid=$!
+sleep 1; kill -INT "$pid"; kill -INT "$pid"; wait "$pid"; st=$?
+check "[ $st -eq 130 ]" "interrupt_twice: exit status $st, expected 130"
+check "[ -z \"\$(ls -A '$tmp/twice' | grep tmp)\" ]" "interrupt_twice: a temporary file was left behind"
+
+# -- write_full_disk: PNG through a symlink to /dev/full: exit 1 naming the file, never "wrote" --
+ln -s /dev/full "$tmp/full.png"
+expect 1 "full.png" "write_full_disk: PNG to /dev/full" -- -s 1 -r 16 12 -f "$tmp/full.png"
+check "grep -q 'No space left' '$tmp/err' && ! grep -q 'wrote' '$tmp/err'" "write_full_disk: no ENOSPC message, or it claims success"
+ln -s /dev/full "$tmp/full.pfm"
+expect 1 "full.pfm" "write_full_disk: PFM to /dev/full" -- --quiet -s 1 -r 16 12 -f "$tmp/full.pfm"
+# -- write_atomic: a failed write keeps the old image; a good one replaces it by rename --
+"$fogrt" --quiet -s 1 -r 32 24 -f "$tmp/keep.pfm" "$lit"
+cp "$tmp/keep.pfm" "$tmp/keep.orig"
+( ulimit -f 4; "$fogrt" --quiet -s 1 -r 32 24 --seed 9 -f "$tmp/keep.pfm" "$lit" ) 2>"$tmp/efbig.err"
+st=$?
+check "[ $st -eq 1 ] && grep -q 'keep.pfm' '$tmp/efbig.err'" "write_atomic: a write beyond ulimit -f gave exit $st (expected 1 naming the file)"
+check "cmp -s '$tmp/keep.pfm' '$tmp/keep.orig'" "write_atomic: the failed write damaged the existing image"
+ino1=$(ls -i "$tmp/keep.pfm" | awk '{print $1}')
+"$fogrt" --quiet -s 1 -r 32 24 --seed 9 -f "$tmp/keep.pfm" "$lit"
+ino2=$(ls -i "$tmp/keep.pfm" | awk '{print $1}')
+check "[ '$ino1' != '$ino2' ] && ! cmp -s '$tmp/keep.pfm' '$tmp/keep.orig'" "write_atomic: the image was not replaced by a new file"
+check "[ -z \"\$(ls -A '$tmp' | grep '\\.tmp-')\" ]" "write_atomic: a temporary file was left behind"
+if [ "$(id -u)" -ne 0 ]; then
+    mkdir "$tmp/ro" && chmod 555 "$tmp/ro"
+    expect 1 "ro/x.png" "write_no_permission" -- -s 1 -r 8 6 -f "$tmp/ro/x.png"
+else
+    echo "test_cli.sh: write_no_permission skipped (running as root, which may write anywhere)"
+fi
+
+# -- free_camera: --camera-pos/--look-at/--up/--fov override the scene's camera --
+expect 0 "" "free_camera: print" -- --print-camera --camera-pos 0,1,3 --look-at 0,0.5,0 --up 0,1,0 --fov 60 -r 64 48 -b 0
+check "grep -q 'position 0,1,3  look_at 0,0.5,0  up 0,1,0  fov 60.0000 x ' '$tmp/out'" "free_camera: --print-camera does not show the free camera: $(cat "$tmp/out")"
+"$fogrt" --print-camera -r 32 24 >"$tmp/cam0" 2>/dev/null
+pos=$(sed 's/.*position \([^ ]*\) .*/\1/' "$tmp/cam0")
+look=$(sed 's/.*look_at \([^ ]*\) .*/\1/' "$tmp/cam0")
+"$fogrt" --quiet -s 2 -r 32 24 -f "$tmp/cam_a.pfm"
+"$fogrt" --quiet -s 2 -r 32 24 --camera-pos "$pos" --look-at "$look" -f "$tmp/cam_b.pfm"
+"$fogrt" --quiet -s 2 -r 32 24 --camera-pos 0.5,0.7,0.9 --look-at 0,1.4,0 --fov 90 -f "$tmp/cam_c.pfm"
+check "cmp -s '$tmp/cam_a.pfm' '$tmp/cam_b.pfm'" "free_camera: the scene's own camera given as flags ($pos, $look) renders differently"
+check "! cmp -s '$tmp/cam_a.pfm' '$tmp/cam_c.pfm'" "free_camera: a camera inside the fog renders the same image"
+expect 2 "--fov" "free_camera: fov 180" -- --fov 180 -f "$out"; one_line_no_image "fov 180"
+expect 2 "--up" "free_camera: zero up" -- --up 0,0,0 -f "$out"
+expect 2 "--camera-pos" "free_camera: two numbers" -- --camera-pos 1,2 -f "$out"
+expect 2 "parallel" "free_camera: up along the view" -- --camera-pos 0,3,0 --look-at 0,0,0 --up 0,1,0 -f "$out"; one_line_no_image "up parallel"
+expect 2 "-b" "camera_overflow: -b 3e38" -- -b 3e38 -f "$out"; one_line_no_image "-b 3e38"
+check "grep -q 'lens radius' '$tmp/err'" "camera_overflow: -b 3e38 does not name the lens radius"
+expect 2 "overflows float" "camera_overflow: eye 3e38, target -3e38" -- --camera-pos 3e38,0,0 --look-at -3e38,0,0 -f "$out"; one_line_no_image "eye-target overflow"
+
+# -- exposure_jpg: --exposure scales PNG/JPG, never PFM; .jpg is a JPEG --
+"$fogrt" --quiet -s 2 -r 32 24 -f "$tmp/e0.pfm"; "$fogrt" --quiet -s 2 -r 32 24 --exposure 2 -f "$tmp/e2.pfm"
+"$fogrt" --quiet -s 2 -r 32 24 -f "$tmp/e0.ppm"; "$fogrt" --quiet -s 2 -r 32 24 --exposure 2 -f "$tmp/e2.ppm"
+check "cmp -s '$tmp/e0.pfm' '$tmp/e2.pfm'" "exposure_jpg: --exposure changed the PFM"
+check "! cmp -s '$tmp/e0.ppm' '$tmp/e2.ppm'" "exposure_jpg: --exposure did not change the 8-bit image"
+expect 0 "" "exposure_jpg: JPG output" -- --quiet -s 1 -r 32 24 --exposure -1 -f "$tmp/e.jpg"
+check "[ \"\$(head -c 3 '$tmp/e.jpg' | od -An -tx1 | tr -d ' ')\" = 'ffd8ff' ]" "exposure_jpg: e.jpg is not a JPEG"
+expect 2 "--exposure" "exposure_jpg: 70 stops" -- --exposure 70 -f "$out"
+
+# -- cs184_framing: CS184 keeps its 875-pixel focal length; fogrt's framing stays the default --
+"$fogrt" --print-camera -r 800 600 >"$tmp/f800" 2>&1
+"$fogrt" --print-camera -r 800 600 --cs184-framing >"$tmp/f800c" 2>&1
+check "[ \"\$(sed 's/.*fov //' '$tmp/f800')\" = \"\$(sed 's/.*fov //' '$tmp/f800c')\" ]" "cs184_framing: 800x600 differs from fogrt's framing"
+"$fogrt" --print-camera -r 400 300 >"$tmp/f400" 2>&1
+"$fogrt" --print-camera -r 400 300 --cs184-framing >"$tmp/f400c" 2>&1
+v800=$(sed 's/.* x \([0-9.]*\) deg.*/\1/' "$tmp/f800")
+v400=$(sed 's/.* x \([0-9.]*\) deg.*/\1/' "$tmp/f400c")
+v400f=$(sed 's/.* x \([0-9.]*\) deg.*/\1/' "$tmp/f400")
+check "awk 'BEGIN { pi = atan2(0, -1); t = sin($v800 * pi / 360) / cos($v800 * pi / 360) / 2; v = 2 * atan2(t, 1) * 180 / pi; exit !(v - $v400 < 1e-3 && $v400 - v < 1e-3) }'" \
+    "cs184_framing: 400x300 vertical fov $v400, expected half the 800x600 tangent of $v800"
+check "[ '$v400f' = '$v800' ]" "cs184_framing: fogrt's own framing changed with the size ($v400f vs $v800)"
+if [ -f ../shared/scenes/cs184/CBspheres.dae ]; then
+    "$fogrt" --print-camera -r 480 360 --cs184-framing ../shared/scenes/cs184/CBspheres.dae >"$tmp/fcb" 2>&1
+    check "grep -q 'fov 30.67[0-9]* x 23.2[45][0-9]* deg' '$tmp/fcb'" "cs184_framing: CBspheres at 480x360 is not CS184's 30.67 x 23.25 deg: $(cat "$tmp/fcb")"
+else
+    echo "test_cli.sh: cs184_framing on CBspheres.dae skipped (../shared/scenes/cs184 absent)"
+fi
+expect 2 "--cs184-framing" "cs184_framing: with --fov" -- --cs184-framing --fov 40 -f "$out"
+
+# -- depth_m0_o0: -m 0 is emission only; -o 0 keeps only light that bounced exactly -m times --
+"$fogrt" --quiet -s 4 -r 32 24 --seed 5 -m 0 -f "$tmp/m0.pfm"
+"$fogrt" --quiet -s 4 -r 32 24 --seed 5 -m 1 -o 0 -f "$tmp/m1o0.pfm"
+"$fogrt" --quiet -s 4 -r 32 24 --seed 5 -m 1 -f "$tmp/m1.pfm"
+s0=$(pfm_stats "$tmp/m0.pfm"); s10=$(pfm_stats "$tmp/m1o0.pfm"); s1=$(pfm_stats "$tmp/m1.pfm")
+check "echo '$s0 $s1' | awk '{ exit !(\$3 > 0 && \$3 < \$10 / 4) }'" "depth_m0_o0: -m 0 is not emission only (lit pixels: $s0 vs $s1)"
+check "echo '$s0 $s10 $s1' | awk '{ for (c = 4; c <= 6; c++) { d = \$c + \$(c + 7) - \$(c + 14); if (d < 0) d = -d; if (d > 1e-3 * \$(c + 14) + 1e-6) exit 1 } }'" \
+    "depth_m0_o0: (-m 0) + (-m 1 -o 0) != (-m 1): $s0 | $s10 | $s1"
+
+# -- adaptive_rate: -a writes CS184's sampling-rate image <name>_rate.png --
+expect 0 "_rate.png" "adaptive_rate: -a to PFM" -- -s 16 -a 4 0.2 -r 24 18 -f "$tmp/ad.pfm" "$lit"
+check "[ \"\$(head -c 4 '$tmp/ad_rate.png' | od -An -c | tr -d ' ')\" = '211PNG' ]" "adaptive_rate: ad_rate.png is not a PNG"
+check "[ \"\$(head -c 24 '$tmp/ad_rate.png' | tail -c 8 | od -An -tu1 | tr -s ' ')\" = ' 0 0 0 24 0 0 0 18' ]" "adaptive_rate: ad_rate.png is not 24x18"
+
+# -- no_f_preview_note: without -f, one line says how to start the preview, and out.png is written --
+mkdir "$tmp/nof"
+( cd "$tmp/nof" && "$fogrt_abs" -s 1 -r 8 6 ) 2>"$tmp/nof.err"
+check "grep -q 'make preview' '$tmp/nof.err' && grep -q 'build/preview' '$tmp/nof.err' && [ -s '$tmp/nof/out.png' ]" "no_f_preview_note: no preview note or no out.png"
+
+# -- progress_log_lines: no \r without a terminal, a progress line every 5 s, the estimate
+#    updated every batch (at most 3 s apart), spp as done/target; --log columns --
+"$fogrt" --time 6 -r 96 72 --log "$tmp/p.csv" -f "$tmp/p.pfm" 2>"$tmp/p.err"
+check "! grep -q \"\$(printf '\\r')\" '$tmp/p.err'" "progress_log_lines: a carriage return in a non-terminal log"
+check "grep -Eq '^fogrt: .*spp [0-9]+ .*rel. error [0-9.]+%' '$tmp/p.err'" "progress_log_lines: no 5-second progress line with an integer spp: $(head -2 "$tmp/p.err")"
+check "[ \"\$(head -n 1 '$tmp/p.csv')\" = 'seconds,spp,samples_per_second,est_rel_mse,est_rel_error,ref_rel_mse,ref_rmse,ref_ratio_r,ref_ratio_g,ref_ratio_b,event' ]" "progress_log_lines: bad --log header"
+check "awk -F, 'NR > 1 { if (NR > 2 && \$1 - t > 3.0) exit 1; t = \$1; n++ } END { exit !(n >= 4 && t > 5) }' '$tmp/p.csv'" "progress_log_lines: --log rows more than 3 s apart or too few: $(wc -l <"$tmp/p.csv") lines"
+if command -v script >/dev/null 2>&1; then
+    script -qec "$fogrt_abs -s 64 -r 64 48 -f $tmp/tty.pfm" /dev/null >"$tmp/tty.out" 2>&1
+    check "grep -q \"\$(printf '\\r')fogrt:\" '$tmp/tty.out'" "progress_log_lines: no \\r progress line on a terminal"
+fi
+
+# -- black_na: a scene nothing can light warns once and reports the error as n/a --
+expect 0 "no light" "black_na: a scene without lights" -- -s 2 -r 16 12 -f "$tmp/blk.pfm" tests/data/dae_minimal_yup.dae
+check "[ \"\$(grep -c warning '$tmp/err')\" -eq 1 ] && grep -q 'rel. error n/a' '$tmp/err' && ! grep -q '0.00%' '$tmp/err'" "black_na: not one warning and n/a: $(cat "$tmp/err")"
+expect 0 "every pixel is black" "black_na: lit, but the camera sees nothing lit" -- -s 2 -r 16 12 -f "$tmp/blk2.pfm" tests/data/dae_area_light.dae
+check "grep -q 'rel. error n/a' '$tmp/err'" "black_na: an all-black image reports a number"
+
+# -- log_reference: --log rows with the measured error; bad references refused (exit 2) --
+"$fogrt" --quiet -s 64 -r 24 18 --seed 1 -f "$tmp/ref.pfm" "$lit"
+expect 0 "measured" "log_reference: --reference" -- -s 8 -r 24 18 --seed 2 --reference "$tmp/ref.pfm" --log "$tmp/r.csv" -f "$tmp/r.pfm" "$lit"
+check "awk -F, 'NR > 1 && \$6 != \"\" && \$8 > 0.7 && \$8 < 1.4 { ok++ } END { exit !(ok >= 2) }' '$tmp/r.csv'" "log_reference: no measured rel. MSE or mean ratio in the --log rows"
+check "awk -F, 'NR > 1 { last = \$6 } END { exit !(last > 0 && last < 1) }' '$tmp/r.csv'" "log_reference: implausible measured rel. MSE"
+expect 2 "is 24x18, the render is 32x24" "log_reference: another size" -- -s 1 -r 32 24 --reference "$tmp/ref.pfm" -f "$out"; one_line_no_image "reference size"
+printf 'PF\n24 18\n-1.0\nshort' >"$tmp/bad_ref.pfm"
+expect 2 "bad_ref.pfm" "log_reference: a truncated PFM" -- -s 1 -r 24 18 --reference "$tmp/bad_ref.pfm" -f "$out"; one_line_no_image "truncated reference"
+printf 'P6\n24 18\n255\n' >"$tmp/ppm_ref.pfm"
+expect 2 "not an RGB PFM" "log_reference: not a PFM" -- -s 1 -r 24 18 --reference "$tmp/ppm_ref.pfm" -f "$out"
+mkfifo "$tmp/ref_fifo.pfm"
+expect 2 "a FIFO" "log_reference: a FIFO" -- -s 1 -r 24 18 --reference "$tmp/ref_fifo.pfm" -f "$out"
+
+# -- estimator_switches: --equiangular and --mis change the estimator, not the meaning --
+"$fogrt" --quiet -s 2 -r 32 24 --seed 4 -f "$tmp/eq1.pfm"
+"$fogrt" --quiet -s 2 -r 32 24 --seed 4 --equiangular off -f "$tmp/eq0.pfm"
+"$fogrt" --quiet -s 2 -r 32 24 --seed 4 --mis off -f "$tmp/mis0.pfm"
+check "! cmp -s '$tmp/eq1.pfm' '$tmp/eq0.pfm'" "estimator_switches: --equiangular off changed nothing on the spot light in fog"
+check "! cmp -s '$tmp/eq1.pfm' '$tmp/mis0.pfm'" "estimator_switches: --mis off changed nothing"
+expect 2 "--equiangular" "estimator_switches: bad value" -- --equiangular yes -f "$out"
+expect 2 "--mis" "estimator_switches: bad value" -- --mis 1 -f "$out"
+
+# -- target_error_ceiling: --target-error that can never be met stops at the stated ceiling --
+expect 0 "not reached" "target_error_ceiling: --target-error 1e-30 without -s" -- -r 2 2 --target-error 1e-30 -f "$tmp/te.pfm"
+check "grep -q '65536 spp' '$tmp/err'" "target_error_ceiling: the ceiling is not stated: $(cat "$tmp/err")"
+sed 's|<radiance>3 3 3</radiance>|<radiance>1e20 1e20 1e20</radiance>|' tests/data/dae_area_with_emitter.dae >"$tmp/hot.dae"
+expect 0 "not reached" "target_error_ceiling: emission 1e20, --target-error 1e-30" -- -r 4 3 --target-error 1e-30 -f "$tmp/hot.pfm" "$tmp/hot.dae"
+sed 's|<radiance>3 3 3</radiance>|<radiance>3e38 3e38 3e38</radiance>|' tests/data/dae_area_with_emitter.dae >"$tmp/hot38.dae"
+expect 0 "" "target_error_ceiling: emission 3e38" -- -s 4 -r 16 12 -f "$tmp/hot38.pfm" "$tmp/hot38.dae"
+check "! grep -Eqi 'nan|inf' '$tmp/err' && ! pfm_stats '$tmp/hot38.pfm' | grep -Eqi 'nan|inf'" "target_error_ceiling: emission 3e38 gives a non-finite image or summary: $(cat "$tmp/err")"
+check "grep -q '65536 spp' '$tmp/out' 2>/dev/null || \"$fogrt\" -h | grep -q '65536 spp'" "target_error_ceiling: -h does not state the ceiling"
+
+# -- fifo_inputs: FIFOs are refused at once (stat before open), never block --
+mkfifo "$tmp/f.dae"
+t_a=$(now)
+expect 2 "a FIFO" "fifo_inputs: a FIFO as the scene" -- -f "$out" "$tmp/f.dae"; one_line_no_image "fifo scene"
+check "awk 'BEGIN { exit !($(now) - $t_a < 2) }'" "fifo_inputs: the FIFO refusal took over 2 s"
+mkfifo "$tmp/fifo_out.png"
+expect 1 "a FIFO" "fifo_inputs: a FIFO as -f" -- -s 1 -r 8 6 -f "$tmp/fifo_out.png"
+
+# -- limits: -t 600 is capped with a note; -r 11585 11585 refused before allocating --
+expect 0 "using" "limits: -t 600" -- -t 600 -s 1 -r 8 6 -f "$tmp/t600.pfm"
+check "grep -q 'at most 4 per processor' '$tmp/err'" "limits: -t 600 does not say why it was capped"
+( ulimit -v 300000; "$fogrt" -r 11585 11585 -f "$tmp/huge.png" ) 2>"$tmp/huge.err"
+st=$?
+check "[ $st -eq 2 ] && [ \"\$(wc -l <'$tmp/huge.err')\" -eq 1 ] && grep -q 'above the limit of 2.0 GiB' '$tmp/huge.err'" "limits: -r 11585 11585 under a 300 MB ulimit: exit $st, $(cat "$tmp/huge.err")"
+check "[ ! -e '$tmp/huge.png' ]" "limits: -r 11585 11585 wrote an image"
+
+# -- readme_examples: the README's fogrt examples name files that exist from a clean clone --
+if [ -d ../shared/scenes ]; then
+    for f in $(sed -n '/^## The `fogrt` command/,/^## /p' README.md | grep -o '\.\./shared/[^ ]*\.\(dae\|ply\|obj\)' | sort -u); do
+        check "[ -f '$f' ]" "readme_examples: README names $f, which does not exist"
+    done
+else
+    echo "test_cli.sh: readme_examples skipped (../shared/scenes absent)"
+fi
+# ==== end of the fogrt command in real use ====
+
+# ==== loader refusals (fogrt_load.h, issue 17): exit 2, exactly one stderr line naming the file ====
+# refused NAME WORD DESCRIPTION -- ARGS...: like expect 2, and stderr is one line naming NAME
+refused() {
+    name=$1 word=$2 what=$3
+    shift 4
+    expect 2 "$word" "$what" -- "$@" || return 1
+    check "[ \"\$(wc -l <'$tmp/err')\" -eq 1 ] && grep -qF -- '$name' '$tmp/err'" "$what: not one line naming $name"
+}
+mkfifo "$tmp/pipe.obj" "$tmp/pipe.cam"
+# a FIFO blocks in open without O_NONBLOCK: run under a watchdog so a regression fails, not hangs
+( sleep 10; kill $$ 2>/dev/null ) & watchdog=$!
+refused "pipe.obj" "a FIFO, not a regular file" "a FIFO as the scene" -- -f "$out" "$tmp/pipe.obj"
+refused "pipe.cam" "a FIFO, not a regular file" "a FIFO as -c" -- -f "$out" -c "$tmp/pipe.cam"
+kill "$watchdog" 2>/dev/null
+ln -s /dev/zero "$tmp/zero.ply"
+refused "zero.ply" "character device" "/dev/zero as the scene" -- -f "$out" "$tmp/zero.ply"
+dd if=/dev/null of="$tmp/sparse.obj" bs=1 seek=1610612736 2>/dev/null
+refused "sparse.obj" "1610612736 bytes, more than the limit of 1073741824 bytes (1 GiB" "a 1.5 GiB sparse file" -- -f "$out" "$tmp/sparse.obj"
+rm -f "$tmp/sparse.obj"
+refused "ply_huge_count.ply:11:" "file too short" "a PLY declaring 4e9 vertices in 130 bytes" -- -f "$out" tests/data/ply_huge_count.ply
+refused "bad_far_vertex.dae:11:" "beyond fogrt's limit of 1e30" "a vertex beyond 1e30" -- -f "$out" tests/data/bad_far_vertex.dae
+refused "bad_far_node.dae:25:" "beyond fogrt's limit of 1e30" "a node moving vertices beyond 1e30" -- -f "$out" tests/data/bad_far_node.dae
+refused "obj_random.obj:1:" "not an OBJ mesh" "random bytes named .obj" -- -f "$out" tests/data/obj_random.obj
+printf '49 37 1.3 0.1 100\n3e38 0 0 -3e38 0 0\n1 0 4 2 20\n1 0 0 0 1 0 0 0 1\n800 600 875\n' >"$tmp/far.cam"
+refused "far.cam:2:" "overflows a float" "a -c file whose eye-target distance overflows" -- -f "$out" -c "$tmp/far.cam"
+printf '49 37 1.3 0.1 100\n0 0 1 0 0 0\n1 0 4 2 20\n1 0 0 0 1 0 0 0 1\n800 1e9 1\n' >"$tmp/wide.cam"
+refused "wide.cam:5:" "less than 180" "a -c file with a 180-degree field of view" -- -f "$out" -c "$tmp/wide.cam"
+expect 0 "" "a PLY with 1e300 in a skipped property" -- --quiet -s 1 -r 16 12 -f "$tmp/skip.ppm" tests/data/ply_skipped_huge.ply
+expect 0 "" "an OBJ with a byte-order mark and CR line endings" -- --quiet -s 1 -r 16 12 -f "$tmp/cr.ppm" tests/data/obj_cr.obj
+# FOGRT_NO_GLASS: a glass material is refused in one line naming the file and the material
+if ${CC:-cc} -std=c99 -O0 -DFOGRT_NO_GLASS -I. -o "$tmp/fogrt_noglass" examples/fogrt_cli.c -lm 2>"$tmp/cc.err"; then
+    fogrt_full=$fogrt fogrt=$tmp/fogrt_noglass
+    refused "dae_materials.dae:" "material 'm0' is glass/refraction" "glass without glass support" -- -f "$out" tests/data/dae_materials.dae
+    fogrt=$fogrt_full
+else
+    echo "test_cli.sh: FOGRT_NO_GLASS build of the CLI failed, glass check skipped: $(head -1 "$tmp/cc.err")"
+fi
+# ==== end of the loader refusals ====
 
 echo "test_cli.sh: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -14,6 +14,8 @@
 #include <math.h>
 #include <time.h>
 #include <dirent.h>
+#include <unistd.h>
+#include <sys/stat.h>
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
 #define FOGRT_LOAD_IMPLEMENTATION
@@ -96,7 +98,9 @@ static void assert_vec3(float tol, float x, float y, float z, fogrt_vec3 v, cons
 static fogrt_material_desc prim_material(const fogrt_scene *s, uint32_t prim)
 {
     fogrt_material_desc m;
-    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_material(s, fogrt_scene_get_prim_material(s, prim), &m));
+    /* through the scene's arrays, so this reads the same under either name of the getter */
+    uint32_t id = prim < s->tri_count ? s->tri_material[prim] : s->sph_material[prim - s->tri_count];
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_material(s, id, &m));
     return m;
 }
 static bool same_colour(fogrt_vec3 a, float r, float g, float b)
@@ -890,6 +894,10 @@ static const bad_case bad_cases[] = {
     { "ply_bad_index.ply", 14, "out of range" },
     { "ply_bad_header.ply", 6, "quaternion" },
     { "ply_truncated.ply", 11, "end of file" },
+    { "ply_huge_count.ply", 11, "file too short" },      /* 4e9 vertices: refused before any allocation */
+    { "bad_far_vertex.dae", 11, "beyond fogrt's limit of 1e30" },
+    { "bad_far_node.dae", 25, "beyond fogrt's limit of 1e30" },
+    { "obj_random.obj", 1, "not an OBJ mesh" },
 };
 
 /* Each malformed file gives PARSE_ERROR at the right line with a telling message, and adds
@@ -1055,6 +1063,624 @@ static void test_fuzz_regressions(void)
     TEST_MESSAGE(msg);
 }
 
+/* ------------------------------------------------------------------------------------------
+   5. Memory, files and refusals (issues 13 and 17)
+   ------------------------------------------------------------------------------------------ */
+/* A counting allocator: live blocks and bytes, the peak, and an optional failure at the
+   fail_at-th call (1-based; 0: never). */
+typedef struct count_alloc { size_t cur, peak, calls, live, fail_at; } count_alloc;
+static void *ca_alloc(size_t n, void *user)
+{
+    count_alloc *c = (count_alloc *)user;
+    size_t *p;
+    c->calls++;
+    if (c->fail_at && c->calls == c->fail_at) return NULL;
+    p = (size_t *)malloc(n + 2 * sizeof(size_t));
+    if (!p) return NULL;
+    p[0] = n;
+    c->cur += n; c->live++;
+    if (c->cur > c->peak) c->peak = c->cur;
+    return p + 2;
+}
+static void ca_free(void *q, void *user)
+{
+    count_alloc *c = (count_alloc *)user;
+    size_t *p;
+    if (!q) return;
+    p = (size_t *)q - 2;
+    c->cur -= p[0]; c->live--;
+    free(p);
+}
+static void ignore_log(fogrt_log_level level, const char *message, void *user) { (void)level; (void)message; (void)user; }
+/* Options with the counting allocator (and a logger, so that warnings are kept too). */
+static fogrt_load_options counted(count_alloc *c, fogrt_load_place place)
+{
+    fogrt_load_options o;
+    memset(&o, 0, sizeof o);
+    memset(c, 0, sizeof *c);
+    o.allocator.alloc_fn = ca_alloc; o.allocator.free_fn = ca_free; o.allocator.user_data = c;
+    o.logger.func = ignore_log;
+    o.place = place;
+    return o;
+}
+
+/* Everything a scene shows through its getters, to compare before and after a load. */
+typedef struct scene_snap {
+    fogrt_scene_info info;
+    fogrt_material_desc mats[32];
+    fogrt_light_desc lights[8];
+    fogrt_camera_desc cam;
+    fogrt_medium_desc med;
+} scene_snap;
+static void snap_scene(const fogrt_scene *s, scene_snap *o)
+{
+    uint32_t i;
+    memset(o, 0, sizeof *o);
+    fogrt_scene_get_info(s, &o->info);
+    for (i = 0; i < o->info.material_count && i < 32; ++i) TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_material(s, i, &o->mats[i]));
+    for (i = 0; i < o->info.light_count && i < 8; ++i) TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_get_light(s, i, &o->lights[i]));
+    fogrt_scene_get_camera(s, &o->cam);
+    fogrt_scene_get_medium(s, &o->med);
+}
+static void same_vec(fogrt_vec3 a, fogrt_vec3 b, const char *msg)
+{
+    TEST_ASSERT_EQUAL_FLOAT_MESSAGE(a.x, b.x, msg); TEST_ASSERT_EQUAL_FLOAT_MESSAGE(a.y, b.y, msg); TEST_ASSERT_EQUAL_FLOAT_MESSAGE(a.z, b.z, msg);
+}
+/* Field by field: counts, every material, every light, the camera and the medium. */
+static void assert_same_scene(const scene_snap *a, const scene_snap *b, const char *msg)
+{
+    uint32_t i;
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(a->info.triangle_count, b->info.triangle_count, msg);
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(a->info.sphere_count, b->info.sphere_count, msg);
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(a->info.material_count, b->info.material_count, msg);
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(a->info.light_count, b->info.light_count, msg);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(a->info.has_environment, b->info.has_environment, msg);
+    for (i = 0; i < a->info.material_count && i < 32; ++i) {
+        TEST_ASSERT_EQUAL_INT_MESSAGE(a->mats[i].type, b->mats[i].type, msg);
+        same_vec(a->mats[i].reflectance, b->mats[i].reflectance, msg);
+        same_vec(a->mats[i].transmittance, b->mats[i].transmittance, msg);
+        same_vec(a->mats[i].emission, b->mats[i].emission, msg);
+        TEST_ASSERT_EQUAL_FLOAT_MESSAGE(a->mats[i].ior, b->mats[i].ior, msg);
+    }
+    for (i = 0; i < a->info.light_count && i < 8; ++i) {
+        TEST_ASSERT_EQUAL_INT_MESSAGE(a->lights[i].type, b->lights[i].type, msg);
+        same_vec(a->lights[i].position, b->lights[i].position, msg);
+        same_vec(a->lights[i].direction, b->lights[i].direction, msg);
+        same_vec(a->lights[i].intensity, b->lights[i].intensity, msg);
+        TEST_ASSERT_EQUAL_FLOAT_MESSAGE(a->lights[i].cutoff_deg, b->lights[i].cutoff_deg, msg);
+        TEST_ASSERT_EQUAL_FLOAT_MESSAGE(a->lights[i].beam_deg, b->lights[i].beam_deg, msg);
+        TEST_ASSERT_EQUAL_FLOAT_MESSAGE(a->lights[i].radius, b->lights[i].radius, msg);
+    }
+    same_vec(a->cam.position, b->cam.position, msg); same_vec(a->cam.look_at, b->cam.look_at, msg); same_vec(a->cam.up, b->cam.up, msg);
+    TEST_ASSERT_EQUAL_FLOAT_MESSAGE(a->cam.fov_deg, b->cam.fov_deg, msg);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(a->cam.fov_is_horizontal, b->cam.fov_is_horizontal, msg);
+    TEST_ASSERT_EQUAL_FLOAT_MESSAGE(a->cam.lens_radius, b->cam.lens_radius, msg);
+    TEST_ASSERT_EQUAL_FLOAT_MESSAGE(a->cam.focal_distance, b->cam.focal_distance, msg);
+    TEST_ASSERT_EQUAL_FLOAT_MESSAGE(a->med.sigma_t, b->med.sigma_t, msg);
+    same_vec(a->med.albedo, b->med.albedo, msg);
+    TEST_ASSERT_EQUAL_FLOAT_MESSAGE(a->med.g, b->med.g, msg);
+}
+/* A scene that already holds content: the default Cornell box (materials, triangles,
+   spheres, a spot light, fog, a camera) and an environment. */
+static fogrt_scene *content_scene(void)
+{
+    fogrt_scene *s = new_scene();
+    fogrt_vec3 env = { 0.05f, 0.1f, 0.2f };
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_default(s));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_set_environment(s, env, true));
+    return s;
+}
+static char *data_file(const char *name, size_t *size)
+{
+    char path[512];
+    char *d;
+    snprintf(path, sizeof path, DATA_DIR "%s", name);
+    d = read_all(path, size);
+    TEST_ASSERT_NOT_NULL_MESSAGE(d, path);
+    return d;
+}
+
+/* Every file of tests/data that fails to load (with the default placement, or as is) leaves
+   a scene that already holds content exactly as it was, and says why in one message that
+   names the file. */
+static void test_failed_load_changes_nothing(void)
+{
+    DIR *dir = opendir("tests/data");
+    struct dirent *e;
+    int refused = 0, p;
+    char msg[900];
+    TEST_ASSERT_NOT_NULL(dir);
+    while ((e = readdir(dir)) != NULL) {
+        char path[600];
+        size_t n = strlen(e->d_name);
+        if (n < 5 || !(strcmp(e->d_name + n - 4, ".dae") == 0 || strcmp(e->d_name + n - 4, ".obj") == 0 || strcmp(e->d_name + n - 4, ".ply") == 0)) continue;
+        snprintf(path, sizeof path, DATA_DIR "%s", e->d_name);
+        for (p = 0; p < 2; ++p) {
+            fogrt_load_options o = as_is();
+            fogrt_scene *s = content_scene();
+            fogrt_load_report rep;
+            scene_snap before, after;
+            fogrt_result r;
+            snap_scene(s, &before);
+            r = fogrt_load_file(s, path, p ? &o : NULL, &rep);
+            snprintf(msg, sizeof msg, "%s (%s): %s:%d: %s", e->d_name, p ? "as is" : "placed", rep.file, rep.line, rep.message);
+            if (r != FOGRT_RESULT_OK) {
+                refused++;
+                TEST_ASSERT_EQUAL_STRING_MESSAGE(path, rep.file, msg);
+                TEST_ASSERT_TRUE_MESSAGE(rep.message[0] != 0 && strchr(rep.message, '\n') == NULL, msg);
+                snap_scene(s, &after);
+                assert_same_scene(&before, &after, msg);
+                TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_scene_build(s, NULL), msg);
+            }
+            fogrt_scene_destroy(s);
+        }
+    }
+    closedir(dir);
+    snprintf(msg, sizeof msg, "%d refused loads left the scene as it was", refused);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_GREATER_OR_EQUAL(2 * 19 + 4, refused);
+}
+
+/* All loader memory goes through options.allocator, all of it is freed, and an allocator
+   that fails at the N-th call, for every N, gives OUT_OF_MEMORY and an unchanged scene. */
+static void test_counting_allocator(void)
+{
+    static const char *names[] = { "dae_materials.dae", "dae_instances.dae", "dae_area_light.dae", "dae_sphere.dae",
+                                   "dae_multi_lists.dae", "obj_normals.obj", "obj_polygons.obj", "ply_ascii.ply" };
+    size_t i, n, runs = 0;
+    char msg[700];
+    for (i = 0; i < sizeof names / sizeof names[0]; ++i) {
+        count_alloc c;
+        fogrt_load_options o = counted(&c, FOGRT_LOAD_PLACE_DEFAULT);
+        fogrt_load_report rep;
+        fogrt_scene *s = content_scene();
+        size_t size, total;
+        char *data = data_file(names[i], &size);
+        load_fn fn = loader_for(names[i]);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fn(s, data, size, names[i], &o, &rep), names[i]);
+        TEST_ASSERT_EQUAL_UINT_MESSAGE(0, c.live, names[i]);
+        TEST_ASSERT_TRUE_MESSAGE(c.calls > 0, names[i]);
+        fogrt_scene_destroy(s);
+        total = c.calls;
+        for (n = 1; n <= total; ++n) {
+            scene_snap before, after;
+            fogrt_result r;
+            s = content_scene();
+            snap_scene(s, &before);
+            o = counted(&c, FOGRT_LOAD_PLACE_DEFAULT);
+            c.fail_at = n;
+            r = fn(s, data, size, names[i], &o, &rep);
+            snprintf(msg, sizeof msg, "%s failing at allocation %u of %u: %s:%d: %s", names[i], (unsigned)n, (unsigned)total, rep.file, rep.line, rep.message);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OUT_OF_MEMORY, r, msg);
+            TEST_ASSERT_EQUAL_STRING_MESSAGE("out of memory", rep.message, msg);
+            TEST_ASSERT_EQUAL_UINT_MESSAGE(0, c.live, msg);
+            snap_scene(s, &after);
+            assert_same_scene(&before, &after, msg);
+            fogrt_scene_destroy(s);
+            runs++;
+        }
+        free(data);
+    }
+    {   /* half an allocator is a caller's mistake */
+        count_alloc c;
+        fogrt_load_options o = counted(&c, FOGRT_LOAD_PLACE_DEFAULT);
+        fogrt_load_report rep;
+        fogrt_scene *s = new_scene();
+        o.allocator.free_fn = NULL;
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_ARGUMENT, fogrt_load_file(s, DATA_DIR "obj_polygons.obj", &o, &rep));
+        TEST_ASSERT_EQUAL_UINT(0, c.calls);
+        fogrt_scene_destroy(s);
+    }
+    snprintf(msg, sizeof msg, "%u loads with a failing allocator", (unsigned)runs);
+    TEST_MESSAGE(msg);
+}
+
+/* A scratch file name in $TMPDIR (or /tmp), unique to this process. */
+static void tmp_path(char *out, size_t size, const char *name)
+{
+    const char *dir = getenv("TMPDIR");
+    snprintf(out, size, "%s/fogrt_test_%ld_%s", dir && dir[0] ? dir : "/tmp", (long)getpid(), name);
+}
+/* A FIFO, a device or a directory is refused at once, without a single read (a FIFO would
+   block forever in open or read: the alarm turns such a hang into a failure). */
+static void test_non_regular_files(void)
+{
+    char fifo[512], msg[900];
+    fogrt_load_report rep;
+    fogrt_camera_desc cam;
+    fogrt_scene *s = new_scene();
+    scene_snap before, after;
+    tmp_path(fifo, sizeof fifo, "fifo.ply");
+    remove(fifo);
+    TEST_ASSERT_EQUAL_INT(0, mkfifo(fifo, 0600));
+    snap_scene(s, &before);
+    alarm(10);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_IO_ERROR, fogrt_load_file(s, fifo, NULL, &rep));
+    snprintf(msg, sizeof msg, "%s:%d: %s", rep.file, rep.line, rep.message);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "a FIFO, not a regular file"), msg);
+    TEST_ASSERT_EQUAL_STRING(fifo, rep.file);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_IO_ERROR, fogrt_load_camera_file(fifo, 64, 48, &cam, &rep));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "FIFO"), rep.message);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_IO_ERROR, fogrt_load_ply(s, "/dev/zero", NULL, &rep));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "character device"), rep.message);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_IO_ERROR, fogrt_load_camera_file("/dev/zero", 64, 48, &cam, &rep));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_IO_ERROR, fogrt_load_obj(s, "tests/data", NULL, &rep));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "directory"), rep.message);
+    alarm(0);
+    remove(fifo);
+    snap_scene(s, &after);
+    assert_same_scene(&before, &after, "non-regular files");
+    fogrt_scene_destroy(s);
+}
+
+/* The size is checked before reading: a file over the limit is refused with the real limit
+   in the message, and a 1.5 GiB sparse file costs no memory. */
+static void test_file_size_limit(void)
+{
+    char sparse[512], msg[900];
+    count_alloc c;
+    fogrt_load_options o = counted(&c, FOGRT_LOAD_PLACE_DEFAULT);
+    fogrt_load_report rep;
+    fogrt_scene *s = new_scene();
+    FILE *f;
+    o.max_file_bytes = 100;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_TOO_LARGE, fogrt_load_file(s, DATA_DIR "dae_materials.dae", &o, &rep));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "7186 bytes, more than the limit of 100 bytes"), rep.message);
+    TEST_ASSERT_EQUAL_UINT(0, c.calls);
+    tmp_path(sparse, sizeof sparse, "sparse.obj");
+    f = fopen(sparse, "wb");
+    TEST_ASSERT_NOT_NULL(f);
+    TEST_ASSERT_EQUAL_INT(0, fseek(f, 1610612735L, SEEK_SET));   /* 1.5 GiB - 1 */
+    TEST_ASSERT_EQUAL_INT('v', fputc('v', f));
+    TEST_ASSERT_EQUAL_INT(0, fclose(f));
+    o = counted(&c, FOGRT_LOAD_PLACE_DEFAULT);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_TOO_LARGE, fogrt_load_file(s, sparse, &o, &rep));
+    snprintf(msg, sizeof msg, "%s: %s", rep.file, rep.message);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "1610612736 bytes, more than the limit of 1073741824 bytes (1 GiB"), msg);
+    TEST_ASSERT_NULL_MESSAGE(strstr(rep.message, "2 GB"), msg);
+    TEST_ASSERT_EQUAL_UINT_MESSAGE(0, c.calls, msg);
+    remove(sparse);
+    fogrt_scene_destroy(s);
+}
+
+/* Declared counts are checked against the file's size before anything is allocated. */
+static void test_ply_declared_counts(void)
+{
+    count_alloc c;
+    fogrt_load_options o = counted(&c, FOGRT_LOAD_PLACE_DEFAULT);
+    fogrt_load_report rep;
+    fogrt_scene *s = new_scene();
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_file(s, DATA_DIR "ply_huge_count.ply", &o, &rep));
+    TEST_ASSERT_EQUAL_INT(11, rep.line);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "file too short"), rep.message);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "4000000000 vertices"), rep.message);
+    TEST_ASSERT_TRUE_MESSAGE(c.peak < 8192, "more than the file's copy and the header were allocated");
+    fogrt_scene_destroy(s);
+}
+
+/* A binary PLY with one vertex property of each double value given (x, y, z, then w). */
+static size_t make_ply_doubles(unsigned char *buf, const double *w, const char *wname)
+{
+    size_t n;
+    int v;
+    n = (size_t)sprintf((char *)buf, "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty double x\nproperty float y\n"
+                                     "property float z\nproperty double %s\nelement face 1\nproperty list uchar uint vertex_indices\nend_header\n", wname);
+    for (v = 0; v < 3; ++v) {
+        double x = v == 1 ? 1.0 : 0.0;
+        float y = v == 2 ? 1.0f : 0.0f, z = 0.0f;
+        memcpy(buf + n, &x, 8); memcpy(buf + n + 8, &y, 4); memcpy(buf + n + 12, &z, 4); memcpy(buf + n + 16, &w[v], 8);
+        n += 24;
+    }
+    buf[n++] = 3;
+    for (v = 0; v < 3; ++v) { uint32_t i = (uint32_t)v; memcpy(buf + n, &i, 4); n += 4; }
+    return n;
+}
+/* Values in properties the loader skips may be anything (1e300, NaN); used ones are checked
+   with the true reason. (Little-endian hosts only for the binary part, like make_binary_ply.) */
+static void test_ply_skipped_values(void)
+{
+    unsigned char buf[1024];
+    double w[3] = { 1e300, -1e300, 0.0 }, x_far[3];
+    size_t n;
+    fogrt_load_report rep;
+    fogrt_load_options o = as_is();
+    fogrt_scene *s = load_ok("ply_skipped_huge.ply", &rep, NULL);
+    TEST_ASSERT_EQUAL_UINT32(1, rep.triangles);
+    fogrt_scene_destroy(s);
+    w[2] = nan("");
+    n = make_ply_doubles(buf, w, "quality");
+    s = new_scene();
+    TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_load_ply_memory(s, buf, n, "skipped.ply", NULL, &rep), rep.message);
+    TEST_ASSERT_EQUAL_UINT32(1, rep.triangles);
+    fogrt_scene_destroy(s);
+    /* the same doubles where they are used: x */
+    x_far[0] = 0.0; x_far[1] = 1e300; x_far[2] = 0.0;
+    n = make_ply_doubles(buf, x_far, "x");   /* a second x overrides the first */
+    s = new_scene();
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_ply_memory(s, buf, n, "used.ply", NULL, &rep));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "vertex 1: x = 1e+300 is not a finite float"), rep.message);
+    x_far[1] = 1e31;
+    n = make_ply_doubles(buf, x_far, "x");
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_ply_memory(s, buf, n, "used.ply", &o, &rep));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "vertex 1: x = 1e+31 is beyond fogrt's limit of 1e30"), rep.message);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_load_ply_memory(s, buf, n, "placed.ply", NULL, &rep), rep.message);
+    fogrt_scene_destroy(s);
+}
+
+/* Coordinates beyond the scene's 1e30 are refused by the loader, with file and line, before
+   the scene sees them; placed into the box they are fine. */
+static void test_far_coordinates(void)
+{
+    static const struct { const char *file; int line; } far[] = { { "obj_far.obj", 3 }, { "ply_far.ply", 12 } };
+    size_t i;
+    for (i = 0; i < 2; ++i) {
+        char path[512], msg[700];
+        fogrt_load_options o = as_is();
+        fogrt_load_report rep;
+        fogrt_scene *s = load_ok(far[i].file, &rep, NULL);
+        TEST_ASSERT_EQUAL_UINT32(1, rep.triangles);
+        fogrt_scene_destroy(s);
+        s = new_scene();
+        snprintf(path, sizeof path, DATA_DIR "%s", far[i].file);
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_file(s, path, &o, &rep));
+        snprintf(msg, sizeof msg, "%s:%d: %s", rep.file, rep.line, rep.message);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(far[i].line, rep.line, msg);
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "beyond fogrt's limit of 1e30"), msg);
+        TEST_ASSERT_EQUAL_UINT32(0, s->tri_count + s->material_count);
+        fogrt_scene_destroy(s);
+    }
+}
+
+/* OBJ: a UTF-8 byte-order mark is skipped; LF, CRLF and CR line endings read alike (and
+   count lines alike); a file without a 'v' statement (random bytes, only comments, empty)
+   is malformed, not an empty mesh. */
+static void test_obj_bom_and_line_endings(void)
+{
+    static const char *same[] = { "obj_cr.obj", "obj_crlf.obj" };
+    fogrt_load_report rep;
+    fogrt_load_options o = as_is();
+    fogrt_scene *s = load_ok("obj_bom.obj", &rep, &o), *ref;
+    size_t i, size, k;
+    char *d;
+    uint32_t t;
+    TEST_ASSERT_EQUAL_UINT32(2, rep.triangles);
+    TEST_ASSERT_EQUAL_UINT32(4, rep.vertices);
+    assert_vec3(0.0f, 0, 0, 0, tri_v(s, 0, 0), "BOM: the first vertex is kept");
+    assert_vec3(0.0f, 0, 0, 1, tri_v(s, 1, 2), "BOM: the fourth vertex");
+    fogrt_scene_destroy(s);
+    d = data_file("obj_crlf.obj", &size);
+    for (i = 0, k = 0; i < size; ++i) if (d[i] != '\r') d[k++] = d[i];   /* the LF version */
+    ref = new_scene();
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_load_obj_memory(ref, d, k, "lf.obj", &o, &rep));
+    TEST_ASSERT_EQUAL_UINT32(3, rep.triangles);
+    for (i = 0; i < 2; ++i) {
+        s = load_ok(same[i], &rep, &o);
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(ref->tri_count, s->tri_count, same[i]);
+        for (t = 0; t < s->tri_count; ++t) {
+            assert_vec3(0.0f, tri_v(ref, t, 0).x, tri_v(ref, t, 0).y, tri_v(ref, t, 0).z, tri_v(s, t, 0), same[i]);
+            assert_vec3(0.0f, tri_v(ref, t, 2).x, tri_v(ref, t, 2).y, tri_v(ref, t, 2).z, tri_v(s, t, 2), same[i]);
+        }
+        fogrt_scene_destroy(s);
+    }
+    fogrt_scene_destroy(ref);
+    s = new_scene();
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_obj_memory(s, "v 0 0 0\rv 1 0 0\rf 1 2 x\r", 24, "cr.obj", NULL, &rep));
+    TEST_ASSERT_EQUAL_INT(3, rep.line);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_obj_memory(s, "v 0 0 0\r\nv 1 0 0\r\n\r\nf 1 2 3\r\n", 29, "crlf.obj", NULL, &rep));
+    TEST_ASSERT_EQUAL_INT(4, rep.line);     /* vertex 3 out of range, on line 4 */
+    free(d);
+    {   /* random bytes, comments only, nothing: parse errors */
+        static char noise[65536];
+        uint32_t seed, x;
+        for (seed = 1; seed <= 8; ++seed) {
+            for (i = 0, x = seed * 2654435761u; i < sizeof noise; ++i) { x = x * 1664525u + 1013904223u; noise[i] = (char)(x >> 24); }
+            TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_PARSE_ERROR, fogrt_load_obj_memory(s, noise, sizeof noise, "noise.obj", NULL, &rep), rep.message);
+        }
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_obj_memory(s, "# only a comment\n", 17, "c.obj", NULL, &rep));
+        TEST_ASSERT_NOT_NULL(strstr(rep.message, "not an OBJ mesh"));
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_obj_memory(s, "", 0, "empty.obj", NULL, &rep));
+        TEST_ASSERT_EQUAL_UINT32(0, s->tri_count + s->material_count);
+    }
+    fogrt_scene_destroy(s);
+}
+
+/* Writes a .dae with one geometry of 2 * gw * gh triangles instanced by `nodes` nodes. */
+static char *make_instanced_dae(int gw, int gh, int nodes, size_t *size)
+{
+    size_t cap = (size_t)(gw + 1) * (size_t)(gh + 1) * 40 + (size_t)gw * (size_t)gh * 80 + (size_t)nodes * 120 + 2048, n = 0;
+    char *s = (char *)malloc(cap);
+    int i, j, k;
+    TEST_ASSERT_NOT_NULL(s);
+    n += (size_t)sprintf(s + n, "<?xml version=\"1.0\"?>\n<COLLADA version=\"1.4.1\"><asset><up_axis>Y_UP</up_axis></asset>\n"
+                                "<library_geometries><geometry id=\"g\"><mesh><source id=\"pos\"><float_array id=\"pa\" count=\"%d\">",
+                         3 * (gw + 1) * (gh + 1));
+    for (j = 0; j <= gh; ++j) for (i = 0; i <= gw; ++i) n += (size_t)sprintf(s + n, "%g %g 0 ", 0.01 * i, 0.01 * j);
+    n += (size_t)sprintf(s + n, "</float_array></source><vertices id=\"v\"><input semantic=\"POSITION\" source=\"#pos\"/></vertices>\n"
+                                "<triangles count=\"%d\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/><p>", 2 * gw * gh);
+    for (j = 0; j < gh; ++j)
+        for (i = 0; i < gw; ++i) {
+            int a = j * (gw + 1) + i, b = a + 1, c = a + gw + 1, d = c + 1;
+            n += (size_t)sprintf(s + n, "%d %d %d %d %d %d ", a, b, d, a, d, c);
+        }
+    n += (size_t)sprintf(s + n, "</p></triangles></mesh></geometry></library_geometries>\n<library_visual_scenes><visual_scene id=\"S\">\n");
+    for (k = 0; k < nodes; ++k)
+        n += (size_t)sprintf(s + n, "<node><translate>%d %d 0</translate><instance_geometry url=\"#g\"/></node>\n", k % 100, k / 100);
+    n += (size_t)sprintf(s + n, "</visual_scene></library_visual_scenes><scene><instance_visual_scene url=\"#S\"/></scene></COLLADA>\n");
+    TEST_ASSERT_TRUE(n < cap);
+    *size = n;
+    return s;
+}
+
+/* Nodes instancing one geometry share its parsed form: the right triangles and materials
+   per instance, loader memory independent of the instance count, and a file that asks for
+   more than max_triangles (all instances counted) refused early with the count. */
+static void test_dae_instances_share_geometry(void)
+{
+    fogrt_load_report rep;
+    fogrt_scene *s = load_ok("dae_instances.dae", &rep, NULL), *big;
+    count_alloc c;
+    fogrt_load_options o;
+    size_t size;
+    char *d, msg[700];
+    uint32_t t;
+    scene_snap before, after;
+    TEST_ASSERT_EQUAL_UINT32(6, rep.triangles);
+    TEST_ASSERT_EQUAL_UINT32(2, rep.materials);
+    for (t = 0; t < 6; ++t) {
+        fogrt_material_desc m = prim_material(s, t);
+        TEST_ASSERT_TRUE_MESSAGE(winding_normal(s, t).z > 0.0f, "every instance keeps the front side (+z), the mirrored one too");
+        TEST_ASSERT_TRUE(same_colour(m.reflectance, t / 2 == 1 ? 0.1f : 0.8f, t / 2 == 1 ? 0.8f : 0.1f, 0.1f));
+        assert_vec3(1e-6f, 0, 0, -1, tri_n(s, t, 0), "smooth normal of the open quad: negated, as CS184's (see fogrt__ld_open_parts)");
+    }
+    assert_vec3(0.0f, 0, 0, -1, tri_v(s, 0, 0), "instance a");
+    assert_vec3(0.0f, 2, 0, -1, tri_v(s, 2, 0), "instance b, moved by 2 in x");
+    assert_vec3(0.0f, 0, 3, -1, tri_v(s, 4, 0), "instance c, mirrored in x and moved by 3 in y");
+    assert_vec3(0.0f, -1, 4, -1, tri_v(s, 4, 1), "instance c: its (1,1) corner mirrored, re-wound");
+    fogrt_scene_destroy(s);
+
+    /* 2000 instances of a 1000-triangle geometry: 2 million triangles, loader memory of the
+       order of the file and one instance */
+    d = make_instanced_dae(25, 20, 2000, &size);
+    o = counted(&c, FOGRT_LOAD_PLACE_DEFAULT);
+    big = new_scene();
+    TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_load_dae_memory(big, d, size, "inst.dae", &o, &rep), rep.message);
+    TEST_ASSERT_EQUAL_UINT32(2000000, rep.triangles);
+    snprintf(msg, sizeof msg, "loader peak %u bytes for a %u-byte file and 2e6 triangles", (unsigned)c.peak, (unsigned)size);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(c.peak < 8 * size, msg);
+    TEST_ASSERT_EQUAL_UINT(0, c.live);
+    fogrt_scene_destroy(big);
+    /* the limit: 1999 nodes fit under 1999000 triangles, the 2000th does not */
+    o = counted(&c, FOGRT_LOAD_PLACE_DEFAULT);
+    o.max_triangles = 1999000;
+    big = content_scene();
+    snap_scene(big, &before);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_TOO_LARGE, fogrt_load_dae_memory(big, d, size, "inst.dae", &o, &rep));
+    snprintf(msg, sizeof msg, "%s:%d: %s", rep.file, rep.line, rep.message);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "asks for 2000000 triangles, more than the limit of 1999000"), msg);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(2005, rep.line, msg);   /* the 2000th node (nodes start on line 6) */
+    snap_scene(big, &after);
+    assert_same_scene(&before, &after, msg);
+    fogrt_scene_destroy(big);
+    free(d);
+    {   /* OBJ and PLY count their triangles the same way */
+        fogrt_load_options lim = as_is();
+        s = new_scene();
+        lim.max_triangles = 2;
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_TOO_LARGE, fogrt_load_file(s, DATA_DIR "obj_polygons.obj", &lim, &rep));
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "more than the limit of 2"), rep.message);
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_TOO_LARGE, fogrt_load_file(s, DATA_DIR "ply_ascii.ply", &lim, &rep));
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "more than the limit of 2"), rep.message);
+        TEST_ASSERT_EQUAL_UINT32(0, s->tri_count + s->material_count);
+        fogrt_scene_destroy(s);
+    }
+}
+
+/* Peak loader memory per triangle, for a PLY fan (one face of 200k corners) and an OBJ grid:
+   bounded by the input (the file's copy) plus a fixed number of bytes per triangle. */
+static void test_bytes_per_triangle(void)
+{
+    int nv = 1000, corners = 200000, i, j, g = 150;
+    size_t cap = 4096 + (size_t)nv * 12 + (size_t)corners * 4, n, on = 0;
+    unsigned char *ply = (unsigned char *)malloc(cap);
+    char *obj = (char *)malloc((size_t)(g + 1) * (g + 1) * 40 + (size_t)g * g * 60), msg[300];
+    count_alloc c;
+    fogrt_load_options o;
+    fogrt_load_report rep;
+    fogrt_scene *s;
+    TEST_ASSERT_NOT_NULL(ply); TEST_ASSERT_NOT_NULL(obj);
+    n = (size_t)sprintf((char *)ply, "ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\nproperty float y\n"
+                                     "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n", nv);
+    for (i = 0; i < nv; ++i) {
+        float p[3];
+        p[0] = cosf(6.2831853f * (float)i / (float)nv); p[1] = sinf(6.2831853f * (float)i / (float)nv); p[2] = 0.001f * (float)i;
+        memcpy(ply + n, p, 12); n += 12;
+    }
+    memcpy(ply + n, &corners, 4); n += 4;
+    for (i = 0; i < corners; ++i) { int32_t k = i ? 1 + i % (nv - 1) : 0; memcpy(ply + n, &k, 4); n += 4; }
+    o = counted(&c, FOGRT_LOAD_PLACE_DEFAULT);
+    s = new_scene();
+    TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_load_ply_memory(s, ply, n, "fan.ply", &o, &rep), rep.message);
+    snprintf(msg, sizeof msg, "PLY fan: %u triangles, %u-byte file, loader peak %u bytes = %.1f bytes/triangle",
+             rep.triangles, (unsigned)n, (unsigned)c.peak, (double)c.peak / rep.triangles);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(c.peak <= n + 12u * rep.triangles + 64u * (unsigned)nv + 65536u, msg);
+    fogrt_scene_destroy(s);
+    for (j = 0; j <= g; ++j) for (i = 0; i <= g; ++i) on += (size_t)sprintf(obj + on, "v %d %d %d\n", i, j, (i * j) % 7);
+    for (j = 0; j < g; ++j)
+        for (i = 0; i < g; ++i) {
+            int a = j * (g + 1) + i + 1, b = a + 1, cc = a + g + 1, d = cc + 1;
+            on += (size_t)sprintf(obj + on, "f %d %d %d\nf %d %d %d\n", a, b, d, a, d, cc);
+        }
+    o = counted(&c, FOGRT_LOAD_PLACE_DEFAULT);
+    s = new_scene();
+    TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_load_obj_memory(s, obj, on, "grid.obj", &o, &rep), rep.message);
+    snprintf(msg, sizeof msg, "OBJ grid: %u triangles, %u-byte file, loader peak %u bytes = %.1f bytes/triangle",
+             rep.triangles, (unsigned)on, (unsigned)c.peak, (double)c.peak / rep.triangles);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(c.peak <= on + 12u * rep.triangles + 36u * rep.vertices + 65536u, msg);
+    fogrt_scene_destroy(s);
+    free(ply); free(obj);
+}
+
+/* A camera file the scene would refuse is refused by the loader, with its line and the true
+   reason (not "up is parallel" for an overflow; one message, not the core's and the CLI's). */
+static void test_camera_file_refusals(void)
+{
+    static const struct { const char *text; int line; const char *words; } cases[] = {
+        { "49 37 1.3 0.1 100\n3e38 0 0 -3e38 0 0\n1 0 4 2 20\n1 0 0 0 1 0 0 0 1\n800 600 875\n", 2, "overflows a float" },
+        { "49 37 1.3 0.1 100\n0 0 0 0 1 0\n1 0 4 2 20\n1 0 0 0 1 0 0 0 1\n800 600 875\n", 4, "parallel" },
+        { "49 37 1.3 0.1 100\n0 0 1 0 0 0\n1 0 4 2 20\n1 0 0 0 1 0 0 0 1\n800 1e9 1\n", 5, "less than 180" },
+    };
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        fogrt_camera_desc cam;
+        fogrt_load_report rep;
+        char msg[600];
+        fogrt_result r = fogrt_load_camera_memory(cases[i].text, strlen(cases[i].text), "c.cam", 480, 360, &cam, &rep);
+        snprintf(msg, sizeof msg, "case %u: %s:%d: %s", (unsigned)i, rep.file, rep.line, rep.message);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_PARSE_ERROR, r, msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(cases[i].line, rep.line, msg);
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, cases[i].words), msg);
+    }
+}
+
+/* Warnings reach options.logger only when the load succeeds: a refusal is its one message. */
+typedef struct warn_log { int calls; bool named; } warn_log;
+static void log_warning(fogrt_log_level level, const char *message, void *user)
+{
+    warn_log *w = (warn_log *)user;
+    w->calls++;
+    w->named = w->named || (level == FOGRT_LOG_WARNING && strstr(message, "up.dae:") && strstr(message, ": warning: "));
+}
+static void test_warnings_only_on_success(void)
+{
+    fogrt_load_options o;
+    fogrt_load_report rep;
+    warn_log w;
+    fogrt_scene *s = new_scene();
+    size_t size;
+    char *d = data_file("dae_upaxis_none.dae", &size), *num;
+    memset(&o, 0, sizeof o);
+    memset(&w, 0, sizeof w);
+    o.logger.func = log_warning; o.logger.user_data = &w;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_load_dae_memory(s, d, size, "up.dae", &o, &rep));
+    TEST_ASSERT_EQUAL_UINT32(1, rep.warnings);
+    TEST_ASSERT_EQUAL_INT(1, w.calls);
+    TEST_ASSERT_TRUE(w.named);
+    fogrt_scene_destroy(s);
+    num = strstr(d, "1 2 3  2 2 3");
+    TEST_ASSERT_NOT_NULL(num);
+    num[0] = 'x';                                  /* a bad number after the up_axis warning */
+    s = new_scene();
+    memset(&w, 0, sizeof w);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_dae_memory(s, d, size, "up.dae", &o, &rep));
+    TEST_ASSERT_EQUAL_UINT32(1, rep.warnings);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, w.calls, "a refused load logged its warnings");
+    fogrt_scene_destroy(s);
+    free(d);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -1089,5 +1715,17 @@ int main(void)
     RUN_TEST(test_malformed_files);
     RUN_TEST(test_truncated_files);
     RUN_TEST(test_fuzz_regressions);
+    RUN_TEST(test_failed_load_changes_nothing);
+    RUN_TEST(test_counting_allocator);
+    RUN_TEST(test_non_regular_files);
+    RUN_TEST(test_file_size_limit);
+    RUN_TEST(test_ply_declared_counts);
+    RUN_TEST(test_ply_skipped_values);
+    RUN_TEST(test_far_coordinates);
+    RUN_TEST(test_obj_bom_and_line_endings);
+    RUN_TEST(test_dae_instances_share_geometry);
+    RUN_TEST(test_bytes_per_triangle);
+    RUN_TEST(test_camera_file_refusals);
+    RUN_TEST(test_warnings_only_on_success);
     return UNITY_END();
 }
