@@ -279,6 +279,14 @@ FOGRT_API fogrt_result fogrt_scene_add_light(fogrt_scene *scene, const fogrt_lig
    rays escaping with an upward (+y) direction see it (the CS184 <ambient> light).         */
 FOGRT_API fogrt_result fogrt_scene_set_environment(fogrt_scene *scene, fogrt_vec3 radiance,
                                                    bool upper_hemisphere_only);
+/* An environment map: radiance from infinity by direction, an equirectangular image of
+   width x height linear RGB floats (3 per pixel, row 0 at the top) times scale, mapped as
+   CS184 maps its -e map: theta = acos(y) runs down the rows from +y, phi = atan2(-z, x) + pi
+   across the columns. It replaces the constant environment, is sampled by next-event
+   estimation in proportion to luminance x sin(theta), and is combined with BSDF and phase
+   sampling by MIS. The scene copies the image; NULL rgb removes the map.               */
+FOGRT_API fogrt_result fogrt_scene_set_environment_map(fogrt_scene *scene, int width, int height,
+                                                       const float *rgb, float scale);
 
 /* fogrt_camera_desc
      position, look_at    eye and target (must differ)
@@ -299,16 +307,24 @@ typedef struct fogrt_camera_desc {
 
 FOGRT_API fogrt_result fogrt_scene_set_camera(fogrt_scene *scene, const fogrt_camera_desc *desc);
 
-/* fogrt_medium_desc: the one homogeneous medium that fills the scene.
+/* fogrt_medium_desc: the one homogeneous medium of the scene.
      sigma_t   extinction coefficient sigma_t = sigma_a + sigma_s (the paper's lambda), per
                scene unit; 0 = no medium (the renderer then pays nothing for fog)
      albedo    single-scattering albedo sigma_s / sigma_t per channel, in [0,1]
      g         Henyey-Greenstein asymmetry in [-1,1]; g > 0 forward. |g| >= FOGRT_HG_G_MAX
-               (0.9999) is clamped to +-FOGRT_HG_G_MAX and a warning is logged           */
+               (0.9999) is clamped to +-FOGRT_HG_G_MAX and a warning is logged
+     bounded   false: the fog fills all space (outside refractive objects); true: only the
+               axis-aligned box [bounds_min, bounds_max]. Rays leave the fog at the box and
+               reach the environment with the transmittance of their path inside; the camera
+               may sit outside it. A scene with an environment light and unbounded fog gets
+               the box of its geometry at fogrt_scene_build (logged), since fog filling all
+               space would hide the sky completely.                                      */
 typedef struct fogrt_medium_desc {
     float sigma_t;
     fogrt_vec3 albedo;
     float g;
+    bool bounded;
+    fogrt_vec3 bounds_min, bounds_max;
 } fogrt_medium_desc;
 
 #define FOGRT_HG_G_MAX 0.9999f
@@ -1322,6 +1338,9 @@ struct fogrt_scene {
     fogrt_light_desc *lights; uint32_t light_count, light_cap;
     /* environment, camera, medium */
     fogrt__v3 env; bool env_upper_only, has_env;
+    float *env_map; int env_w, env_h;   /* environment map (3 floats per pixel), or NULL */
+    float *env_cdf;            /* built: per row the CDF over its columns (w), then the rows' CDF (h) */
+    double env_total;          /* built: sum of luminance x sin(theta) over the map */
     fogrt_camera_desc camera; bool has_camera;
     fogrt_medium_desc medium;
     /* built data (fogrt_scene_build) */
@@ -1335,6 +1354,8 @@ struct fogrt_scene {
     uint32_t features;
     fogrt__v3 bmin, bmax;
     float eps;                 /* absolute ray offset floor, relative to the scene size */
+    bool fog_bounded;          /* built: the fog fills only [fog_lo, fog_hi] */
+    fogrt__v3 fog_lo, fog_hi;
     float r2_min;              /* smallest squared distance to a point light (see chapter 10) */
 };
 
@@ -1392,6 +1413,7 @@ FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s)
     fogrt__free(&s->allocator, s->light_prims); s->light_prims = NULL;
     fogrt__free(&s->allocator, s->light_cdf); s->light_cdf = NULL;
     fogrt__free(&s->allocator, s->prim_light); s->prim_light = NULL;
+    fogrt__free(&s->allocator, s->env_cdf); s->env_cdf = NULL;
     s->built = false;
 }
 FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s)
@@ -1405,6 +1427,7 @@ FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s)
     fogrt__free(&a, s->tri_material); fogrt__free(&a, s->tri_mesh);
     fogrt__free(&a, s->sph_c); fogrt__free(&a, s->sph_r); fogrt__free(&a, s->sph_material);
     fogrt__free(&a, s->lights);
+    fogrt__free(&a, s->env_map);
     fogrt__free(&a, s);
 }
 
@@ -1586,7 +1609,36 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment(fogrt_scene *s, fogrt_vec
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment radiance: negative or not finite");
     s->env = radiance;
     s->env_upper_only = upper_only;
-    s->has_env = !fogrt__is_black(radiance);
+    s->has_env = !fogrt__is_black(radiance) || s->env_map;
+    s->built = false;
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment_map(fogrt_scene *s, int width, int height, const float *rgb, float scale)
+{
+    size_t i, n;
+    float *copy;
+    FOGRT_ASSERT(s);
+    if (!rgb) {
+        fogrt__free(&s->allocator, s->env_map);
+        s->env_map = NULL; s->env_w = s->env_h = 0;
+        s->has_env = !fogrt__is_black(s->env);
+        s->built = false;
+        return FOGRT_RESULT_OK;
+    }
+    if (width < 1 || height < 1 || (uint64_t)width * (uint64_t)height > ((uint64_t)1 << 28))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment map: width and height must be >= 1 and width x height at most 2^28");
+    if (!fogrt__finite(scale) || !(scale >= 0.0f))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment map: scale negative or not finite");
+    n = (size_t)width * (size_t)height * 3;
+    for (i = 0; i < n; ++i)
+        if (!fogrt__finite(rgb[i]) || rgb[i] < 0.0f || !fogrt__finite(rgb[i] * scale))
+            return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment map: a pixel is negative or not finite (after scale)");
+    copy = (float *)fogrt__alloc(&s->allocator, sizeof(float) * n);
+    if (!copy) return FOGRT_RESULT_OUT_OF_MEMORY;
+    for (i = 0; i < n; ++i) copy[i] = rgb[i] * scale;
+    fogrt__free(&s->allocator, s->env_map);
+    s->env_map = copy; s->env_w = width; s->env_h = height;
+    s->has_env = true;
     s->built = false;
     return FOGRT_RESULT_OK;
 }
@@ -1634,6 +1686,10 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_me
         m.g = copysignf(FOGRT_HG_G_MAX, m.g);
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
     }
+    if (m.bounded && !(fogrt__coord_ok(m.bounds_min.x) && fogrt__coord_ok(m.bounds_min.y) && fogrt__coord_ok(m.bounds_min.z) &&
+                       fogrt__coord_ok(m.bounds_max.x) && fogrt__coord_ok(m.bounds_max.y) && fogrt__coord_ok(m.bounds_max.z) &&
+                       m.bounds_min.x < m.bounds_max.x && m.bounds_min.y < m.bounds_max.y && m.bounds_min.z < m.bounds_max.z))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.bounds_min/bounds_max: not finite, beyond 1e30, or min not below max on every axis");
 #ifdef FOGRT_NO_MEDIUM
     if (m.sigma_t > 0.0f)
         return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "medium: fogrt was compiled with FOGRT_NO_MEDIUM");
@@ -2243,6 +2299,49 @@ FOGRT__PRIVATE uint32_t fogrt__features(const fogrt_scene *s)
     return f;
 }
 
+/* The environment map's sampling tables: the weight of pixel (i, j) is its luminance times
+   sin(theta) at the row's centre (the solid angle a row covers); per row a CDF over its
+   columns, then a CDF over the rows. */
+FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s)
+{
+    int i, j, w = s->env_w, h = s->env_h;
+    double total = 0.0;
+    float *rows;
+    s->env_total = 0.0;
+    if (!s->env_map) return true;
+    s->env_cdf = (float *)fogrt__alloc(&s->allocator, sizeof(float) * ((size_t)w * (size_t)h + (size_t)h));
+    if (!s->env_cdf) return false;
+    rows = s->env_cdf + (size_t)w * (size_t)h;
+    for (j = 0; j < h; ++j) {
+        float *cdf = s->env_cdf + (size_t)j * (size_t)w;
+        double sin_t = sin(FOGRT__PI * ((double)j + 0.5) / (double)h), row = 0.0;
+        for (i = 0; i < w; ++i) {
+            const float *c = s->env_map + 3 * ((size_t)j * (size_t)w + (size_t)i);
+            row += (double)fogrt__luminance(fogrt__v(c[0], c[1], c[2])) * sin_t;
+            cdf[i] = (float)row;
+        }
+        for (i = 0; i < w; ++i) cdf[i] = row > 0.0 ? (float)((double)cdf[i] / row) : (float)(i + 1) / (float)w;
+        cdf[w - 1] = 1.0f;
+        total += row;
+        rows[j] = (float)total;
+    }
+    for (j = 0; j < h; ++j) rows[j] = total > 0.0 ? (float)((double)rows[j] / total) : (float)(j + 1) / (float)h;
+    rows[h - 1] = 1.0f;
+    s->env_total = total;
+    return true;
+}
+/* Where the fog is: the medium's box, or with an environment light and no box the box of
+   the geometry (fog filling all space would hide the sky), or everywhere. */
+FOGRT__PRIVATE void fogrt__fog_bounds(fogrt_scene *s, uint32_t n)
+{
+    s->fog_bounded = s->medium.bounded;
+    s->fog_lo = s->medium.bounds_min; s->fog_hi = s->medium.bounds_max;
+    if (s->medium.bounded || !(s->features & FOGRT_FEATURE_MEDIUM) || !s->has_env || n == 0) return;
+    s->fog_bounded = true;
+    s->fog_lo = s->bmin; s->fog_hi = s->bmax;
+    fogrt__log(s, FOGRT_LOG_WARNING, "medium: the scene has an environment light and the fog no bounds: the fog fills the box of the geometry");
+}
+
 FOGRT__PUBLIC fogrt_build_desc fogrt_build_defaults(void)
 {
     /* heuristic, bins, c_trav, c_int, max_leaf_size, resolved */
@@ -2281,7 +2380,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
     s->nodes = (fogrt_bvh_node *)fogrt__alloc(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
     s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
     s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
-    if (b.box && b.centroid && s->nodes && s->prim_index && s->prims && fogrt__build_lights(s)) {
+    if (b.box && b.centroid && s->nodes && s->prim_index && s->prims && fogrt__build_lights(s) && fogrt__build_env(s)) {
         fogrt__bounds(s, &b, n);
         b.nodes = s->nodes;
         b.idx = s->prim_index;
@@ -2290,6 +2389,9 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
         s->node_count = b.node_count;
         fogrt__pack_prims(s, n);
         s->features = fogrt__features(s);
+        fogrt__fog_bounds(s, n);
+        if (s->area_light_count == 0 && s->light_count == 0 && !s->has_env)
+            fogrt__log(s, FOGRT_LOG_WARNING, "scene: nothing emits light (no light, emissive material or environment): every image will be black");
         s->built = true;
     } else {
         fogrt__free_built(s);
@@ -2405,20 +2507,50 @@ FOGRT__PRIVATE fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vert
     return fogrt__scale(fogrt_bsdf_eval(v->m, wo_l, wi_l), fabsf(wi_l.z));
 }
 
+#ifndef FOGRT_NO_MEDIUM
+/* The part [*a, *b] of the ray segment o + t d, t in [0, tmax], that lies in the fog: all of
+   it, or with bounded fog its part inside the box (a slab test like chapter 10's, NaN-safe
+   for axis-parallel rays on a face). False when the segment misses the fog. */
+FOGRT__PRIVATE bool fogrt__fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax, float *a, float *b)
+{
+    int k;
+    *a = 0.0f; *b = tmax;
+    if (!s->fog_bounded) return true;
+    for (k = 0; k < 3; ++k) {
+        float inv = fogrt__safe_rcp(fogrt__comp(d, k)), oc = fogrt__comp(o, k);
+        float t0 = (fogrt__comp(s->fog_lo, k) - oc) * inv, t1 = (fogrt__comp(s->fog_hi, k) - oc) * inv;
+        if (t0 > t1) { float t = t0; t0 = t1; t1 = t; }
+        if (t0 > *a) *a = t0;                            /* NaN bounds are ignored */
+        if (t1 < *b) *b = t1;
+    }
+    return *b > *a;
+}
+/* Beer-Lambert (eq. 8) along o + t d for t in [0, dist]: exp(-sigma_t x the length in fog). */
+FOGRT__PRIVATE float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float dist)
+{
+    float a, b;
+    if (!s->fog_bounded) return fogrt_transmittance(s->medium.sigma_t, dist);
+    return fogrt__fog_span(s, o, d, dist, &a, &b) ? fogrt_transmittance(s->medium.sigma_t, b - a) : 1.0f;
+}
+#endif
+
 /* Visibility times transmittance (eq. 8) between the vertex and the light sample's point.
    The shadow ray starts at the offset origin and aims at the target itself, stopping a ray
    offset short of it (the target may lie on a surface: the emitter). */
 FOGRT__PRIVATE float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, const fogrt__light_sample *ls,
                                    uint64_t *rays)
 {
-    fogrt__v3 y = fogrt__madd(v->p, ls->wi, ls->dist);
     fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, ls->wi);
-    fogrt__v3 to = fogrt__sub(y, o);
-    float len = fogrt__length(to), tmax = len - fogrt__offset_size(s, y);
     ++*rays;
-    if (tmax > 0.0f && fogrt__traverse(s, o, fogrt__scale(to, 1.0f / len), 0.0f, tmax, NULL, true)) return 0.0f;
+    if (!(ls->dist < INFINITY)) {                        /* toward the environment */
+        if (fogrt__traverse(s, o, ls->wi, 0.0f, INFINITY, NULL, true)) return 0.0f;
+    } else {
+        fogrt__v3 y = fogrt__madd(v->p, ls->wi, ls->dist), to = fogrt__sub(y, o);
+        float len = fogrt__length(to), tmax = len - fogrt__offset_size(s, y);
+        if (tmax > 0.0f && fogrt__traverse(s, o, fogrt__scale(to, 1.0f / len), 0.0f, tmax, NULL, true)) return 0.0f;
+    }
 #ifndef FOGRT_NO_MEDIUM
-    if (v->in_medium) return fogrt_transmittance(s->medium.sigma_t, ls->dist);
+    if (v->in_medium) return fogrt__fog_transmittance(s, v->p, ls->wi, ls->dist);
 #endif
     return 1.0f;
 }
@@ -2524,11 +2656,81 @@ FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, 
     return cos_l > 0.0f ? d2 / (cos_l * a->area) : 0.0f;
 }
 
-/* The one light list: lights 0 .. light_count-1 are the point and spot lights, the rest the
-   area lights. A point light is sampled once (it is one direction), any other light
+/* The environment map (CS184's mapping): direction <-> (x, y) in [0,1)^2 of the image,
+   theta = pi y from +y, phi = 2 pi x with phi = atan2(-z, x) + pi. The sampling density of
+   a pixel is its table weight over the total, per unit (x, y); per solid angle it is divided
+   by the Jacobian d omega / dx dy = 2 pi^2 sin(theta). */
+FOGRT__PRIVATE fogrt__v3 fogrt__env_dir(float x, float y, float *sin_theta)
+{
+    float theta = FOGRT__PI * y, phi = 2.0f * FOGRT__PI * x;
+    *sin_theta = sinf(theta);
+    return fogrt__v(-*sin_theta * cosf(phi), cosf(theta), *sin_theta * sinf(phi));
+}
+FOGRT__PRIVATE size_t fogrt__env_pixel(const fogrt_scene *s, fogrt__v3 d, float *sin_theta)
+{
+    float y = acosf(FOGRT__CLAMP(d.y, -1.0f, 1.0f)) * FOGRT__INV_PI;
+    float x = (atan2f(-d.z, d.x) + FOGRT__PI) * (0.5f * FOGRT__INV_PI);
+    int i = FOGRT__CLAMP((int)(x * (float)s->env_w), 0, s->env_w - 1), j = FOGRT__CLAMP((int)(y * (float)s->env_h), 0, s->env_h - 1);
+    *sin_theta = sqrtf(FOGRT__MAX(0.0f, (1.0f - d.y) * (1.0f + d.y)));
+    return (size_t)j * (size_t)s->env_w + (size_t)i;
+}
+/* The probability (per unit x, y) of pixel p in the sampling tables. */
+FOGRT__PRIVATE float fogrt__env_cell_pdf(const fogrt_scene *s, size_t p)
+{
+    const float *rows = s->env_cdf + (size_t)s->env_w * (size_t)s->env_h;
+    size_t i = p % (size_t)s->env_w, j = p / (size_t)s->env_w;
+    const float *cdf = s->env_cdf + j * (size_t)s->env_w;
+    float pr = rows[j] - (j ? rows[j - 1] : 0.0f), pc = cdf[i] - (i ? cdf[i - 1] : 0.0f);
+    return pr * pc * (float)s->env_w * (float)s->env_h;
+}
+FOGRT__PRIVATE float fogrt__env_pdf(const fogrt_scene *s, fogrt__v3 d)
+{
+    float sin_t;
+    size_t p;
+    if (!s->env_map || !(s->env_total > 0.0)) return 0.0f;
+    p = fogrt__env_pixel(s, d, &sin_t);
+    return sin_t > 0.0f ? fogrt__env_cell_pdf(s, p) / (2.0f * FOGRT__PI * FOGRT__PI * sin_t) : 0.0f;
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__env_radiance(const fogrt_scene *s, fogrt__v3 d)
+{
+    float sin_t;
+    const float *c;
+    if (!s->env_map) return s->env_upper_only && !(d.y > 0.0f) ? fogrt__v(0.0f, 0.0f, 0.0f) : s->env;
+    c = s->env_map + 3 * fogrt__env_pixel(s, d, &sin_t);
+    return fogrt__v(c[0], c[1], c[2]);
+}
+/* Index of the first CDF entry above u in cdf[0..n), and the fraction of u inside it. */
+FOGRT__PRIVATE int fogrt__cdf_find(const float *cdf, int n, float u, float *frac)
+{
+    int lo = 0, hi = n - 1;
+    float c0;
+    while (lo < hi) { int mid = (lo + hi) / 2; if (cdf[mid] <= u) lo = mid + 1; else hi = mid; }
+    c0 = lo ? cdf[lo - 1] : 0.0f;
+    *frac = cdf[lo] > c0 ? FOGRT__CLAMP((u - c0) / (cdf[lo] - c0), 0.0f, FOGRT__ONE_MINUS_EPS) : 0.5f;
+    return lo;
+}
+FOGRT__PRIVATE bool fogrt__sample_env(const fogrt_scene *s, const float *u, fogrt__light_sample *ls)
+{
+    float fy, fx, sin_t;
+    int j = fogrt__cdf_find(s->env_cdf + (size_t)s->env_w * (size_t)s->env_h, s->env_h, u[0], &fy);
+    int i = fogrt__cdf_find(s->env_cdf + (size_t)j * (size_t)s->env_w, s->env_w, u[1], &fx);
+    size_t p = (size_t)j * (size_t)s->env_w + (size_t)i;
+    ls->wi = fogrt__env_dir(((float)i + fx) / (float)s->env_w, ((float)j + fy) / (float)s->env_h, &sin_t);
+    ls->dist = INFINITY;
+    ls->delta = false;
+    ls->pdf = sin_t > 0.0f ? fogrt__env_cell_pdf(s, p) / (2.0f * FOGRT__PI * FOGRT__PI * sin_t) : 0.0f;
+    ls->Le = fogrt__v(s->env_map[3 * p], s->env_map[3 * p + 1], s->env_map[3 * p + 2]);
+    return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
+}
+
+/* The one light list: lights 0 .. light_count-1 are the point and spot lights, then the
+   area lights, and last the environment map when there is one. A point light is sampled once (it is one direction), any other light
    light_samples times; a point light needs two uniforms (the sphere of a light with a
    radius), an area light three (the triangle, then the point on it). */
-FOGRT__PRIVATE uint32_t fogrt__light_total(const fogrt_scene *s) { return s->light_count + s->area_light_count; }
+FOGRT__PRIVATE uint32_t fogrt__light_total(const fogrt_scene *s)
+{
+    return s->light_count + s->area_light_count + (s->env_map && s->env_total > 0.0 ? 1u : 0u);
+}
 FOGRT__PRIVATE int fogrt__light_sample_count(const fogrt_scene *s, const fogrt__settings *st, uint32_t i)
 {
     return i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->light_samples;
@@ -2541,7 +2743,8 @@ FOGRT__PRIVATE void fogrt__draw(const fogrt_scene *s, uint32_t light, fogrt_rng 
 FOGRT__PRIVATE bool fogrt__sample_light(const fogrt_scene *s, uint32_t i, fogrt__v3 x, const float *u, fogrt__light_sample *ls)
 {
     if (i < s->light_count) return fogrt__sample_point_light(s, &s->lights[i], x, u, ls);
-    return fogrt__sample_area_light(s, &s->area_lights[i - s->light_count], x, u, ls);
+    if (i - s->light_count < s->area_light_count) return fogrt__sample_area_light(s, &s->area_lights[i - s->light_count], x, u, ls);
+    return fogrt__sample_env(s, u, ls);
 }
 /* One light sample's share of the light reflected at v (eq. 13): f Le T V w / (n pdf),
    with w the MIS weight (1 for a delta light, or with MIS off). */
@@ -2849,7 +3052,7 @@ FOGRT__PRIVATE bool fogrt__clip_to_cone(const fogrt_light_desc *l, fogrt__v3 o, 
    sigma_s T(t) / pdf(t). A spot light only lights its cone: only the part of the ray inside
    it is sampled. */
 FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
-                                            float t_max)
+                                            float t_min, float t_max)
 {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
     float sigma_t = s->medium.sigma_t;
@@ -2863,37 +3066,39 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
         for (j = 0; j < n; ++j) {
             fogrt__v3 oc = fogrt__sub(l->position, P->o);
             fogrt__light_sample ls;
-            float u[3], t, pdf_t, t_lo = 0.0f, t_hi = t_max, h;
+            float u[3], t, pdf_t, t_lo = t_min, t_hi = t_max, h;
             u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
             if (l->type == FOGRT_LIGHT_SPOT && !fogrt__clip_to_cone(l, P->o, P->d, &t_lo, &t_hi)) continue;
             h = FOGRT__MAX(fogrt__length(fogrt__cross(oc, P->d)), sqrtf(s->r2_min));  /* ray through the light */
             t = fogrt_sample_equiangular(fogrt__dot(oc, P->d), h, t_lo, t_hi, u[0], &pdf_t);
             if (!(pdf_t > 0.0f)) continue;
             v.p = fogrt__madd(P->o, P->d, t);
-            FOGRT__HOOK(fogrt__trace_equiangular(st, P, i, u[0], t, pdf_t, sigma_t * fogrt_transmittance(sigma_t, t) / pdf_t));
+            FOGRT__HOOK(fogrt__trace_equiangular(st, P, i, u[0], t, pdf_t, sigma_t * fogrt_transmittance(sigma_t, t - t_min) / pdf_t));
             if (!fogrt__sample_point_light(s, l, v.p, u + 1, &ls)) continue;
             L = fogrt__add(L, fogrt__scale(fogrt__mul(fogrt__light_contribution(s, st, P, &v, i, &ls, n), s->medium.albedo),
-                                           sigma_t * fogrt_transmittance(sigma_t, t) / pdf_t));
+                                           sigma_t * fogrt_transmittance(sigma_t, t - t_min) / pdf_t));
         }
     }
     return L;
 }
 
-/* a. Free flight through the fog (eq. 4-6): does the ray collide before t_surface? On a
-   collision the vertex is set and the weight takes the albedo. may_scatter: the path may
-   still bounce (else the equiangular lights, which are light after one more bounce, are
-   not gathered). */
+/* a. Free flight through the fog (eq. 4-6): does the ray collide before t_surface? The
+   distance is sampled from where the ray is in the fog (t = a, 0 unless the fog is bounded
+   and the ray starts outside its box) to where it leaves it (b). On a collision the vertex
+   is set and the weight takes the albedo. may_scatter: the path may still bounce (else the
+   equiangular lights, which are light after one more bounce, are not gathered). */
 FOGRT__PRIVATE bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                        float t_surface, bool may_scatter)
 {
-    float u, t;
+    float u, t, a, b;
     if (!P->in_medium) return false;
     u = fogrt_rng_float(P->rng);
-    t = fogrt_sample_exponential(s->medium.sigma_t, u);
-    FOGRT__HOOK(fogrt__trace_free_flight(st, P, u, t, t_surface, t < t_surface));
+    if (!fogrt__fog_span(s, P->o, P->d, t_surface, &a, &b)) return false;   /* misses the fog's box */
+    t = a + fogrt_sample_exponential(s->medium.sigma_t, u);
+    FOGRT__HOOK(fogrt__trace_free_flight(st, P, u, t, b, t < b));
     if (st->nee && st->equiangular && s->light_count > 0 && may_scatter)
-        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, t_surface)), "equiangular");
-    if (!(t < t_surface)) return false;                  /* reaches the surface: T / T = 1 */
+        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, a, b)), "equiangular");
+    if (!(t < b)) return false;                          /* leaves the fog or reaches the surface: T / T = 1 */
     P->beta = fogrt__mul(P->beta, s->medium.albedo);     /* sigma_s T / (sigma_t T) */
     memset(&P->v, 0, sizeof P->v);
     P->v.p = fogrt__madd(P->o, P->d, t); P->v.wo = fogrt__neg(P->d);
@@ -2945,8 +3150,12 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
 #endif
     if (found) return fogrt__surface_event(s, st, P, &hit, limit);
     FOGRT__HOOK(fogrt__trace_simple(st, P, FOGRT_TRACE_ESCAPE));
-    if (s->has_env && (!s->env_upper_only || P->d.y > 0.0f))      /* escaped: the environment */
-        fogrt__gather(P, st, P->bounces, fogrt__mul(P->beta, s->env), "environment");
+    if (s->has_env) {                                   /* escaped: the environment */
+        float w = 1.0f;                                 /* a map is also sampled by NEE: MIS */
+        if (s->env_map && !P->prev_delta && st->nee)
+            w = st->mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->light_samples * fogrt__env_pdf(s, P->d)) : 0.0f;
+        fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(P->beta, fogrt__env_radiance(s, P->d)), w), "environment");
+    }
     return false;
 }
 

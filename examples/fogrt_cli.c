@@ -50,9 +50,20 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC
 #include <stb/stb_image_write.h>
+#define STB_IMAGE_IMPLEMENTATION       /* (not static: gcc warns about its unused declarations) */
+#define STBI_ONLY_HDR
+#include <stb/stb_image.h>
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
 #endif
+#ifdef FOGRT_CLI_EXR
+#include <tinyexr.h>            /* Debian's libtinyexr-dev (C declarations, -ltinyexr) */
+#endif
+
+/* --trace: in examples/fogrt_cli_trace.c, a second copy of the renderer compiled with
+   FOGRT_TRACE, so that the renders of this program carry no trace hooks. */
+int cli_trace_path(const fogrt_scene *scene, const fogrt_render_desc *rd, int width, int height, int x, int y,
+                   uint32_t sample, FILE *out);
 
 /* ------------------------------------------------------------------------------------------
    Options and their defaults (keep in step with usage())
@@ -112,6 +123,9 @@ typedef struct cli_options {
     double time_budget;                 /* --time, 0 = none */
     double target_error;                /* --target-error, 0 = none */
     bool quiet;
+    const char *env_map;                /* -e */
+    fogrt_vec3 fog_lo, fog_hi; bool fog_bounds_set;   /* --fog-bounds */
+    int trace_x, trace_y, trace_sample; bool trace;  /* --trace */
     const char *scene;
 } cli_options;
 
@@ -421,6 +435,28 @@ static int parse_args(int argc, char **argv, cli_options *o)
             o->target_error = (double)e;
         }
         else if (strcmp(a, "--quiet") == 0) o->quiet = true;
+        else if (strcmp(a, "-e") == 0) { NEED(1); o->env_map = argv[++i]; }
+        else if (strcmp(a, "--fog-bounds") == 0) {
+            float v[6];
+            char tail;
+            NEED(1); ++i;
+            if (sscanf(argv[i], "%f,%f,%f,%f,%f,%f%c", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &tail) != 6 ||
+                !(v[0] < v[3] && v[1] < v[4] && v[2] < v[5]) || !isfinite(v[0] + v[1] + v[2] + v[3] + v[4] + v[5]))
+                return bad_flag(a, "must be X0,Y0,Z0,X1,Y1,Z1 with X0 < X1, Y0 < Y1, Z0 < Z1, got '%s'", argv[i]);
+            o->fog_lo.x = v[0]; o->fog_lo.y = v[1]; o->fog_lo.z = v[2];
+            o->fog_hi.x = v[3]; o->fog_hi.y = v[4]; o->fog_hi.z = v[5];
+            o->fog_bounds_set = true;
+        }
+        else if (strcmp(a, "--trace") == 0) {
+            char tail;
+            int n;
+            NEED(1); ++i;
+            o->trace_sample = 0;
+            n = sscanf(argv[i], "%d,%d,%d%c", &o->trace_x, &o->trace_y, &o->trace_sample, &tail);
+            if ((n != 2 && n != 3) || o->trace_x < 0 || o->trace_y < 0 || o->trace_sample < 0)
+                return bad_flag(a, "must be X,Y or X,Y,SAMPLE (pixel column, row from the top, sample index >= 0), got '%s'", argv[i]);
+            o->trace = true;
+        }
         else if (a[0] == '-' && a[1] != 0) return bad_flag(a, "unknown flag");
         else {
             if (o->scene) return bad_flag(a, "only one scene file may be given (already have '%s')", o->scene);
@@ -439,6 +475,8 @@ static int parse_args(int argc, char **argv, cli_options *o)
                             bytes / (1024.0 * 1024.0 * 1024.0), CLI_BYTES_PER_PIXEL, CLI_MAX_IMAGE_BYTES / (1024.0 * 1024.0 * 1024.0));
         }
     }
+    if (o->trace && (o->trace_x >= o->width || o->trace_y >= o->height))
+        return bad_flag("--trace", "pixel (%d, %d) is outside the %dx%d image (-r)", o->trace_x, o->trace_y, o->width, o->height);
     if (o->cs184_framing && o->fov_set)
         return bad_flag("--cs184-framing", "cannot be combined with --fov (--fov sets the view itself)");
 
@@ -522,6 +560,8 @@ static void log_core(fogrt_log_level level, const char *message, void *user)
         if (L && !L->error[0]) snprintf(L->error, sizeof L->error, "%s", message);
         return;
     }
+    /* the CLI says this one itself, naming the scene file (after the build) */
+    if (strncmp(message, "scene: nothing emits light", 26) == 0) return;
     fprintf(stderr, "fogrt: %s%s\n", level == FOGRT_LOG_WARNING ? "warning: " : "", message);
 }
 static void log_load(fogrt_log_level level, const char *message, void *user)
@@ -849,8 +889,10 @@ static void rate_image(const fogrt_image *img, int max_spp, unsigned char *rgb8)
 /* ------------------------------------------------------------------------------------------
    The reference image (--reference REF.pfm) and the measured error
    ------------------------------------------------------------------------------------------ */
-/* Reads an RGB PFM into rows from the top. Returns NULL after printing one line. */
-static float *read_reference(const char *path, int want_w, int want_h)
+/* Reads an RGB PFM into rows from the top for flag (its messages name the flag and the
+   file); returns NULL after printing one line. want_w, want_h > 0: the size it must have;
+   otherwise the size goes to out_w and out_h. */
+static float *read_pfm_for(const char *flag, const char *path, int want_w, int want_h, int *out_w, int *out_h)
 {
     FILE *f;
     char tok[3][32];
@@ -861,7 +903,7 @@ static float *read_reference(const char *path, int want_w, int want_h)
     char *end;
     const char *err = NULL;
     f = fopen(path, "rb");
-    if (!f) { fprintf(stderr, "fogrt: --reference %s: cannot open: %s\n", path, strerror(errno)); return NULL; }
+    if (!f) { fprintf(stderr, "fogrt: %s %s: cannot open: %s\n", flag, path, strerror(errno)); return NULL; }
     if (fgetc(f) != 'P' || fgetc(f) != 'F' || !isspace(c = fgetc(f))) { err = "not an RGB PFM (it must start with \"PF\")"; goto fail; }
     for (t = 0; t < 3; ++t) {             /* width, height, scale: whitespace-separated */
         size_t k = 0;
@@ -876,7 +918,7 @@ static float *read_reference(const char *path, int want_w, int want_h)
     if (*end || h <= 0 || h > CLI_MAX_SIDE) { err = "bad height in the header"; goto fail; }
     scale = strtod(tok[2], &end);
     if (*end || !(scale != 0.0) || !isfinite(scale)) { err = "bad scale in the header (a non-zero number; negative = little endian)"; goto fail; }
-    if (w != want_w || h != want_h) {
+    if (want_w > 0 && (w != want_w || h != want_h)) {
         fprintf(stderr, "fogrt: --reference %s: is %dx%d, the render is %dx%d (-r %d %d)\n", path, w, h, want_w, want_h, want_w, want_h);
         fclose(f);
         return NULL;
@@ -904,11 +946,54 @@ static float *read_reference(const char *path, int want_w, int want_h)
     }
     free(tmp);
     fclose(f);
+    if (out_w) *out_w = w;
+    if (out_h) *out_h = h;
     return px;
 fail:
-    fprintf(stderr, "fogrt: --reference %s: %s\n", path, err);
+    fprintf(stderr, "fogrt: %s %s: %s\n", flag, path, err);
     free(px);
     fclose(f);
+    return NULL;
+}
+
+static float *read_reference(const char *path, int want_w, int want_h)
+{
+    return read_pfm_for("--reference", path, want_w, want_h, NULL, NULL);
+}
+
+/* -e: an environment map, .pfm (read here), .hdr (stb_image) or .exr (tinyexr, when the CLI
+   was built with libtinyexr-dev), as linear RGB; NULL with one message on failure. */
+static float *read_env_map(const char *path, int *w, int *h)
+{
+    if (ends_with(path, ".pfm")) return read_pfm_for("-e", path, 0, 0, w, h);
+    if (ends_with(path, ".hdr")) {
+        int n = 0;
+        float *px = stbi_loadf(path, w, h, &n, 3);
+        if (!px) fprintf(stderr, "fogrt: -e %s: cannot read the HDR image: %s\n", path, stbi_failure_reason());
+        return px;
+    }
+    if (ends_with(path, ".exr")) {
+#ifdef FOGRT_CLI_EXR
+        float *rgba = NULL, *px;
+        const char *err = NULL;
+        size_t i, n;
+        if (LoadEXR(&rgba, w, h, path, &err) != TINYEXR_SUCCESS) {
+            fprintf(stderr, "fogrt: -e %s: cannot read the OpenEXR image: %s\n", path, err ? err : "unknown error");
+            if (err) FreeEXRErrorMessage(err);
+            return NULL;
+        }
+        n = (size_t)*w * (size_t)*h;
+        px = (float *)malloc(sizeof(float) * 3 * n);
+        if (px) for (i = 0; i < n; ++i) { px[3 * i] = rgba[4 * i]; px[3 * i + 1] = rgba[4 * i + 1]; px[3 * i + 2] = rgba[4 * i + 2]; }
+        else fprintf(stderr, "fogrt: -e %s: out of memory\n", path);
+        free(rgba);
+        return px;
+#else
+        fprintf(stderr, "fogrt: -e %s: this fogrt was built without OpenEXR support (install libtinyexr-dev and rebuild), or give a .hdr or .pfm map\n", path);
+        return NULL;
+#endif
+    }
+    fprintf(stderr, "fogrt: -e %s: unknown environment map type (expected .exr, .hdr or .pfm)\n", path);
     return NULL;
 }
 
@@ -1243,7 +1328,8 @@ int main(int argc, char **argv)
     if (o.scene && (status = check_input_file("", o.scene)) != 0) return status;
     if (o.camera_file && (status = check_input_file("-c ", o.camera_file)) != 0) return status;
     if (o.reference && (status = check_input_file("--reference ", o.reference)) != 0) return status;
-    if (!o.print_camera) {
+    if (o.env_map && (status = check_input_file("-e ", o.env_map)) != 0) return status;
+    if (!o.print_camera && !o.trace) {
         if (!prepare_output(&out, "-f", o.output)) return 1;
         if (o.adaptive) {
             rate_path(o.output, rate_name, sizeof rate_name);
@@ -1292,8 +1378,19 @@ int main(int argc, char **argv)
     else if (o.paper_g && md.sigma_t == 0.0f) md.sigma_t = 0.2f;   /* the paper's -g switches fog on */
     if (o.albedo_set) md.albedo = o.albedo;
     if (o.g_set) md.g = o.g;
+    if (o.fog_bounds_set) { md.bounded = true; md.bounds_min = o.fog_lo; md.bounds_max = o.fog_hi; }
     r = fogrt_scene_set_medium(scene, &md);
-    if (r) { fail_line(&logbuf, "--density/--albedo/--g", r); status = 2; goto done; }
+    if (r) { fail_line(&logbuf, o.fog_bounds_set ? "--density/--albedo/--g/--fog-bounds" : "--density/--albedo/--g", r); status = 2; goto done; }
+    if (o.env_map) {                             /* -e: the environment map light */
+        int ew = 0, eh = 0;
+        float *env;
+        if (check_input_file("-e ", o.env_map) != 0) { status = 2; goto done; }
+        env = read_env_map(o.env_map, &ew, &eh);
+        if (!env) { status = 2; goto done; }
+        r = fogrt_scene_set_environment_map(scene, ew, eh, env, 1.0f);
+        free(env);
+        if (r) { snprintf(where, sizeof where, "-e %s", o.env_map); fail_line(&logbuf, where, r); status = r == FOGRT_RESULT_OUT_OF_MEMORY ? 1 : 2; goto done; }
+    }
 
     /* The camera: -c replaces the scene's; --cs184-framing re-frames it; the free-camera
        flags override parts of it; -b and -d set the lens */
@@ -1347,6 +1444,13 @@ int main(int argc, char **argv)
     } else if (o.hemisphere && info.area_light_count == 0 && !info.has_environment) {
         fprintf(stderr, "fogrt: warning: -H finds light only by hitting emitters, and %s has only point and spot lights: the image will be black\n", o.scene ? o.scene : "the scene");
         ps.black = warned_black = true;
+    }
+
+    /* --trace: follow one pixel sample event by event, print it, and stop */
+    if (o.trace) {
+        fill_render_desc(&o, threads, &rd);
+        status = cli_trace_path(scene, &rd, o.width, o.height, o.trace_x, o.trace_y, (uint32_t)o.trace_sample, stdout);
+        goto done;
     }
 
     /* The image and the output buffers, all allocated before rendering */

@@ -5,8 +5,17 @@
 #   make fuzz            fuzzes the .dae, .obj and .ply parsers, FUZZ_SECONDS each (default 600)
 #   make fuzz-dae ...    one parser
 
-$(BUILD)/fogrt: examples/fogrt_cli.c fogrt.h fogrt_load.h | deps-stb $(BUILD)
-	$(CC) $(ALL_CFLAGS) -o $@ examples/fogrt_cli.c $(LDLIBS)
+# OpenEXR environment maps (-e map.exr) through Debian's libtinyexr-dev: installed when root,
+# otherwise the CLI is built without them and says so when given a .exr (.hdr and .pfm work).
+TINYEXR_HEADER := /usr/include/tinyexr.h
+$(BUILD)/fogrt: examples/fogrt_cli.c examples/fogrt_cli_trace.c fogrt.h fogrt_load.h | deps-stb deps-exr $(BUILD)
+	$(CC) $(ALL_CFLAGS) $$([ -e $(TINYEXR_HEADER) ] && echo -DFOGRT_CLI_EXR) -o $@ examples/fogrt_cli.c \
+	  examples/fogrt_cli_trace.c $$([ -e $(TINYEXR_HEADER) ] && echo -ltinyexr) $(LDLIBS)
+
+.PHONY: deps-exr
+deps-exr:
+	@sh tools/need-package.sh libtinyexr-dev $(TINYEXR_HEADER) 2>/dev/null || \
+	  echo "fogrt: libtinyexr-dev not installed: building the fogrt command without OpenEXR (-e .exr) support"
 
 .PHONY: cli-test fuzz fuzz-dae fuzz-obj fuzz-ply fuzz-build fuzz-deps
 cli-test: $(BUILD)/fogrt

@@ -383,7 +383,7 @@ refused "wide.cam:5:" "less than 180" "a -c file with a 180-degree field of view
 expect 0 "" "a PLY with 1e300 in a skipped property" -- --quiet -s 1 -r 16 12 -f "$tmp/skip.ppm" tests/data/ply_skipped_huge.ply
 expect 0 "" "an OBJ with a byte-order mark and CR line endings" -- --quiet -s 1 -r 16 12 -f "$tmp/cr.ppm" tests/data/obj_cr.obj
 # FOGRT_NO_GLASS: a glass material is refused in one line naming the file and the material
-if ${CC:-cc} -std=c99 -O0 -DFOGRT_NO_GLASS -I. -o "$tmp/fogrt_noglass" examples/fogrt_cli.c -lm 2>"$tmp/cc.err"; then
+if ${CC:-cc} -std=c99 -O0 -DFOGRT_NO_GLASS -I. -o "$tmp/fogrt_noglass" examples/fogrt_cli.c examples/fogrt_cli_trace.c -lm 2>"$tmp/cc.err"; then
     fogrt_full=$fogrt fogrt=$tmp/fogrt_noglass
     refused "dae_materials.dae:" "material 'm0' is glass/refraction" "glass without glass support" -- -f "$out" tests/data/dae_materials.dae
     fogrt=$fogrt_full
@@ -391,6 +391,40 @@ else
     echo "test_cli.sh: FOGRT_NO_GLASS build of the CLI failed, glass check skipped: $(head -1 "$tmp/cc.err")"
 fi
 # ==== end of the loader refusals ====
+
+# ==== fog bounds, environment maps, the path trace (issues 15 and 14) ====
+# --fog-bounds: refused unless six numbers with min < max; a box of fog around the default
+# scene's middle renders, and is darker than no fog where it stands
+expect 2 "--fog-bounds" "fog bounds with min > max" -- --fog-bounds 1,0,0,0,1,1 -f "$out"; one_line_no_image "fog bounds with min > max"
+expect 2 "--fog-bounds" "fog bounds with five numbers" -- --fog-bounds 0,0,0,1,1 -f "$out"
+expect 0 "" "a bounded fog box" -- --quiet -s 2 -r 24 18 --density 2 --fog-bounds -0.5,0,-0.5,0.5,1,0.5 -f "$tmp/box.pfm"
+check "pfm_ok '$tmp/box.pfm' 24 18" "the bounded-fog render is not a 24x18 PFM"
+# -e: an environment map (PFM here: one fogrt writes itself), read and used as the light of
+# an empty .dae scene; missing, unknown and malformed maps are refused in one line
+expect 0 "" "a PFM to use as an environment map" -- --quiet -s 1 -r 16 8 -f "$tmp/env.pfm"
+expect 0 "" "a .dae lit by the environment map" -- --quiet -s 2 -r 24 18 -e "$tmp/env.pfm" -f "$tmp/lit.pfm" tests/data/dae_minimal_yup.dae
+check "[ \"\$(pfm_stats '$tmp/lit.pfm' | awk '{print (\$3 > 0) ? 1 : 0}')\" = 1 ]" "the environment map lit nothing"
+expect 2 "-e" "a missing environment map" -- -e "$tmp/none.pfm" -f "$out";      one_line_no_image "a missing environment map"
+printf 'hello' >"$tmp/env.txt"
+expect 2 "unknown environment map type" "an environment map of unknown type" -- -e "$tmp/env.txt" -f "$out"
+printf 'PF\n4 4\n-1.0\n' >"$tmp/short.pfm"
+expect 2 "short.pfm" "a truncated environment map" -- -e "$tmp/short.pfm" -f "$out"; one_line_no_image "a truncated environment map"
+# --trace: the events of one pixel sample in Algorithm 1's order, ending with its radiance
+expect 0 "" "--trace of one pixel sample" -- --trace 12,9,1 -r 24 18 --seed 3
+cp "$tmp/out" "$tmp/trace.txt"
+check "grep -q 'free flight (eq. 6)' '$tmp/trace.txt' && grep -q '^= sample radiance' '$tmp/trace.txt' && grep -q '^camera ray' '$tmp/trace.txt'" \
+    "--trace does not print the camera ray, the free flight and the sample radiance"
+check "[ ! -e out.png ] || [ out.png -ot '$tmp/trace.txt' ]" "--trace wrote an image"
+expect 2 "--trace" "--trace outside the image" -- --trace 30,2 -r 24 18 -f "$out"; one_line_no_image "--trace outside the image"
+if [ -f ../shared/scenes/cs184/bunny.dae ]; then
+    # the shared bunny.dae is lit by CS184's <ambient> sky: with fog and no bounds the fog
+    # fills the box of the geometry (said in one line), and the bunny shows in haze
+    expect 0 "fills the box of the geometry" "bunny.dae --density 0.3" -- -s 2 -r 32 24 --density 0.3 -f "$tmp/haze.pfm" ../shared/scenes/cs184/bunny.dae
+    check "[ \"\$(pfm_stats '$tmp/haze.pfm' | awk '{print (\$3 > 0) ? 1 : 0}')\" = 1 ]" "bunny.dae in haze is black"
+else
+    echo "test_cli.sh: bunny.dae in haze skipped (../shared/scenes/cs184 absent)"
+fi
+# ==== end of fog bounds, environment maps, the path trace ====
 
 echo "test_cli.sh: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
