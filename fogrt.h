@@ -1671,29 +1671,40 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_ca
     return FOGRT_RESULT_OK;
 }
 
+FOGRT__PRIVATE bool fogrt__box_ok(fogrt__v3 lo, fogrt__v3 hi)
+{
+    return fogrt__coord_ok(lo.x) && fogrt__coord_ok(lo.y) && fogrt__coord_ok(lo.z) &&
+           fogrt__coord_ok(hi.x) && fogrt__coord_ok(hi.y) && fogrt__coord_ok(hi.z) &&
+           lo.x < hi.x && lo.y < hi.y && lo.z < hi.z;
+}
+/* Checks a medium and clamps |g| to FOGRT_HG_G_MAX (with a warning). */
+FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medium_desc *m)
+{
+    if (!fogrt__finite(m->sigma_t) || m->sigma_t < 0.0f)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.sigma_t: negative or not finite");
+    if (!fogrt__colour_ok(m->albedo) || fogrt__max3(m->albedo) > 1.0f)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.albedo: outside [0, 1]");
+    if (!(m->g >= -1.0f && m->g <= 1.0f))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.g: outside [-1, 1]");
+    if (m->bounded && !fogrt__box_ok(m->bounds_min, m->bounds_max))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.bounds_min/bounds_max: not finite, beyond 1e30, or min not below max on every axis");
+#ifdef FOGRT_NO_MEDIUM
+    if (m->sigma_t > 0.0f)
+        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "medium: fogrt was compiled with FOGRT_NO_MEDIUM");
+#endif
+    if (fabsf(m->g) >= FOGRT_HG_G_MAX && fabsf(m->g) != FOGRT_HG_G_MAX) {
+        m->g = copysignf(FOGRT_HG_G_MAX, m->g);
+        fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
+    }
+    return FOGRT_RESULT_OK;
+}
 FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_medium_desc *desc)
 {
     fogrt_medium_desc m;
+    fogrt_result r;
     FOGRT_ASSERT(s && desc);
     m = *desc;
-    if (!fogrt__finite(m.sigma_t) || m.sigma_t < 0.0f)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.sigma_t: negative or not finite");
-    if (!fogrt__colour_ok(m.albedo) || fogrt__max3(m.albedo) > 1.0f)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.albedo: outside [0, 1]");
-    if (!(m.g >= -1.0f && m.g <= 1.0f))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.g: outside [-1, 1]");
-    if (fabsf(m.g) >= FOGRT_HG_G_MAX && fabsf(m.g) != FOGRT_HG_G_MAX) {
-        m.g = copysignf(FOGRT_HG_G_MAX, m.g);
-        fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
-    }
-    if (m.bounded && !(fogrt__coord_ok(m.bounds_min.x) && fogrt__coord_ok(m.bounds_min.y) && fogrt__coord_ok(m.bounds_min.z) &&
-                       fogrt__coord_ok(m.bounds_max.x) && fogrt__coord_ok(m.bounds_max.y) && fogrt__coord_ok(m.bounds_max.z) &&
-                       m.bounds_min.x < m.bounds_max.x && m.bounds_min.y < m.bounds_max.y && m.bounds_min.z < m.bounds_max.z))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.bounds_min/bounds_max: not finite, beyond 1e30, or min not below max on every axis");
-#ifdef FOGRT_NO_MEDIUM
-    if (m.sigma_t > 0.0f)
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "medium: fogrt was compiled with FOGRT_NO_MEDIUM");
-#endif
+    if ((r = fogrt__check_medium(s, &m)) != FOGRT_RESULT_OK) return r;
     s->medium = m;
     s->built = false;
     return FOGRT_RESULT_OK;
@@ -2314,7 +2325,7 @@ FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s)
     rows = s->env_cdf + (size_t)w * (size_t)h;
     for (j = 0; j < h; ++j) {
         float *cdf = s->env_cdf + (size_t)j * (size_t)w;
-        double sin_t = sin(FOGRT__PI * ((double)j + 0.5) / (double)h), row = 0.0;
+        double sin_t = sin(3.14159265358979323846 * ((double)j + 0.5) / (double)h), row = 0.0;
         for (i = 0; i < w; ++i) {
             const float *c = s->env_map + 3 * ((size_t)j * (size_t)w + (size_t)i);
             row += (double)fogrt__luminance(fogrt__v(c[0], c[1], c[2])) * sin_t;

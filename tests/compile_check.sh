@@ -212,6 +212,31 @@ if have "$GXX"; then
 fi
 
 
+# ---- fogrt_load.h: the same warnings, as C, as C++ and under FOGRT_STATIC -------------------
+cat >"$TMP/load.c" <<'EOF2'
+#define FOGRT_IMPLEMENTATION
+#include "fogrt.h"
+#define FOGRT_LOAD_IMPLEMENTATION
+#include "fogrt_load.h"
+int main(void) { return 0; }
+EOF2
+cat >"$TMP/load_static.c" <<'EOF2'
+#define FOGRT_STATIC
+#include "load.c"
+EOF2
+cp "$TMP/load.c" "$TMP/load.cc"
+if have "$GCC"; then
+    run "$GCC fogrt_load.h (-Wconversion -Wcast-qual)" $GCC $CWARN -I"$ROOT" -c "$TMP/load.c" -o "$TMP/load.o"
+    run "$GCC fogrt_load.h FOGRT_STATIC" $GCC $CWARN -I"$ROOT" -I"$TMP" -c "$TMP/load_static.c" -o "$TMP/load_s.o"
+    run "$GCC fogrt_load.h with FOGRT_NO_GLASS" $GCC $CWARN -DFOGRT_NO_GLASS -I"$ROOT" -c "$TMP/load.c" -o "$TMP/load_ng.o"
+fi
+if have "$CLANG"; then
+    run "$CLANG fogrt_load.h (-Wconversion -Wcast-qual)" $CLANG $CWARN -I"$ROOT" -c "$TMP/load.c" -o "$TMP/load_c.o"
+fi
+if have "$GXX"; then
+    run "$GXX fogrt_load.h as C++" $GXX $XXWARN -I"$ROOT" -c "$TMP/load.cc" -o "$TMP/load_cxx.o"
+fi
+
 # ---- the strip macros really strip (nm) -----------------------------------------------------
 # strip_nm MACRO SYMBOL...: each SYMBOL is defined (T) or called (U: fopen) in the normal
 # object file and absent from the one built with MACRO.

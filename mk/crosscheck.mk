@@ -1,0 +1,22 @@
+# mk/crosscheck.mk - fogrt against Mitsuba 3 on the same scenes (docs/validation.md).
+#   make crosscheck                   all scenes, about 24 s per renderer per scene (~10 min)
+#   make crosscheck CROSSCHECK_ARGS=--quick                 a 1-minute smoke run (no measurement)
+#   make crosscheck CROSSCHECK_ARGS="--scenes fog_iso,spot_fog"
+#   make crosscheck CROSSCHECK_FOGRT=path/to/fogrt          another fogrt build
+# Optional, never part of `make test`. tests/crosscheck/crosscheck.py makes its own virtual
+# environment ($(BUILD)/crosscheck-venv, `pip install mitsuba numpy`) and writes
+# $(BUILD)/crosscheck/results.md, results.json and <scene>_side.png. Mitsuba's fast
+# llvm_ad_rgb variant needs LLVM >= 16: Debian's libllvm19 is installed when we are root;
+# without it the script falls back to the scalar_rgb variant and says so.
+.PHONY: crosscheck crosscheck-deps
+CROSSCHECK_ARGS ?=
+CROSSCHECK_FOGRT ?= $(BUILD)/fogrt
+CROSSCHECK_LLVM := /usr/lib/x86_64-linux-gnu/libLLVM.so.19.1
+
+crosscheck-deps:
+	@sh tools/need-package.sh libllvm19 $(CROSSCHECK_LLVM) || \
+	  echo "crosscheck: no libllvm19: Mitsuba will use its slower scalar_rgb variant" >&2
+
+crosscheck: $(CROSSCHECK_FOGRT) crosscheck-deps
+	python3 tests/crosscheck/crosscheck.py --fogrt $(CROSSCHECK_FOGRT) --out $(BUILD)/crosscheck \
+	  --venv $(BUILD)/crosscheck-venv $(CROSSCHECK_ARGS)
