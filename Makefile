@@ -52,6 +52,10 @@ $(BUILD)/render_default: examples/render_default.c fogrt.h | $(BUILD)
 $(BUILD)/minimal: examples/minimal.c fogrt.h | $(BUILD)
 	$(CC) $(ALL_CFLAGS) -o $@ examples/minimal.c $(LDLIBS)
 EXTRA_TEST_DEPS += $(BUILD)/minimal
+# ... as C++ too, as the README says it does
+$(BUILD)/minimal_cxx: examples/minimal.c fogrt.h | $(BUILD)
+	$(CXX) -std=c++11 -Wall -Wextra -pedantic -Wshadow $(CFLAGS) $(OMPFLAGS) -I. -x c++ -o $@ examples/minimal.c $(LDLIBS)
+EXTRA_TEST_DEPS += $(BUILD)/minimal_cxx
 
 # ---- tests: every tests/test_*.c is one Unity test program ----
 TEST_SRCS := $(wildcard tests/test_*.c)

@@ -409,6 +409,22 @@ printf 'hello' >"$tmp/env.txt"
 expect 2 "unknown environment map type" "an environment map of unknown type" -- -e "$tmp/env.txt" -f "$out"
 printf 'PF\n4 4\n-1.0\n' >"$tmp/short.pfm"
 expect 2 "short.pfm" "a truncated environment map" -- -e "$tmp/short.pfm" -f "$out"; one_line_no_image "a truncated environment map"
+# a Radiance .hdr map (written here with python3 when it is installed: flat RGBE scanlines)
+if command -v python3 >/dev/null 2>&1; then
+    python3 -c '
+import sys
+w, h = 16, 8
+out = open(sys.argv[1], "wb")
+out.write(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n" % (h, w))
+for j in range(h):
+    for i in range(w):
+        out.write(bytes([128, 160, 200, 129]) if j < h // 2 else bytes([64, 48, 32, 128]))
+' "$tmp/sky.hdr"
+    expect 0 "" "a .dae lit by a .hdr environment map" -- --quiet -s 2 -r 24 18 -e "$tmp/sky.hdr" -f "$tmp/lit_hdr.pfm" tests/data/dae_minimal_yup.dae
+    check "[ \"\$(pfm_stats '$tmp/lit_hdr.pfm' | awk '{print (\$3 > 0) ? 1 : 0}')\" = 1 ]" "the .hdr environment map lit nothing"
+else
+    echo "test_cli.sh: .hdr environment map skipped (no python3 to write one)"
+fi
 # --trace: the events of one pixel sample in Algorithm 1's order, ending with its radiance
 expect 0 "" "--trace of one pixel sample" -- --trace 12,9,1 -r 24 18 --seed 3
 cp "$tmp/out" "$tmp/trace.txt"

@@ -557,6 +557,49 @@ static void test_lights_camera_medium(void)
 
 /* |g| >= FOGRT_HG_G_MAX is clamped to +-FOGRT_HG_G_MAX and the logger gets a warning (not an
    error) naming g; g just below the limit is stored as given, without a warning. */
+/* A scene that nothing can light (geometry only: what loading an OBJ or PLY into an empty
+   scene gives) builds, and says once through the logger that every image will be black;
+   with a light it says nothing. Fog with an environment and no bounds gets the box of the
+   geometry, and says so once. */
+static void test_unlit_and_unbounded_warnings(void)
+{
+    log_record log;
+    fogrt_scene *scene = new_scene(&log);
+    fogrt_material_desc m;
+    fogrt_medium_desc med;
+    fogrt_light_desc l;
+    uint32_t id;
+    memset(&m, 0, sizeof m);
+    m.reflectance = v3(0.5f, 0.5f, 0.5f);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_material(scene, &m, &id));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_sphere(scene, v3(0, 0, 0), 1.0f, id));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    TEST_ASSERT_EQUAL_INT(1, log.count[FOGRT_LOG_WARNING]);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(log.last_warning, "nothing emits light"), log.last_warning);
+    memset(&log, 0, sizeof log);
+    memset(&l, 0, sizeof l);
+    l.position = v3(0, 3, 0); l.intensity = v3(1, 1, 1);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_light(scene, &l));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    TEST_ASSERT_EQUAL_INT(0, log.count[FOGRT_LOG_WARNING]);
+    memset(&med, 0, sizeof med);
+    med.sigma_t = 0.3f; med.albedo = v3(0.9f, 0.9f, 0.9f);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_set_medium(scene, &med));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_set_environment(scene, v3(1, 1, 1), true));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    TEST_ASSERT_EQUAL_INT(1, log.count[FOGRT_LOG_WARNING]);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(log.last_warning, "box of the geometry"), log.last_warning);
+    memset(&log, 0, sizeof log);
+    med.bounded = true; med.bounds_min = v3(-2, -2, -2); med.bounds_max = v3(2, 2, 2);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_set_medium(scene, &med));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    TEST_ASSERT_EQUAL_INT(0, log.count[FOGRT_LOG_WARNING]);
+    med.bounds_max.x = -3.0f;                                   /* min not below max */
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_MEDIUM, fogrt_scene_set_medium(scene, &med));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(log.last_error, "bounds"), log.last_error);
+    fogrt_scene_destroy(scene);
+}
+
 static void test_medium_g_clamp_warns(void)
 {
     log_record log;
@@ -1004,6 +1047,7 @@ int main(void)
     RUN_TEST(test_add_geometry);
     RUN_TEST(test_lights_camera_medium);
     RUN_TEST(test_medium_g_clamp_warns);
+    RUN_TEST(test_unlit_and_unbounded_warnings);
     RUN_TEST(test_bad_materials);
     RUN_TEST(test_bad_meshes);
     RUN_TEST(test_bad_spheres);
