@@ -54,6 +54,10 @@
     FOGRT_NO_STDIO         strip the PFM/PPM writers (no <stdio.h>)
     FOGRT_TRACE            compile the path event trace (fogrt_trace_path); off: no hook exists
     FOGRT_BVH_BINS         compile-time default for fogrt_build_desc.bins (8)
+    FOGRT_WBVH_WIDTH       children per node of the wide BVH, 4 or 8 (8)
+    FOGRT_WBVH_LEAF        largest binary subtree the wide BVH makes one leaf, 0..8 (4)
+    FOGRT_WBVH_NO_SIMD     plain C99 loops for the wide BVH instead of SSE2 (same results)
+    FOGRT_WBVH_MIN_PRIMS   the default layout is wide from this many primitives (16)
     FOGRT_MAX_PATH_VERTICES  hard cap on path vertices, a safety net behind Russian roulette
                            (default 100000; never reached in practice, see Russian roulette)
 
@@ -360,13 +364,27 @@ typedef enum fogrt_bvh_heuristic {
                      middle of the centroid bounds)
      c_trav, c_int   traversal and intersection cost of the SAH, 1 and 1
      max_leaf_size   4 (>= 1): largest leaf; a node is also split when the SAH prefers it
+     layout          default: wide from 16 primitives (where it pays: random rays on random
+                     triangles, one thread, wide/binary 1.00 at 8, 1.42 at 32, 1.6 to 1.9 from
+                     128 up), binary below; wide: the binary tree collapsed to 8 children per
+                     node for tracing; binary: traced as built. fogrt_scene_get_bvh and
+                     fogrt_bvh_sah_cost describe the binary tree.
      resolved        set by fogrt_build_defaults(): the fields hold their real values      */
+typedef enum fogrt_bvh_layout {
+    FOGRT_BVH_LAYOUT_DEFAULT = 0,   /* wide from FOGRT_WBVH_MIN_PRIMS (16) primitives, else binary */
+    FOGRT_BVH_LAYOUT_BINARY,        /* trace the binary tree of the build (chapter 10) */
+    FOGRT_BVH_LAYOUT_WIDE,          /* collapse it to 8 children per node (chapter 10b): faster */
+    FOGRT_BVH_LAYOUT_NUM,
+    FOGRT_BVH_LAYOUT_FORCE_U32 = 0x7FFFFFFF
+} fogrt_bvh_layout;
+
 typedef struct fogrt_build_desc {
     fogrt_bvh_heuristic heuristic;
     int bins;
     float c_trav;
     float c_int;
     int max_leaf_size;
+    fogrt_bvh_layout layout;
     bool resolved;
 } fogrt_build_desc;
 
@@ -1346,6 +1364,7 @@ struct fogrt_scene {
     /* built data (fogrt_scene_build) */
     bool built;
     fogrt_bvh_node *nodes; uint32_t node_count;
+    struct fogrt__wbvh *wide;  /* the wide tree (chapter 10b), or NULL */
     uint32_t *prim_index;
     fogrt__prim *prims;        /* prim_count, in BVH order (parallel to prim_index) */
     fogrt__area_light *area_lights; uint32_t area_light_count;
@@ -1404,8 +1423,10 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogr
     *out_scene = s;
     return FOGRT_RESULT_OK;
 }
+FOGRT__PRIVATE void fogrt__wide_release(fogrt_scene *s);   /* chapter 10b */
 FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s)
 {
+    fogrt__wide_release(s);
     fogrt__free(&s->allocator, s->nodes); s->nodes = NULL; s->node_count = 0;
     fogrt__free(&s->allocator, s->prim_index); s->prim_index = NULL;
     fogrt__free(&s->allocator, s->prims); s->prims = NULL;
@@ -2065,17 +2086,30 @@ FOGRT__HOT float fogrt__slab(const fogrt_bvh_node *n, const fogrt__ray *r, float
     return t0 <= t1 * 1.00000024f ? t0 : FLT_MAX;
 }
 
-/* Iterative traversal with a fixed stack: visit the nearer child first, push the farther,
-   and skip a popped node whose entry lies beyond the closest hit found so far.
-   any_hit: return at the first hit (shadow rays). */
-FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
-                                    fogrt_hit *hit, bool any_hit)
+/* Culling slack: a box is skipped only when its entry lies beyond the closest hit by more
+   than 1e-5 (relative, about 100 ulps). The box's entry distance and the triangle's hit
+   distance are rounded separately, so near a shared edge the box that holds the truly
+   closest triangle can appear to start a few ulps after a neighbour's hit; a strict test
+   then skips it and returns the neighbour (about 1 ray in 2000 on the CS184 bunny, found
+   by bench/wide_dev.c). The slack gives the brute-force answer there and costs nothing
+   measurable; a hit itself still needs t < tmax exactly. */
+#define FOGRT__CULL_SLACK 1e-5f
+FOGRT__HOT float fogrt__cull(float tmax)   /* tmax, widened; +-inf and NaN unchanged */
+{
+    return tmax * (tmax > 0.0f ? 1.0f + FOGRT__CULL_SLACK : 1.0f - FOGRT__CULL_SLACK);
+}
+/* Iterative traversal of the binary tree with a fixed stack: visit the nearer child first,
+   push the farther, and skip a popped node whose entry lies beyond the closest hit found so
+   far. any_hit: return at the first hit (shadow rays). */
+FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
+                                         fogrt_hit *hit, bool any_hit)
 {
     uint32_t stack[FOGRT__BVH_MAX_DEPTH + 2], sp = 0, tri_count = s->tri_count;
     float stack_t[FOGRT__BVH_MAX_DEPTH + 2];
     const fogrt_bvh_node *nodes = s->nodes, *node;
     fogrt__ray r;
     bool found = false;
+    float cull = fogrt__cull(tmax);                      /* tmax with the slack, kept with it */
     if (!s->built || s->tri_count + s->sph_count == 0) return false;
     fogrt__ray_setup(&r, o, d);
     node = &nodes[0];
@@ -2091,13 +2125,14 @@ FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3
                 if (h) {
                     found = true;
                     tmax = t;
+                    cull = fogrt__cull(t);
                     if (any_hit) return true;
                     hit->t = t; hit->prim = p->id; hit->u = u; hit->v = v;
                 }
             }
         } else {                                         /* inner: order the two children */
             const fogrt_bvh_node *c1 = &nodes[node->left_first], *c2 = c1 + 1;
-            float d1 = fogrt__slab(c1, &r, tmin, tmax), d2 = fogrt__slab(c2, &r, tmin, tmax);
+            float d1 = fogrt__slab(c1, &r, tmin, cull), d2 = fogrt__slab(c2, &r, tmin, cull);
             if (d1 > d2) { float td = d1; const fogrt_bvh_node *tn = c1; d1 = d2; d2 = td; c1 = c2; c2 = tn; }
             if (d1 != FLT_MAX) {
                 if (d2 != FLT_MAX) { stack_t[sp] = d2; stack[sp++] = (uint32_t)(c2 - nodes); }
@@ -2109,10 +2144,567 @@ FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3
         for (;;) {
             if (sp == 0) return found;
             --sp;
-            if (stack_t[sp] < tmax) break;
+            if (stack_t[sp] <= cull) break;
         }
         node = &nodes[stack[sp]];
     }
+}
+
+/* ------------------------------------------------------------------------------------------
+   10b. The wide BVH: 8 (or 4) children per node, boxes tested side by side
+   (the default layout: fogrt_build_desc.layout; FOGRT_BVH_BINARY keeps chapter 10's tree)
+
+   The binary tree of chapter 9 is good (few boxes and few triangles per ray), but each step
+   of its traversal tests two boxes, one after the other, and branches on the outcome; an
+   incoherent ray mispredicts many of those branches, and on a big mesh every step is also a
+   cache miss. A wide BVH keeps the same boxes and removes levels:
+     1. Collapse. Each wide node takes up to W children (W = 8 by default, FOGRT_WBVH_WIDTH
+        4 for four) from the binary tree: start with a binary node's two children and
+        repeatedly replace the child with the largest surface area by its own two children
+        until W are collected. A binary subtree of at most 4 primitives is not opened but
+        becomes one leaf (FOGRT_WBVH_LEAF; the binary leaves hold about 2 primitives, so
+        this halves the leaves). The tree gets about three times shallower (W = 8).
+     2. Structure of arrays. A node stores all W minimum x, then all W minimum y, and so on,
+        so its W slab tests are the same instructions on W lanes: SSE does four at once.
+     3. Leaf packets. A leaf's primitives are copied into a packet of four, again structure
+        of arrays (four v0.x, then four v0.y, ...), and one packet is tested with the
+        Moller-Trumbore test of chapter 10 on four lanes at once.
+     4. Traversal: test the W boxes of the current node, go on with the nearest child hit,
+        push the others, farthest first, with their entry distances.
+
+   The answers are those of fogrt__traverse. Every box test is fogrt__slab's (the same
+   operations in the same order on each lane: the same entry distance, the same NaN rules,
+   the same 2-ulp widening of the exit distance) and every triangle test is
+   fogrt__hit_triangle's (the same float operations, so bit for bit the same t, u and v).
+   The wide tree tests a subset of the binary tree's boxes (a collapsed node's own box
+   contains its children's, so leaving it out loses no ray), and a popped box is skipped only
+   when it starts more than 1e-5 (relative) beyond the closest hit so far (see
+   FOGRT__WBVH_SLACK). What can differ:
+     - two hits at exactly the same t (a ray through a shared edge) may be found in another
+       order, so another primitive is named at the same t;
+     - with FOGRT_WBVH_LEAF > 0 a merged leaf's box is larger than its parts, so a ray that
+       runs exactly along a triangle edge can be tested against a triangle whose own binary
+       leaf box it just misses by rounding; it then reports the hit that brute force also
+       finds (bench/wide_dev.c counts these; FOGRT_WBVH_LEAF 0 removes them).
+
+   Memory (W = 8): a node is 256 bytes (48 floats of boxes, 16 words of child references),
+   about one per 10 triangles; a packet of 4 primitives is 176 bytes.
+
+   SIMD: FOGRT_WBVH_SSE (on by default where the compiler targets SSE2, that is every x86-64)
+   selects the SSE intrinsics; FOGRT_WBVH_NO_SIMD forces the plain C99 loops, which compute
+   exactly the same values lane by lane.
+   ------------------------------------------------------------------------------------------ */
+#ifndef FOGRT_WBVH_MIN_PRIMS
+#define FOGRT_WBVH_MIN_PRIMS 16   /* fewer primitives: the binary tree is as fast (see fogrt_build_desc) */
+#endif
+#ifndef FOGRT_WBVH_WIDTH
+#define FOGRT_WBVH_WIDTH 8        /* children per wide node: 4 or 8 (8 measured faster) */
+#endif
+#ifndef FOGRT_WBVH_LEAF
+#define FOGRT_WBVH_LEAF 4         /* largest binary subtree made one leaf (4: one packet, 8: two); 0: binary leaves only */
+#endif
+#if FOGRT_WBVH_LEAF < 0 || FOGRT_WBVH_LEAF > 8
+#error "fogrt: FOGRT_WBVH_LEAF must be 0..8 (at most two packets)"
+#endif
+#if FOGRT_WBVH_WIDTH != 4 && FOGRT_WBVH_WIDTH != 8
+#error "fogrt: FOGRT_WBVH_WIDTH must be 4 or 8"
+#endif
+#if !defined(FOGRT_WBVH_SSE) && !defined(FOGRT_WBVH_NO_SIMD) && \
+    (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#define FOGRT_WBVH_SSE 1
+#endif
+#ifdef FOGRT_WBVH_NO_SIMD
+#undef FOGRT_WBVH_SSE
+#endif
+#ifdef FOGRT_WBVH_SSE
+#include <emmintrin.h>
+#endif
+
+#define FOGRT__WBVH_W FOGRT_WBVH_WIDTH
+#define FOGRT__WBVH_LEAF FOGRT_WBVH_LEAF
+#ifndef FOGRT__WBVH_STAT
+#define FOGRT__WBVH_STAT(what) ((void)0)   /* a counting hook for bench/wide_dev.c */
+#endif
+/* Culling slack: a box is skipped only when its entry lies beyond the closest hit by more
+   than 1e-5 (relative, about 100 ulps). The box's entry distance and the triangle's hit
+   distance are rounded separately, so near a shared edge the box that holds the truly
+   closest triangle can appear to start a few ulps after a neighbour's hit; a strict test
+   then skips it and returns the neighbour (fogrt__traverse, which has no slack, does so on
+   about 1 in 2000 of bench/wide_dev.c's bunny rays). The slack costs nothing measurable and
+   gives the brute-force answer there; a hit itself still needs t < tmax exactly. */
+#define fogrt__wbvh_cull fogrt__cull             /* the slack of chapter 10 */
+#define FOGRT__WBVH_EMPTY 0xFFFFFFFFu             /* count[] of a lane with no child */
+/* Each wide level pushes at most W - 1 children and uses up at least one binary level. */
+#define FOGRT__WBVH_STACK ((FOGRT__BVH_MAX_DEPTH + 2) * (FOGRT__WBVH_W - 1) + 2)
+
+/* A wide node. Lane i is child i: its box is lo/hi[axis][i] (box[0..2] = minimum x, y, z,
+   box[3..5] = maximum x, y, z); count[i] = 0 means an inner child (wide node child[i]),
+   count[i] > 0 a leaf of that many primitives starting at packet child[i], and
+   FOGRT__WBVH_EMPTY an unused lane (always after the used ones). */
+typedef struct fogrt__wnode {
+    float box[6][FOGRT__WBVH_W];
+    uint32_t child[FOGRT__WBVH_W];
+    uint32_t count[FOGRT__WBVH_W];
+} fogrt__wnode;
+
+/* Four primitives of one leaf, structure-of-arrays: lane j holds a triangle's v0 and edges,
+   and k = 1e-12 |e1|^2 |e2|^2, the threshold of fogrt__hit_triangle's degeneracy test,
+   computed once here (the same product, so the same value). A sphere lane stores its
+   centre in v0 and its radius in e1[0] (and zero in e2, so the triangle test, run on all
+   four lanes, always fails there); an unused lane is all zero with id FOGRT__WBVH_EMPTY. */
+typedef struct fogrt__wtri {
+    float v0[3][4], e1[3][4], e2[3][4], k[4];
+    uint32_t id[4];
+} fogrt__wtri;
+
+typedef struct fogrt__wbvh {
+    fogrt__wnode *nodes; uint32_t node_count;
+    fogrt__wtri *tris; uint32_t tri_packets;
+} fogrt__wbvh;
+
+FOGRT__PRIVATE void fogrt__wbvh_free(fogrt__wbvh *w, const fogrt_allocator *a)
+{
+    fogrt__free(a, w->nodes);
+    fogrt__free(a, w->tris);
+    memset(w, 0, sizeof *w);
+}
+
+FOGRT__PRIVATE size_t fogrt__wbvh_bytes(const fogrt__wbvh *w)
+{
+    return sizeof(fogrt__wnode) * (size_t)w->node_count + sizeof(fogrt__wtri) * (size_t)w->tri_packets;
+}
+
+FOGRT__PRIVATE float fogrt__wbvh_node_area(const fogrt_bvh_node *n)
+{
+    fogrt__aabb b;
+    b.lo = fogrt__v(n->bmin[0], n->bmin[1], n->bmin[2]);
+    b.hi = fogrt__v(n->bmax[0], n->bmax[1], n->bmax[2]);
+    return fogrt__aabb_area(&b);
+}
+
+/* Copy the primitives s->prims[first .. first + count) into packets from w->tris[*next]. */
+FOGRT__PRIVATE void fogrt__wbvh_pack_leaf(const fogrt_scene *s, fogrt__wbvh *w, uint32_t first, uint32_t count,
+                                          uint32_t *next)
+{
+    uint32_t i;
+    for (i = 0; i < count; ++i) {
+        const fogrt__prim *p = &s->prims[first + i];
+        fogrt__wtri *q = &w->tris[*next + i / 4];
+        uint32_t j = i % 4;
+        if (j == 0) {                                   /* a new packet: all lanes unused */
+            memset(q, 0, sizeof *q);
+            q->id[0] = q->id[1] = q->id[2] = q->id[3] = FOGRT__WBVH_EMPTY;
+        }
+        q->id[j] = p->id;
+        q->v0[0][j] = p->a.x; q->v0[1][j] = p->a.y; q->v0[2][j] = p->a.z;
+        if (p->id < s->tri_count) {
+            q->e1[0][j] = p->b.x; q->e1[1][j] = p->b.y; q->e1[2][j] = p->b.z;
+            q->e2[0][j] = p->c.x; q->e2[1][j] = p->c.y; q->e2[2][j] = p->c.z;
+            q->k[j] = 1e-12f * fogrt__dot(p->b, p->b) * fogrt__dot(p->c, p->c);
+        } else {
+            q->e1[0][j] = p->b.x;                       /* the radius */
+        }
+    }
+    *next += (count + 3) / 4;
+}
+
+/* The primitives below binary node b if there are at most FOGRT__WBVH_LEAF of them (their
+   count, and in *first where they start in s->prims: a subtree's primitives are
+   contiguous there), else 0. Looks at no more than 2 FOGRT__WBVH_LEAF - 1 nodes. */
+FOGRT__PRIVATE uint32_t fogrt__wbvh_small(const fogrt_bvh_node *bn, uint32_t b, uint32_t *first)
+{
+    uint32_t stack[2 * FOGRT__WBVH_LEAF + 2], sp = 0, count = 0;
+    if (bn[b].prim_count > 0) { *first = bn[b].left_first; return bn[b].prim_count; }
+    if (FOGRT__WBVH_LEAF < 2) return 0;
+    stack[sp++] = b;
+    *first = UINT32_MAX;
+    while (sp > 0) {
+        const fogrt_bvh_node *n = &bn[stack[--sp]];
+        if (n->prim_count > 0) {
+            count += n->prim_count;
+            if (count > FOGRT__WBVH_LEAF) return 0;
+            if (n->left_first < *first) *first = n->left_first;
+        } else {
+            if (sp + 2 > 2 * FOGRT__WBVH_LEAF) return 0;   /* too many nodes: too many primitives */
+            stack[sp++] = n->left_first; stack[sp++] = n->left_first + 1;
+        }
+    }
+    return count;
+}
+
+/* The lanes of the wide node being filled: lane j stands for binary node lane[j]; small[j]
+   > 0 makes it a leaf of that many primitives from first[j]; area[j] is its box's surface
+   area (0 for a leaf: a leaf is never opened). */
+typedef struct fogrt__wlanes {
+    uint32_t lane[FOGRT__WBVH_W], small[FOGRT__WBVH_W], first[FOGRT__WBVH_W], count;
+    float area[FOGRT__WBVH_W];
+} fogrt__wlanes;
+FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, fogrt__wlanes *L, uint32_t j, uint32_t node)
+{
+    L->lane[j] = node;
+    L->small[j] = fogrt__wbvh_small(bn, node, &L->first[j]);
+    L->area[j] = L->small[j] ? 0.0f : fogrt__wbvh_node_area(&bn[node]);
+}
+/* Step 1 for binary node b: start with its two children (a small root is one leaf), then
+   open the lane with the largest surface area (the one a ray is most likely to enter) into
+   its two children, keeping the tree's left-to-right order, until W lanes are collected or
+   none can be opened. */
+FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, uint32_t b, fogrt__wlanes *L)
+{
+    uint32_t j, first;
+    if (fogrt__wbvh_small(bn, b, &first) || bn[b].prim_count > 0) {
+        fogrt__wbvh_lane(bn, L, 0, b); L->count = 1;   /* only a small root gets here */
+        return;
+    }
+    fogrt__wbvh_lane(bn, L, 0, bn[b].left_first);
+    fogrt__wbvh_lane(bn, L, 1, bn[b].left_first + 1);
+    L->count = 2;
+    while (L->count < FOGRT__WBVH_W) {
+        int open = -1;
+        float best = -1.0f;
+        uint32_t child;
+        for (j = 0; j < L->count; ++j)
+            if (!L->small[j] && L->area[j] > best) { best = L->area[j]; open = (int)j; }
+        if (open < 0) break;
+        child = bn[L->lane[open]].left_first;
+        for (j = L->count; j > (uint32_t)open + 1; --j) {
+            L->lane[j] = L->lane[j - 1]; L->small[j] = L->small[j - 1];
+            L->first[j] = L->first[j - 1]; L->area[j] = L->area[j - 1];
+        }
+        fogrt__wbvh_lane(bn, L, (uint32_t)open, child);
+        fogrt__wbvh_lane(bn, L, (uint32_t)open + 1, child + 1);
+        L->count++;
+    }
+}
+/* Room for the wide tree: at most one wide node per binary inner node (one for a leaf
+   root), and the packets of the binary leaves. */
+FOGRT__PRIVATE bool fogrt__wbvh_alloc(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
+{
+    uint32_t i, inner = 0, packets = 0;
+    for (i = 0; i < s->node_count; ++i) {
+        if (i == 1) continue;
+        if (s->nodes[i].prim_count > 0) packets += (s->nodes[i].prim_count + 3) / 4;
+        else ++inner;
+    }
+    w->nodes = (fogrt__wnode *)fogrt__alloc(a, sizeof(fogrt__wnode) * (inner > 0 ? inner : 1));
+    w->tris = (fogrt__wtri *)fogrt__alloc(a, sizeof(fogrt__wtri) * (packets > 0 ? packets : 1));
+    if (w->nodes && w->tris) return true;
+    fogrt__wbvh_free(w, a);
+    return false;
+}
+/* Build the wide tree from the scene's binary tree (s->nodes) and packed primitives
+   (s->prims), after fogrt__pack_prims (chapter 11): each wide node collects its lanes
+   (step 1 above); a lane with at most FOGRT_WBVH_LEAF (4) primitives below it becomes one
+   leaf, one full packet (the binary tree's leaves hold about 2 primitives, so this halves
+   the packets and the nodes); the others become new wide nodes, handled the same way from
+   a stack. Returns false when out of memory (w is then empty). */
+FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
+{
+    enum { W = FOGRT__WBVH_W };
+    uint32_t stack_b[FOGRT__BVH_MAX_DEPTH * W + 2], stack_w[FOGRT__BVH_MAX_DEPTH * W + 2], sp = 0, next_packet = 0;
+    memset(w, 0, sizeof *w);
+    if (!s->nodes || !s->prims || s->tri_count + s->sph_count == 0) return true;   /* nothing to trace */
+    if (!fogrt__wbvh_alloc(s, w, a)) return false;
+    w->node_count = 1;
+    stack_b[sp] = 0; stack_w[sp++] = 0;
+    while (sp > 0) {
+        fogrt__wlanes L;
+        fogrt__wnode *wn;
+        uint32_t j;
+        --sp;
+        wn = &w->nodes[stack_w[sp]];
+        fogrt__wbvh_collect(s->nodes, stack_b[sp], &L);
+        for (j = 0; j < W; ++j) {
+            const fogrt_bvh_node *bj = &s->nodes[L.lane[j < L.count ? j : 0]];
+            int k;
+            for (k = 0; k < 3; ++k) {                  /* an unused lane: an empty box */
+                wn->box[k][j] = j < L.count ? bj->bmin[k] : FLT_MAX;
+                wn->box[3 + k][j] = j < L.count ? bj->bmax[k] : -FLT_MAX;
+            }
+            if (j >= L.count) { wn->child[j] = 0; wn->count[j] = FOGRT__WBVH_EMPTY; }
+            else if (L.small[j]) {
+                wn->child[j] = next_packet; wn->count[j] = L.small[j];
+                fogrt__wbvh_pack_leaf(s, w, L.first[j], L.small[j], &next_packet);
+            } else {
+                wn->child[j] = w->node_count++; wn->count[j] = 0;
+                FOGRT_ASSERT(sp < FOGRT__BVH_MAX_DEPTH * W + 2);
+                stack_b[sp] = L.lane[j]; stack_w[sp++] = wn->child[j];
+            }
+        }
+    }
+    w->tri_packets = next_packet;
+    return true;
+}
+/* The scene's wide tree: built by fogrt_scene_build (chapter 11), released with the rest of
+   the built data (chapter 8). */
+FOGRT__PRIVATE bool fogrt__wide_build(fogrt_scene *s)
+{
+    s->wide = (fogrt__wbvh *)fogrt__alloc(&s->allocator, sizeof *s->wide);
+    if (!s->wide) return false;
+    return fogrt__wbvh_build(s, s->wide, &s->allocator);
+}
+FOGRT__PRIVATE void fogrt__wide_release(fogrt_scene *s)
+{
+    if (!s->wide) return;
+    fogrt__wbvh_free(s->wide, &s->allocator);
+    fogrt__free(&s->allocator, s->wide);
+    s->wide = NULL;
+}
+
+/* The W slab tests of one node: bit i of the result is set when the ray enters child i
+   between tmin and tmax, and t[i] is then its entry distance. Per lane these are exactly the
+   operations of fogrt__slab: near and far face by the sign of the direction, t0 = the
+   largest entry (a NaN entry ignored), t1 = the smallest exit, hit iff t0 <= t1 (1 + 2 ulp). */
+#ifdef FOGRT_WBVH_SSE
+FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r, const int near_row[3],
+                                      const int far_row[3], float tmin, float tmax, float *t)
+{
+    unsigned mask = 0;
+    int g;
+    for (g = 0; g < FOGRT__WBVH_W; g += 4) {
+        __m128 t0 = _mm_set1_ps(tmin), t1 = _mm_set1_ps(tmax), tn, tf, o, inv;
+        __m128i empty = _mm_cmpeq_epi32(_mm_loadu_si128((const __m128i *)(const void *)&n->count[g]),
+                                        _mm_set1_epi32(-1));
+        o = _mm_set1_ps(r->o.x); inv = _mm_set1_ps(r->inv.x);
+        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[near_row[0]][g]), o), inv);
+        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[far_row[0]][g]), o), inv);
+        t0 = _mm_max_ps(tn, t0); t1 = _mm_min_ps(tf, t1);      /* max(a, b) = a > b ? a : b */
+        o = _mm_set1_ps(r->o.y); inv = _mm_set1_ps(r->inv.y);
+        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[near_row[1]][g]), o), inv);
+        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[far_row[1]][g]), o), inv);
+        t0 = _mm_max_ps(tn, t0); t1 = _mm_min_ps(tf, t1);
+        o = _mm_set1_ps(r->o.z); inv = _mm_set1_ps(r->inv.z);
+        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[near_row[2]][g]), o), inv);
+        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[far_row[2]][g]), o), inv);
+        t0 = _mm_max_ps(tn, t0); t1 = _mm_min_ps(tf, t1);
+        _mm_storeu_ps(&t[g], t0);
+        mask |= (unsigned)(_mm_movemask_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(1.00000024f)))) &
+                           ~_mm_movemask_ps(_mm_castsi128_ps(empty))) << g;
+    }
+    return mask;
+}
+#else
+FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r, const int near_row[3],
+                                      const int far_row[3], float tmin, float tmax, float *t)
+{
+    float t1[FOGRT__WBVH_W];
+    unsigned mask = 0;
+    int i, a;
+    const float o[3] = { r->o.x, r->o.y, r->o.z }, inv[3] = { r->inv.x, r->inv.y, r->inv.z };
+    for (i = 0; i < FOGRT__WBVH_W; ++i) { t[i] = tmin; t1[i] = tmax; }
+    for (a = 0; a < 3; ++a)                               /* x, then y, then z, as fogrt__slab */
+        for (i = 0; i < FOGRT__WBVH_W; ++i) {
+            float tn = (n->box[near_row[a]][i] - o[a]) * inv[a];
+            float tf = (n->box[far_row[a]][i] - o[a]) * inv[a];
+            t[i] = tn > t[i] ? tn : t[i];
+            t1[i] = tf < t1[i] ? tf : t1[i];
+        }
+    for (i = 0; i < FOGRT__WBVH_W; ++i)
+        mask |= (unsigned)(t[i] <= t1[i] * 1.00000024f && n->count[i] != FOGRT__WBVH_EMPTY) << i;
+    return mask;
+}
+#endif
+
+/* One packet against the ray: fogrt__hit_triangle on all four lanes. Returns the mask of
+   lanes hit in (tmin, tmax) and their t, u, v. */
+#ifdef FOGRT_WBVH_SSE
+FOGRT__HOT unsigned fogrt__wbvh_tri4(const fogrt__wtri *q, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
+                                     float *t, float *u, float *v)
+{
+#define FOGRT__L(x) _mm_loadu_ps(x)
+    const __m128 dx = _mm_set1_ps(d.x), dy = _mm_set1_ps(d.y), dz = _mm_set1_ps(d.z);
+    const __m128 e1x = FOGRT__L(q->e1[0]), e1y = FOGRT__L(q->e1[1]), e1z = FOGRT__L(q->e1[2]);
+    const __m128 e2x = FOGRT__L(q->e2[0]), e2y = FOGRT__L(q->e2[1]), e2z = FOGRT__L(q->e2[2]);
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+    __m128 px, py, pz, det, inv_det, tx, ty, tz, qx, qy, qz, uu, vv, tt, ok;
+    /* pvec = d x e2, det = e1 . pvec */
+    px = _mm_sub_ps(_mm_mul_ps(dy, e2z), _mm_mul_ps(dz, e2y));
+    py = _mm_sub_ps(_mm_mul_ps(dz, e2x), _mm_mul_ps(dx, e2z));
+    pz = _mm_sub_ps(_mm_mul_ps(dx, e2y), _mm_mul_ps(dy, e2x));
+    det = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e1x, px), _mm_mul_ps(e1y, py)), _mm_mul_ps(e1z, pz));
+    ok = _mm_cmpgt_ps(_mm_mul_ps(det, det), FOGRT__L(q->k));
+    if (!_mm_movemask_ps(ok)) return 0;
+    inv_det = _mm_div_ps(one, det);
+    /* tvec = o - v0, u = (tvec . pvec) / det */
+    tx = _mm_sub_ps(_mm_set1_ps(o.x), FOGRT__L(q->v0[0]));
+    ty = _mm_sub_ps(_mm_set1_ps(o.y), FOGRT__L(q->v0[1]));
+    tz = _mm_sub_ps(_mm_set1_ps(o.z), FOGRT__L(q->v0[2]));
+    uu = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(tx, px), _mm_mul_ps(ty, py)), _mm_mul_ps(tz, pz)), inv_det);
+    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(uu, zero), _mm_cmple_ps(uu, one)));
+    if (!_mm_movemask_ps(ok)) return 0;
+    /* qvec = tvec x e1, v = (d . qvec) / det, t = (e2 . qvec) / det */
+    qx = _mm_sub_ps(_mm_mul_ps(ty, e1z), _mm_mul_ps(tz, e1y));
+    qy = _mm_sub_ps(_mm_mul_ps(tz, e1x), _mm_mul_ps(tx, e1z));
+    qz = _mm_sub_ps(_mm_mul_ps(tx, e1y), _mm_mul_ps(ty, e1x));
+    vv = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, qx), _mm_mul_ps(dy, qy)), _mm_mul_ps(dz, qz)), inv_det);
+    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(vv, zero), _mm_cmple_ps(_mm_add_ps(uu, vv), one)));
+    if (!_mm_movemask_ps(ok)) return 0;
+    tt = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(e2x, qx), _mm_mul_ps(e2y, qy)), _mm_mul_ps(e2z, qz)), inv_det);
+    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpgt_ps(tt, _mm_set1_ps(tmin)), _mm_cmplt_ps(tt, _mm_set1_ps(tmax))));
+    _mm_storeu_ps(t, tt); _mm_storeu_ps(u, uu); _mm_storeu_ps(v, vv);
+    return (unsigned)_mm_movemask_ps(ok);
+#undef FOGRT__L
+}
+#else
+FOGRT__HOT unsigned fogrt__wbvh_tri4(const fogrt__wtri *q, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
+                                     float *t, float *u, float *v)
+{
+    unsigned mask = 0;
+    int j;
+    for (j = 0; j < 4; ++j) {
+        float px = d.y * q->e2[2][j] - d.z * q->e2[1][j];
+        float py = d.z * q->e2[0][j] - d.x * q->e2[2][j];
+        float pz = d.x * q->e2[1][j] - d.y * q->e2[0][j];
+        float det = q->e1[0][j] * px + q->e1[1][j] * py + q->e1[2][j] * pz, inv_det;
+        float tx = o.x - q->v0[0][j], ty = o.y - q->v0[1][j], tz = o.z - q->v0[2][j], qx, qy, qz;
+        if (!(det * det > q->k[j])) continue;
+        inv_det = 1.0f / det;
+        u[j] = (tx * px + ty * py + tz * pz) * inv_det;
+        if (!(u[j] >= 0.0f && u[j] <= 1.0f)) continue;
+        qx = ty * q->e1[2][j] - tz * q->e1[1][j];
+        qy = tz * q->e1[0][j] - tx * q->e1[2][j];
+        qz = tx * q->e1[1][j] - ty * q->e1[0][j];
+        v[j] = (d.x * qx + d.y * qy + d.z * qz) * inv_det;
+        if (!(v[j] >= 0.0f && u[j] + v[j] <= 1.0f)) continue;
+        t[j] = (q->e2[0][j] * qx + q->e2[1][j] * qy + q->e2[2][j] * qz) * inv_det;
+        if (t[j] > tmin && t[j] < tmax) mask |= 1u << j;
+    }
+    return mask;
+}
+#endif
+
+FOGRT__HOT unsigned fogrt__wbvh_ctz(unsigned m)       /* index of the lowest set bit (m != 0) */
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return (unsigned)__builtin_ctz(m);
+#else
+    unsigned i = 0;
+    while (!(m & 1u)) { m >>= 1; ++i; }
+    return i;
+#endif
+}
+
+/* The primitives of one leaf (count of them, packets from first): the closest hit in
+   (tmin, *tmax), found as fogrt__traverse finds it (in leaf order, so of two hits at the same
+   distance the earlier primitive wins). Returns true on a hit, with *tmax lowered to it. */
+FOGRT__HOT bool fogrt__wbvh_leaf(const fogrt_scene *s, const fogrt__wbvh *w, uint32_t first, uint32_t count,
+                                 fogrt__v3 o, fogrt__v3 d, float tmin, float *tmax, fogrt_hit *hit, bool any_hit)
+{
+    uint32_t p, end = first + (count + 3) / 4;
+    bool found = false;
+    for (p = first; p < end; ++p) {
+        const fogrt__wtri *q = &w->tris[p];
+        float t[4], u[4], v[4];
+        FOGRT__WBVH_STAT(packet);
+        unsigned m = fogrt__wbvh_tri4(q, o, d, tmin, *tmax, t, u, v), j;
+        if (s->sph_count > 0) {                        /* sphere lanes, tested one by one */
+            for (j = 0; j < 4; ++j)
+                if (q->id[j] != FOGRT__WBVH_EMPTY && q->id[j] >= s->tri_count &&
+                    fogrt__hit_sphere(o, d, fogrt__v(q->v0[0][j], q->v0[1][j], q->v0[2][j]), q->e1[0][j],
+                                      tmin, *tmax, &t[j])) {
+                    u[j] = v[j] = 0.0f;
+                    m |= 1u << j;
+                }
+        }
+        if (!m) continue;
+        if (any_hit) return true;
+        {   /* the nearest lane; on equal t the first, as sequential tests would keep it */
+            unsigned best = fogrt__wbvh_ctz(m);
+            for (m &= m - 1; m; m &= m - 1) {
+                j = fogrt__wbvh_ctz(m);
+                if (t[j] < t[best]) best = j;
+            }
+            *tmax = t[best];
+            hit->t = t[best]; hit->prim = q->id[best]; hit->u = u[best]; hit->v = v[best];
+            found = true;
+        }
+    }
+    return found;
+}
+
+/* A hint to the cache: fetch a pushed child's node or packet while the nearer one is
+   traversed (on a big mesh nearly every node visit is a cache miss). */
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(FOGRT_WBVH_NO_PREFETCH)
+#define FOGRT__WBVH_PREFETCH(w, child, count) do { \
+        const char *p_ = (count) ? (const char *)&(w)->tris[child] : (const char *)&(w)->nodes[child]; \
+        __builtin_prefetch(p_); __builtin_prefetch(p_ + 64); __builtin_prefetch(p_ + 128); \
+        if (!(count) && sizeof(fogrt__wnode) > 192) __builtin_prefetch(p_ + 192); \
+    } while (0)
+#else
+#define FOGRT__WBVH_PREFETCH(w, child, count) ((void)0)
+#endif
+
+/* The traversal: fogrt__traverse's contract (closest hit in (tmin, tmax), or with any_hit
+   the first hit found; hit is written only on a hit). Test the current node's W boxes, visit
+   the nearest child hit next and push the others, farthest first, with their entry
+   distances; a popped child whose entry lies beyond the closest hit found so far is skipped. */
+FOGRT__PRIVATE bool fogrt__wbvh_traverse(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                         float tmin, float tmax, fogrt_hit *hit, bool any_hit)
+{
+    uint32_t stack_ref[FOGRT__WBVH_STACK], stack_cnt[FOGRT__WBVH_STACK], sp = 0, ref = 0, cnt = 0;
+    float stack_t[FOGRT__WBVH_STACK];
+    int near_row[3], far_row[3], a;
+    fogrt__ray r;
+    bool found = false;
+    if (!s->built || w->node_count == 0) return false;
+    fogrt__ray_setup(&r, o, d);
+    for (a = 0; a < 3; ++a) {          /* the near face is the minimum unless the ray goes down */
+        bool negative = fogrt__comp(r.inv, a) < 0.0f;
+        near_row[a] = negative ? 3 + a : a;
+        far_row[a] = negative ? a : 3 + a;
+    }
+    for (;;) {
+        if (cnt == 0) {                                  /* a wide node: test its W boxes */
+            const fogrt__wnode *n = &w->nodes[ref];
+            float t[FOGRT__WBVH_W];
+            FOGRT__WBVH_STAT(node);
+            unsigned m = fogrt__wbvh_slabs(n, &r, near_row, far_row, tmin, fogrt__wbvh_cull(tmax), t);
+            if (m) {
+                unsigned first = fogrt__wbvh_ctz(m);
+                m &= m - 1;
+                if (!m) {                                /* one child hit: the common case */
+                    ref = n->child[first]; cnt = n->count[first];
+                    continue;
+                } else {
+                    /* Sort the lanes hit by entry distance (insertion sort, stable: on equal
+                       distance the left child first, as fogrt__traverse orders them). */
+                    unsigned lane[FOGRT__WBVH_W], k = 1, i, j;
+                    lane[0] = first;
+                    for (; m; m &= m - 1) {
+                        unsigned l = fogrt__wbvh_ctz(m);
+                        for (i = k; i > 0 && t[lane[i - 1]] > t[l]; --i) lane[i] = lane[i - 1];
+                        lane[i] = l;
+                        ++k;
+                    }
+                    for (j = k - 1; j > 0; --j) {        /* push all but the nearest */
+                        stack_ref[sp] = n->child[lane[j]]; stack_cnt[sp] = n->count[lane[j]];
+                        stack_t[sp++] = t[lane[j]];
+                        FOGRT__WBVH_PREFETCH(w, n->child[lane[j]], n->count[lane[j]]);
+                    }
+                    ref = n->child[lane[0]]; cnt = n->count[lane[0]];
+                    continue;
+                }
+            }
+        } else if (fogrt__wbvh_leaf(s, w, ref, cnt, o, d, tmin, &tmax, hit, any_hit)) {
+            found = true;
+            if (any_hit) return true;
+        }
+        /* pop the next child that can still hold a closer hit */
+        for (;;) {
+            if (sp == 0) return found;
+            --sp;
+            if (stack_t[sp] <= fogrt__wbvh_cull(tmax)) break;
+        }
+        ref = stack_ref[sp]; cnt = stack_cnt[sp];
+    }
+}
+
+/* Either tree, as the build chose: the wide one when there is one. */
+FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
+                                    fogrt_hit *hit, bool any_hit)
+{
+    if (s->wide && s->wide->node_count) return fogrt__wbvh_traverse(s, s->wide, o, d, tmin, tmax, hit, any_hit);
+    return fogrt__bvh2_traverse(s, o, d, tmin, tmax, hit, any_hit);
 }
 
 FOGRT__PUBLIC bool fogrt_scene_intersect(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax, fogrt_hit *hit)
@@ -2355,8 +2947,8 @@ FOGRT__PRIVATE void fogrt__fog_bounds(fogrt_scene *s, uint32_t n)
 
 FOGRT__PUBLIC fogrt_build_desc fogrt_build_defaults(void)
 {
-    /* heuristic, bins, c_trav, c_int, max_leaf_size, resolved */
-    static const fogrt_build_desc d = { FOGRT_BVH_SAH, FOGRT_BVH_BINS, 1.0f, 1.0f, 4, true };
+    /* heuristic, bins, c_trav, c_int, max_leaf_size, layout, resolved */
+    static const fogrt_build_desc d = { FOGRT_BVH_SAH, FOGRT_BVH_BINS, 1.0f, 1.0f, 4, FOGRT_BVH_LAYOUT_DEFAULT, true };
     return d;
 }
 /* The desc (NULL: the defaults), checked. Like the render desc it must come from
@@ -2366,10 +2958,11 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fog
     *d = in ? *in : fogrt_build_defaults();
     if (!d->resolved)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: not from fogrt_build_defaults()");
-    if ((unsigned)d->heuristic >= (unsigned)FOGRT_BVH_NUM || d->bins < 1 || d->bins > 64 ||
+    if ((unsigned)d->heuristic >= (unsigned)FOGRT_BVH_NUM || (unsigned)d->layout >= (unsigned)FOGRT_BVH_LAYOUT_NUM ||
+        d->bins < 1 || d->bins > 64 ||
         d->max_leaf_size < 1 || !(d->c_trav >= 0.0f) || !(d->c_int >= 0.0f) ||
         !fogrt__finite(d->c_trav) || !fogrt__finite(d->c_int))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: heuristic, bins (1..64), max_leaf_size (>= 1), c_trav or c_int out of range");
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: heuristic, layout, bins (1..64), max_leaf_size (>= 1), c_trav or c_int out of range");
     if (d->heuristic == FOGRT_BVH_DEFAULT) d->heuristic = FOGRT_BVH_SAH;
     return FOGRT_RESULT_OK;
 }
@@ -2399,6 +2992,13 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
         else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
         s->node_count = b.node_count;
         fogrt__pack_prims(s, n);
+        if ((b.desc.layout == FOGRT_BVH_LAYOUT_WIDE || (b.desc.layout == FOGRT_BVH_LAYOUT_DEFAULT && n >= FOGRT_WBVH_MIN_PRIMS)) &&
+            !fogrt__wide_build(s)) {
+            fogrt__free_built(s);
+            fogrt__free(&s->allocator, b.box);
+            fogrt__free(&s->allocator, b.centroid);
+            return FOGRT_RESULT_OUT_OF_MEMORY;
+        }
         s->features = fogrt__features(s);
         fogrt__fog_bounds(s, n);
         if (s->area_light_count == 0 && s->light_count == 0 && !s->has_env)

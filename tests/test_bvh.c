@@ -821,6 +821,46 @@ static void test_sah_vs_volume(void)
     }
 }
 
+
+/* The two layouts answer alike: the binary tree traced as built and the wide tree of chapter
+   10b (the default from 16 primitives) give the closest hit that testing every primitive
+   gives, on soups with and without spheres, for every ray family, and the default picks the
+   binary tree for tiny scenes. Fails if the wide collapse loses a child, a leaf packet drops
+   a primitive, or a lane test differs from the binary slab test. */
+static void test_layouts_agree(void)
+{
+    static const uint32_t tris[3] = { 5, 900, 3000 }, spheres[3] = { 2, 0, 120 };
+    static const fogrt_bvh_layout layouts[3] = { FOGRT_BVH_LAYOUT_BINARY, FOGRT_BVH_LAYOUT_WIDE, FOGRT_BVH_LAYOUT_DEFAULT };
+    int k, l, hits, ray_count = 2000;
+    for (k = 0; k < 3; k++) {
+        soup s;
+        test_ray *rays;
+        answer *ref;
+        fogrt_scene *scene;
+        make_soup(&s, 200 + (uint64_t)k, tris[k], spheres[k], 0.0f);
+        scene = soup_scene(&s, NULL);
+        rays = make_rays(&s, 200 + (uint64_t)k, ray_count, 0.0f);
+        ref = (answer *)malloc(sizeof(answer) * (size_t)ray_count);
+        TEST_ASSERT_NOT_NULL(ref);
+        reference_answers(scene, &s, rays, ref, ray_count, &hits);
+        TEST_ASSERT_EQUAL_INT((tris[k] + spheres[k]) >= FOGRT_WBVH_MIN_PRIMS, scene->wide != NULL);
+        fogrt_scene_destroy(scene);
+        for (l = 0; l < 3; l++) {
+            fogrt_build_desc bd = fogrt_build_defaults();
+            char what[96];
+            bd.layout = layouts[l];
+            scene = soup_scene(&s, &bd);
+            snprintf(what, sizeof what, "soup of %u triangles and %u spheres, layout %d", tris[k], spheres[k], (int)layouts[l]);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(layouts[l] == FOGRT_BVH_LAYOUT_BINARY ? 0 : (layouts[l] == FOGRT_BVH_LAYOUT_WIDE ? 1 : (tris[k] + spheres[k] >= FOGRT_WBVH_MIN_PRIMS)),
+                                          scene->wide != NULL, what);
+            check_rays(scene, &s, rays, ref, ray_count, what);
+            fogrt_scene_destroy(scene);
+        }
+        free(rays); free(ref);
+        free_soup(&s);
+    }
+}
+
 /* Every bin count from 2 to 64 (and 0 = the default 8) builds a valid tree that answers as
    brute force does; 65 bins is refused. The SAH cost by bin count is printed. */
 static void test_bins_variants(void)
@@ -931,6 +971,7 @@ int main(void)
     RUN_TEST(test_degenerate_scenes);
     RUN_TEST(test_sah_vs_volume);
     RUN_TEST(test_bins_variants);
+    RUN_TEST(test_layouts_agree);
     RUN_TEST(test_cost_parameters);
     return UNITY_END();
 }
