@@ -1,0 +1,392 @@
+/* convergence.c - error against render time, for several estimators of one scene.
+
+   Usage: convergence [options]
+     --scene default|FILE.dae   the scene (default: fogrt's embedded fog-filled Cornell box,
+                                lit by a ceiling lamp and a spot light in the fog)
+     --reference REF.pfm        measure against this image (else a long render of this program,
+                                cached as OUT/<scene>_ref.pfm with its variance in
+                                OUT/<scene>_ref_var.pfm; delete them to render it again)
+     --out DIR                  output directory (default build/convergence)
+     --size W H                 image size (default 160 120)
+     --seconds S                CPU seconds per configuration (default 15)
+     --ref-seconds S            CPU seconds of the reference render (default 60)
+     --only-reference           render (or check) the cached reference and stop
+
+   Every configuration renders progressively to 1, 2, 4, 8, ... samples per pixel while the
+   next doubling fits in its time budget; after each step its relative MSE against the
+   reference is measured:
+       relMSE = (sum_p (L_p - R_p)^2 - sum_p Var[R_p]) / sum_p R_p^2     (luminance)
+   where Var[R_p] is the reference's own variance (known when this program rendered it; a
+   reference given without OUT-style _var.pfm next to it is taken as exact). This is the
+   quantity fogrt_image_error estimates from the samples themselves (its relative_error
+   squared, which uses the image's own sum_p L_p^2), and both are written.
+
+   Time is the process's CPU time (all threads): on a shared machine it depends much less on
+   what else runs than wall time does (both are in the CSV).
+
+   Writes OUT/<scene>.csv (one row per ladder point) and OUT/<scene>.svg (log-log relMSE
+   against seconds, one line per configuration, the fitted slope of each line in the legend
+   and an efficiency table, 1 / (relMSE x seconds)). An unbiased estimator falls with slope
+   -1; a line that flattens has hit its bias (the one-bounce integrator misses the light
+   that bounced more than once). */
+#define _POSIX_C_SOURCE 199309L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <time.h>
+#include <errno.h>
+#include <sys/stat.h>
+#define FOGRT_IMPLEMENTATION
+#include "fogrt.h"
+#define FOGRT_LOAD_IMPLEMENTATION
+#include "fogrt_load.h"
+#include "svgplot.h"
+
+#define MAX_POINTS 24
+
+static double cpu_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+static double wall_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+static double lum(const float *c) { return 0.2126 * (double)c[0] + 0.7152 * (double)c[1] + 0.0722 * (double)c[2]; }
+static double lum_d(const double *c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+
+static void log_stderr(fogrt_log_level level, const char *msg, void *user)
+{
+    (void)user;
+    if (level == FOGRT_LOG_ERROR || level == FOGRT_LOG_WARNING)
+        fprintf(stderr, "fogrt: %s: %s\n", level == FOGRT_LOG_ERROR ? "error" : "warning", msg);
+}
+
+/* ---- PFM reading (fogrt writes them; reading is this program's job) ---------------------- */
+/* Reads a little-endian colour PFM ("PF", negative scale) into *rgb (rows from the top).
+   Returns 0 on success; on failure prints one line naming the file and returns -1. */
+static int read_pfm(const char *path, int *w, int *h, float **rgb)
+{
+    FILE *f = fopen(path, "rb");
+    char magic[3] = { 0 };
+    double scale;
+    int y, c;
+    *rgb = NULL;
+    if (!f) { fprintf(stderr, "convergence: %s: %s\n", path, strerror(errno)); return -1; }
+    if (fscanf(f, "%2s %d %d %lf", magic, w, h, &scale) != 4 || strcmp(magic, "PF") != 0 ||
+        *w <= 0 || *h <= 0 || *w > 16384 || *h > 16384) {
+        fprintf(stderr, "convergence: %s: not a colour PFM (want 'PF', width, height, scale)\n", path);
+        fclose(f); return -1;
+    }
+    if (scale > 0.0) { fprintf(stderr, "convergence: %s: big-endian PFM is not supported\n", path); fclose(f); return -1; }
+    c = fgetc(f);                                   /* the single white-space byte after the scale */
+    if (c == '\r') c = fgetc(f);
+    *rgb = (float *)malloc(sizeof(float) * 3 * (size_t)*w * (size_t)*h);
+    if (!*rgb || c == EOF) { fprintf(stderr, "convergence: %s: out of memory or truncated\n", path); fclose(f); free(*rgb); *rgb = NULL; return -1; }
+    for (y = *h - 1; y >= 0; --y)                  /* bottom row first */
+        if (fread(*rgb + (size_t)y * (size_t)*w * 3, sizeof(float) * 3, (size_t)*w, f) != (size_t)*w) {
+            fprintf(stderr, "convergence: %s: truncated (%d x %d pixels expected)\n", path, *w, *h);
+            fclose(f); free(*rgb); *rgb = NULL; return -1;
+        }
+    fclose(f);
+    return 0;
+}
+static int file_exists(const char *path) { struct stat st; return stat(path, &st) == 0; }
+
+/* ---- the configurations ------------------------------------------------------------------ */
+typedef struct config {
+    const char *name;         /* legend and CSV */
+    fogrt_render_desc rd;
+} config;
+
+static int make_configs(config *c)
+{
+    int n = 0;
+    fogrt_render_desc d = fogrt_render_defaults();
+    c[n].name = "path NEE+MIS";          c[n].rd = d; ++n;
+    c[n].name = "path NEE, no MIS";      c[n].rd = d; c[n].rd.mis = false; ++n;
+    c[n].name = "path, no NEE (paper: no IS)"; c[n].rd = d; c[n].rd.nee = false; ++n;
+    c[n].name = "path, equiangular off"; c[n].rd = d; c[n].rd.equiangular = false; ++n;
+    c[n].name = "one-bounce direct";     c[n].rd = d; c[n].rd.integrator = FOGRT_INTEGRATOR_DIRECT; ++n;
+    return n;
+}
+
+typedef struct ladder {
+    int n;
+    int spp[MAX_POINTS];
+    double cpu[MAX_POINTS], wall[MAX_POINTS];
+    double meas[MAX_POINTS], est[MAX_POINTS];
+    double slope, efficiency;
+} ladder;
+
+/* Measured relMSE of img against the reference (ref_var may be NULL: an exact reference). */
+static double measured_rel_mse(const fogrt_image *img, const float *ref, const float *ref_var)
+{
+    size_t i, n = (size_t)img->width * (size_t)img->height;
+    double se = 0.0, var = 0.0, norm = 0.0;
+    for (i = 0; i < n; ++i) {
+        double m = img->count[i] ? lum_d(img->sum + 3 * i) / img->count[i] : 0.0, r = lum(ref + 3 * i);
+        se += (m - r) * (m - r);
+        norm += r * r;
+        if (ref_var) var += (double)ref_var[3 * i];
+    }
+    return norm > 0.0 ? (se - var) / norm : 0.0;
+}
+
+/* Least-squares slope of log relMSE against log seconds, over the points with >= 4 spp. */
+static double fit_slope(const ladder *L)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int k, m = 0;
+    for (k = 0; k < L->n; ++k) {
+        double x, y;
+        if (L->spp[k] < 4 || !(L->meas[k] > 0.0) || !(L->cpu[k] > 0.0)) continue;
+        x = log(L->cpu[k]); y = log(L->meas[k]);
+        sx += x; sy += y; sxx += x * x; sxy += x * y; ++m;
+    }
+    if (m < 2 || m * sxx - sx * sx <= 0.0) return NAN;
+    return (m * sxy - sx * sy) / (m * sxx - sx * sx);
+}
+
+static int run_ladder(const fogrt_scene *scene, const config *c, int w, int h, double budget,
+                      const float *ref, const float *ref_var, ladder *L)
+{
+    fogrt_image img;
+    fogrt_error_estimate e;
+    fogrt_result r;
+    double c0, w0;
+    int done = 0, target = 1;
+    memset(L, 0, sizeof *L);
+    if ((r = fogrt_image_alloc(&img, w, h, NULL)) != FOGRT_RESULT_OK) {
+        fprintf(stderr, "convergence: %s\n", fogrt_result_string(r)); return -1;
+    }
+    c0 = cpu_seconds(); w0 = wall_seconds();
+    while (L->n < MAX_POINTS) {
+        if ((r = fogrt_render(scene, &c->rd, &img, target - done, NULL)) != FOGRT_RESULT_OK) {
+            fprintf(stderr, "convergence: %s: %s\n", c->name, fogrt_result_string(r));
+            fogrt_image_free(&img); return -1;
+        }
+        done = target;
+        L->spp[L->n] = done;
+        L->cpu[L->n] = cpu_seconds() - c0;
+        L->wall[L->n] = wall_seconds() - w0;
+        L->meas[L->n] = measured_rel_mse(&img, ref, ref_var);
+        fogrt_image_error(&img, &e);
+        L->est[L->n] = e.relative_error * e.relative_error;
+        printf("  %-28s %5d spp %8.2f s cpu  relMSE measured %.4e estimated %.4e\n", c->name, done,
+               L->cpu[L->n], L->meas[L->n], L->est[L->n]);
+        fflush(stdout);
+        L->n++;
+        if (2.0 * L->cpu[L->n - 1] > budget) break;   /* the next doubling would not fit */
+        target *= 2;
+    }
+    L->slope = fit_slope(L);
+    L->efficiency = L->meas[L->n - 1] > 0.0 ? 1.0 / (L->meas[L->n - 1] * L->cpu[L->n - 1]) : (double)NAN;
+    fogrt_image_free(&img);
+    return 0;
+}
+
+/* The reference: path NEE+MIS with its own seed, rendered for ref_budget CPU seconds, saved
+   with its per-pixel variance of the mean luminance (all three channels). */
+static int render_reference(const fogrt_scene *scene, int w, int h, double ref_budget,
+                            const char *ref_path, const char *var_path)
+{
+    fogrt_image img;
+    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_error_estimate e;
+    fogrt_result r;
+    float *rgb, *var;
+    double c0 = cpu_seconds(), w0 = wall_seconds(), per_spp;
+    int done = 0, batch = 4;
+    size_t i, n = (size_t)w * (size_t)h;
+    rd.seed = 0xC0FFEE;   /* independent of the configurations' samples (seed 0) */
+    if ((r = fogrt_image_alloc(&img, w, h, NULL)) != FOGRT_RESULT_OK) { fprintf(stderr, "convergence: %s\n", fogrt_result_string(r)); return -1; }
+    printf("reference: path NEE+MIS, %d x %d, %.0f CPU seconds -> %s\n", w, h, ref_budget, ref_path);
+    for (;;) {
+        if ((r = fogrt_render(scene, &rd, &img, batch, NULL)) != FOGRT_RESULT_OK) {
+            fprintf(stderr, "convergence: reference: %s\n", fogrt_result_string(r)); fogrt_image_free(&img); return -1;
+        }
+        done += batch;
+        per_spp = (cpu_seconds() - c0) / done;
+        if ((cpu_seconds() - c0) + batch * per_spp > ref_budget) break;
+        if (batch < 64) batch *= 2;
+    }
+    fogrt_image_error(&img, &e);
+    printf("reference: %d spp, %.1f s cpu, %.1f s wall, estimated relMSE %.3e\n", done, cpu_seconds() - c0,
+           wall_seconds() - w0, e.relative_error * e.relative_error);
+    rgb = (float *)malloc(sizeof(float) * 3 * n);
+    var = (float *)malloc(sizeof(float) * 3 * n);
+    if (!rgb || !var) { fprintf(stderr, "convergence: out of memory\n"); return -1; }
+    fogrt_image_resolve(&img, rgb);
+    for (i = 0; i < n; ++i) {
+        double c = img.count[i], m = lum_d(img.sum + 3 * i) / c;
+        double v = c > 1.0 ? (img.sum_sq[i] / c - m * m) / (c - 1.0) : 0.0;
+        var[3 * i] = var[3 * i + 1] = var[3 * i + 2] = (float)(v > 0.0 ? v : 0.0);
+    }
+    if (fogrt_write_pfm(ref_path, w, h, rgb) != FOGRT_RESULT_OK || fogrt_write_pfm(var_path, w, h, var) != FOGRT_RESULT_OK) {
+        fprintf(stderr, "convergence: cannot write %s / %s\n", ref_path, var_path);
+        free(rgb); free(var); fogrt_image_free(&img); return -1;
+    }
+    free(rgb); free(var);
+    fogrt_image_free(&img);
+    return 0;
+}
+
+static const char *base_name(const char *path, char *buf, size_t size)
+{
+    const char *b = strrchr(path, '/'), *dot;
+    size_t len;
+    b = b ? b + 1 : path;
+    dot = strrchr(b, '.');
+    len = dot ? (size_t)(dot - b) : strlen(b);
+    if (len >= size) len = size - 1;
+    memcpy(buf, b, len); buf[len] = '\0';
+    return buf;
+}
+
+static int usage(const char *msg)
+{
+    fprintf(stderr, "convergence: %s\nusage: convergence [--scene default|FILE.dae] [--reference REF.pfm] [--out DIR]\n"
+                    "                   [--size W H] [--seconds S] [--ref-seconds S] [--only-reference]\n", msg);
+    return 2;
+}
+
+int main(int argc, char **argv)
+{
+    const char *scene_arg = "default", *ref_arg = NULL, *out = "build/convergence";
+    int w = 160, h = 120, only_ref = 0, i, nc, rw = 0, rh = 0;
+    double budget = 15.0, ref_budget = 60.0;
+    char name[128], path[1024], ref_path[1024], var_path[1024], line[160];
+    config cfg[8];
+    ladder lad[8];
+    fogrt_scene_desc sd;
+    fogrt_scene *scene = NULL;
+    fogrt_result r;
+    float *ref = NULL, *ref_var = NULL;
+    FILE *f;
+
+    setvbuf(stdout, NULL, _IOLBF, 0);   /* progress lines appear as they happen, also in a log file */
+    for (i = 1; i < argc; ++i) {
+        if (!strcmp(argv[i], "--scene") && i + 1 < argc) scene_arg = argv[++i];
+        else if (!strcmp(argv[i], "--reference") && i + 1 < argc) ref_arg = argv[++i];
+        else if (!strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
+        else if (!strcmp(argv[i], "--size") && i + 2 < argc) { w = atoi(argv[i + 1]); h = atoi(argv[i + 2]); i += 2; }
+        else if (!strcmp(argv[i], "--seconds") && i + 1 < argc) budget = atof(argv[++i]);
+        else if (!strcmp(argv[i], "--ref-seconds") && i + 1 < argc) ref_budget = atof(argv[++i]);
+        else if (!strcmp(argv[i], "--only-reference")) only_ref = 1;
+        else { snprintf(line, sizeof line, "unknown or incomplete option '%s'", argv[i]); return usage(line); }
+    }
+    if (w <= 0 || h <= 0 || w > 4096 || h > 4096) return usage("--size: W and H must be 1..4096");
+    if (!(budget > 0.0) || !(ref_budget > 0.0)) return usage("--seconds and --ref-seconds must be positive");
+    if (mkdir(out, 0777) != 0 && errno != EEXIST) { fprintf(stderr, "convergence: cannot create %s: %s\n", out, strerror(errno)); return 1; }
+
+    memset(&sd, 0, sizeof sd);
+    sd.logger.func = log_stderr;
+    if ((r = fogrt_scene_create(&sd, &scene)) != FOGRT_RESULT_OK) { fprintf(stderr, "convergence: %s\n", fogrt_result_string(r)); return 1; }
+    if (!strcmp(scene_arg, "default")) {
+        strcpy(name, "default");
+        r = fogrt_scene_add_default(scene);
+    } else {
+        fogrt_load_options opt;
+        fogrt_load_report rep;
+        memset(&opt, 0, sizeof opt);
+        opt.image_width = w; opt.image_height = h; opt.logger.func = log_stderr;
+        base_name(scene_arg, name, sizeof name);
+        r = fogrt_load_file(scene, scene_arg, &opt, &rep);
+        if (r != FOGRT_RESULT_OK) { fprintf(stderr, "%s:%d: %s\n", rep.file, rep.line, rep.message); fogrt_scene_destroy(scene); return 1; }
+    }
+    if (r == FOGRT_RESULT_OK) r = fogrt_scene_build(scene, NULL);
+    if (r != FOGRT_RESULT_OK) { fprintf(stderr, "convergence: %s: %s\n", scene_arg, fogrt_result_string(r)); fogrt_scene_destroy(scene); return 1; }
+
+    /* the reference */
+    if (ref_arg) {
+        snprintf(ref_path, sizeof ref_path, "%s", ref_arg);
+        snprintf(var_path, sizeof var_path, "%.*s_var.pfm", (int)(strlen(ref_arg) > 4 ? strlen(ref_arg) - 4 : strlen(ref_arg)), ref_arg);
+    } else {
+        snprintf(ref_path, sizeof ref_path, "%s/%s_%dx%d_ref.pfm", out, name, w, h);
+        snprintf(var_path, sizeof var_path, "%s/%s_%dx%d_ref_var.pfm", out, name, w, h);
+        if (!file_exists(ref_path) || !file_exists(var_path)) {
+            if (render_reference(scene, w, h, ref_budget, ref_path, var_path) != 0) { fogrt_scene_destroy(scene); return 1; }
+        } else {
+            printf("reference: cached %s (delete it to render a new one)\n", ref_path);
+        }
+    }
+    if (read_pfm(ref_path, &rw, &rh, &ref) != 0) { fogrt_scene_destroy(scene); return ref_arg ? 2 : 1; }   /* a bad --reference is bad input */
+    if (rw != w || rh != h) {
+        fprintf(stderr, "convergence: %s is %d x %d, the render is %d x %d (use --size %d %d)\n", ref_path, rw, rh, w, h, rw, rh);
+        free(ref); fogrt_scene_destroy(scene); return 2;
+    }
+    if (file_exists(var_path)) {
+        int vw = 0, vh = 0;
+        if (read_pfm(var_path, &vw, &vh, &ref_var) != 0 || vw != w || vh != h) {
+            fprintf(stderr, "convergence: %s does not match %s; ignoring it\n", var_path, ref_path);
+            free(ref_var); ref_var = NULL;
+        }
+    } else {
+        printf("reference: no %s: its own noise is not subtracted\n", var_path);
+    }
+    if (only_ref) { free(ref); free(ref_var); fogrt_scene_destroy(scene); return 0; }
+
+    /* the configurations */
+    nc = make_configs(cfg);
+    for (i = 0; i < nc; ++i) {
+        printf("%s: %s, %d x %d, %.0f CPU seconds\n", name, cfg[i].name, w, h, budget);
+        if (run_ladder(scene, &cfg[i], w, h, budget, ref, ref_var, &lad[i]) != 0) { free(ref); free(ref_var); fogrt_scene_destroy(scene); return 1; }
+    }
+
+    /* CSV */
+    snprintf(path, sizeof path, "%s/%s.csv", out, name);
+    if (!(f = fopen(path, "w"))) { fprintf(stderr, "convergence: cannot write %s: %s\n", path, strerror(errno)); return 1; }
+    fprintf(f, "configuration,spp,cpu_seconds,wall_seconds,measured_rel_mse,estimated_rel_mse,efficiency\n");
+    for (i = 0; i < nc; ++i) {
+        int k;
+        for (k = 0; k < lad[i].n; ++k)
+            fprintf(f, "%s,%d,%.4f,%.4f,%.6e,%.6e,%.6e\n", cfg[i].name, lad[i].spp[k], lad[i].cpu[k], lad[i].wall[k],
+                    lad[i].meas[k], lad[i].est[k], lad[i].meas[k] > 0.0 ? 1.0 / (lad[i].meas[k] * lad[i].cpu[k]) : (double)NAN);
+    }
+    fclose(f);
+    printf("wrote %s\n", path);
+
+    /* table (stdout and the SVG) and the plot */
+    {
+        static char notes[10][160];
+        const char *note_ptr[10];
+        char labels[8][96];
+        svgplot_series s[8];
+        svgplot_desc d;
+        char title[200];
+        int nn = 0;
+        snprintf(notes[nn++], sizeof notes[0], "%-28s %6s %8s %11s %6s %11s %7s", "configuration", "spp", "CPU s",
+                 "relMSE", "slope", "1/(MSE*s)", "vs NEE+MIS");
+        for (i = 0; i < nc; ++i) {
+            const ladder *L = &lad[i];
+            snprintf(notes[nn++], sizeof notes[0], "%-28s %6d %8.2f %11.3e %6.2f %11.3e %7.3f", cfg[i].name,
+                     L->spp[L->n - 1], L->cpu[L->n - 1], L->meas[L->n - 1], L->slope, L->efficiency,
+                     L->efficiency / lad[0].efficiency);
+            snprintf(labels[i], sizeof labels[i], "slope %.2f, %d spp in %.1f s", L->slope, L->spp[L->n - 1], L->cpu[L->n - 1]);
+            s[i].label = cfg[i].name; s[i].sublabel = labels[i]; s[i].x = L->cpu; s[i].y = L->meas; s[i].n = L->n; s[i].dashed = i == nc - 1;
+        }
+        printf("\nefficiency at the last point (relMSE measured; slope fitted over >= 4 spp):\n");
+        for (i = 0; i < nn; ++i) { note_ptr[i] = notes[i]; printf("  %s\n", notes[i]); }
+        memset(&d, 0, sizeof d);
+        snprintf(title, sizeof title, "%s scene, %d x %d: relative MSE against render time", name, w, h);
+        d.title = title;
+        d.x_label = "render time [CPU seconds, all threads]";
+        d.y_label = "relative MSE [dimensionless] (luminance, against the reference)";
+        d.log_x = d.log_y = 1;
+        d.notes = note_ptr; d.note_count = nn;
+        snprintf(path, sizeof path, "%s/%s.svg", out, name);
+        if (!(f = fopen(path, "w"))) { fprintf(stderr, "convergence: cannot write %s: %s\n", path, strerror(errno)); return 1; }
+        svgplot_write(f, &d, s, nc);
+        fclose(f);
+        printf("wrote %s\n", path);
+    }
+    free(ref); free(ref_var);
+    fogrt_scene_destroy(scene);
+    return 0;
+}

@@ -1,0 +1,22 @@
+# mk/figures.mk - the paper's experiments with numbers (issue 11, point 4).
+#   make figures    writes docs/figures/*.png and *.svg and docs/experiments.md (about 10
+#                   minutes on 2 cores); uses $(SHARED)/scenes/cs184/CBbunny_upSpot.dae when
+#                   present (else those panels are skipped with a message)
+#   make figures FIGURES_ARGS=--quick          a quarter of the samples (a smoke run)
+#   make figures FIGURES_ARGS="--only fig4"    one experiment (fig2 fig3 fig4 equiangular bvh fresnel)
+# The generated files are committed; rerun after a change that alters the images.
+.PHONY: figures
+FIGURES_ARGS ?=
+FIGURES_OUT  ?= docs/figures
+FIGURES_DOC  ?= docs/experiments.md
+
+$(BUILD)/bin/figures: examples/figures.c examples/svgplot.h fogrt.h fogrt_load.h mk/figures.mk | deps-stb $(BUILD)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -Iexamples -o $@ examples/figures.c $(LDLIBS)
+
+figures: $(BUILD)/bin/figures
+	@mkdir -p $(FIGURES_OUT)
+	@# a full run starts clean; --only (a part) writes its report to $(BUILD)/experiments-partial.md
+	@case "$(FIGURES_ARGS)" in *--only*) ;; *) rm -f $(FIGURES_OUT)/fig*.png $(FIGURES_OUT)/fig*.svg $(FIGURES_OUT)/beyond_*.png $(FIGURES_OUT)/beyond_*.svg ;; esac
+	./$(BUILD)/bin/figures --out $(FIGURES_OUT) --shared $(SHARED) \
+	  --doc $$(case "$(FIGURES_ARGS)" in *--only*) echo $(BUILD)/experiments-partial.md ;; *) echo $(FIGURES_DOC) ;; esac) $(FIGURES_ARGS)
