@@ -323,54 +323,9 @@ static void add_hard_rays(const fogrt_scene *s, rays *out, size_t n, uint64_t se
 }
 
 /* ---- correctness ---- */
-/* fogrt__traverse with the wide traversal's culling slack (two lines differ, marked): the
-   fix proposed for fogrt.h. With it the two traversals must agree on every ray but ties. */
-static bool traverse_slack(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
-                           fogrt_hit *hit, bool any_hit)
-{
-    uint32_t stack[FOGRT__BVH_MAX_DEPTH + 2], sp = 0, tri_count = s->tri_count;
-    float stack_t[FOGRT__BVH_MAX_DEPTH + 2];
-    const fogrt_bvh_node *nodes = s->nodes, *node;
-    fogrt__ray r;
-    bool found = false;
-    if (!s->built || s->tri_count + s->sph_count == 0) return false;
-    fogrt__ray_setup(&r, o, d);
-    node = &nodes[0];
-    if (fogrt__slab(node, &r, tmin, tmax) == FLT_MAX) return false;
-    for (;;) {
-        if (node->prim_count > 0) {
-            uint32_t i, end = node->left_first + node->prim_count;
-            for (i = node->left_first; i < end; ++i) {
-                const fogrt__prim *p = &s->prims[i];
-                float t, u = 0.0f, v = 0.0f;
-                bool h = p->id < tri_count ? fogrt__hit_triangle(o, d, p->a, p->b, p->c, tmin, tmax, &t, &u, &v)
-                                           : fogrt__hit_sphere(o, d, p->a, p->b.x, tmin, tmax, &t);
-                if (h) {
-                    found = true;
-                    tmax = t;
-                    if (any_hit) return true;
-                    hit->t = t; hit->prim = p->id; hit->u = u; hit->v = v;
-                }
-            }
-        } else {
-            const fogrt_bvh_node *c1 = &nodes[node->left_first], *c2 = c1 + 1;
-            float cull = fogrt__wbvh_cull(tmax);                                   /* changed */
-            float d1 = fogrt__slab(c1, &r, tmin, cull), d2 = fogrt__slab(c2, &r, tmin, cull);
-            if (d1 > d2) { float td = d1; const fogrt_bvh_node *tn = c1; d1 = d2; d2 = td; c1 = c2; c2 = tn; }
-            if (d1 != FLT_MAX) {
-                if (d2 != FLT_MAX) { stack_t[sp] = d2; stack[sp++] = (uint32_t)(c2 - nodes); }
-                node = c1;
-                continue;
-            }
-        }
-        for (;;) {
-            if (sp == 0) return found;
-            --sp;
-            if (stack_t[sp] <= fogrt__wbvh_cull(tmax)) break;                     /* changed */
-        }
-        node = &nodes[stack[sp]];
-    }
-}
+/* The binary traversal with the culling slack: fogrt.h's own since the wide chapter moved
+   into it (it was this file's patched copy while the chapter was drafted here). */
+#define traverse_slack fogrt__bvh2_traverse
 
 static bool ulp1(float a, float b)
 {

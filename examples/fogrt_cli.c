@@ -39,23 +39,8 @@
 #define FOGRT_LOAD_IMPLEMENTATION
 #include "fogrt_load.h"
 
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#endif
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STB_IMAGE_WRITE_STATIC
-#include <stb/stb_image_write.h>
-#define STB_IMAGE_IMPLEMENTATION       /* (not static: gcc warns about its unused declarations) */
-#define STBI_ONLY_HDR
-#include <stb/stb_image.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
+#define FOGRT_STB_READ_HDR
+#include "stb_write.h"           /* stb_image_write, its warnings silenced */
 #ifdef FOGRT_CLI_EXR
 #include <tinyexr.h>            /* Debian's libtinyexr-dev (C declarations, -ltinyexr) */
 #endif

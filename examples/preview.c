@@ -47,22 +47,8 @@
 
 #include <GLFW/glfw3.h>   /* also brings <GL/gl.h>: legacy OpenGL 1.x is all we use */
 
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#endif
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STB_IMAGE_WRITE_STATIC
-#include <stb/stb_image_write.h>
-#include <stb/stb_easy_font.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
+#define FOGRT_STB_EASY_FONT
+#include "stb_write.h"           /* stb_image_write, its warnings silenced */
 
 /* ------------------------------------------------------------------------------------------
    What the user can change, and the program's options

@@ -12,8 +12,7 @@
 #include <time.h>
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#include <stb/stb_image_write.h>
+#include "stb_write.h"           /* stb_image_write, its warnings silenced */
 
 static double now_seconds(void)
 {
