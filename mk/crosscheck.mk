@@ -8,7 +8,9 @@
 # $(BUILD)/crosscheck/results.md, results.json and <scene>_side.png. Mitsuba's fast
 # llvm_ad_rgb variant needs LLVM >= 16: Debian's libllvm19 is installed when we are root;
 # without it the script falls back to the scalar_rgb variant and says so.
-.PHONY: crosscheck crosscheck-deps
+#   make bench-mitsuba                the same run, read as issue 16's benchmark: it ends with
+#                                     relMSE x CPU seconds of both renderers and their ratio
+.PHONY: crosscheck crosscheck-deps bench-mitsuba
 CROSSCHECK_ARGS ?=
 CROSSCHECK_FOGRT ?= $(BUILD)/fogrt
 CROSSCHECK_LLVM := /usr/lib/x86_64-linux-gnu/libLLVM.so.19.1
@@ -20,3 +22,5 @@ crosscheck-deps:
 crosscheck: $(CROSSCHECK_FOGRT) crosscheck-deps
 	python3 tests/crosscheck/crosscheck.py --fogrt $(CROSSCHECK_FOGRT) --out $(BUILD)/crosscheck \
 	  --venv $(BUILD)/crosscheck-venv $(CROSSCHECK_ARGS)
+
+bench-mitsuba: crosscheck

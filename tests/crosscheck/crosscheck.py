@@ -486,6 +486,16 @@ def main():
     with open(os.path.join(a.out, "results.md"), "w") as f:
         f.write(markdown(results))
     print("crosscheck: %d scenes in %.0f s -> %s" % (len(todo), results["seconds"], os.path.join(a.out, "results.md")))
+    # Equal-time efficiency (make bench-mitsuba, issue 16): relative MSE x CPU seconds of each
+    # renderer (its own batch noise over the scene, the same denominator for both), and their
+    # ratio; the goal is fogrt at or below 0.5x Mitsuba's on every scene.
+    print("equal-time error: relMSE x CPU seconds (lower is better); goal fogrt/Mitsuba <= 0.5")
+    print("%-20s %12s %12s %10s  %s" % ("scene", "fogrt", "Mitsuba", "ratio", "goal"))
+    for r in results["scenes"]:
+        fe = r["fogrt"]["relmse"] * r["fogrt"]["cpu_seconds"]
+        me = r["mitsuba"]["relmse"] * r["mitsuba"]["cpu_seconds"]
+        ratio = fe / me if me > 0 else float("inf")
+        print("%-20s %12.3e %12.3e %10.3f  %s" % (r["name"], fe, me, ratio, "met" if ratio <= 0.5 else "NOT met"))
 
 
 def verdict(c):
