@@ -386,7 +386,7 @@ static int parse_args(int argc, char **argv, cli_options *o)
             o->g_set = true;
             if (a[1] == 'g') o->paper_g = true;
         }
-        else if (strcmp(a, "--density") == 0) { NEED(1); if (!parse_float(argv[++i], &o->density) || o->density < 0) return bad_flag(a, "density must be a number >= 0, got '%s'", argv[i]); o->density_set = true; }
+        else if (strcmp(a, "--density") == 0) { NEED(1); if (!parse_float(argv[++i], &o->density) || o->density < 0) return bad_flag(a, "density must be a finite number >= 0 (float: at most 3.4e38), got '%s'", argv[i]); o->density_set = true; }
         else if (strcmp(a, "--albedo") == 0) { NEED(1); if (!parse_albedo(argv[++i], &o->albedo)) return bad_flag(a, "albedo must be a number in [0, 1] or r,g,b with each in [0, 1], got '%s'", argv[i]); o->albedo_set = true; }
         else if (strcmp(a, "--integrator") == 0) {
             NEED(1); ++i;
