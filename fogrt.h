@@ -76,8 +76,11 @@
     - Triangles: counter-clockwise winding (seen from the front) gives the front side. Area
       lights emit from the front side only. Reflecting surfaces are two-sided. Refractive
       surfaces use the front (outward) side to tell entering from leaving.
-    - The medium fills all space outside refractive objects: a ray that refracts into a glass
-      or refraction object travels without fog until it leaves it. The camera sits in the fog.
+    - The medium fills all space outside refractive objects (or, bounded, its box outside
+      them): a ray that refracts into a glass or refraction object travels without fog until
+      it leaves it. Unbounded, the camera sits in the fog; bounded, it may be outside.
+    - Environment maps are equirectangular as CS184 maps them: theta = acos(y) down the rows
+      from +y, phi = atan2(-z, x) + pi across the columns.
 
     ERRORS AND LOGGING
     ==================
