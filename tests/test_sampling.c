@@ -424,6 +424,43 @@ static void test_env_map_sampling(void)
     TALLY_ASSERT(t);
 }
 
+/* fogrt_hg_pdf next to the peak at g = +-0.999: directions 1e-6 to 1e-2 rad from it, the
+   value against HG in double at the exact angle between the float vectors (from their chord).
+   Negative control: the phase function of the rounded dot product, which is off by far more
+   there. Fails if the pdf MIS and next-event estimation use loses its precision at the peak. */
+static void test_hg_pdf_at_the_peak(void)
+{
+    static const float gs[2] = {0.999f, -0.999f};
+    int k, i;
+    for (k = 0; k < 2; k++) {
+        double worst = 0.0, worst_dot = 0.0;
+        float g = gs[k];
+        fogrt_vec3 wo = v3(0.28f, -0.6f, 0.7483315f);   /* about unit */
+        fogrt_vec3 d, peak;
+        char msg[200];
+        wo = fogrt__normalize(wo);
+        d = fogrt__neg(wo);
+        peak = g > 0.0f ? d : wo;
+        for (i = 0; i <= 40; i++) {
+            double theta = 1e-6 * pow(1e4, i / 40.0);
+            fogrt__frame f = fogrt__frame_from_z(peak);
+            fogrt_vec3 wi = fogrt__normalize(fogrt__to_world(&f, fogrt__v((float)sin(theta), 0.0f, (float)cos(theta))));
+            double cx = (double)wi.x - peak.x, cy = (double)wi.y - peak.y, cz = (double)wi.z - peak.z;
+            double ang = 2.0 * asin(0.5 * sqrt(cx * cx + cy * cy + cz * cz)), a = fabs((double)g);
+            double base = (1.0 - a) * (1.0 - a) + 4.0 * a * sin(0.5 * ang) * sin(0.5 * ang);
+            double exact = (1.0 - a * a) / (4.0 * STATS_PI * base * sqrt(base));
+            double got = fogrt_hg_pdf(g, wo, wi), dotted = fogrt_hg_phase(g, -fogrt__dot(wo, wi));
+            worst = fmax(worst, fabs(got - exact) / exact);
+            worst_dot = fmax(worst_dot, fabs(dotted - exact) / exact);
+        }
+        snprintf(msg, sizeof msg, "g %g: worst relative error of fogrt_hg_pdf %.2g (rounded dot product: %.2g)",
+                 (double)g, worst, worst_dot);
+        TEST_MESSAGE(msg);
+        TEST_ASSERT_TRUE_MESSAGE(worst < 1e-4, msg);
+        TEST_ASSERT_TRUE_MESSAGE(worst_dot > 1e-3, msg);   /* the negative control sees the problem */
+    }
+}
+
 /* The mean cosine between d = -wo and the sampled direction equals g, within 4 standard
    errors (from the sample variance). This pins the sign convention on its own: g > 0 must
    scatter forward. Fails if g's sign is flipped or the lobe has the wrong width. */
@@ -1788,6 +1825,7 @@ int main(void)
     RUN_TEST(test_hg_chi2_exact_cdf);
     RUN_TEST(test_hg_chi2_against_pdf);
     RUN_TEST(test_hg_peak_resolved);
+    RUN_TEST(test_hg_pdf_at_the_peak);
     RUN_TEST(test_env_map_sampling);
     RUN_TEST(test_hg_mean_cosine_is_g);
     RUN_TEST(test_hg_sample_pdf_matches_eval);
