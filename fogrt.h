@@ -2975,6 +2975,12 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fog
     return FOGRT_RESULT_OK;
 }
 
+/* The layout to trace: the wide tree when asked for, or by default from FOGRT_WBVH_MIN_PRIMS
+   primitives (below that the binary tree is as fast). */
+FOGRT__PRIVATE bool fogrt__wants_wide(const fogrt_build_desc *d, uint32_t n)
+{
+    return d->layout == FOGRT_BVH_LAYOUT_WIDE || (d->layout == FOGRT_BVH_LAYOUT_DEFAULT && n >= FOGRT_WBVH_MIN_PRIMS);
+}
 FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
 {
     fogrt__build b;
@@ -3000,8 +3006,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
         else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
         s->node_count = b.node_count;
         fogrt__pack_prims(s, n);
-        if ((b.desc.layout == FOGRT_BVH_LAYOUT_WIDE || (b.desc.layout == FOGRT_BVH_LAYOUT_DEFAULT && n >= FOGRT_WBVH_MIN_PRIMS)) &&
-            !fogrt__wide_build(s)) {
+        if (fogrt__wants_wide(&b.desc, n) && !fogrt__wide_build(s)) {
             fogrt__free_built(s);
             fogrt__free(&s->allocator, b.box);
             fogrt__free(&s->allocator, b.centroid);
