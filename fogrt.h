@@ -2180,14 +2180,14 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
      4. Traversal: test the W boxes of the current node, go on with the nearest child hit,
         push the others, farthest first, with their entry distances.
 
-   The answers are those of fogrt__traverse. Every box test is fogrt__slab's (the same
+   The answers are those of fogrt__bvh2_traverse. Every box test is fogrt__slab's (the same
    operations in the same order on each lane: the same entry distance, the same NaN rules,
    the same 2-ulp widening of the exit distance) and every triangle test is
    fogrt__hit_triangle's (the same float operations, so bit for bit the same t, u and v).
    The wide tree tests a subset of the binary tree's boxes (a collapsed node's own box
    contains its children's, so leaving it out loses no ray), and a popped box is skipped only
    when it starts more than 1e-5 (relative) beyond the closest hit so far (see
-   FOGRT__WBVH_SLACK). What can differ:
+   fogrt__cull in chapter 10). What can differ:
      - two hits at exactly the same t (a ray through a shared edge) may be found in another
        order, so another primitive is named at the same t;
      - with FOGRT_WBVH_LEAF > 0 a merged leaf's box is larger than its parts, so a ray that
@@ -2233,14 +2233,6 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 #ifndef FOGRT__WBVH_STAT
 #define FOGRT__WBVH_STAT(what) ((void)0)   /* a counting hook for bench/wide_dev.c */
 #endif
-/* Culling slack: a box is skipped only when its entry lies beyond the closest hit by more
-   than 1e-5 (relative, about 100 ulps). The box's entry distance and the triangle's hit
-   distance are rounded separately, so near a shared edge the box that holds the truly
-   closest triangle can appear to start a few ulps after a neighbour's hit; a strict test
-   then skips it and returns the neighbour (fogrt__traverse, which has no slack, does so on
-   about 1 in 2000 of bench/wide_dev.c's bunny rays). The slack costs nothing measurable and
-   gives the brute-force answer there; a hit itself still needs t < tmax exactly. */
-#define fogrt__wbvh_cull fogrt__cull             /* the slack of chapter 10 */
 #define FOGRT__WBVH_EMPTY 0xFFFFFFFFu             /* count[] of a lane with no child */
 /* Each wide level pushes at most W - 1 children and uses up at least one binary level. */
 #define FOGRT__WBVH_STACK ((FOGRT__BVH_MAX_DEPTH + 2) * (FOGRT__WBVH_W - 1) + 2)
@@ -2666,7 +2658,7 @@ FOGRT__PRIVATE bool fogrt__wbvh_traverse(const fogrt_scene *s, const fogrt__wbvh
             const fogrt__wnode *n = &w->nodes[ref];
             float t[FOGRT__WBVH_W];
             FOGRT__WBVH_STAT(node);
-            unsigned m = fogrt__wbvh_slabs(n, &r, near_row, far_row, tmin, fogrt__wbvh_cull(tmax), t);
+            unsigned m = fogrt__wbvh_slabs(n, &r, near_row, far_row, tmin, fogrt__cull(tmax), t);
             if (m) {
                 unsigned first = fogrt__wbvh_ctz(m);
                 m &= m - 1;
@@ -2701,7 +2693,7 @@ FOGRT__PRIVATE bool fogrt__wbvh_traverse(const fogrt_scene *s, const fogrt__wbvh
         for (;;) {
             if (sp == 0) return found;
             --sp;
-            if (stack_t[sp] <= fogrt__wbvh_cull(tmax)) break;
+            if (stack_t[sp] <= fogrt__cull(tmax)) break;
         }
         ref = stack_ref[sp]; cnt = stack_cnt[sp];
     }
@@ -3211,16 +3203,26 @@ FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_ligh
     return true;
 }
 
-/* A point y on a mesh light: a triangle chosen by area (binary search in the CDF), then a
-   uniform point on it. *ny is its geometric normal. */
+/* Discrete sampling from a CDF (a mesh light's triangles by area, the environment map's
+   rows and columns): the index of the first CDF entry above u in cdf[0..n), and the fraction of u inside
+   that entry (for a continuous position within it). */
+FOGRT__PRIVATE int fogrt__cdf_find(const float *cdf, int n, float u, float *frac)
+{
+    int lo = 0, hi = n - 1;
+    float c0;
+    while (lo < hi) { int mid = (lo + hi) / 2; if (cdf[mid] <= u) lo = mid + 1; else hi = mid; }
+    c0 = lo ? cdf[lo - 1] : 0.0f;
+    *frac = cdf[lo] > c0 ? FOGRT__CLAMP((u - c0) / (cdf[lo] - c0), 0.0f, FOGRT__ONE_MINUS_EPS) : 0.5f;
+    return lo;
+}
+/* A point y on a mesh light: a triangle chosen by area (fogrt__cdf_find), then a uniform
+   point on it. *ny is its geometric normal. */
 FOGRT__PRIVATE uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__area_light *a, const float *u,
                                                  fogrt__v3 *y, fogrt__v3 *ny)
 {
-    uint32_t lo = 0, hi = a->count - 1, tri;
     const fogrt__v3 *v;
-    float b1, b2;
-    while (lo < hi) { uint32_t mid = (lo + hi) / 2; if (s->light_cdf[a->first + mid] <= u[0]) lo = mid + 1; else hi = mid; }
-    tri = s->light_prims[a->first + lo];
+    float b1, b2, frac;
+    uint32_t tri = s->light_prims[a->first + (uint32_t)fogrt__cdf_find(s->light_cdf + a->first, (int)a->count, u[0], &frac)];
     v = &s->tri_v[3 * tri];
     fogrt_sample_triangle(u[1], u[2], &b1, &b2);
     *y = fogrt__add(v[0], fogrt__add(fogrt__scale(fogrt__sub(v[1], v[0]), b1), fogrt__scale(fogrt__sub(v[2], v[0]), b2)));
@@ -3322,16 +3324,6 @@ FOGRT__PRIVATE fogrt__v3 fogrt__env_radiance(const fogrt_scene *s, fogrt__v3 d)
     if (!s->env_map) return s->env_upper_only && !(d.y > 0.0f) ? fogrt__v(0.0f, 0.0f, 0.0f) : s->env;
     c = s->env_map + 3 * fogrt__env_pixel(s, d, &sin_t);
     return fogrt__v(c[0], c[1], c[2]);
-}
-/* Index of the first CDF entry above u in cdf[0..n), and the fraction of u inside it. */
-FOGRT__PRIVATE int fogrt__cdf_find(const float *cdf, int n, float u, float *frac)
-{
-    int lo = 0, hi = n - 1;
-    float c0;
-    while (lo < hi) { int mid = (lo + hi) / 2; if (cdf[mid] <= u) lo = mid + 1; else hi = mid; }
-    c0 = lo ? cdf[lo - 1] : 0.0f;
-    *frac = cdf[lo] > c0 ? FOGRT__CLAMP((u - c0) / (cdf[lo] - c0), 0.0f, FOGRT__ONE_MINUS_EPS) : 0.5f;
-    return lo;
 }
 FOGRT__PRIVATE bool fogrt__sample_env(const fogrt_scene *s, const float *u, fogrt__light_sample *ls)
 {

@@ -45,20 +45,9 @@ void tearDown(void) {}
 static fogrt_scene *fog_box(void)
 {
     fogrt_scene *scene = NULL;
-    uint32_t white, red, green, lamp;
+    uint32_t white;
     CHECK_OK(fogrt_scene_create(NULL, &scene));
-    white = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.7f, 0.7f, 0.7f), v3(0, 0, 0));
-    red = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.7f, 0.1f, 0.1f), v3(0, 0, 0));
-    green = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.1f, 0.7f, 0.1f), v3(0, 0, 0));
-    lamp = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(0, 0, 0), v3(8, 8, 8));
-    add_quad_corners(scene, v3(-1, 0, -1), v3(-1, 0, 1), v3(1, 0, 1), v3(1, 0, -1), white);     /* floor */
-    add_quad_corners(scene, v3(-1, 2, -1), v3(1, 2, -1), v3(1, 2, 1), v3(-1, 2, 1), white);     /* ceiling */
-    add_quad_corners(scene, v3(-1, 0, -1), v3(1, 0, -1), v3(1, 2, -1), v3(-1, 2, -1), white);   /* back */
-    add_quad_corners(scene, v3(-1, 0, 1), v3(-1, 2, 1), v3(1, 2, 1), v3(1, 0, 1), white);       /* front */
-    add_quad_corners(scene, v3(-1, 0, -1), v3(-1, 2, -1), v3(-1, 2, 1), v3(-1, 0, 1), red);     /* left */
-    add_quad_corners(scene, v3(1, 0, -1), v3(1, 0, 1), v3(1, 2, 1), v3(1, 2, -1), green);       /* right */
-    add_quad_corners(scene, v3(-0.3f, 1.99f, -0.3f), v3(0.3f, 1.99f, -0.3f),
-                     v3(0.3f, 1.99f, 0.3f), v3(-0.3f, 1.99f, 0.3f), lamp);                      /* lamp, facing down */
+    white = add_closed_box(scene, 0.3f, 8.0f);
     CHECK_OK(fogrt_scene_add_sphere(scene, v3(-0.3f, 0.4f, -0.3f), 0.4f, white));
     set_camera(scene, v3(0, 1, 0.95f), v3(0, 0.9f, -1), 70.0f);
     set_medium(scene, 0.6f, v3(0.85f, 0.85f, 0.85f), 0.3f);

@@ -53,21 +53,9 @@ static uint32_t add_material(fogrt_scene *scene, fogrt_bsdf_type type, fogrt_vec
 static fogrt_scene *area_light_box(float sigma_t, bool specular, float lamp_half)
 {
     fogrt_scene *scene = NULL;
-    uint32_t white, red, green, lamp;
+    uint32_t white;
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
-    white = add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.7f, 0.7f, 0.7f), v3(0, 0, 0));
-    red = add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.7f, 0.1f, 0.1f), v3(0, 0, 0));
-    green = add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.1f, 0.7f, 0.1f), v3(0, 0, 0));
-    lamp = add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0, 0, 0), v3(6, 6, 6));
-    /* Walls wound to face inward; the box is closed (front wall behind the camera). */
-    add_quad_corners(scene, v3(-1, 0, -1), v3(-1, 0, 1), v3(1, 0, 1), v3(1, 0, -1), white);     /* floor */
-    add_quad_corners(scene, v3(-1, 2, -1), v3(1, 2, -1), v3(1, 2, 1), v3(-1, 2, 1), white);     /* ceiling */
-    add_quad_corners(scene, v3(-1, 0, -1), v3(1, 0, -1), v3(1, 2, -1), v3(-1, 2, -1), white);   /* back */
-    add_quad_corners(scene, v3(-1, 0, 1), v3(-1, 2, 1), v3(1, 2, 1), v3(1, 0, 1), white);       /* front */
-    add_quad_corners(scene, v3(-1, 0, -1), v3(-1, 2, -1), v3(-1, 2, 1), v3(-1, 0, 1), red);     /* left */
-    add_quad_corners(scene, v3(1, 0, -1), v3(1, 0, 1), v3(1, 2, 1), v3(1, 2, -1), green);       /* right */
-    add_quad_corners(scene, v3(-lamp_half, 1.99f, -lamp_half), v3(lamp_half, 1.99f, -lamp_half),
-                     v3(lamp_half, 1.99f, lamp_half), v3(-lamp_half, 1.99f, lamp_half), lamp);  /* lamp, facing down */
+    white = add_closed_box(scene, lamp_half, 6.0f);   /* walls face inward; the front wall is behind the camera */
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_sphere(scene, v3(-0.5f, 0.3f, -0.3f), 0.3f, white));
     if (specular) {
         TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_sphere(scene, v3(0.5f, 0.3f, -0.4f), 0.3f,

@@ -107,6 +107,28 @@ static inline void add_quad(fogrt_scene *scene, fogrt_vec3 p, fogrt_vec3 e1, fog
     add_quad_corners(scene, corner[0], corner[1], corner[2], corner[3], material);
 }
 
+/* A closed 2 x 2 x 2 Cornell-like box (x, z in [-1, 1], y in [0, 2]): white floor, ceiling,
+   back and front walls, red left and green right walls, all wound to face inward, and a
+   square ceiling lamp of half-width lamp_half and radiance lamp_radiance facing down.
+   Returns the white material's id (the first material added). */
+static inline uint32_t add_closed_box(fogrt_scene *scene, float lamp_half, float lamp_radiance)
+{
+    uint32_t white, red, green, lamp;
+    white = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.7f, 0.7f, 0.7f), v3(0, 0, 0));
+    red = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.7f, 0.1f, 0.1f), v3(0, 0, 0));
+    green = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.1f, 0.7f, 0.1f), v3(0, 0, 0));
+    lamp = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(0, 0, 0), v3(lamp_radiance, lamp_radiance, lamp_radiance));
+    add_quad_corners(scene, v3(-1, 0, -1), v3(-1, 0, 1), v3(1, 0, 1), v3(1, 0, -1), white);     /* floor */
+    add_quad_corners(scene, v3(-1, 2, -1), v3(1, 2, -1), v3(1, 2, 1), v3(-1, 2, 1), white);     /* ceiling */
+    add_quad_corners(scene, v3(-1, 0, -1), v3(1, 0, -1), v3(1, 2, -1), v3(-1, 2, -1), white);   /* back */
+    add_quad_corners(scene, v3(-1, 0, 1), v3(-1, 2, 1), v3(1, 2, 1), v3(1, 0, 1), white);       /* front */
+    add_quad_corners(scene, v3(-1, 0, -1), v3(-1, 2, -1), v3(-1, 2, 1), v3(-1, 0, 1), red);     /* left */
+    add_quad_corners(scene, v3(1, 0, -1), v3(1, 0, 1), v3(1, 2, 1), v3(1, 2, -1), green);       /* right */
+    add_quad_corners(scene, v3(-lamp_half, 1.99f, -lamp_half), v3(lamp_half, 1.99f, -lamp_half),
+                     v3(lamp_half, 1.99f, lamp_half), v3(-lamp_half, 1.99f, lamp_half), lamp);  /* lamp */
+    return white;
+}
+
 /* ---- statistics of samples and images -------------------------------------------------- */
 
 /* Rec. 709 luminance, the weights fogrt uses for fogrt_image.sum_sq. */
