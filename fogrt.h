@@ -501,6 +501,15 @@ FOGRT_API float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi);
    float resolution for h down to 1e-7 of |t - delta| (tests/test_sampling.c).             */
 FOGRT_API float fogrt_sample_equiangular(float delta, float h, float a, float b, float u, float *pdf);
 FOGRT_API float fogrt_equiangular_pdf(float delta, float h, float a, float b, float t);
+/* The glow around a lamp: a point light in fog, seen from x, shines along every direction
+   wi that passes near it, with radiance proportional to (pi - alpha) / sin(alpha), alpha the
+   angle between wi and the direction to the light (single scattering in clear, isotropic
+   fog: the integral of 1/r^2 along the ray). Samples wi around to_light (unit) with that
+   density, p(wi) = (pi - alpha) / (pi^3 sin(alpha)): alpha = pi (1 - sqrt(1 - u1)), the
+   azimuth 2 pi u2. The pdf is infinite only exactly at alpha = 0 (returned as a large
+   finite number there).                                                                    */
+FOGRT_API fogrt_vec3 fogrt_sample_glow(fogrt_vec3 to_light, float u1, float u2, float *pdf);
+FOGRT_API float fogrt_glow_pdf(fogrt_vec3 to_light, fogrt_vec3 wi);
 #endif
 
 /* Cosine-weighted hemisphere around +z (concentric disk map, then lift). pdf = cos/pi. */
@@ -609,6 +618,10 @@ typedef struct fogrt_progress {
      equiangular       true: point and spot lights in fog are gathered along every fog
                        segment by equiangular sampling (not in the paper); false: found only
                        by next-event estimation at fog collisions, as the paper does
+     glow              true: at scattering points in fog, half of the new directions aim
+                       at the glow around point and spot lights (chapter 14, d'), which
+                       keeps paths that pass next to a lamp from being rare, huge samples;
+                       needs nee and equiangular (not in the paper)
      light_samples     1 (>= 1): samples per area light at each next-event estimate (CS184 -l)
      seed              0: base seed of every random stream
      threads           0 = all OpenMP threads; ignored without OpenMP
@@ -624,6 +637,7 @@ typedef struct fogrt_render_desc {
     bool nee;
     bool mis;
     bool equiangular;
+    bool glow;
     int light_samples;
     uint64_t seed;
     int threads;
@@ -700,6 +714,9 @@ typedef enum fogrt_trace_kind {
     FOGRT_TRACE_PHASE_SAMPLE,  /* eq. 11-12: u[0] -> cos_theta, u[1] -> phi; pdf; d = the new direction */
     FOGRT_TRACE_BSDF_SAMPLE,   /* u[0] picks the lobe (fresnel: its F), u[1], u[2] the direction;
                                   lobe; pdf; value = the weight f |cos| / pdf; d = the new direction */
+    FOGRT_TRACE_GLOW_SAMPLE,   /* the mixed direction of 14 d': flag: u[0] chose the glow of light
+                                  light (else the phase function or BSDF); d; pdf = the mixture's
+                                  pdf, pdf_other = the phase/BSDF pdf; value = the weight */
     FOGRT_TRACE_ROULETTE,      /* continue with probability q if u[0] < q; flag: survived */
     FOGRT_TRACE_CONTRIBUTION,  /* value (beta included) added to the pixel; source names it; flag: false
                                   when min_depth drops it */
@@ -1188,6 +1205,30 @@ FOGRT__PUBLIC float fogrt_equiangular_pdf(float delta, float h, float a, float b
     double theta_a, span = fogrt__equiangular_span(delta, h, a, b, &theta_a);
     if (!(span > 0.0) || !(h > 0.0f) || t < a || t > b) return 0.0f;
     return fogrt__equiangular_density(span, delta, h, t);
+}
+/* The glow density from the angle alpha and its supplement beta = pi - alpha, both exact
+   (each from a chord): (pi - alpha) / sin(alpha) = beta / sin(beta) tends to 1 at the
+   antipode, and 1 / pi^3 normalises it (the integral over the sphere is 2 pi (pi^2 / 2)). */
+#define FOGRT__INV_PI3 0.032251534433199495f
+FOGRT__PRIVATE float fogrt__glow_density(float alpha, float beta)
+{
+    float s = sinf(FOGRT__MIN(alpha, beta));
+    if (beta < 1e-4f) return FOGRT__INV_PI3;             /* beta / sin(beta) = 1 + beta^2/6 */
+    return beta / FOGRT__MAX(s, 1e-30f) * FOGRT__INV_PI3;
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_glow(fogrt_vec3 to_light, float u1, float u2, float *pdf)
+{
+    fogrt__frame f = fogrt__frame_from_z(fogrt__normalize(to_light));
+    float r = sqrtf(FOGRT__MAX(0.0f, 1.0f - FOGRT__CLAMP(u1, 0.0f, 1.0f)));   /* beta = pi r */
+    float alpha = FOGRT__PI * (1.0f - r), beta = FOGRT__PI * r;
+    if (pdf) *pdf = fogrt__glow_density(alpha, beta);
+    return fogrt__around(&f, cosf(alpha), sinf(FOGRT__MIN(alpha, beta)), u2);
+}
+FOGRT__PUBLIC float fogrt_glow_pdf(fogrt_vec3 to_light, fogrt_vec3 wi)
+{
+    fogrt__v3 a = fogrt__sub(wi, to_light), b = fogrt__add(wi, to_light);
+    float la = fogrt__length(a), lb = fogrt__length(b);
+    return fogrt__glow_density(2.0f * atan2f(la, lb), 2.0f * atan2f(lb, la));
 }
 #endif
 
@@ -3033,7 +3074,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
    ------------------------------------------------------------------------------------------ */
 typedef struct fogrt__settings {
     int max_depth, min_depth, rr_depth, light_samples;
-    bool nee, mis, equiangular;
+    bool nee, mis, equiangular, glow;
     fogrt_integrator integrator;
     fogrt_fresnel fresnel;
 #ifdef FOGRT_TRACE
@@ -3051,6 +3092,7 @@ typedef struct fogrt__settings {
 #endif
 
 /* A scattering vertex: a point in the medium, or a surface point with its shading frame. */
+#define FOGRT__GLOW_MAX 4      /* lamps a vertex aims at, at most (the first that qualify) */
 typedef struct fogrt__vertex {
     fogrt__v3 p, wo;
     bool in_medium;            /* the vertex lies in the fog (shadow rays are attenuated) */
@@ -3058,6 +3100,8 @@ typedef struct fogrt__vertex {
     fogrt__frame frame;        /* surface: shading frame */
     fogrt__v3 ng;              /* surface: geometric normal on the side of wo */
     const fogrt_material_desc *m;
+    int glow_n;                /* lamps whose glow the next direction may aim at (14 d') */
+    uint32_t glow[FOGRT__GLOW_MAX];
 } fogrt__vertex;
 
 /* The state of a path as the integrators of chapter 14 follow it. */
@@ -3068,6 +3112,8 @@ typedef struct fogrt__path {
     fogrt__v3 prev_p;          /* the vertex the ray left, and the solid-angle pdf of its */
     float prev_pdf;            /*   direction: the BSDF/phase half of MIS at an emitter */
     bool prev_delta;           /* camera ray or specular bounce: emission counts in full */
+    float rr_scale;            /* roulette reads beta x this: the mixed sampling's pdf / the
+                                  phase or BSDF pdf after a step d', else 1 */
     bool in_medium;            /* the ray travels in fog */
     bool entering;             /* surface: wo is on the front side of the geometry */
     int bounces;               /* scattering events so far */
@@ -3362,6 +3408,40 @@ FOGRT__PRIVATE bool fogrt__sample_light(const fogrt_scene *s, uint32_t i, fogrt_
     if (i - s->light_count < s->area_light_count) return fogrt__sample_area_light(s, &s->area_lights[i - s->light_count], x, u, ls);
     return fogrt__sample_env(s, u, ls);
 }
+/* The lamps whose glow (chapter 6) a scattering vertex in fog may aim its next direction
+   at (chapter 14, d'): every point light, and a spot light when the vertex lies in its cone
+   or in the mirror cone behind it (only there do the lines that pass next to the lamp run
+   inside its beam). At most FOGRT__GLOW_MAX, the first that qualify; none on a mirror or
+   glass surface, outside the fog, or with the glow switched off. */
+FOGRT__PRIVATE void fogrt__glow_setup(const fogrt_scene *s, const fogrt__settings *st, fogrt__vertex *v, bool scattering)
+{
+    uint32_t i;
+    v->glow_n = 0;
+    if (!st->glow || !scattering || !v->in_medium || !(s->medium.sigma_t > 0.0f)) return;
+    for (i = 0; i < s->light_count && v->glow_n < FOGRT__GLOW_MAX; ++i) {
+        const fogrt_light_desc *l = &s->lights[i];
+        fogrt__v3 w = fogrt__sub(v->p, l->position);
+        if (!(fogrt__dot(w, w) > 0.0f)) continue;
+        v->glow[v->glow_n++] = i;
+    }
+}
+/* The density of the mixed direction sampling of 14 d' at wi: half the phase function or
+   BSDF (pdf_b), half the glows of the vertex's lamps, each chosen with equal probability. */
+#ifndef FOGRT__GLOW_SHARE
+#define FOGRT__GLOW_SHARE 0.5f
+#endif
+FOGRT__PRIVATE float fogrt__glow_mix(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float pdf_b)
+{
+    float sum = 0.0f;
+    int k;
+#ifndef FOGRT_NO_MEDIUM
+    for (k = 0; k < v->glow_n; ++k)
+        sum += fogrt_glow_pdf(fogrt__normalize(fogrt__sub(s->lights[v->glow[k]].position, v->p)), wi);
+#else
+    (void)s; (void)wi; (void)k;
+#endif
+    return (1.0f - FOGRT__GLOW_SHARE) * pdf_b + FOGRT__GLOW_SHARE * sum / (float)FOGRT__MAX(v->glow_n, 1);
+}
 /* One light sample's share of the light reflected at v (eq. 13): f Le T V w / (n pdf),
    with w the MIS weight (1 for a delta light, or with MIS off). */
 #ifdef FOGRT_TRACE
@@ -3375,6 +3455,7 @@ FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt
     fogrt__v3 f, c = fogrt__v(0.0f, 0.0f, 0.0f);
     float pdf_b, tr = 0.0f, w = 0.0f;
     f = fogrt__vertex_f(s, v, ls->wi, &pdf_b);
+    if (v->glow_n > 0) pdf_b = fogrt__glow_mix(s, v, ls->wi, pdf_b);   /* how scattering picks wi */
     if (!fogrt__is_black(f)) tr = fogrt__shadow(s, v, ls, P->rays);
     if (tr != 0.0f) {
         w = ls->delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls->pdf, pdf_b);
@@ -3491,6 +3572,7 @@ FOGRT__PRIVATE void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, fogr
     P->o = o; P->d = d; P->prev_p = o;
     P->beta = fogrt__v(1.0f, 1.0f, 1.0f);
     P->prev_delta = true;
+    P->rr_scale = 1.0f;
     P->in_medium = (s->features & FOGRT_FEATURE_MEDIUM) != 0;   /* the camera sits in the fog */
     P->type = FOGRT_BSDF_DIFFUSE;
     P->rng = rng; P->rays = rays;
@@ -3554,6 +3636,14 @@ FOGRT__PRIVATE void fogrt__trace_phase(const fogrt__settings *st, const fogrt__p
     fogrt__emit(st, &e);
 }
 #endif
+FOGRT__PRIVATE void fogrt__trace_glow(const fogrt__settings *st, const fogrt__path *P, const float *u, bool glow,
+                                      uint32_t light, float pdf_b, float pdf, fogrt__v3 weight)
+{
+    fogrt_trace_event e = fogrt__event(FOGRT_TRACE_GLOW_SAMPLE, P);
+    memcpy(e.u, u, sizeof e.u);
+    e.p = P->v.p; e.flag = glow; e.light = light; e.pdf = pdf; e.pdf_other = pdf_b; e.value = weight;
+    fogrt__emit(st, &e);
+}
 FOGRT__PRIVATE void fogrt__trace_bsdf(const fogrt__settings *st, const fogrt__path *P, const float *u,
                                       const fogrt_bsdf_sample *bs, float cos_o)
 {
@@ -3750,6 +3840,7 @@ FOGRT__PRIVATE bool fogrt__surface_event(const fogrt_scene *s, const fogrt__sett
     P->v.frame = fogrt__frame_from_z(ns);
     P->v.ng = ng; P->v.wo = wo; P->v.m = m;
     P->v.is_medium = false; P->v.in_medium = P->in_medium;
+    P->v.glow_n = 0;
     return true;
 }
 
@@ -3779,6 +3870,7 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
    or glass vertex cannot be reached by a light sample and is skipped. */
 FOGRT__PRIVATE void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
 {
+    fogrt__glow_setup(s, st, &P->v, fogrt__is_scattering(P) && (P->v.is_medium || P->type == FOGRT_BSDF_DIFFUSE));
     if (st->nee && fogrt__is_scattering(P))
         fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__sample_lights(s, st, P)), "light sample");
 }
@@ -3804,12 +3896,62 @@ FOGRT__PRIVATE bool fogrt__scatter_surface(const fogrt_scene *s, const fogrt__se
     FOGRT__HOOK(fogrt__trace_bsdf(st, P, u, &bs, wo_l.z));
     return true;
 }
+#ifndef FOGRT_NO_MEDIUM
+#ifdef FOGRT_TRACE
+FOGRT__PRIVATE void fogrt__trace_glow(const fogrt__settings *st, const fogrt__path *P, const float *u, bool glow,
+                                      uint32_t light, float pdf_b, float pdf, fogrt__v3 weight);
+#endif
+/* d'. Aiming at the glow of a lamp (not in the paper). Next to a point or spot light the fog
+   glows: a direction that passes at distance h from the lamp gathers about 1/h of its light
+   along the way (equiangular sampling, step a, finds it exactly). Phase or BSDF sampling
+   finds those directions by chance, and then with a huge weight: in a spot-lit fog, the
+   pixels whose paths pass next to the lamp come out 1000 times the median. So at a vertex
+   that has lamps to aim at (fogrt__glow_setup, chapter 12) the direction is drawn from a
+   mixture: with probability 1/2 the phase function or BSDF as usual, else the glow of one of
+   the lamps (chapter 6), whose density (pi - alpha) / sin(alpha) follows the 1/h. The
+   weight is f / pdf with the mixture's pdf (fogrt__glow_mix): at most 2 where the phase
+   function rules, and finite where the glow does. Light sampling at the same vertex uses
+   the mixture's pdf in its MIS weight, so the two still add up to one. */
+FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
+{
+    fogrt__v3 f, wi, wo_l;
+    fogrt_bsdf_sample bs;
+    uint32_t light = 0;
+    float u[3], pdf_b, pdf;
+    bool glow;
+    u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
+    glow = u[0] < FOGRT__GLOW_SHARE;
+    if (glow) {
+        int k = FOGRT__MIN((int)(u[0] / FOGRT__GLOW_SHARE * (float)P->v.glow_n), P->v.glow_n - 1);
+        light = P->v.glow[k];
+        wi = fogrt_sample_glow(fogrt__normalize(fogrt__sub(s->lights[light].position, P->v.p)), u[1], u[2], NULL);
+    } else if (P->v.is_medium) {
+        wi = fogrt_sample_hg(s->medium.g, P->v.wo, u[1], u[2], NULL);
+    } else {
+        wo_l = fogrt__to_local(&P->v.frame, P->v.wo);
+        if (!fogrt_sample_bsdf(P->v.m, st->fresnel, wo_l, 0.5f, u[1], u[2], &bs)) return false;
+        wi = fogrt__normalize(fogrt__to_world(&P->v.frame, bs.wi));
+    }
+    f = fogrt__vertex_f(s, &P->v, wi, &pdf_b);          /* phase, or f |cos| (0 through the surface) */
+    pdf = fogrt__glow_mix(s, &P->v, wi, pdf_b);
+    if (fogrt__is_black(f) || !(pdf > 0.0f)) return false;
+    P->d = wi;
+    P->beta = fogrt__mul(P->beta, fogrt__scale(f, 1.0f / pdf));
+    P->prev_pdf = pdf; P->prev_delta = false;
+    P->rr_scale = pdf / pdf_b;                           /* > 0: f > 0 needs pdf_b > 0 */
+    P->o = P->v.is_medium ? P->v.p : fogrt__offset(s, P->v.p, P->v.ng, wi);
+    FOGRT__HOOK(fogrt__trace_glow(st, P, u, glow, light, pdf_b, pdf, fogrt__scale(f, 1.0f / pdf)));
+    return true;
+}
+#endif
+
 /* d. The new direction: Henyey-Greenstein in the fog (eq. 11-12, weight p / pdf = 1), the
-   BSDF on a surface. */
+   BSDF on a surface; near a lamp, the mixture of d'. */
 FOGRT__PRIVATE bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
 {
     P->prev_p = P->v.p;
 #ifndef FOGRT_NO_MEDIUM
+    if (P->v.glow_n > 0) return fogrt__scatter_glow(s, st, P);
     if (P->v.is_medium) {
         float u1 = fogrt_rng_float(P->rng), u2 = fogrt_rng_float(P->rng);
         P->d = fogrt_sample_hg(s->medium.g, P->v.wo, u1, u2, &P->prev_pdf);
@@ -3825,10 +3967,11 @@ FOGRT__PRIVATE bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *
 /* e. Russian roulette after rr_depth bounces: continue with probability q, weight 1/q. */
 FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__path *P)
 {
-    float q, u;
+    float q, u, scale = P->rr_scale;
     P->bounces++;
+    P->rr_scale = 1.0f;
     if (P->bounces <= st->rr_depth) return true;
-    q = FOGRT__MIN(0.95f, fogrt__max3(P->beta));
+    q = FOGRT__MIN(0.95f, fogrt__max3(P->beta) * scale);
     u = fogrt_rng_float(P->rng);
     if (u < q) P->beta = fogrt__scale(P->beta, 1.0f / q);
     FOGRT__HOOK(fogrt__trace_roulette(st, P, q, u, u < q));
@@ -3886,7 +4029,7 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void)
         0, 0,                                           /* width, height: the image's */
         FOGRT_INTEGRATOR_PATH, FOGRT_FRESNEL_SCHLICK,
         64, 0, 3,                                       /* max_depth, min_depth, rr_depth */
-        true, true, true,                               /* nee, mis, equiangular */
+        true, true, true, true,                         /* nee, mis, equiangular, glow */
         1, 0, 0,                                        /* light_samples, seed, threads */
         NULL, NULL,                                     /* progress, user_data */
         true                                            /* resolved */
@@ -3916,6 +4059,7 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
     st->nee = d.nee;
     st->mis = d.mis;
     st->equiangular = d.equiangular;
+    st->glow = d.glow && d.nee && d.equiangular;
     st->integrator = d.integrator == FOGRT_INTEGRATOR_DIRECT ? FOGRT_INTEGRATOR_DIRECT : FOGRT_INTEGRATOR_PATH;
     st->fresnel = d.fresnel;
 #ifdef FOGRT_TRACE
@@ -4215,6 +4359,10 @@ FOGRT__PUBLIC void fogrt_trace_describe(const fogrt_trace_event *e, char *buf, s
     case FOGRT_TRACE_PHASE_SAMPLE:
         snprintf(buf, size, "phase sample: u1 = %.6f -> cos theta = %.6f (eq. 11), u2 = %.6f -> phi = %.4f (eq. 12); pdf = p = %.4g; new d = (%.4f, %.4f, %.4f)",
                  (double)e->u[0], (double)e->cos_theta, (double)e->u[1], (double)e->phi, (double)e->pdf, FOGRT__V3F(e->d)); break;
+    case FOGRT_TRACE_GLOW_SAMPLE:
+        snprintf(buf, size, "mixed direction (d'): u0 = %.4f -> %s; u1, u2 = (%.4f, %.4f); pdf = %.4g (phase/BSDF pdf %.4g); weight (%.4g, %.4g, %.4g); new d = (%.4f, %.4f, %.4f)",
+                 (double)e->u[0], e->flag ? "the glow of a lamp" : "the phase function / BSDF", (double)e->u[1], (double)e->u[2],
+                 (double)e->pdf, (double)e->pdf_other, FOGRT__V3F(e->value), FOGRT__V3F(e->d)); break;
     case FOGRT_TRACE_BSDF_SAMPLE:
         snprintf(buf, size, "BSDF sample (%s): u = (%.4f, %.4f, %.4f) -> %s%s%.4g; pdf %.4g, weight (%.4g, %.4g, %.4g); new d = (%.4f, %.4f, %.4f)",
                  fogrt__bsdf_name(e->bsdf), (double)e->u[0], (double)e->u[1], (double)e->u[2], lobes[e->lobe],

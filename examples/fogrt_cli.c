@@ -92,7 +92,7 @@ typedef struct cli_options {
     bool print_camera;
     const char *log_path;               /* --log */
     const char *reference;              /* --reference */
-    bool equiangular, mis;              /* --equiangular, --mis */
+    bool equiangular, mis, glow;        /* --equiangular, --mis, --glow */
     float lens_radius; bool lens_set;   /* -b */
     float focal; bool focal_set;        /* -d */
     int batch; float tolerance; bool adaptive;   /* -a */
@@ -178,6 +178,8 @@ static void usage(FILE *f)
         "  --equiangular on|off  equiangular distance sampling toward point and spot lights in\n"
         "                   fog; off: they are found only by next-event estimation at fog\n"
         "                   collisions, as in the paper (default on)\n"
+        "  --glow on|off    in fog, half of the scattered directions aim at the glow around\n"
+        "                   point and spot lights (needs --equiangular on) (default on)\n"
         "  --mis on|off     multiple importance sampling of light and BSDF/phase samples; off:\n"
         "                   light sampling alone (default on)\n"
         "  --fresnel F      schlick or exact (default schlick)\n"
@@ -324,7 +326,7 @@ static int parse_args(int argc, char **argv, cli_options *o)
     memset(o, 0, sizeof *o);
     o->spp = 64; o->light_samples = 1; o->threads = 0; o->max_depth = 64; o->accumulate = 1;
     o->width = 800; o->height = 600; o->output = "out.png";
-    o->equiangular = true; o->mis = true;
+    o->equiangular = true; o->mis = true; o->glow = true;
     o->integrator = FOGRT_INTEGRATOR_PATH; o->fresnel = FOGRT_FRESNEL_SCHLICK; o->bvh = FOGRT_BVH_SAH;
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i];
@@ -367,6 +369,7 @@ static int parse_args(int argc, char **argv, cli_options *o)
             o->reference = argv[++i];
             if (!ends_with(o->reference, ".pfm")) return bad_flag(a, "reference '%s' must be a .pfm image", o->reference);
         }
+        else if (strcmp(a, "--glow") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->glow)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--equiangular") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->equiangular)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--mis") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->mis)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "-b") == 0) { NEED(1); if (!parse_float(argv[++i], &o->lens_radius) || o->lens_radius < 0) return bad_flag(a, "lens radius must be a number >= 0, got '%s'", argv[i]); o->lens_set = true; }
@@ -483,6 +486,7 @@ static void fill_render_desc(const cli_options *o, int threads, fogrt_render_des
     rd->nee = !o->hemisphere;
     rd->mis = o->mis;
     rd->equiangular = o->equiangular;
+    rd->glow = o->glow;
     rd->seed = o->seed;
     rd->threads = threads;
 }

@@ -361,6 +361,90 @@ static void test_hg_peak_resolved(void)
 }
 
 /* ==========================================================================================
+   The glow around a lamp (fogrt_sample_glow): the angle to the lamp, resolved to 1e-6 rad
+   ========================================================================================== */
+/* P(alpha' < alpha) for the density (pi - alpha) / (pi^3 sin alpha): 1 - (pi - alpha)^2 / pi^2,
+   written as alpha (2 pi - alpha) / pi^2 so it keeps its digits at small angles. */
+static double glow_cdf(double alpha) { return alpha * (2.0 * STATS_PI - alpha) / (STATS_PI * STATS_PI); }
+static double glow_wrong_cdf(double alpha) { return alpha / STATS_PI; }   /* uniform in alpha */
+/* Counts of the angle to the lamp direction p (log-spaced rows as in the HG peak test) and 4
+   azimuth slices; also counts the samples whose returned pdf differs from fogrt_glow_pdf and
+   from the density at the sample's angle (computed in double) by more than 1e-3. */
+static long glow_counts(fogrt_vec3 p, long n, uint64_t seed, const double *edge, double *observed, long *bad_pdf)
+{
+    fogrt_rng rng;
+    long invalid = 0;
+    fogrt__frame f = fogrt__frame_from_z(p);
+    fogrt_rng_seed(&rng, seed, 5);
+    memset(observed, 0, sizeof(double) * HG_PEAK_ROWS * HG_PEAK_COLS);
+    *bad_pdf = 0;
+    for (long i = 0; i < n; i++) {
+        float u1 = fogrt_rng_float(&rng), u2 = fogrt_rng_float(&rng), pdf;
+        fogrt_vec3 w = fogrt_sample_glow(p, u1, u2, &pdf);
+        double dx = (double)w.x - p.x, dy = (double)w.y - p.y, dz = (double)w.z - p.z;
+        double alpha = 2.0 * asin(fmin(1.0, 0.5 * sqrt(dx * dx + dy * dy + dz * dz)));
+        double phi = atan2(fogrt__dot(w, f.t), fogrt__dot(w, f.s)) + STATS_PI, want;
+        int row = 0, col = (int)(phi / (2.0 * STATS_PI) * HG_PEAK_COLS);
+        if (!isfinite(alpha) || !(fabs(fogrt__dot(w, w) - 1.0f) < 1e-5f) || !(pdf > 0.0f) || !isfinite(pdf)) { invalid++; continue; }
+        want = alpha > 1e-3 ? (STATS_PI - alpha) / (STATS_PI * STATS_PI * STATS_PI * sin(alpha)) : 0.0;
+        if (alpha > 1e-3 && alpha < STATS_PI - 1e-3 &&
+            (fabs(pdf - want) > 1e-3 * want || fabs(fogrt_glow_pdf(p, w) - want) > 1e-3 * want)) (*bad_pdf)++;
+        while (row < HG_PEAK_ROWS - 1 && alpha >= edge[row + 1]) row++;
+        observed[row * HG_PEAK_COLS + (col < HG_PEAK_COLS ? col : HG_PEAK_COLS - 1)] += 1.0;
+    }
+    return invalid;
+}
+static double glow_pdf_1d(double alpha, void *user)
+{
+    fogrt_vec3 p = *(const fogrt_vec3 *)user;
+    fogrt__frame f = fogrt__frame_from_z(p);
+    fogrt_vec3 w = fogrt__to_world(&f, v3((float)sin(alpha), 0.0f, (float)cos(alpha)));
+    return 2.0 * STATS_PI * sin(alpha) * fogrt_glow_pdf(p, w);
+}
+/* fogrt_sample_glow: the angle to the lamp follows the glow's CDF from 1e-6 rad to pi, the
+   azimuth is uniform, the pdf it returns is fogrt_glow_pdf and the closed form, and
+   fogrt_glow_pdf integrates to 1. Negative control: the same samples against a density
+   uniform in the angle (the sin alpha Jacobian left out), which must be rejected. */
+static void test_glow_sampling(void)
+{
+    static const float dirs[2][3] = {{0.0f, 0.0f, 1.0f}, {0.48f, -0.6f, 0.64f}};
+    double edge[HG_PEAK_ROWS + 1], col_edge[HG_PEAK_COLS + 1], observed[HG_PEAK_ROWS * HG_PEAK_COLS],
+           expected[HG_PEAK_ROWS * HG_PEAK_COLS], wrong[HG_PEAK_ROWS * HG_PEAK_COLS];
+    stats_tally t = {0, 0, ""};
+    const long n = 400000;
+    char msg[160];
+    edge[0] = 0.0;
+    for (int r = 1; r < HG_PEAK_ROWS; r++) edge[r] = 1e-6 * pow(STATS_PI / 1e-6, (r - 1.0) / (HG_PEAK_ROWS - 1.0));
+    edge[HG_PEAK_ROWS] = STATS_PI;
+    for (int c = 0; c <= HG_PEAK_COLS; c++) col_edge[c] = -STATS_PI + 2.0 * STATS_PI * c / HG_PEAK_COLS;
+    for (int r = 0; r < HG_PEAK_ROWS; r++)
+        for (int c = 0; c < HG_PEAK_COLS; c++) {
+            expected[r * HG_PEAK_COLS + c] = (double)n * (glow_cdf(edge[r + 1]) - glow_cdf(edge[r])) / HG_PEAK_COLS;
+            wrong[r * HG_PEAK_COLS + c] = (double)n * (glow_wrong_cdf(edge[r + 1]) - glow_wrong_cdf(edge[r])) / HG_PEAK_COLS;
+        }
+    for (int k = 0; k < 2; k++) {
+        fogrt_vec3 p = v3(dirs[k][0], dirs[k][1], dirs[k][2]);
+        long bad_pdf, invalid = glow_counts(p, n, 4200 + (uint64_t)k, edge, observed, &bad_pdf);
+        double integral = stats_integrate_1d(glow_pdf_1d, &p, 1e-6, STATS_PI, 1e-9, 40);   /* below 1e-6 rad: 6e-7 of the mass */
+        char name[64], param[128];
+        snprintf(name, sizeof name, "glow_dir%d", k);
+        snprintf(param, sizeof param, "to_light=(%g,%g,%g), angle log-spaced from 1e-6 rad", (double)p.x, (double)p.y, (double)p.z);
+        REPORT(t, stats_chi2_verdict(name, "fogrt_sample_glow", param, HG_PEAK_ROWS, HG_PEAK_COLS, edge, "angle to lamp",
+                                     col_edge, "phi", observed, expected, invalid, false));
+        if (k == 0)
+            REPORT(t, stats_chi2_verdict(name, "fogrt_sample_glow", "against a density uniform in the angle (wrong)",
+                                         HG_PEAK_ROWS, HG_PEAK_COLS, edge, "angle to lamp", col_edge, "phi", observed,
+                                         wrong, invalid, true));
+        snprintf(msg, sizeof msg, "glow %d: %ld of %ld samples with a pdf off the closed form; integral of the pdf %.7f",
+                 k, bad_pdf, n, integral);
+        TEST_MESSAGE(msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, (int)bad_pdf, msg);
+        TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-4, 1.0, integral, msg);
+    }
+    TALLY_ASSERT(t);
+}
+
+/* ==========================================================================================
    The environment map: sampled directions follow the map's pdf
    ========================================================================================== */
 static double env_pdf_callback(const double w[3], void *user)
@@ -1796,6 +1880,12 @@ static void test_extreme_uniforms(void)
             TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf > 0.0f, msg);
             assert_unit(fogrt_sample_sphere_solid_angle(v3(0, 0, -100), 0.1f, v3(0, 0, 0), u1, u2, &pdf), msg);
             TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf > 0.0f, msg);
+            for (int w = 0; w < HG_WO_COUNT; w++) {      /* the glow: u1 = 0 aims at the lamp itself */
+                fogrt_vec3 to = v3(HG_WO[w][0], HG_WO[w][1], HG_WO[w][2]), wi = fogrt_sample_glow(to, u1, u2, &pdf);
+                float pe = fogrt_glow_pdf(to, wi);
+                assert_unit(wi, msg);
+                TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf > 0.0f && isfinite(pe) && pe > 0.0f, msg);
+            }
             assert_unit(fogrt_sample_sphere_solid_angle(v3(0, 0, 0.5f), 1.0f, v3(0, 0, 0), u1, u2, &pdf), msg);
             TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf > 0.0f, msg);
             float b1 = -1.0f, b2 = -1.0f;
@@ -1833,6 +1923,7 @@ int main(void)
     RUN_TEST(test_cosine_hemisphere_chi2);
     RUN_TEST(test_uniform_sphere_chi2);
     RUN_TEST(test_sphere_solid_angle_chi2);
+    RUN_TEST(test_glow_sampling);
     RUN_TEST(test_triangle_chi2);
     RUN_TEST(test_point_light_radius_directions_chi2);
     RUN_TEST(test_point_light_radius_irradiance);
