@@ -1087,6 +1087,95 @@ FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi)
     return fogrt__hg_phase_pm(fogrt__clamp_g(g), FOGRT__CLAMP(0.5f * fogrt__dot(a, a), 0.0f, 2.0f),
                               FOGRT__CLAMP(0.5f * fogrt__dot(b, b), 0.0f, 2.0f));
 }
+
+/* HG per unit angle. Seen along a ray, light from a point lamp scatters toward the ray's
+   origin at every point of it, each with its own scattering angle psi; in the equiangular
+   angle (chapter 6) psi grows linearly along the ray, so the phase function to integrate is
+   HG(cos psi) per unit psi, not per steradian. That density has no closed-form inverse, so
+   each scene keeps a table of it for its g: bin edges in psi (a third spaced evenly, a
+   third at quantiles of HG itself so the peak is resolved even at |g| = 0.9999, a third
+   in geometric steps away from the peak, where HG falls like psi^-3), and the cumulative
+   C(psi) of a piecewise-constant density whose bins hold HG's exact mass (Simpson's rule in
+   double). Sampling from the table is exact for that piecewise-constant density, so
+   estimators that use it stay unbiased whatever the table's resolution; the resolution only
+   decides how close to HG the density is. The same edges carry a second cumulative, K, for
+   the glow of chapter 6: the light along a direction at angle alpha from the lamp is
+   proportional to G(alpha) / sin(alpha) with G(alpha) = C(pi) - C(alpha) (the scattering
+   angles from alpha to pi), so the glow's density per unit alpha is G, averaged per bin. */
+#define FOGRT__HGT_PART 256    /* edges per family: even, HG quantiles; geometric: 3 times that */
+#define FOGRT__HGT_MAX (5 * FOGRT__HGT_PART + 1)
+typedef struct fogrt__hg_table {
+    int n;                              /* bins */
+    double edge[FOGRT__HGT_MAX + 1];    /* 0 = edge[0] < ... < edge[n] = pi */
+    double c[FOGRT__HGT_MAX + 1];       /* C at the edges: HG(cos psi) per unit psi */
+    double k[FOGRT__HGT_MAX + 1];       /* K at the edges: G(alpha) per unit alpha */
+} fogrt__hg_table;
+#define FOGRT__PI_D 3.14159265358979323846
+FOGRT__PRIVATE double fogrt__hg_angle(double g, double psi)   /* HG(cos psi), base formed without cancellation */
+{
+    double s = sin(0.5 * psi), base = (1.0 - g) * (1.0 - g) + 4.0 * g * s * s;
+    return (1.0 - g) * (1.0 + g) / (4.0 * FOGRT__PI_D * base * sqrt(base));
+}
+FOGRT__PRIVATE void fogrt__hg_table_edges(fogrt__hg_table *t, float g)
+{
+    double *e = t->edge, x, x0;
+    int m = 0, i, j;
+    for (i = 0; i <= FOGRT__HGT_PART; ++i) e[m++] = FOGRT__PI_D * i / FOGRT__HGT_PART;
+    for (i = 1; i < FOGRT__HGT_PART; ++i) {               /* quantiles of HG: the angle from 1 - mu */
+        float omm, opm;
+        fogrt__sample_hg_pm(g, (float)i / FOGRT__HGT_PART, &omm, &opm);
+        e[m++] = omm < opm ? 2.0 * asin(sqrt(0.5 * (double)omm)) : FOGRT__PI_D - 2.0 * asin(sqrt(0.5 * (double)opm));
+    }
+    x0 = FOGRT__MAX(1e-7, 1e-3 * (1.0 - fabs((double)g)));   /* HG is flat closer to its peak */
+    for (i = 0; i < 3 * FOGRT__HGT_PART; ++i) {           /* x0 .. pi from the peak, steps of 1.5%: HG within 2.2% of its bin mean */
+        x = x0 * pow(FOGRT__PI_D / x0, (double)i / (3 * FOGRT__HGT_PART));
+        e[m++] = g >= 0.0f ? x : FOGRT__PI_D - x;
+    }
+    for (i = 1; i < m; ++i)                               /* insertion sort: 1279 values, once per build */
+        for (j = i, x = e[i]; j > 0 && e[j - 1] > x; --j) { e[j] = e[j - 1]; e[j - 1] = x; }
+    for (i = 1, j = 0; i < m; ++i)                        /* drop repeats */
+        if (e[i] > e[j] * (1.0 + 1e-12) + 1e-300) e[++j] = e[i];
+    e[j] = FOGRT__PI_D;
+    t->n = j;
+}
+FOGRT__PRIVATE void fogrt__hg_table_build(fogrt__hg_table *t, float g)
+{
+    int i, j;
+    g = fogrt__clamp_g(g);
+    fogrt__hg_table_edges(t, g);
+    t->c[0] = 0.0;
+    for (i = 0; i < t->n; ++i) {                          /* Simpson, 16 intervals per bin */
+        double a = t->edge[i], w = (t->edge[i + 1] - a) / 16.0, m = fogrt__hg_angle(g, a) + fogrt__hg_angle(g, a + 16.0 * w);
+        for (j = 1; j < 16; ++j) m += (j & 1 ? 4.0 : 2.0) * fogrt__hg_angle(g, a + w * j);
+        t->c[i + 1] = t->c[i] + m * w / 3.0;
+    }
+    t->k[0] = 0.0;
+    for (i = 0; i < t->n; ++i)
+        t->k[i + 1] = t->k[i] + (t->c[t->n] - 0.5 * (t->c[i] + t->c[i + 1])) * (t->edge[i + 1] - t->edge[i]);
+}
+/* A piecewise-linear cumulative cum over the edges: its value at x (and the density there),
+   and its inverse at v. */
+FOGRT__PRIVATE int fogrt__hgt_bin(const double *x, int n, double v)
+{
+    int lo = 0, hi = n - 1;
+    while (lo < hi) { int mid = (lo + hi + 1) / 2; if (x[mid] <= v) lo = mid; else hi = mid - 1; }
+    return lo;
+}
+FOGRT__PRIVATE double fogrt__hgt_at(const fogrt__hg_table *t, const double *cum, double x, double *density)
+{
+    int i = fogrt__hgt_bin(t->edge, t->n, x);
+    double d = (cum[i + 1] - cum[i]) / (t->edge[i + 1] - t->edge[i]);
+    if (density) *density = d;
+    return cum[i] + d * (FOGRT__CLAMP(x, t->edge[i], t->edge[i + 1]) - t->edge[i]);
+}
+FOGRT__PRIVATE double fogrt__hgt_invert(const fogrt__hg_table *t, const double *cum, double v, double *density)
+{
+    int i = fogrt__hgt_bin(cum, t->n, v);
+    double d = (cum[i + 1] - cum[i]) / (t->edge[i + 1] - t->edge[i]);
+    while (!(d > 0.0) && i + 1 < t->n) { ++i; d = (cum[i + 1] - cum[i]) / (t->edge[i + 1] - t->edge[i]); }
+    if (density) *density = d;
+    return d > 0.0 ? FOGRT__CLAMP(t->edge[i] + (v - cum[i]) / d, t->edge[i], t->edge[i + 1]) : t->edge[i];
+}
 #endif /* FOGRT_NO_MEDIUM */
 
 /* ------------------------------------------------------------------------------------------
@@ -1229,6 +1318,45 @@ FOGRT__PUBLIC float fogrt_glow_pdf(fogrt_vec3 to_light, fogrt_vec3 wi)
     fogrt__v3 a = fogrt__sub(wi, to_light), b = fogrt__add(wi, to_light);
     float la = fogrt__length(a), lb = fogrt__length(b);
     return fogrt__glow_density(2.0f * atan2f(la, lb), 2.0f * atan2f(lb, la));
+}
+/* The two samplers above with the phase function in them, as the renderer uses them (the
+   table of chapter 5 for the scene's g; at g = 0 they are the closed forms, to the table's
+   resolution).
+   Equiangular with HG: the scattering angle at x(t) is psi = theta + pi/2 (theta the
+   equiangular angle: mu = -sin(theta) between the light's travel and the way back along
+   the ray), so sampling psi from C between psi_a and psi_b gives t with pdf proportional to
+   HG(mu(t)) / r(t)^2: the phase function and the 1/r^2 both cancel in the weight. */
+FOGRT__PRIVATE double fogrt__psi_of(double t, double delta, double h) { return atan2(t - delta, h) + 0.5 * FOGRT__PI_D; }
+FOGRT__PRIVATE float fogrt__sample_equiangular_hg(const fogrt__hg_table *T, float delta, float h, float a, float b,
+                                                  float u, float *pdf)
+{
+    double ca = fogrt__hgt_at(T, T->c, fogrt__psi_of(a, delta, h), NULL), cb, psi, dens, dt;
+    float t;
+    cb = b < INFINITY ? fogrt__hgt_at(T, T->c, fogrt__psi_of(b, delta, h), NULL) : T->c[T->n];
+    *pdf = 0.0f;
+    if (!(cb > ca) || !(h > 0.0f)) return a;
+    psi = fogrt__hgt_invert(T, T->c, ca + (double)u * (cb - ca), NULL);
+    psi = FOGRT__CLAMP(psi, 1e-300, FOGRT__PI_D - 4e-16);   /* t finite: psi below pi */
+    t = (float)FOGRT__CLAMP((double)delta - (double)h * cos(psi) / sin(psi), (double)a, (double)b);
+    (void)fogrt__hgt_at(T, T->c, fogrt__psi_of(t, delta, h), &dens);   /* the density at the t returned */
+    dt = (double)t - (double)delta;
+    *pdf = (float)(dens / ((cb - ca) * ((double)h + dt * (dt / (double)h))));
+    return t;
+}
+/* The glow with HG: alpha from K (density G per unit alpha, then 1 / (2 pi sin alpha) per
+   steradian). */
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_glow_hg(const fogrt__hg_table *T, fogrt__v3 to_light, float u1, float u2)
+{
+    fogrt__frame f = fogrt__frame_from_z(to_light);
+    double alpha = fogrt__hgt_invert(T, T->k, (double)u1 * T->k[T->n], NULL);
+    return fogrt__around(&f, (float)cos(alpha), (float)sin(alpha), u2);
+}
+FOGRT__PRIVATE float fogrt__glow_hg_pdf(const fogrt__hg_table *T, fogrt__v3 to_light, fogrt__v3 wi)
+{
+    fogrt__v3 a = fogrt__sub(wi, to_light), b = fogrt__add(wi, to_light);
+    double alpha = 2.0 * atan2((double)fogrt__length(a), (double)fogrt__length(b)), dens;
+    (void)fogrt__hgt_at(T, T->k, alpha, &dens);
+    return (float)(dens / (T->k[T->n] * 2.0 * FOGRT__PI_D * FOGRT__MAX(sin(alpha), 1e-30)));
 }
 #endif
 
@@ -1410,6 +1538,9 @@ struct fogrt_scene {
     double env_total;          /* built: sum of luminance x sin(theta) over the map */
     fogrt_camera_desc camera; bool has_camera;
     fogrt_medium_desc medium;
+#ifndef FOGRT_NO_MEDIUM
+    fogrt__hg_table hg;        /* built: HG per unit angle for the medium's g (chapter 5) */
+#endif
     /* built data (fogrt_scene_build) */
     bool built;
     fogrt_bvh_node *nodes; uint32_t node_count;
@@ -2975,9 +3106,13 @@ FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s)
     return true;
 }
 /* Where the fog is: the medium's box, or with an environment light and no box the box of
-   the geometry (fog filling all space would hide the sky), or everywhere. */
+   the geometry (fog filling all space would hide the sky), or everywhere. With point or
+   spot lights in it, also the table of HG per unit angle (chapter 5) for their sampling. */
 FOGRT__PRIVATE void fogrt__fog_bounds(fogrt_scene *s, uint32_t n)
 {
+#ifndef FOGRT_NO_MEDIUM
+    if ((s->features & FOGRT_FEATURE_MEDIUM) && s->light_count > 0) fogrt__hg_table_build(&s->hg, s->medium.g);
+#endif
     s->fog_bounded = s->medium.bounded;
     s->fog_lo = s->medium.bounds_min; s->fog_hi = s->medium.bounds_max;
     if (s->medium.bounded || !(s->features & FOGRT_FEATURE_MEDIUM) || !s->has_env || n == 0) return;
@@ -3436,7 +3571,7 @@ FOGRT__PRIVATE float fogrt__glow_mix(const fogrt_scene *s, const fogrt__vertex *
     int k;
 #ifndef FOGRT_NO_MEDIUM
     for (k = 0; k < v->glow_n; ++k)
-        sum += fogrt_glow_pdf(fogrt__normalize(fogrt__sub(s->lights[v->glow[k]].position, v->p)), wi);
+        sum += fogrt__glow_hg_pdf(&s->hg, fogrt__normalize(fogrt__sub(s->lights[v->glow[k]].position, v->p)), wi);
 #else
     (void)s; (void)wi; (void)k;
 #endif
@@ -3753,7 +3888,8 @@ FOGRT__PRIVATE bool fogrt__clip_to_cone(const fogrt_light_desc *l, fogrt__v3 o, 
 }
 
 /* Single scattering from point and spot lights along one fog segment [0, t_max] of the
-   ray, by equiangular sampling: per light, a distance t with pdf ~ 1/r^2 (chapter 6), then
+   ray, by equiangular sampling with the phase function: per light, a distance t with pdf ~
+   HG(mu(t)) / r^2 (fogrt__sample_equiangular_hg, chapter 6; plain equiangular when g = 0), then
    the light seen from the fog point x(t) as at any fog vertex (chapter 12), weighted by
    sigma_s T(t) / pdf(t). A spot light only lights its cone: only the part of the ray inside
    it is sampled. */
@@ -3776,7 +3912,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
             u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
             if (l->type == FOGRT_LIGHT_SPOT && !fogrt__clip_to_cone(l, P->o, P->d, &t_lo, &t_hi)) continue;
             h = FOGRT__MAX(fogrt__length(fogrt__cross(oc, P->d)), sqrtf(s->r2_min));  /* ray through the light */
-            t = fogrt_sample_equiangular(fogrt__dot(oc, P->d), h, t_lo, t_hi, u[0], &pdf_t);
+            t = fogrt__sample_equiangular_hg(&s->hg, fogrt__dot(oc, P->d), h, t_lo, t_hi, u[0], &pdf_t);
             if (!(pdf_t > 0.0f)) continue;
             v.p = fogrt__madd(P->o, P->d, t);
             FOGRT__HOOK(fogrt__trace_equiangular(st, P, i, u[0], t, pdf_t, sigma_t * fogrt_transmittance(sigma_t, t - t_min) / pdf_t));
@@ -3908,7 +4044,8 @@ FOGRT__PRIVATE void fogrt__trace_glow(const fogrt__settings *st, const fogrt__pa
    pixels whose paths pass next to the lamp come out 1000 times the median. So at a vertex
    that has lamps to aim at (fogrt__glow_setup, chapter 12) the direction is drawn from a
    mixture: with probability 1/2 the phase function or BSDF as usual, else the glow of one of
-   the lamps (chapter 6), whose density (pi - alpha) / sin(alpha) follows the 1/h. The
+   the lamps (chapter 6), whose density G(alpha) / sin(alpha) follows the 1/h (G holds the
+   fog's phase function, chapter 5; in isotropic fog G is pi - alpha). The
    weight is f / pdf with the mixture's pdf (fogrt__glow_mix): at most 2 where the phase
    function rules, and finite where the glow does. Light sampling at the same vertex uses
    the mixture's pdf in its MIS weight, so the two still add up to one. */
@@ -3924,7 +4061,7 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
     if (glow) {
         int k = FOGRT__MIN((int)(u[0] / FOGRT__GLOW_SHARE * (float)P->v.glow_n), P->v.glow_n - 1);
         light = P->v.glow[k];
-        wi = fogrt_sample_glow(fogrt__normalize(fogrt__sub(s->lights[light].position, P->v.p)), u[1], u[2], NULL);
+        wi = fogrt__sample_glow_hg(&s->hg, fogrt__normalize(fogrt__sub(s->lights[light].position, P->v.p)), u[1], u[2]);
     } else if (P->v.is_medium) {
         wi = fogrt_sample_hg(s->medium.g, P->v.wo, u[1], u[2], NULL);
     } else {
