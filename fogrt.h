@@ -443,6 +443,9 @@ FOGRT_API void fogrt_scene_get_camera(const fogrt_scene *scene, fogrt_camera_des
 FOGRT_API void fogrt_scene_get_medium(const fogrt_scene *scene, fogrt_medium_desc *out);
 /* Material of triangle i (i < triangle_count) or sphere i - triangle_count. */
 FOGRT_API uint32_t fogrt_scene_get_prim_material(const fogrt_scene *scene, uint32_t prim);
+/* Bytes the scene's arrays hold: geometry, materials and lights, and once built the BVH(s)
+   and the light and environment tables (used sizes; spare capacity not counted). */
+FOGRT_API size_t fogrt_scene_get_memory(const fogrt_scene *scene);
 
 /* ------------------------------------------------------------------------------------------
    Ray queries (after fogrt_scene_build)
@@ -1957,6 +1960,26 @@ FOGRT__PUBLIC uint32_t fogrt_scene_get_prim_material(const fogrt_scene *s, uint3
     return UINT32_MAX;
 }
 FOGRT__PUBLIC uint32_t fogrt_scene_get_features(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->features; }
+FOGRT__PRIVATE size_t fogrt__wbvh_bytes(const struct fogrt__wbvh *w);   /* chapter 10b */
+FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
+{
+    size_t t, p, b = sizeof *s, lit = 0;
+    uint32_t i;
+    FOGRT_ASSERT(s);
+    t = s->tri_count;
+    p = t + s->sph_count;
+    b += sizeof(fogrt_material_desc) * s->material_count + sizeof(fogrt_light_desc) * s->light_count;
+    b += t * (6 * sizeof(fogrt__v3) + 1 + 2 * sizeof(uint32_t));   /* vertices, normals, flag, ids */
+    b += (size_t)s->sph_count * (sizeof(fogrt__v3) + sizeof(float) + sizeof(uint32_t));
+    if (s->env_map) b += sizeof(float) * 3 * (size_t)s->env_w * (size_t)s->env_h;
+    if (s->env_cdf) b += sizeof(float) * ((size_t)s->env_w + 1) * (size_t)s->env_h;
+    if (s->nodes) b += sizeof(fogrt_bvh_node) * s->node_count + p * (sizeof(uint32_t) + sizeof(fogrt__prim));
+    for (i = 0; s->area_lights && i < s->area_light_count; ++i) lit += s->area_lights[i].count;
+    if (s->area_lights) b += sizeof(fogrt__area_light) * s->area_light_count + lit * (sizeof(uint32_t) + sizeof(float));
+    if (s->prim_light) b += sizeof(uint32_t) * p;
+    if (s->wide) b += fogrt__wbvh_bytes(s->wide);
+    return b;
+}
 
 /* ------------------------------------------------------------------------------------------
    9. The BVH: binned build with the surface area heuristic (or the paper's volume heuristic)

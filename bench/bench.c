@@ -4,16 +4,24 @@
      1. BVH build seconds (median of several builds) of two meshes: (a) the CS184 bunny
         (CBbunny.dae, when fogrt_load.h and ../shared are there, else a displaced sphere of the
         same size, ~28.6k triangles) and (b) a displaced sphere of 1M triangles;
-     2. closest-hit throughput in million rays per second (median of several passes over the
-        same rays), on 1 and 2 OpenMP threads, of three ray sets per mesh:
+     2. bytes per triangle of the built scene: fogrt_scene_get_memory with its split
+        (geometry, binary BVH, wide BVH, the rest), what fogrt's allocator handed out (after
+        the build and at its peak), and Embree's allocations through its memory monitor;
+     3. throughput in million rays per second (median of several passes over the same rays),
+        on 1 and 2 OpenMP threads, of four ray sets per mesh:
           primary  one camera ray through the centre of every pixel (coherent);
           random   origins uniform in the scene bounds, directions uniform on the sphere
                    (incoherent, the hard case);
           bounce   one cosine-weighted diffuse bounce from every primary hit (incoherent,
                    what a path tracer traces after the first hit);
-        every ray goes through fogrt_scene_intersect, and, when bench_embree.c is linked
-        (HAVE_EMBREE), through Embree 3's rtcIntersect1 too, with the fogrt/Embree ratio;
-     3. samples per second of a full render of the default scene (fogrt_scene_add_default).
+          shadow   any-hit rays from every primary and every bounce hit toward a point
+                   uniform in the scene bounds, tmax = the distance to it (next-event
+                   estimation's visibility test);
+        closest-hit rays go through fogrt_scene_intersect, shadow rays through
+        fogrt_scene_occluded, and, when bench_embree.c is linked (HAVE_EMBREE), through
+        Embree 3's rtcIntersect1 / rtcOccluded1 too, with the fogrt/Embree ratio;
+     4. samples per second of a full render of the default scene (fogrt_scene_add_default)
+        on 1 and 2 threads, and their ratio.
    Before timing, a sample of every ray set is checked against fogrt_scene_intersect_brute
    (and the Embree answers against fogrt's), so a fast but wrong BVH cannot pass unnoticed.
 
@@ -52,6 +60,9 @@ bench_embree *bench_embree_create(const float *positions, uint32_t vertex_count,
                                   int build_threads, double *build_seconds);
 void bench_embree_trace(const bench_embree *e, const float *rays, size_t ray_count, int threads,
                         float *t_out, uint32_t *prim_out);
+void bench_embree_occluded(const bench_embree *e, const float *rays, size_t ray_count, int threads,
+                           float *t_out);
+void bench_embree_memory(const bench_embree *e, double *buffers, double *commit_peak, double *commit_final);
 void bench_embree_destroy(bench_embree *e);
 #endif
 
@@ -93,6 +104,33 @@ static void check(fogrt_result r, const char *what)
         fprintf(stderr, "bench: %s failed: %s\n", what, fogrt_result_string(r));
         exit(1);
     }
+}
+
+/* fogrt's scenes allocate through this allocator, which counts the bytes handed out (live
+   now, and the most at once since `peak` was last reset). Each block carries its size in a
+   header of 16 bytes, which keeps malloc's alignment. */
+typedef struct byte_counter { size_t live, peak; } byte_counter;
+static byte_counter g_fogrt_bytes;
+
+static void *counted_alloc(size_t size, void *user_data)
+{
+    byte_counter *c = (byte_counter *)user_data;
+    unsigned char *block = (unsigned char *)malloc(size + 16);
+    if (!block) return NULL;
+    memcpy(block, &size, sizeof size);
+    c->live += size;
+    if (c->live > c->peak) c->peak = c->live;
+    return block + 16;
+}
+
+static void counted_free(void *ptr, void *user_data)
+{
+    byte_counter *c = (byte_counter *)user_data;
+    size_t size;
+    if (!ptr) return;
+    memcpy(&size, (unsigned char *)ptr - 16, sizeof size);
+    c->live -= size;
+    free((unsigned char *)ptr - 16);
 }
 
 /* Is the machine quiet? Other processes running during the benchmark lower every figure.
@@ -197,9 +235,14 @@ static void make_displaced_sphere(uint32_t rings, uint32_t segments, const char 
 static fogrt_scene *geometry_scene(const bench_geometry *g)
 {
     fogrt_scene *scene = NULL;
+    fogrt_scene_desc sd;
     fogrt_material_desc m;
     uint32_t material = 0, s;
-    check(fogrt_scene_create(NULL, &scene), "fogrt_scene_create");
+    memset(&sd, 0, sizeof sd);
+    sd.allocator.alloc_fn = counted_alloc;
+    sd.allocator.free_fn = counted_free;
+    sd.allocator.user_data = &g_fogrt_bytes;
+    check(fogrt_scene_create(&sd, &scene), "fogrt_scene_create");
     memset(&m, 0, sizeof m);
     m.type = FOGRT_BSDF_DIFFUSE;
     m.reflectance.x = m.reflectance.y = m.reflectance.z = 0.5f;
@@ -287,6 +330,7 @@ typedef struct ray_set {
     const char *name;
     float *rays;
     size_t count;
+    bool any_hit;        /* shadow rays: traced with fogrt_scene_occluded / rtcOccluded1 */
 } ray_set;
 
 static void put_ray(float *r, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax)
@@ -301,6 +345,7 @@ static ray_set make_primary_rays(const fogrt_scene *scene, int side)
     ray_set s;
     int x, y;
     s.name = "primary";
+    s.any_hit = false;
     s.count = (size_t)side * (size_t)side;
     s.rays = (float *)xmalloc(sizeof(float) * 8 * s.count);
     for (y = 0; y < side; y++)
@@ -322,6 +367,7 @@ static ray_set make_random_rays(const fogrt_scene *scene, size_t count, uint64_t
     fogrt_scene_get_info(scene, &info);
     fogrt_rng_seed(&rng, seed, 1);
     s.name = "random";
+    s.any_hit = false;
     s.count = count;
     s.rays = (float *)xmalloc(sizeof(float) * 8 * count);
     for (i = 0; i < count; i++) {
@@ -360,6 +406,21 @@ static fogrt_vec3 geometric_normal(const bench_geometry *g, uint32_t prim, fogrt
     return n;
 }
 
+/* The hit point of closest-hit ray r at distance t on primitive prim, pushed off the surface
+   by eps along the normal on the side the ray came from (*o), and that normal (*nrm). */
+static void surface_point(const bench_geometry *g, const float *r, float t, uint32_t prim, float eps,
+                          fogrt_vec3 *o, fogrt_vec3 *nrm)
+{
+    fogrt_vec3 p, n;
+    float sign;
+    p.x = r[0] + t * r[4]; p.y = r[1] + t * r[5]; p.z = r[2] + t * r[6];
+    n = geometric_normal(g, prim, p);
+    sign = (n.x * r[4] + n.y * r[5] + n.z * r[6]) > 0.0f ? -1.0f : 1.0f;  /* face the ray */
+    n.x *= sign; n.y *= sign; n.z *= sign;
+    o->x = p.x + eps * n.x; o->y = p.y + eps * n.y; o->z = p.z + eps * n.z;
+    *nrm = n;
+}
+
 /* One cosine-weighted diffuse bounce from every hit of the primary rays (t_hit, prim_hit are
    fogrt's answers for them). The origin is pushed off the surface by eps along the normal on
    the side the primary ray came from. */
@@ -371,16 +432,13 @@ static ray_set make_bounce_rays(const bench_geometry *g, const ray_set *primary,
     size_t i, n = 0;
     fogrt_rng_seed(&rng, seed, 2);
     s.name = "bounce";
+    s.any_hit = false;
     s.rays = (float *)xmalloc(sizeof(float) * 8 * (primary->count ? primary->count : 1));
     for (i = 0; i < primary->count; i++) {
-        const float *r = primary->rays + 8 * i;
-        fogrt_vec3 p, nrm, local, t1, t2, d, o;
-        float sign, len;
+        fogrt_vec3 nrm, local, t1, t2, d, o;
+        float len;
         if (t_hit[i] < 0.0f) continue;
-        p.x = r[0] + t_hit[i] * r[4]; p.y = r[1] + t_hit[i] * r[5]; p.z = r[2] + t_hit[i] * r[6];
-        nrm = geometric_normal(g, prim_hit[i], p);
-        sign = (nrm.x * r[4] + nrm.y * r[5] + nrm.z * r[6]) > 0.0f ? -1.0f : 1.0f;  /* face the ray */
-        nrm.x *= sign; nrm.y *= sign; nrm.z *= sign;
+        surface_point(g, primary->rays + 8 * i, t_hit[i], prim_hit[i], eps, &o, &nrm);
         /* Orthonormal frame (t1, t2, nrm): t1 from the axis least aligned with the normal. */
         if (fabsf(nrm.x) < 0.9f) { t1.x = 0.0f; t1.y = nrm.z; t1.z = -nrm.y; }
         else                     { t1.x = -nrm.z; t1.y = 0.0f; t1.z = nrm.x; }
@@ -395,7 +453,6 @@ static ray_set make_bounce_rays(const bench_geometry *g, const ray_set *primary,
         d.z = local.x * t1.z + local.y * t2.z + local.z * nrm.z;
         len = sqrtf(d.x * d.x + d.y * d.y + d.z * d.z);
         d.x /= len; d.y /= len; d.z /= len;
-        o.x = p.x + eps * nrm.x; o.y = p.y + eps * nrm.y; o.z = p.z + eps * nrm.z;
         put_ray(s.rays + 8 * n, o, d, 0.0f, INFINITY);
         n++;
     }
@@ -403,12 +460,48 @@ static ray_set make_bounce_rays(const bench_geometry *g, const ray_set *primary,
     return s;
 }
 
+/* Shadow rays, as next-event estimation traces them: from every hit of `from` (t_hit,
+   prim_hit: fogrt's closest-hit answers), the origin pushed off the surface as for the bounce
+   rays, toward a point q uniform in the scene's bounding box; a q behind the surface is
+   mirrored through the tangent plane, so that every ray leaves on the side the light would
+   be seen from. tmin 0, tmax = the distance to q: the ray is occluded only by geometry
+   between the surface and q. Appends to *s (room for from->count more rays). */
+static void add_shadow_rays(const bench_geometry *g, const fogrt_scene_info *box, const ray_set *from,
+                            const float *t_hit, const uint32_t *prim_hit, float eps, fogrt_rng *rng,
+                            ray_set *s)
+{
+    size_t i;
+    for (i = 0; i < from->count; i++) {
+        fogrt_vec3 o, nrm, q, d;
+        float side, len;
+        if (t_hit[i] < 0.0f) continue;
+        surface_point(g, from->rays + 8 * i, t_hit[i], prim_hit[i], eps, &o, &nrm);
+        q.x = box->bounds_min.x + (box->bounds_max.x - box->bounds_min.x) * fogrt_rng_float(rng);
+        q.y = box->bounds_min.y + (box->bounds_max.y - box->bounds_min.y) * fogrt_rng_float(rng);
+        q.z = box->bounds_min.z + (box->bounds_max.z - box->bounds_min.z) * fogrt_rng_float(rng);
+        d.x = q.x - o.x; d.y = q.y - o.y; d.z = q.z - o.z;
+        side = d.x * nrm.x + d.y * nrm.y + d.z * nrm.z;
+        if (side < 0.0f) { d.x -= 2.0f * side * nrm.x; d.y -= 2.0f * side * nrm.y; d.z -= 2.0f * side * nrm.z; }
+        len = sqrtf(d.x * d.x + d.y * d.y + d.z * d.z);
+        if (!(len > eps)) continue;        /* q on the surface point itself: no ray */
+        d.x /= len; d.y /= len; d.z /= len;
+        put_ray(s->rays + 8 * s->count, o, d, 0.0f, len);
+        s->count++;
+    }
+}
+
 /* ------------------------------------------------------------------------------------------
    Tracing: the loop that is timed
    ------------------------------------------------------------------------------------------ */
+static void trace_fogrt_occluded(const fogrt_scene *scene, const ray_set *s, int threads, float *t_out,
+                                 uint32_t *prim_out);
+
+/* Closest hit (or, for a shadow set, any hit) of every ray: t and the primitive, or t = -1
+   and UINT32_MAX on a miss (any hit: t = 0 when occluded). */
 static void trace_fogrt(const fogrt_scene *scene, const ray_set *s, int threads, float *t_out, uint32_t *prim_out)
 {
     long i, n = (long)s->count;
+    if (s->any_hit) { trace_fogrt_occluded(scene, s, threads, t_out, prim_out); return; }
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
 #else
@@ -430,8 +523,36 @@ static void trace_fogrt(const fogrt_scene *scene, const ray_set *s, int threads,
     }
 }
 
+static void trace_fogrt_occluded(const fogrt_scene *scene, const ray_set *s, int threads, float *t_out,
+                                 uint32_t *prim_out)
+{
+    long i, n = (long)s->count;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
+#else
+    (void)threads;
+#endif
+    for (i = 0; i < n; i++) {
+        const float *r = s->rays + 8 * (size_t)i;
+        fogrt_vec3 o, d;
+        o.x = r[0]; o.y = r[1]; o.z = r[2];
+        d.x = r[4]; d.y = r[5]; d.z = r[6];
+        t_out[i] = fogrt_scene_occluded(scene, o, d, r[3], r[7]) ? 0.0f : -1.0f;
+        prim_out[i] = UINT32_MAX;
+    }
+}
+
+#ifdef HAVE_EMBREE
+static void trace_embree(const bench_embree *e, const ray_set *s, int threads, float *t_out, uint32_t *prim_out)
+{
+    if (s->any_hit) bench_embree_occluded(e, s->rays, s->count, threads, t_out);
+    else bench_embree_trace(e, s->rays, s->count, threads, t_out, prim_out);
+}
+#endif
+
 /* Do two closest-hit answers agree? Both miss, or both hit at the same distance up to float
-   round-off (the primitive may differ on a shared edge, so it is not compared). */
+   round-off (the primitive may differ on a shared edge, so it is not compared). Any-hit
+   answers (t 0 or -1) agree when they are equal. */
 static bool same_answer(float ta, float tb)
 {
     if (ta < 0.0f || tb < 0.0f) return ta < 0.0f && tb < 0.0f;
@@ -439,9 +560,10 @@ static bool same_answer(float ta, float tb)
 }
 
 /* Checks up to `samples` rays of the set, spread evenly, against the brute-force reference;
-   returns how many disagree. */
+   returns how many disagree (*checked: how many were compared). For a shadow set the reference any-hit answer is "brute force
+   finds a hit with tmin < t < tmax". */
 static size_t check_against_brute(const fogrt_scene *scene, const ray_set *s, size_t samples,
-                                  const float *t_bvh)
+                                  const float *t_bvh, size_t *checked)
 {
     size_t k, bad = 0, step = s->count / (samples ? samples : 1);
     if (step == 0) step = 1;
@@ -453,7 +575,9 @@ static size_t check_against_brute(const fogrt_scene *scene, const ray_set *s, si
         o.x = r[0]; o.y = r[1]; o.z = r[2];
         d.x = r[4]; d.y = r[5]; d.z = r[6];
         t = fogrt_scene_intersect_brute(scene, o, d, r[3], r[7], &hit) ? hit.t : -1.0f;
+        if (s->any_hit && t >= 0.0f) t = 0.0f;
         if (!same_answer(t, t_bvh[k])) bad++;
+        ++*checked;
     }
     return bad;
 }
@@ -470,6 +594,129 @@ typedef struct bench_options {
 } bench_options;
 
 #define MAX_REPS 15
+#define SET_COUNT 4
+
+/* Bytes per triangle of the built scene. fogrt: fogrt_scene_get_memory split into the
+   geometry (the same getter before the build: what was added), the binary tree (nodes,
+   prim_index and the packed primitives), the wide tree, and the rest (light and environment
+   tables); then what the counting allocator saw: held after the build (spare capacity
+   included) and the most held at once during it. Embree: the geometry buffers set before
+   rtcCommitScene, and the bytes rtcCommitScene added (kept after it, and at its peak). */
+static void print_memory(const fogrt_scene *scene, size_t geometry_bytes, size_t held, size_t peak,
+                         const void *embree_scene)
+{
+    double tris = (double)(scene->tri_count + scene->sph_count), total = (double)fogrt_scene_get_memory(scene);
+    double binary = (double)scene->node_count * sizeof(fogrt_bvh_node)
+                  + tris * (double)(sizeof(uint32_t) + sizeof(fogrt__prim));
+    double wide = scene->wide ? (double)fogrt__wbvh_bytes(scene->wide) : 0.0;
+    double geometry = (double)geometry_bytes;
+    if (tris < 1.0) tris = 1.0;
+    printf("memory    fogrt  %8.1f B/tri  (fogrt_scene_get_memory: geometry %.1f + binary BVH %.1f + wide BVH %.1f"
+           " + other %.1f; allocated %.1f after the build, %.1f at its peak)\n",
+           total / tris, geometry / tris, binary / tris, wide / tris, (total - geometry - binary - wide) / tris,
+           (double)held / tris, (double)peak / tris);
+#ifdef HAVE_EMBREE
+    {
+        double buffers, commit_peak, commit_final;
+        bench_embree_memory((const bench_embree *)embree_scene, &buffers, &commit_peak, &commit_final);
+        printf("memory    embree %8.1f B/tri  (geometry buffers %.1f + rtcCommitScene %.1f kept, %.1f at its peak)"
+               "   fogrt/embree %.2f, BVH alone %.2f\n",
+               (buffers + commit_final) / tris, buffers / tris, commit_final / tris, commit_peak / tris,
+               total / (buffers + commit_final), (total - geometry) / commit_final);
+    }
+#else
+    (void)embree_scene;
+#endif
+}
+
+/* The four ray sets of a built scene (rays[3] has room for 2 x the primary count; t_f, p_f
+   as many answers). */
+static void make_ray_sets(const bench_geometry *g, const fogrt_scene *scene, int image_side, ray_set *sets,
+                          float *t_f, uint32_t *p_f)
+{
+    fogrt_scene_info info;
+    fogrt_rng rng;
+    float extent, eps;
+    fogrt_scene_get_info(scene, &info);
+    extent = fmaxf(info.bounds_max.x - info.bounds_min.x,
+                   fmaxf(info.bounds_max.y - info.bounds_min.y, info.bounds_max.z - info.bounds_min.z));
+    eps = 1e-4f * extent;
+    sets[0] = make_primary_rays(scene, image_side);
+    sets[1] = make_random_rays(scene, sets[0].count, 12345u);
+    trace_fogrt(scene, &sets[0], max_threads(), t_f, p_f);
+    sets[2] = make_bounce_rays(g, &sets[0], t_f, p_f, eps, 777u);
+    sets[3].name = "shadow";
+    sets[3].any_hit = true;
+    sets[3].count = 0;
+    sets[3].rays = (float *)xmalloc(sizeof(float) * 8 * (sets[0].count + sets[2].count + 1));
+    fogrt_rng_seed(&rng, 4242u, 3);
+    add_shadow_rays(g, &info, &sets[0], t_f, p_f, eps, &rng, &sets[3]);
+    trace_fogrt(scene, &sets[2], max_threads(), t_f, p_f);
+    add_shadow_rays(g, &info, &sets[2], t_f, p_f, eps, &rng, &sets[3]);
+}
+
+/* One ray set: checks, then 1 and 2 threads, fogrt and Embree alternating; prints its line. */
+static void bench_ray_set(const bench_geometry *g, const fogrt_scene *scene, const void *embree_scene,
+                          const ray_set *s, const bench_options *opt, float *t_f, uint32_t *p_f,
+                          float *t_e, uint32_t *p_e)
+{
+    double mrays_f[2] = {0, 0};
+    size_t hits = 0, i, bad_brute, samples, checked = 0;
+    int ti, rep, threads_list[2] = {1, 2};
+#ifdef HAVE_EMBREE
+    const bench_embree *embree = (const bench_embree *)embree_scene;
+    size_t bad_embree = 0;
+    double mrays_e[2] = {0, 0};
+#else
+    (void)embree_scene; (void)t_e; (void)p_e;
+#endif
+    /* Correctness first: a sample against brute force (at most ~5e7 triangle tests). */
+    trace_fogrt(scene, s, max_threads(), t_f, p_f);
+    for (i = 0; i < s->count; i++) hits += t_f[i] >= 0.0f;
+    samples = (size_t)(5e7 / (double)(g->triangle_count + g->sphere_count + 1));
+    if (samples > 2000) samples = 2000;
+    bad_brute = check_against_brute(scene, s, samples, t_f, &checked);
+#ifdef HAVE_EMBREE
+    trace_embree(embree, s, max_threads(), t_e, p_e);
+    for (i = 0; i < s->count; i++) bad_embree += !same_answer(t_f[i], t_e[i]);
+#endif
+    /* Timing: fogrt and Embree alternate, so drifts of the machine hit both alike. */
+    for (ti = 0; ti < 2; ti++) {
+        int threads = threads_list[ti];
+        double tf[MAX_REPS];
+#ifdef HAVE_EMBREE
+        double te[MAX_REPS];
+#endif
+        if (threads > max_threads()) continue;
+        for (rep = 0; rep < opt->trace_reps; rep++) {
+            double t0 = now_seconds(), c0 = cpu_seconds();
+            trace_fogrt(scene, s, threads, t_f, p_f);
+            tf[rep] = now_seconds() - t0;
+            if (threads == 1) { g_wall_1t += tf[rep]; g_cpu_1t += cpu_seconds() - c0; }
+#ifdef HAVE_EMBREE
+            t0 = now_seconds(); c0 = cpu_seconds();
+            trace_embree(embree, s, threads, t_e, p_e);
+            te[rep] = now_seconds() - t0;
+            if (threads == 1) { g_wall_1t += te[rep]; g_cpu_1t += cpu_seconds() - c0; }
+#endif
+        }
+        mrays_f[ti] = (double)s->count / median(tf, opt->trace_reps) / 1e6;
+#ifdef HAVE_EMBREE
+        mrays_e[ti] = (double)s->count / median(te, opt->trace_reps) / 1e6;
+#endif
+    }
+    printf("%-8s %9zu %5.1f | %9.2f %9.2f", s->name, s->count,
+           100.0 * (double)hits / (double)(s->count ? s->count : 1), mrays_f[0], mrays_f[1]);
+#ifdef HAVE_EMBREE
+    printf(" | %9.2f %9.2f | %8.2f %8.2f", mrays_e[0], mrays_e[1],
+           mrays_f[0] / mrays_e[0], mrays_e[1] > 0 ? mrays_f[1] / mrays_e[1] : 0.0);
+#endif
+    printf(" | %6.2f | brute %zu/%zu bad", mrays_f[0] > 0 ? mrays_f[1] / mrays_f[0] : 0.0, bad_brute, checked);
+#ifdef HAVE_EMBREE
+    printf(", embree %zu/%zu differ", bad_embree, s->count);
+#endif
+    printf("\n");
+}
 
 static void bench_geometry_run(const bench_geometry *g, const bench_options *opt)
 {
@@ -478,13 +725,12 @@ static void bench_geometry_run(const bench_geometry *g, const bench_options *opt
     uint32_t node_count = 0;
     const fogrt_bvh_node *nodes;
     const uint32_t *prim_index;
-    fogrt_scene_info info;
-    ray_set sets[3];
+    ray_set sets[SET_COUNT];
     float *t_f, *t_e;
     uint32_t *p_f, *p_e;
-    float extent;
-    size_t max_rays;
-    int rep, k, threads_list[2] = {1, 2}, ti;
+    size_t max_rays, geometry_bytes = 0, held = 0, peak = 0;
+    int rep, k;
+    void *embree_scene = NULL;
 #ifdef HAVE_EMBREE
     bench_embree *embree = NULL;
     double embree_build[MAX_REPS], embree_build_median = 0.0;
@@ -497,9 +743,13 @@ static void bench_geometry_run(const bench_geometry *g, const bench_options *opt
         double t0;
         if (scene) fogrt_scene_destroy(scene);
         scene = geometry_scene(g);
+        geometry_bytes = fogrt_scene_get_memory(scene);
+        g_fogrt_bytes.peak = g_fogrt_bytes.live;
         t0 = now_seconds();
         check(fogrt_scene_build(scene, NULL), "fogrt_scene_build");
         times[rep] = now_seconds() - t0;
+        held = g_fogrt_bytes.live;
+        peak = g_fogrt_bytes.peak;
     }
     build_median = median(times, opt->build_reps);
     fogrt_scene_get_bvh(scene, &nodes, &node_count, &prim_index);
@@ -513,92 +763,31 @@ static void bench_geometry_run(const bench_geometry *g, const bench_options *opt
                                      g->spheres, g->sphere_count, 1, &embree_build[rep]);
         if (!embree) { fprintf(stderr, "bench: Embree scene creation failed\n"); exit(1); }
     }
+    embree_scene = embree;
     embree_build_median = median(embree_build, opt->build_reps);
     printf("build     embree %8.4f s  (median of %d, 1 build thread)   fogrt/embree time %.2f\n",
            embree_build_median, opt->build_reps, build_median / embree_build_median);
 #endif
+    print_memory(scene, geometry_bytes, held, peak, embree_scene);
 
     /* Ray sets. */
-    fogrt_scene_get_info(scene, &info);
-    extent = fmaxf(info.bounds_max.x - info.bounds_min.x,
-                   fmaxf(info.bounds_max.y - info.bounds_min.y, info.bounds_max.z - info.bounds_min.z));
-    sets[0] = make_primary_rays(scene, opt->image_side);
-    sets[1] = make_random_rays(scene, sets[0].count, 12345u);
-    max_rays = sets[0].count;
+    max_rays = 2 * (size_t)opt->image_side * (size_t)opt->image_side + 1;
     t_f = (float *)xmalloc(sizeof(float) * max_rays);
     t_e = (float *)xmalloc(sizeof(float) * max_rays);
     p_f = (uint32_t *)xmalloc(sizeof(uint32_t) * max_rays);
     p_e = (uint32_t *)xmalloc(sizeof(uint32_t) * max_rays);
-    trace_fogrt(scene, &sets[0], max_threads(), t_f, p_f);
-    sets[2] = make_bounce_rays(g, &sets[0], t_f, p_f, 1e-4f * extent, 777u);
+    make_ray_sets(g, scene, opt->image_side, sets, t_f, p_f);
 
     printf("%-8s %9s %5s | %9s %9s", "rays", "count", "hit%", "fogrt 1T", "fogrt 2T");
 #ifdef HAVE_EMBREE
     printf(" | %9s %9s | %8s %8s", "embree 1T", "embree 2T", "f/e 1T", "f/e 2T");
 #endif
     printf(" | %6s | %s\n", "2T/1T", "checks");
+    for (k = 0; k < SET_COUNT; k++) bench_ray_set(g, scene, embree_scene, &sets[k], opt, t_f, p_f, t_e, p_e);
+    printf("(Mrays/s = million rays per second, median of %d passes; primary, random, bounce: closest hit,"
+           " shadow: any hit, hit%% = occluded; f/e = fogrt/Embree)\n", opt->trace_reps);
 
-    for (k = 0; k < 3; k++) {
-        const ray_set *s = &sets[k];
-        double mrays_f[2] = {0, 0};
-        size_t hits = 0, i, bad_brute;
-#ifdef HAVE_EMBREE
-        size_t bad_embree = 0;
-        double mrays_e[2] = {0, 0};
-#endif
-        /* Correctness first: a sample against brute force (at most ~5e7 triangle tests). */
-        trace_fogrt(scene, s, max_threads(), t_f, p_f);
-        for (i = 0; i < s->count; i++) hits += t_f[i] >= 0.0f;
-        {
-            size_t samples = (size_t)(5e7 / (double)(g->triangle_count + g->sphere_count + 1));
-            if (samples > 2000) samples = 2000;
-            bad_brute = check_against_brute(scene, s, samples, t_f);
-        }
-#ifdef HAVE_EMBREE
-        bench_embree_trace(embree, s->rays, s->count, max_threads(), t_e, p_e);
-        for (i = 0; i < s->count; i++) bad_embree += !same_answer(t_f[i], t_e[i]);
-#endif
-        /* Timing: fogrt and Embree alternate, so drifts of the machine hit both alike. */
-        for (ti = 0; ti < 2; ti++) {
-            int threads = threads_list[ti];
-            double tf[MAX_REPS];
-#ifdef HAVE_EMBREE
-            double te[MAX_REPS];
-#endif
-            if (threads > max_threads()) continue;
-            for (rep = 0; rep < opt->trace_reps; rep++) {
-                double t0 = now_seconds(), c0 = cpu_seconds();
-                trace_fogrt(scene, s, threads, t_f, p_f);
-                tf[rep] = now_seconds() - t0;
-                if (threads == 1) { g_wall_1t += tf[rep]; g_cpu_1t += cpu_seconds() - c0; }
-#ifdef HAVE_EMBREE
-                t0 = now_seconds(); c0 = cpu_seconds();
-                bench_embree_trace(embree, s->rays, s->count, threads, t_e, p_e);
-                te[rep] = now_seconds() - t0;
-                if (threads == 1) { g_wall_1t += te[rep]; g_cpu_1t += cpu_seconds() - c0; }
-#endif
-            }
-            mrays_f[ti] = (double)s->count / median(tf, opt->trace_reps) / 1e6;
-#ifdef HAVE_EMBREE
-            mrays_e[ti] = (double)s->count / median(te, opt->trace_reps) / 1e6;
-#endif
-        }
-        printf("%-8s %9zu %5.1f | %9.2f %9.2f", s->name, s->count,
-               100.0 * (double)hits / (double)(s->count ? s->count : 1), mrays_f[0], mrays_f[1]);
-#ifdef HAVE_EMBREE
-        printf(" | %9.2f %9.2f | %8.2f %8.2f", mrays_e[0], mrays_e[1],
-               mrays_f[0] / mrays_e[0], mrays_e[1] > 0 ? mrays_f[1] / mrays_e[1] : 0.0);
-#endif
-        printf(" | %6.2f | brute %zu bad", mrays_f[0] > 0 ? mrays_f[1] / mrays_f[0] : 0.0, bad_brute);
-#ifdef HAVE_EMBREE
-        printf(", embree %zu/%zu differ", bad_embree, s->count);
-#endif
-        printf("\n");
-    }
-    printf("(Mrays/s = million closest-hit rays per second, median of %d passes; f/e = fogrt/Embree)\n",
-           opt->trace_reps);
-
-    for (k = 0; k < 3; k++) free(sets[k].rays);
+    for (k = 0; k < SET_COUNT; k++) free(sets[k].rays);
     free(t_f); free(t_e); free(p_f); free(p_e);
 #ifdef HAVE_EMBREE
     bench_embree_destroy(embree);
@@ -617,7 +806,7 @@ static void bench_render(const bench_options *opt)
     fogrt_render_stats stats;
     const int width = 320, height = 240;
     int spp, ti, rep, reps = opt->render_reps;
-    double t0, t1;
+    double t0, t1, rate[3] = {0, 0, 0};
     check(fogrt_scene_create(NULL, &scene), "fogrt_scene_create");
     check(fogrt_scene_add_default(scene), "fogrt_scene_add_default");
     check(fogrt_scene_build(scene, NULL), "fogrt_scene_build");
@@ -650,9 +839,13 @@ static void bench_render(const bench_options *opt)
             rays = stats.rays; samples = stats.camera_rays;
         }
         t1 = median(times, reps);
+        rate[ti] = (double)samples / t1;
         printf("%-8d | %14.0f | %14.2f | %.2f\n", ti, (double)samples / t1, (double)rays / t1 / 1e6,
                (double)rays / (double)(samples ? samples : 1));
     }
+    if (rate[1] > 0.0 && rate[2] > 0.0)
+        printf("2T/1T    | %14.2f | (samples/s on 2 threads over 1 thread; the goal: >= 1.9 on a quiet machine)\n",
+               rate[2] / rate[1]);
     printf("(median of %d renders; Mrays/s counts camera, bounce and shadow rays)\n", reps);
     fogrt_image_free(&img);
     fogrt_scene_destroy(scene);

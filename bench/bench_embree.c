@@ -1,14 +1,21 @@
 /* bench_embree.c - the Embree 3 side of bench/bench.c: the same triangles (and spheres) in an
-   Embree scene, the same rays traced one at a time with rtcIntersect1.
+   Embree scene, the same rays traced one at a time with rtcIntersect1 (closest hit) or
+   rtcOccluded1 (any hit), and the bytes the scene allocates.
 
    Built and linked (-lembree3) by mk/bench.mk only when /usr/include/embree3/rtcore.h exists
-   (Debian: apt-get install libembree-dev). bench.c then defines HAVE_EMBREE and calls the four
+   (Debian: apt-get install libembree-dev). bench.c then defines HAVE_EMBREE and calls the
    functions below; their prototypes are repeated there.
 
    Rays are packed 8 floats each: ox oy oz tmin dx dy dz tmax (the layout bench.c uses). A hit
    returns t and the primitive id in fogrt's numbering: triangles first, then spheres, so the
-   two tracers can be compared ray by ray. A miss returns t = -1 and prim = UINT32_MAX. */
+   two tracers can be compared ray by ray. A miss returns t = -1 and prim = UINT32_MAX. An
+   any-hit query returns t = 0 when the ray is occluded, -1 when it is not.
+
+   Memory: the device's memory monitor callback sums every allocation and release Embree makes
+   (bytes > 0 allocated, < 0 freed). The device builds on one thread (threads=1), so the
+   callback is never called from two threads at once. */
 #include <embree3/rtcore.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,7 +29,19 @@ typedef struct bench_embree {
     RTCDevice device;
     RTCScene scene;
     uint32_t triangle_count;
+    long long live, peak;          /* bytes allocated now, and the most since peak was reset */
+    long long before_commit;       /* live just before rtcCommitScene: the geometry buffers */
+    long long commit_peak, commit_final;   /* peak during and live after it, above before_commit */
 } bench_embree;
+
+static bool bench_embree__monitor(void *user, ssize_t bytes, bool post)
+{
+    bench_embree *e = (bench_embree *)user;
+    (void)post;           /* an allocation is reported before it (post false), a release after */
+    e->live += (long long)bytes;
+    if (e->live > e->peak) e->peak = e->live;
+    return true;          /* never refuse an allocation */
+}
 
 /* Wall-clock seconds (the same clock as bench.c uses). */
 static double bench_embree__now(void)
@@ -58,6 +77,7 @@ bench_embree *bench_embree_create(const float *positions, uint32_t vertex_count,
     e->device = rtcNewDevice(config);
     if (!e->device) { free(e); return NULL; }
     rtcSetDeviceErrorFunction(e->device, bench_embree__error, NULL);
+    rtcSetDeviceMemoryMonitorFunction(e->device, bench_embree__monitor, e);
     e->scene = rtcNewScene(e->device);
     e->triangle_count = triangle_count;
 
@@ -83,9 +103,13 @@ bench_embree *bench_embree_create(const float *positions, uint32_t vertex_count,
         rtcReleaseGeometry(geom);
     }
     {
-        double t0 = bench_embree__now();
+        double t0;
+        e->before_commit = e->peak = e->live;
+        t0 = bench_embree__now();
         rtcCommitScene(e->scene);
         if (build_seconds) *build_seconds = bench_embree__now() - t0;
+        e->commit_peak = e->peak - e->before_commit;
+        e->commit_final = e->live - e->before_commit;
     }
     if (rtcGetDeviceError(e->device) != RTC_ERROR_NONE) {
         rtcReleaseScene(e->scene);
@@ -126,6 +150,40 @@ void bench_embree_trace(const bench_embree *e, const float *rays, size_t ray_cou
             prim_out[i] = UINT32_MAX;
         }
     }
+}
+
+/* Any hit of every ray (tnear < t < tfar as Embree counts it), one rtcOccluded1 per ray:
+   t_out[i] = 0 when ray i is occluded, -1 when not. */
+void bench_embree_occluded(const bench_embree *e, const float *rays, size_t ray_count, int threads,
+                           float *t_out)
+{
+    long i, n = (long)ray_count;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
+#else
+    (void)threads;
+#endif
+    for (i = 0; i < n; i++) {
+        const float *r = rays + 8 * (size_t)i;
+        struct RTCIntersectContext context;
+        struct RTCRay ray;
+        rtcInitIntersectContext(&context);
+        ray.org_x = r[0]; ray.org_y = r[1]; ray.org_z = r[2]; ray.tnear = r[3];
+        ray.dir_x = r[4]; ray.dir_y = r[5]; ray.dir_z = r[6]; ray.time = 0.0f;
+        ray.tfar = r[7];
+        ray.mask = 0xFFFFFFFFu; ray.id = 0; ray.flags = 0;
+        rtcOccluded1(e->scene, &context, &ray);
+        t_out[i] = ray.tfar < 0.0f ? 0.0f : -1.0f;    /* Embree sets tfar = -inf on a hit */
+    }
+}
+
+/* Bytes Embree allocated for the scene: the geometry buffers set before rtcCommitScene, and
+   what rtcCommitScene added (its peak while building, and what it kept). */
+void bench_embree_memory(const bench_embree *e, double *buffers, double *commit_peak, double *commit_final)
+{
+    *buffers = (double)e->before_commit;
+    *commit_peak = (double)e->commit_peak;
+    *commit_final = (double)e->commit_final;
 }
 
 void bench_embree_destroy(bench_embree *e)

@@ -1,13 +1,14 @@
 # mk/bench.mk - benchmarks (docs/benchmarks.md).
-#   make bench       BVH build time, closest-hit Mrays/s (1 and 2 threads), render samples/s;
+#   make bench       BVH build time, bytes per triangle, closest-hit and shadow (any-hit)
+#                    Mrays/s (1 and 2 threads), render samples/s and its 2T/1T;
 #                    BENCH_ARGS=--quick for a short, noisy run
 #   make callgrind   instruction cost of the fog code in a fog-free render (fails above +3%)
 #
 # Optional parts, switched on by what exists (nothing is installed by `make bench`):
 #   - the CS184 bunny: when fogrt_load.h declares fogrt_load_dae and $(SHARED) has CBbunny.dae
 #     (otherwise bench.c uses a synthetic mesh of the same size);
-#   - Embree 3 for comparison: when /usr/include/embree3/rtcore.h exists
-#     (Debian/Ubuntu: apt-get install libembree-dev).
+#   - Embree 3 for comparison (rtcIntersect1, rtcOccluded1, its memory monitor): when
+#     /usr/include/embree3/rtcore.h exists (Debian/Ubuntu: apt-get install libembree-dev).
 .PHONY: bench callgrind
 
 BENCH_EMBREE_HEADER := /usr/include/embree3/rtcore.h

@@ -1014,6 +1014,7 @@ static void test_default_scene_contents(void)
     fogrt_scene_info info;
     fogrt_medium_desc med;
     fogrt_light_desc light;
+    uint32_t node_count = 0;
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_default(scene));
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
     fogrt_scene_get_info(scene, &info);
@@ -1027,6 +1028,9 @@ static void test_default_scene_contents(void)
     TEST_ASSERT_FLOAT_WITHIN(1e-4f, 1.5f, info.bounds_max.y);
     TEST_ASSERT_FLOAT_WITHIN(1e-4f, -1.0f, info.bounds_min.z);
     TEST_ASSERT_TRUE(info.bounds_max.z >= 1.0f - 1e-4f);
+    /* The memory getter holds at least the triangles' vertices and the binary tree's nodes. */
+    fogrt_scene_get_bvh(scene, NULL, &node_count, NULL);
+    TEST_ASSERT_TRUE(fogrt_scene_get_memory(scene) >= 3 * sizeof(fogrt_vec3) * info.triangle_count + sizeof(fogrt_bvh_node) * node_count);
     fogrt_scene_get_medium(scene, &med);
     TEST_ASSERT_EQUAL_FLOAT(0.3f, med.sigma_t);
     TEST_ASSERT_EQUAL_FLOAT(0.9f, med.albedo.x);
