@@ -1198,7 +1198,9 @@ FOGRT__PRIVATE double fogrt__hgt_invert(const fogrt__hg_table *t, const double *
    6. Samplers for surfaces and lights
    The generic warps every other chapter uses: cosine-weighted hemisphere (diffuse BSDF),
    uniform sphere, uniform triangle (area lights), the cone a sphere subtends (spherical
-   lights), the spot profile, and equiangular distance sampling (point lights in fog).
+   lights), the spot profile, equiangular distance sampling (point lights in fog) and the
+   glow around a lamp (directions in fog), the last two also with the phase function in
+   them (through chapter 5's table).
    ------------------------------------------------------------------------------------------ */
 /* Shirley-Chiu concentric map of the square to the disk (also the thin lens). */
 FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *y)
@@ -3720,13 +3722,17 @@ FOGRT__PUBLIC void fogrt_camera_ray(const fogrt_scene *s, int width, int height,
         before the surface, the event is a fog collision and the path weight is multiplied by
         the albedo sigma_s/sigma_t (transmittance and pdf cancel); otherwise the ray reaches
         the surface with probability T and weight T/T = 1. Point and spot lights are gathered
-        along the way by equiangular sampling (fogrt__equiangular, not in the paper).
+        along the way by equiangular sampling with the phase function (fogrt__equiangular,
+        not in the paper).
      b. fogrt__surface_event: at a surface, add its emission (weighted by MIS when next-event
         estimation could have found it too) and set up the shading frame.
      c. fogrt__light_step: at the scattering vertex, fog or surface, sample the lights
         (eq. 3 / 13, chapter 12).
      d. fogrt__scatter: the new direction: Henyey-Greenstein in the fog (eq. 11-12), the BSDF
         on a surface (chapter 7).
+     d'. fogrt__scatter_glow (not in the paper): near point and spot lights in fog, half of
+        the new directions aim at the glow around a lamp instead (chapter 6), so that the
+        paths that pass next to it are common and light, not rare and huge.
      e. fogrt__roulette: Russian roulette ends long paths without bias.
    Path weights are kept as throughput beta = prod f |cos| / pdf; the image is sum beta Le.
    A scene without fog never enters step a: it pays one well-predicted branch per bounce.

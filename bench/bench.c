@@ -58,10 +58,8 @@ bench_embree *bench_embree_create(const float *positions, uint32_t vertex_count,
                                   const uint32_t *indices, uint32_t triangle_count,
                                   const float *spheres, uint32_t sphere_count,
                                   int build_threads, double *build_seconds);
-void bench_embree_trace(const bench_embree *e, const float *rays, size_t ray_count, int threads,
+void bench_embree_trace(const bench_embree *e, const float *rays, size_t ray_count, int threads, bool any_hit,
                         float *t_out, uint32_t *prim_out);
-void bench_embree_occluded(const bench_embree *e, const float *rays, size_t ray_count, int threads,
-                           float *t_out);
 void bench_embree_memory(const bench_embree *e, double *buffers, double *commit_peak, double *commit_final);
 void bench_embree_destroy(bench_embree *e);
 #endif
@@ -493,15 +491,11 @@ static void add_shadow_rays(const bench_geometry *g, const fogrt_scene_info *box
 /* ------------------------------------------------------------------------------------------
    Tracing: the loop that is timed
    ------------------------------------------------------------------------------------------ */
-static void trace_fogrt_occluded(const fogrt_scene *scene, const ray_set *s, int threads, float *t_out,
-                                 uint32_t *prim_out);
-
 /* Closest hit (or, for a shadow set, any hit) of every ray: t and the primitive, or t = -1
    and UINT32_MAX on a miss (any hit: t = 0 when occluded). */
 static void trace_fogrt(const fogrt_scene *scene, const ray_set *s, int threads, float *t_out, uint32_t *prim_out)
 {
     long i, n = (long)s->count;
-    if (s->any_hit) { trace_fogrt_occluded(scene, s, threads, t_out, prim_out); return; }
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
 #else
@@ -513,40 +507,21 @@ static void trace_fogrt(const fogrt_scene *scene, const ray_set *s, int threads,
         fogrt_hit hit;
         o.x = r[0]; o.y = r[1]; o.z = r[2];
         d.x = r[4]; d.y = r[5]; d.z = r[6];
-        if (fogrt_scene_intersect(scene, o, d, r[3], r[7], &hit)) {
+        t_out[i] = -1.0f;
+        prim_out[i] = UINT32_MAX;
+        if (s->any_hit) {
+            if (fogrt_scene_occluded(scene, o, d, r[3], r[7])) t_out[i] = 0.0f;
+        } else if (fogrt_scene_intersect(scene, o, d, r[3], r[7], &hit)) {
             t_out[i] = hit.t;
             prim_out[i] = hit.prim;
-        } else {
-            t_out[i] = -1.0f;
-            prim_out[i] = UINT32_MAX;
         }
-    }
-}
-
-static void trace_fogrt_occluded(const fogrt_scene *scene, const ray_set *s, int threads, float *t_out,
-                                 uint32_t *prim_out)
-{
-    long i, n = (long)s->count;
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
-#else
-    (void)threads;
-#endif
-    for (i = 0; i < n; i++) {
-        const float *r = s->rays + 8 * (size_t)i;
-        fogrt_vec3 o, d;
-        o.x = r[0]; o.y = r[1]; o.z = r[2];
-        d.x = r[4]; d.y = r[5]; d.z = r[6];
-        t_out[i] = fogrt_scene_occluded(scene, o, d, r[3], r[7]) ? 0.0f : -1.0f;
-        prim_out[i] = UINT32_MAX;
     }
 }
 
 #ifdef HAVE_EMBREE
 static void trace_embree(const bench_embree *e, const ray_set *s, int threads, float *t_out, uint32_t *prim_out)
 {
-    if (s->any_hit) bench_embree_occluded(e, s->rays, s->count, threads, t_out);
-    else bench_embree_trace(e, s->rays, s->count, threads, t_out, prim_out);
+    bench_embree_trace(e, s->rays, s->count, threads, s->any_hit, t_out, prim_out);
 }
 #endif
 

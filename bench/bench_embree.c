@@ -120,8 +120,20 @@ bench_embree *bench_embree_create(const float *positions, uint32_t vertex_count,
     return e;
 }
 
-/* Closest hit of every ray, on `threads` OpenMP threads, one rtcIntersect1 per ray. */
-void bench_embree_trace(const bench_embree *e, const float *rays, size_t ray_count, int threads,
+/* Ray i of the rays array (origin, tnear, direction, tfar) as an Embree ray. */
+static void bench_embree_ray(const float *r, struct RTCRay *ray)
+{
+    ray->org_x = r[0]; ray->org_y = r[1]; ray->org_z = r[2]; ray->tnear = r[3];
+    ray->dir_x = r[4]; ray->dir_y = r[5]; ray->dir_z = r[6]; ray->time = 0.0f;
+    ray->tfar = r[7];
+    ray->mask = 0xFFFFFFFFu; ray->id = 0; ray->flags = 0;
+}
+
+/* Every ray, on `threads` OpenMP threads, one query per ray: closest hit (rtcIntersect1: t
+   and the primitive, or t = -1 and UINT32_MAX on a miss), or with any_hit any hit
+   (rtcOccluded1, tnear < t < tfar as Embree counts it: t = 0 when ray i is occluded, -1
+   when not; the primitive is UINT32_MAX). */
+void bench_embree_trace(const bench_embree *e, const float *rays, size_t ray_count, int threads, bool any_hit,
                         float *t_out, uint32_t *prim_out)
 {
     long i, n = (long)ray_count;
@@ -135,45 +147,21 @@ void bench_embree_trace(const bench_embree *e, const float *rays, size_t ray_cou
         struct RTCIntersectContext context;
         struct RTCRayHit rh;
         rtcInitIntersectContext(&context);
-        rh.ray.org_x = r[0]; rh.ray.org_y = r[1]; rh.ray.org_z = r[2]; rh.ray.tnear = r[3];
-        rh.ray.dir_x = r[4]; rh.ray.dir_y = r[5]; rh.ray.dir_z = r[6]; rh.ray.time = 0.0f;
-        rh.ray.tfar = r[7];
-        rh.ray.mask = 0xFFFFFFFFu; rh.ray.id = 0; rh.ray.flags = 0;
+        bench_embree_ray(r, &rh.ray);
+        prim_out[i] = UINT32_MAX;
+        if (any_hit) {
+            rtcOccluded1(e->scene, &context, &rh.ray);
+            t_out[i] = rh.ray.tfar < 0.0f ? 0.0f : -1.0f;   /* Embree sets tfar = -inf on a hit */
+            continue;
+        }
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(e->scene, &context, &rh);
+        t_out[i] = -1.0f;
         if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
             t_out[i] = rh.ray.tfar;
             prim_out[i] = rh.hit.primID + (rh.hit.geomID == 1 ? e->triangle_count : 0u);
-        } else {
-            t_out[i] = -1.0f;
-            prim_out[i] = UINT32_MAX;
         }
-    }
-}
-
-/* Any hit of every ray (tnear < t < tfar as Embree counts it), one rtcOccluded1 per ray:
-   t_out[i] = 0 when ray i is occluded, -1 when not. */
-void bench_embree_occluded(const bench_embree *e, const float *rays, size_t ray_count, int threads,
-                           float *t_out)
-{
-    long i, n = (long)ray_count;
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
-#else
-    (void)threads;
-#endif
-    for (i = 0; i < n; i++) {
-        const float *r = rays + 8 * (size_t)i;
-        struct RTCIntersectContext context;
-        struct RTCRay ray;
-        rtcInitIntersectContext(&context);
-        ray.org_x = r[0]; ray.org_y = r[1]; ray.org_z = r[2]; ray.tnear = r[3];
-        ray.dir_x = r[4]; ray.dir_y = r[5]; ray.dir_z = r[6]; ray.time = 0.0f;
-        ray.tfar = r[7];
-        ray.mask = 0xFFFFFFFFu; ray.id = 0; ray.flags = 0;
-        rtcOccluded1(e->scene, &context, &ray);
-        t_out[i] = ray.tfar < 0.0f ? 0.0f : -1.0f;    /* Embree sets tfar = -inf on a hit */
     }
 }
 
