@@ -625,6 +625,10 @@ typedef struct fogrt_progress {
                        at the glow around point and spot lights (chapter 14, d'), which
                        keeps paths that pass next to a lamp from being rare, huge samples;
                        needs nee and equiangular (not in the paper)
+     light_by_power    false (CS184): every light is sampled at every vertex; true: one
+                       light per vertex, chosen in proportion to its power (radiant flux),
+                       its sample divided by that probability: one shadow ray instead of
+                       one per light, for scenes with many lights (docs/benchmarks.md)
      light_samples     1 (>= 1): samples per area light at each next-event estimate (CS184 -l)
      seed              0: base seed of every random stream
      threads           0 = all OpenMP threads; ignored without OpenMP
@@ -641,6 +645,7 @@ typedef struct fogrt_render_desc {
     bool mis;
     bool equiangular;
     bool glow;
+    bool light_by_power;
     int light_samples;
     uint64_t seed;
     int threads;
@@ -856,6 +861,7 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #endif
 
 #define FOGRT__PI      3.14159265358979323846f
+#define FOGRT__PI_D    3.14159265358979323846
 #define FOGRT__INV_PI  0.31830988618379067154f
 #define FOGRT__INV_4PI 0.07957747154594766788f
 #define FOGRT__ONE_MINUS_EPS 0.99999994f      /* the largest float below 1, 1 - 2^-24 */
@@ -1118,7 +1124,6 @@ typedef struct fogrt__hg_table {
     double k[FOGRT__HGT_N + 1];         /* K at the edges: G(alpha) per unit alpha */
     uint16_t c_start[FOGRT__HGT_N + 1], k_start[FOGRT__HGT_N + 1];   /* the inverse's index */
 } fogrt__hg_table;
-#define FOGRT__PI_D 3.14159265358979323846
 FOGRT__PRIVATE double fogrt__hg_angle(double g, double psi)   /* HG(cos psi), base formed without cancellation */
 {
     double s = sin(0.5 * psi), base = (1.0 - g) * (1.0 - g) + 4.0 * g * s * s;
@@ -1553,6 +1558,7 @@ struct fogrt_scene {
     float *env_map; int env_w, env_h;   /* environment map (3 floats per pixel), or NULL */
     float *env_cdf;            /* built: per row the CDF over its columns (w), then the rows' CDF (h) */
     double env_total;          /* built: sum of luminance x sin(theta) over the map */
+    float *light_pick;         /* built: the light list's CDF by power (fogrt__light_pick, chapter 12) */
     fogrt_camera_desc camera; bool has_camera;
     fogrt_medium_desc medium;
 #ifndef FOGRT_NO_MEDIUM
@@ -1632,6 +1638,7 @@ FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s)
     fogrt__free(&s->allocator, s->light_cdf); s->light_cdf = NULL;
     fogrt__free(&s->allocator, s->prim_light); s->prim_light = NULL;
     fogrt__free(&s->allocator, s->env_cdf); s->env_cdf = NULL;
+    fogrt__free(&s->allocator, s->light_pick); s->light_pick = NULL;
     s->built = false;
 }
 FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s)
@@ -3114,13 +3121,16 @@ FOGRT__PRIVATE uint32_t fogrt__features(const fogrt_scene *s)
 /* The environment map's sampling tables: the weight of pixel (i, j) is its luminance times
    sin(theta) at the row's centre (the solid angle a row covers); per row a CDF over its
    columns, then a CDF over the rows. */
+FOGRT__PRIVATE bool fogrt__build_light_pick(fogrt_scene *s);
+/* The light tables: the environment map's CDFs (rows, and columns within each row), then
+   the light list's CDF by power (chapter 12). */
 FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s)
 {
     int i, j, w = s->env_w, h = s->env_h;
     double total = 0.0;
     float *rows;
     s->env_total = 0.0;
-    if (!s->env_map) return true;
+    if (!s->env_map) return fogrt__build_light_pick(s);
     s->env_cdf = (float *)fogrt__alloc(&s->allocator, sizeof(float) * ((size_t)w * (size_t)h + (size_t)h));
     if (!s->env_cdf) return false;
     rows = s->env_cdf + (size_t)w * (size_t)h;
@@ -3140,7 +3150,7 @@ FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s)
     for (j = 0; j < h; ++j) rows[j] = total > 0.0 ? (float)((double)rows[j] / total) : (float)(j + 1) / (float)h;
     rows[h - 1] = 1.0f;
     s->env_total = total;
-    return true;
+    return fogrt__build_light_pick(s);
 }
 /* Where the fog is: the medium's box, or with an environment light and no box the box of
    the geometry (fog filling all space would hide the sky), or everywhere. With point or
@@ -3246,7 +3256,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
    ------------------------------------------------------------------------------------------ */
 typedef struct fogrt__settings {
     int max_depth, min_depth, rr_depth, light_samples;
-    bool nee, mis, equiangular, glow;
+    bool nee, mis, equiangular, glow, by_power;
     fogrt_integrator integrator;
     fogrt_fresnel fresnel;
 #ifdef FOGRT_TRACE
@@ -3479,25 +3489,34 @@ FOGRT__PRIVATE bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__
 }
 
 /* The solid-angle pdf with which next-event estimation would have sampled the emitter point
-   y (on primitive prim, geometric normal ny) from p: the MIS partner of BSDF sampling. */
-FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, fogrt__v3 p, fogrt__v3 y, fogrt__v3 ny)
+   y (on primitive prim, geometric normal ny) from p: the MIS partner of BSDF sampling
+   (times the probability of picking that light, when lights are chosen by power). */
+/* The probability that next-event estimation picks light i: 1 when every light is sampled. */
+FOGRT__PRIVATE float fogrt__pick_prob(const fogrt_scene *s, const fogrt__settings *st, uint32_t i)
+{
+    if (!st->by_power) return 1.0f;
+    return s->light_pick[i] - (i ? s->light_pick[i - 1] : 0.0f);
+}
+FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, const fogrt__settings *st, uint32_t prim, fogrt__v3 p,
+                                          fogrt__v3 y, fogrt__v3 ny)
 {
     uint32_t li = s->prim_light[prim];
     const fogrt__area_light *a;
     fogrt__v3 to;
-    float d2, cos_l;
+    float d2, cos_l, pick;
     if (li == UINT32_MAX) return 0.0f;
     a = &s->area_lights[li];
+    pick = fogrt__pick_prob(s, st, s->light_count + li);
     if (a->sphere != UINT32_MAX) {
         fogrt__v3 c = s->sph_c[a->sphere];
         float r = s->sph_r[a->sphere];
         if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r) return 0.0f;
-        return fogrt_sphere_solid_angle_pdf(c, r, p);
+        return pick * fogrt_sphere_solid_angle_pdf(c, r, p);
     }
     to = fogrt__sub(y, p);
     d2 = fogrt__dot(to, to);
     cos_l = fabsf(fogrt__dot(fogrt__normalize(to), ny));
-    return cos_l > 0.0f ? d2 / (cos_l * a->area) : 0.0f;
+    return cos_l > 0.0f ? pick * d2 / (cos_l * a->area) : 0.0f;
 }
 
 /* The environment map (CS184's mapping): direction <-> (x, y) in [0,1)^2 of the image,
@@ -3565,6 +3584,61 @@ FOGRT__PRIVATE uint32_t fogrt__light_total(const fogrt_scene *s)
 {
     return s->light_count + s->area_light_count + (s->env_map && s->env_total > 0.0 ? 1u : 0u);
 }
+/* Choosing lights by power (render desc light_by_power): each light's radiant flux,
+   estimated as luminance x emitting area x pi for an area light, intensity x the solid
+   angle it lights for a point or spot light, and for the environment map its mean radiance
+   x pi x the sphere around the geometry. The table is the CDF of these over the light list
+   (uniform when all are 0). */
+FOGRT__PRIVATE float fogrt__geometry_radius(const fogrt_scene *s)
+{
+    fogrt__v3 lo = fogrt__v(FLT_MAX, FLT_MAX, FLT_MAX), hi = fogrt__neg(lo), c;
+    uint32_t i;
+    for (i = 0; i < 3 * s->tri_count; ++i) {
+        c = s->tri_v[i];
+        lo = fogrt__v(FOGRT__MIN(lo.x, c.x), FOGRT__MIN(lo.y, c.y), FOGRT__MIN(lo.z, c.z));
+        hi = fogrt__v(FOGRT__MAX(hi.x, c.x), FOGRT__MAX(hi.y, c.y), FOGRT__MAX(hi.z, c.z));
+    }
+    for (i = 0; i < s->sph_count; ++i) {
+        float r = s->sph_r[i];
+        c = s->sph_c[i];
+        lo = fogrt__v(FOGRT__MIN(lo.x, c.x - r), FOGRT__MIN(lo.y, c.y - r), FOGRT__MIN(lo.z, c.z - r));
+        hi = fogrt__v(FOGRT__MAX(hi.x, c.x + r), FOGRT__MAX(hi.y, c.y + r), FOGRT__MAX(hi.z, c.z + r));
+    }
+    return hi.x >= lo.x ? FOGRT__MAX(0.5f * fogrt__length(fogrt__sub(hi, lo)), 1e-6f) : 1.0f;
+}
+FOGRT__PRIVATE float fogrt__light_power(const fogrt_scene *s, uint32_t i, float radius)
+{
+    if (i < s->light_count) {
+        const fogrt_light_desc *l = &s->lights[i];
+        float solid = 4.0f * FOGRT__PI;
+        if (l->type == FOGRT_LIGHT_SPOT) solid = 2.0f * FOGRT__PI * (1.0f - cosf(FOGRT__MIN(l->cutoff_deg, 180.0f) * (FOGRT__PI / 180.0f)));
+        return fogrt__luminance(l->intensity) * solid;
+    }
+    i -= s->light_count;
+    if (i < s->area_light_count) {
+        const fogrt__area_light *a = &s->area_lights[i];
+        uint32_t m = a->sphere != UINT32_MAX ? s->sph_material[a->sphere] : s->tri_material[s->light_prims[a->first]];
+        return fogrt__luminance(s->materials[m].emission) * a->area * FOGRT__PI;
+    }
+    return (float)(s->env_total * FOGRT__PI_D / (2.0 * (double)s->env_w * (double)s->env_h)) *   /* mean radiance */
+           FOGRT__PI * 4.0f * FOGRT__PI * radius * radius;
+}
+FOGRT__PRIVATE bool fogrt__build_light_pick(fogrt_scene *s)
+{
+    uint32_t i, n = fogrt__light_total(s);
+    double total = 0.0, run = 0.0;
+    float radius = s->env_map ? fogrt__geometry_radius(s) : 1.0f;
+    if (n < 2) return true;
+    s->light_pick = (float *)fogrt__alloc(&s->allocator, sizeof(float) * n);
+    if (!s->light_pick) return false;
+    for (i = 0; i < n; ++i) total += (double)FOGRT__MAX(fogrt__light_power(s, i, radius), 0.0f);
+    for (i = 0; i < n; ++i) {
+        run += total > 0.0 ? (double)FOGRT__MAX(fogrt__light_power(s, i, radius), 0.0f) : 1.0;
+        s->light_pick[i] = (float)(run / (total > 0.0 ? total : (double)n));
+    }
+    s->light_pick[n - 1] = 1.0f;
+    return true;
+}
 FOGRT__PRIVATE int fogrt__light_sample_count(const fogrt_scene *s, const fogrt__settings *st, uint32_t i)
 {
     return i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->light_samples;
@@ -3622,7 +3696,8 @@ FOGRT__PRIVATE void fogrt__trace_light(const fogrt__settings *st, const fogrt__p
                                        float tr, float w, fogrt__v3 value);
 #endif
 FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
-                                               const fogrt__vertex *v, uint32_t light, const fogrt__light_sample *ls, int n)
+                                               const fogrt__vertex *v, uint32_t light, const fogrt__light_sample *ls, float n)
+    /* n: the samples taken of this light, times the probability it was picked (by power) */
 {
     fogrt__v3 f, c = fogrt__v(0.0f, 0.0f, 0.0f);
     float pdf_b, tr = 0.0f, w = 0.0f;
@@ -3638,24 +3713,35 @@ FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt
     return c;
 }
 /* Next-event estimation at vertex v (CS184 style: every light is sampled, area lights with
-   light_samples samples each). At a fog vertex the point and spot lights are left out when
-   the equiangular estimator (chapter 14) gathers them along the ray instead: the two never
-   count the same light twice. Returns the reflected radiance, before the path weight. */
+   light_samples samples each; or, with light_by_power, one light picked by power and its
+   samples divided by the probability of the pick). At a fog vertex the point and spot lights
+   are left out when the equiangular estimator (chapter 14) gathers them along the ray
+   instead: the two never count the same light twice (a pick of one of them adds nothing
+   there). Returns the reflected radiance, before the path weight. */
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_light_n(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
+                                               uint32_t i, float pick)
+{
+    fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
+    int j, n = fogrt__light_sample_count(s, st, i);
+    for (j = 0; j < n; ++j) {
+        fogrt__light_sample ls;
+        float u[3];
+        fogrt__draw(s, i, P->rng, u);
+        if (fogrt__sample_light(s, i, P->v.p, u, &ls))
+            L = fogrt__add(L, fogrt__light_contribution(s, st, P, &P->v, i, &ls, (float)n * pick));
+    }
+    return L;
+}
 FOGRT__PRIVATE fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P)
 {
-    const fogrt__vertex *v = &P->v;
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
-    uint32_t i = v->is_medium && st->equiangular ? s->light_count : 0, total = fogrt__light_total(s);
-    for (; i < total; ++i) {
-        int j, n = fogrt__light_sample_count(s, st, i);
-        for (j = 0; j < n; ++j) {
-            fogrt__light_sample ls;
-            float u[3];
-            fogrt__draw(s, i, P->rng, u);
-            if (fogrt__sample_light(s, i, v->p, u, &ls))
-                L = fogrt__add(L, fogrt__light_contribution(s, st, P, v, i, &ls, n));
-        }
+    uint32_t i = P->v.is_medium && st->equiangular ? s->light_count : 0, first = i, total = fogrt__light_total(s);
+    if (st->by_power) {                                  /* one light, chosen by power */
+        float frac;
+        i = (uint32_t)fogrt__cdf_find(s->light_pick, (int)total, fogrt_rng_float(P->rng), &frac);
+        return i < first ? L : fogrt__sample_light_n(s, st, P, i, fogrt__pick_prob(s, st, i));
     }
+    for (; i < total; ++i) L = fogrt__add(L, fogrt__sample_light_n(s, st, P, i, 1.0f));
     return L;
 }
 
@@ -3933,17 +4019,31 @@ FOGRT__PRIVATE bool fogrt__clip_to_cone(const fogrt_light_desc *l, fogrt__v3 o, 
    HG(mu(t)) / r^2 (fogrt__sample_equiangular_hg, chapter 6; plain equiangular when g = 0), then
    the light seen from the fog point x(t) as at any fog vertex (chapter 12), weighted by
    sigma_s T(t) / pdf(t). A spot light only lights its cone: only the part of the ray inside
-   it is sampled. */
+   it is sampled. With light_by_power, one point or spot light per segment, by power. */
+/* The point and spot lights a segment gathers, [*first, *last): all of them, or with
+   light_by_power one, picked among them by power. Returns the probability of the pick. */
+FOGRT__PRIVATE float fogrt__equiangular_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
+                                               uint32_t *first, uint32_t *last)
+{
+    float top, frac;
+    *first = 0; *last = s->light_count;
+    if (!st->by_power || s->light_count < 2 || !(s->light_pick[s->light_count - 1] > 0.0f)) return 1.0f;
+    top = s->light_pick[s->light_count - 1];
+    *first = (uint32_t)fogrt__cdf_find(s->light_pick, (int)s->light_count, fogrt_rng_float(P->rng) * top, &frac);
+    *last = *first + 1;
+    return fogrt__pick_prob(s, st, *first) / top;
+}
 FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
                                             float t_min, float t_max)
 {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
-    float sigma_t = s->medium.sigma_t;
-    uint32_t i;
+    float sigma_t = s->medium.sigma_t, pick;
+    uint32_t i, last;
     fogrt__vertex v;
     memset(&v, 0, sizeof v);
     v.wo = fogrt__neg(P->d); v.is_medium = true; v.in_medium = true;
-    for (i = 0; i < s->light_count; ++i) {
+    pick = fogrt__equiangular_lights(s, st, P, &i, &last);
+    for (; i < last; ++i) {
         const fogrt_light_desc *l = &s->lights[i];
         int j, n = fogrt__light_sample_count(s, st, i);
         for (j = 0; j < n; ++j) {
@@ -3958,7 +4058,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
             v.p = fogrt__madd(P->o, P->d, t);
             FOGRT__HOOK(fogrt__trace_equiangular(st, P, i, u[0], t, pdf_t, sigma_t * fogrt_transmittance(sigma_t, t - t_min) / pdf_t));
             if (!fogrt__sample_point_light(s, l, v.p, u + 1, &ls)) continue;
-            L = fogrt__add(L, fogrt__scale(fogrt__mul(fogrt__light_contribution(s, st, P, &v, i, &ls, n), s->medium.albedo),
+            L = fogrt__add(L, fogrt__scale(fogrt__mul(fogrt__light_contribution(s, st, P, &v, i, &ls, (float)n * pick), s->medium.albedo),
                                            sigma_t * fogrt_transmittance(sigma_t, t - t_min) / pdf_t));
         }
     }
@@ -4005,7 +4105,7 @@ FOGRT__PRIVATE bool fogrt__surface_event(const fogrt_scene *s, const fogrt__sett
         float w = 1.0f;
         if (!P->prev_delta && st->nee)
             w = st->mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->light_samples *
-                                                 fogrt__area_light_pdf(s, hit->prim, P->prev_p, P->v.p, ng)) : 0.0f;
+                                                 fogrt__area_light_pdf(s, st, hit->prim, P->prev_p, P->v.p, ng)) : 0.0f;
         fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(P->beta, m->emission), w), "emission");
     }
     if (P->bounces >= limit || (P->type == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance))) return false;
@@ -4037,7 +4137,8 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
     if (s->has_env) {                                   /* escaped: the environment */
         float w = 1.0f;                                 /* a map is also sampled by NEE: MIS */
         if (s->env_map && !P->prev_delta && st->nee)
-            w = st->mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->light_samples * fogrt__env_pdf(s, P->d)) : 0.0f;
+            w = st->mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->light_samples * fogrt__env_pdf(s, P->d) *
+                                                 fogrt__pick_prob(s, st, fogrt__light_total(s) - 1)) : 0.0f;
         fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(P->beta, fogrt__env_radiance(s, P->d)), w), "environment");
     }
     return false;
@@ -4207,7 +4308,7 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void)
         0, 0,                                           /* width, height: the image's */
         FOGRT_INTEGRATOR_PATH, FOGRT_FRESNEL_SCHLICK,
         64, 0, 3,                                       /* max_depth, min_depth, rr_depth */
-        true, true, true, true,                         /* nee, mis, equiangular, glow */
+        true, true, true, true, false,                  /* nee, mis, equiangular, glow, light_by_power */
         1, 0, 0,                                        /* light_samples, seed, threads */
         NULL, NULL,                                     /* progress, user_data */
         true                                            /* resolved */
@@ -4238,6 +4339,7 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
     st->mis = d.mis;
     st->equiangular = d.equiangular;
     st->glow = d.glow && d.nee && d.equiangular;
+    st->by_power = d.light_by_power && s->light_pick && fogrt__light_total(s) > 1;
     st->integrator = d.integrator == FOGRT_INTEGRATOR_DIRECT ? FOGRT_INTEGRATOR_DIRECT : FOGRT_INTEGRATOR_PATH;
     st->fresnel = d.fresnel;
 #ifdef FOGRT_TRACE

@@ -93,6 +93,7 @@ typedef struct cli_options {
     const char *log_path;               /* --log */
     const char *reference;              /* --reference */
     bool equiangular, mis, glow;        /* --equiangular, --mis, --glow */
+    bool by_power;                      /* --lights power */
     float lens_radius; bool lens_set;   /* -b */
     float focal; bool focal_set;        /* -d */
     int batch; float tolerance; bool adaptive;   /* -a */
@@ -178,6 +179,8 @@ static void usage(FILE *f)
         "  --equiangular on|off  equiangular distance sampling toward point and spot lights in\n"
         "                   fog; off: they are found only by next-event estimation at fog\n"
         "                   collisions, as in the paper (default on)\n"
+        "  --lights L       all: every light sampled at every vertex, as CS184 does; power:\n"
+        "                   one light per vertex, chosen in proportion to its power (default all)\n"
         "  --glow on|off    in fog, half of the scattered directions aim at the glow around\n"
         "                   point and spot lights (needs --equiangular on) (default on)\n"
         "  --mis on|off     multiple importance sampling of light and BSDF/phase samples; off:\n"
@@ -369,6 +372,12 @@ static int parse_args(int argc, char **argv, cli_options *o)
             o->reference = argv[++i];
             if (!ends_with(o->reference, ".pfm")) return bad_flag(a, "reference '%s' must be a .pfm image", o->reference);
         }
+        else if (strcmp(a, "--lights") == 0) {
+            NEED(1); ++i;
+            if (strcmp(argv[i], "all") == 0) o->by_power = false;
+            else if (strcmp(argv[i], "power") == 0) o->by_power = true;
+            else return bad_flag(a, "must be all or power, got '%s'", argv[i]);
+        }
         else if (strcmp(a, "--glow") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->glow)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--equiangular") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->equiangular)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--mis") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->mis)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
@@ -487,6 +496,7 @@ static void fill_render_desc(const cli_options *o, int threads, fogrt_render_des
     rd->mis = o->mis;
     rd->equiangular = o->equiangular;
     rd->glow = o->glow;
+    rd->light_by_power = o->by_power;
     rd->seed = o->seed;
     rd->threads = threads;
 }
