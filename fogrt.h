@@ -1794,9 +1794,26 @@ FOGRT__PUBLIC uint32_t fogrt_scene_get_features(const fogrt_scene *s) { FOGRT_AS
      paper:   H    = N_l V_l + N_r V_r                          (V = volume)
    The SAH also compares with the cost of a leaf (c_int N) and stops when splitting does not
    pay; the volume heuristic has no such criterion, so it splits down to max_leaf_size.
+
+   The build works on a compact array of primitive records (each primitive's box, 2 x 4
+   floats, so one SSE instruction takes the minimum of a whole corner), reordered in place
+   together with the index array, and reads a node's records twice:
+     1. one binning pass for all three axes at once: the centroid of a box is (lo + hi) / 2,
+        its three bin numbers come from one multiply, and each of the three bins it falls in
+        grows by a minimum and a maximum. The cheapest plane is then found from the bins by
+        sweeping each axis from both ends, and the two child boxes are the unions of the bins
+        on each side (exact: a bin's box holds its primitives' boxes);
+     2. one partition pass that swaps records by their bin on the chosen axis (the same bin
+        computation as step 1, so each side gets exactly the primitives its cost was
+        computed for), and grows the centroid bounds each child needs for its own binning.
+   Past FOGRT__BVH_SAH_DEPTH levels (only reached by adversarial inputs) nodes are halved
+   without the heuristic, so the tree depth stays below FOGRT__BVH_MAX_DEPTH, the size of the
+   traversal stack. The 4-float vector below is SSE, or four plain floats with the same
+   results (FOGRT_WBVH_NO_SIMD).
    ------------------------------------------------------------------------------------------ */
 #define FOGRT__BVH_SAH_DEPTH 56
 #define FOGRT__BVH_MAX_DEPTH 96   /* 56 + 32 halvings of at most 2^32 primitives, and margin */
+#define FOGRT__BVH_MAX_BINS 64    /* fogrt_build_desc.bins is at most this */
 typedef struct fogrt__aabb { fogrt__v3 lo, hi; } fogrt__aabb;
 FOGRT__PRIVATE fogrt__aabb fogrt__aabb_empty(void)
 {
@@ -1828,141 +1845,307 @@ FOGRT__PRIVATE float fogrt__aabb_volume(const fogrt__aabb *b)
     return e.x * e.y * e.z;
 }
 
+/* SIMD: FOGRT_WBVH_SSE (on by default where the compiler targets SSE2, that is every x86-64)
+   selects SSE intrinsics here and in chapter 10b; FOGRT_WBVH_NO_SIMD forces plain C99 loops
+   that compute exactly the same values lane by lane. */
+#if !defined(FOGRT_WBVH_SSE) && !defined(FOGRT_WBVH_NO_SIMD) && \
+    (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#define FOGRT_WBVH_SSE 1
+#endif
+#ifdef FOGRT_WBVH_NO_SIMD
+#undef FOGRT_WBVH_SSE
+#endif
+#ifdef FOGRT_WBVH_SSE
+#include <emmintrin.h>
+typedef __m128 fogrt__f4;
+#define fogrt__f4_load(p) _mm_loadu_ps(p)
+#define fogrt__f4_store(p, a) _mm_storeu_ps(p, a)
+#define fogrt__f4_set1(x) _mm_set1_ps(x)
+#define fogrt__f4_min(a, b) _mm_min_ps(a, b)          /* a < b ? a : b, per lane */
+#define fogrt__f4_max(a, b) _mm_max_ps(a, b)          /* a > b ? a : b, per lane */
+#define fogrt__f4_add(a, b) _mm_add_ps(a, b)
+#define fogrt__f4_sub(a, b) _mm_sub_ps(a, b)
+#define fogrt__f4_mul(a, b) _mm_mul_ps(a, b)
+FOGRT__HOT void fogrt__f4_trunc(fogrt__f4 a, int32_t *out)
+{
+    _mm_storeu_si128((__m128i *)(void *)out, _mm_cvttps_epi32(a));
+}
+#else
+typedef struct fogrt__f4 { float v[4]; } fogrt__f4;
+FOGRT__HOT fogrt__f4 fogrt__f4_load(const float *p) { fogrt__f4 r; memcpy(r.v, p, sizeof r.v); return r; }
+FOGRT__HOT void fogrt__f4_store(float *p, fogrt__f4 a) { memcpy(p, a.v, sizeof a.v); }
+FOGRT__HOT fogrt__f4 fogrt__f4_set1(float x) { fogrt__f4 r; r.v[0] = r.v[1] = r.v[2] = r.v[3] = x; return r; }
+#define FOGRT__F4_OP(name, expr) \
+    FOGRT__HOT fogrt__f4 name(fogrt__f4 a, fogrt__f4 b) \
+    { fogrt__f4 r; int i_; for (i_ = 0; i_ < 4; ++i_) { float x = a.v[i_], y = b.v[i_]; r.v[i_] = (expr); } return r; }
+FOGRT__F4_OP(fogrt__f4_min, x < y ? x : y)
+FOGRT__F4_OP(fogrt__f4_max, x > y ? x : y)
+FOGRT__F4_OP(fogrt__f4_add, x + y)
+FOGRT__F4_OP(fogrt__f4_sub, x - y)
+FOGRT__F4_OP(fogrt__f4_mul, x * y)
+#undef FOGRT__F4_OP
+FOGRT__HOT void fogrt__f4_trunc(fogrt__f4 a, int32_t *out)   /* inputs already in [0, nb - 1] */
+{
+    int i;
+    for (i = 0; i < 4; ++i) out[i] = (int32_t)a.v[i];
+}
+#endif
+#define FOGRT__F4_EMPTY_LO fogrt__f4_set1(FLT_MAX)       /* the corners of an empty box */
+#define FOGRT__F4_EMPTY_HI fogrt__f4_set1(-FLT_MAX)
+
+/* A primitive's box as the build reads it (lane 3 unused, always 0). */
+typedef struct fogrt__brec { float lo[4], hi[4]; } fogrt__brec;
+/* A node waiting on the build's stack, with the bounds of its primitives' centroids. */
+typedef struct fogrt__bjob { uint32_t node, depth; float clo[4], chi[4]; } fogrt__bjob;
+
 typedef struct fogrt__build {
     fogrt_build_desc desc;
-    fogrt__aabb *box;      /* per primitive id */
-    fogrt__v3 *centroid;   /* per primitive id */
+    fogrt__brec *rec;      /* per primitive, in the order of idx (reordered with it) */
     fogrt_bvh_node *nodes;
     uint32_t *idx;
     uint32_t node_count;
 } fogrt__build;
-
-FOGRT__PRIVATE void fogrt__node_bounds(fogrt__build *b, fogrt_bvh_node *node, uint32_t first, uint32_t count)
-{
-    fogrt__aabb bb = fogrt__aabb_empty();
-    uint32_t i;
-    for (i = 0; i < count; ++i) fogrt__aabb_union(&bb, &b->box[b->idx[first + i]]);
-    node->bmin[0] = bb.lo.x; node->bmin[1] = bb.lo.y; node->bmin[2] = bb.lo.z;
-    node->bmax[0] = bb.hi.x; node->bmax[1] = bb.hi.y; node->bmax[2] = bb.hi.z;
-}
 
 /* The heuristic's measure of one side: N A (SAH) or N V (the paper). */
 FOGRT__PRIVATE float fogrt__side_cost(const fogrt_build_desc *d, uint32_t n, const fogrt__aabb *box)
 {
     return (float)n * (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(box) : fogrt__aabb_area(box));
 }
-/* One axis of the binned split search: drop every centroid into one of nbins slices of
-   [lo, hi], then sweep from the left and from the right to price the nbins - 1 planes
-   between the slices. Improves *best (and the plane *pos) where a plane is cheaper.
-   nbins = 1 prices the single plane through the middle of the centroid bounds.          */
-FOGRT__PRIVATE bool fogrt__split_axis(const fogrt__build *b, uint32_t first, uint32_t count, int axis,
-                                      float lo, float hi, int nbins, float *best, float *pos)
+FOGRT__HOT fogrt__f4 fogrt__brec_centroid(const fogrt__brec *r)
 {
-    enum { MAXB = 65 };
-    fogrt__aabb bin_box[MAXB], left_box = fogrt__aabb_empty(), right_box = fogrt__aabb_empty();
-    uint32_t bin_n[MAXB], left_n = 0, right_n = 0, i;
-    float left_cost[MAXB], scale;
+    return fogrt__f4_mul(fogrt__f4_add(fogrt__f4_load(r->lo), fogrt__f4_load(r->hi)), fogrt__f4_set1(0.5f));
+}
+FOGRT__PRIVATE void fogrt__node_set_box(fogrt_bvh_node *node, fogrt__f4 lo, fogrt__f4 hi)
+{
+    float l[4], h[4];
+    int k;
+    fogrt__f4_store(l, lo); fogrt__f4_store(h, hi);
+    for (k = 0; k < 3; ++k) { node->bmin[k] = l[k]; node->bmax[k] = h[k]; }
+}
+/* Box and centroid bounds of count records (the root, and the halved nodes). */
+FOGRT__PRIVATE void fogrt__brec_bounds(const fogrt__brec *r, uint32_t count, fogrt_bvh_node *node, float *clo, float *chi)
+{
+    fogrt__f4 lo = FOGRT__F4_EMPTY_LO, hi = FOGRT__F4_EMPTY_HI, cl = lo, ch = hi;
+    uint32_t i;
+    for (i = 0; i < count; ++i) {
+        fogrt__f4 c = fogrt__brec_centroid(&r[i]);
+        lo = fogrt__f4_min(lo, fogrt__f4_load(r[i].lo)); hi = fogrt__f4_max(hi, fogrt__f4_load(r[i].hi));
+        cl = fogrt__f4_min(cl, c); ch = fogrt__f4_max(ch, c);
+    }
+    fogrt__node_set_box(node, lo, hi);
+    fogrt__f4_store(clo, cl); fogrt__f4_store(chi, ch);
+}
+
+/* The bins of one node: on axis a, bin k holds the primitives whose centroid falls in the
+   k-th of nb equal slices of the centroid bounds; lo/hi is the box of those primitives. */
+typedef struct fogrt__bins {
+    float lo[3][FOGRT__BVH_MAX_BINS][4], hi[3][FOGRT__BVH_MAX_BINS][4];
+    uint32_t n[3][FOGRT__BVH_MAX_BINS];
+    fogrt__f4 origin, scale, top;
+    int nb;
+    bool ok[3];      /* false: every centroid at the same coordinate (no plane to try) */
+} fogrt__bins;
+/* Bin numbers of a record's centroid on the three axes: clamp((c - origin) scale, 0, nb - 1),
+   truncated; a NaN (from a flat axis) lands in bin 0 (max returns its second operand). */
+FOGRT__HOT void fogrt__bin_of(const fogrt__bins *bins, fogrt__f4 c, int32_t *bin)
+{
+    fogrt__f4 f = fogrt__f4_mul(fogrt__f4_sub(c, bins->origin), bins->scale);
+    f = fogrt__f4_min(fogrt__f4_max(f, fogrt__f4_set1(0.0f)), bins->top);
+    fogrt__f4_trunc(f, bin);
+}
+/* Empty bins over the centroid bounds of job: no more bins than primitives (at least 2, so
+   bins = 1 prices the single plane through the middle). */
+FOGRT__PRIVATE void fogrt__bins_init(fogrt__bins *bins, const fogrt_build_desc *d, const fogrt__bjob *job, uint32_t count)
+{
+    float scale[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+    int nb = count < (uint32_t)d->bins ? (int)count : d->bins, ax, k;
+    if (nb == 1) nb = 2;
+    for (ax = 0; ax < 3; ++ax) {
+        scale[ax] = (float)nb / (job->chi[ax] - job->clo[ax]);
+        bins->ok[ax] = job->chi[ax] > job->clo[ax] && scale[ax] > 0.0f && scale[ax] < FLT_MAX;
+        if (!bins->ok[ax]) scale[ax] = 0.0f;             /* every centroid in bin 0 */
+        for (k = 0; k < nb; ++k) {
+            fogrt__f4_store(bins->lo[ax][k], FOGRT__F4_EMPTY_LO);
+            fogrt__f4_store(bins->hi[ax][k], FOGRT__F4_EMPTY_HI);
+            bins->n[ax][k] = 0;
+        }
+    }
+    bins->nb = nb;
+    bins->origin = fogrt__f4_load(job->clo);
+    bins->scale = fogrt__f4_load(scale);
+    bins->top = fogrt__f4_set1((float)(nb - 1));
+}
+/* Step 1: every record into its bin on each of the three axes. */
+FOGRT__HOT void fogrt__bin_add(fogrt__bins *bins, int ax, int32_t k, fogrt__f4 lo, fogrt__f4 hi)
+{
+    float *bl = bins->lo[ax][k], *bh = bins->hi[ax][k];
+    bins->n[ax][k]++;
+    fogrt__f4_store(bl, fogrt__f4_min(fogrt__f4_load(bl), lo));
+    fogrt__f4_store(bh, fogrt__f4_max(fogrt__f4_load(bh), hi));
+}
+FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt__brec *r, uint32_t count)
+{
+    uint32_t i;
+    for (i = 0; i < count; ++i) {
+        fogrt__f4 lo = fogrt__f4_load(r[i].lo), hi = fogrt__f4_load(r[i].hi);
+        int32_t bin[4];
+        fogrt__bin_of(bins, fogrt__brec_centroid(&r[i]), bin);
+        fogrt__bin_add(bins, 0, bin[0], lo, hi);
+        fogrt__bin_add(bins, 1, bin[1], lo, hi);
+        fogrt__bin_add(bins, 2, bin[2], lo, hi);
+    }
+}
+/* The heuristic's measure (fogrt__side_cost) of n primitives in the box [lo, hi]. */
+FOGRT__HOT float fogrt__f4_side_cost(const fogrt_build_desc *d, uint32_t n, fogrt__f4 lo, fogrt__f4 hi)
+{
+    float e[4];
+    fogrt__f4_store(e, fogrt__f4_sub(hi, lo));
+    if (e[0] < 0.0f) return 0.0f;                         /* empty, as fogrt__aabb_area */
+    return (float)n * (d->heuristic == FOGRT_BVH_VOLUME ? e[0] * e[1] * e[2]
+                                                        : 2.0f * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]));
+}
+/* The cheapest plane of one axis: sweep from the left and from the right to price the
+   nb - 1 planes between the bins (plane k: bins 0..k-1 on the left). Improves *best, and
+   *best_k, where a plane with primitives on both sides is cheaper. */
+FOGRT__PRIVATE bool fogrt__bins_sweep(const fogrt_build_desc *d, const fogrt__bins *bins, int ax, uint32_t count,
+                                      float *best, int *best_k)
+{
+    fogrt__f4 lo = FOGRT__F4_EMPTY_LO, hi = FOGRT__F4_EMPTY_HI;
+    uint32_t left_n = 0, right_n = 0;
+    float left_cost[FOGRT__BVH_MAX_BINS];
     bool improved = false;
     int k;
-    if (nbins == 1) nbins = 2;                     /* one plane = two slices */
-    scale = (float)nbins / (hi - lo);
-    if (!(hi > lo) || !(scale > 0.0f && scale < FLT_MAX)) return false;   /* flat (or degenerate) extent */
-    for (k = 0; k < nbins; ++k) { bin_box[k] = fogrt__aabb_empty(); bin_n[k] = 0; }
-    for (i = 0; i < count; ++i) {
-        uint32_t p = b->idx[first + i];
-        float f = (fogrt__comp(b->centroid[p], axis) - lo) * scale;
-        int bi = f > 0.0f ? (f < (float)nbins ? (int)f : nbins - 1) : 0;   /* NaN -> bin 0 */
-        bin_n[bi]++;
-        fogrt__aabb_union(&bin_box[bi], &b->box[p]);
+    for (k = 0; k < bins->nb - 1; ++k) {
+        left_n += bins->n[ax][k];
+        lo = fogrt__f4_min(lo, fogrt__f4_load(bins->lo[ax][k])); hi = fogrt__f4_max(hi, fogrt__f4_load(bins->hi[ax][k]));
+        left_cost[k] = fogrt__f4_side_cost(d, left_n, lo, hi);
     }
-    for (k = 0; k < nbins - 1; ++k) {
-        left_n += bin_n[k];
-        fogrt__aabb_union(&left_box, &bin_box[k]);
-        left_cost[k] = fogrt__side_cost(&b->desc, left_n, &left_box);
-    }
-    for (k = nbins - 1; k > 0; --k) {
+    lo = FOGRT__F4_EMPTY_LO; hi = FOGRT__F4_EMPTY_HI;
+    for (k = bins->nb - 1; k > 0; --k) {
         float cost;
-        right_n += bin_n[k];
-        fogrt__aabb_union(&right_box, &bin_box[k]);
+        right_n += bins->n[ax][k];
+        lo = fogrt__f4_min(lo, fogrt__f4_load(bins->lo[ax][k])); hi = fogrt__f4_max(hi, fogrt__f4_load(bins->hi[ax][k]));
         if (right_n == 0 || right_n == count) continue;
-        cost = left_cost[k - 1] + fogrt__side_cost(&b->desc, right_n, &right_box);
-        if (cost < *best) { *best = cost; *pos = lo + (float)k / scale; improved = true; }
+        cost = left_cost[k - 1] + fogrt__f4_side_cost(d, right_n, lo, hi);
+        if (cost < *best) { *best = cost; *best_k = k; improved = true; }
     }
     return improved;
 }
-
-/* Find the best binned split of a node. Returns false if the node should stay a leaf. */
-FOGRT__PRIVATE bool fogrt__find_split(fogrt__build *b, const fogrt_bvh_node *node, int *out_axis, float *out_pos)
+/* The leaf rule: with the SAH, split when it is cheaper than a leaf, and always above the
+   largest leaf size; with the volume heuristic, split down to the largest leaf size. */
+FOGRT__PRIVATE bool fogrt__split_pays(const fogrt_build_desc *d, const fogrt_bvh_node *node, uint32_t count, float best)
 {
-    const fogrt_build_desc *d = &b->desc;
-    uint32_t first = node->left_first, count = node->prim_count, i;
-    fogrt__aabb cb = fogrt__aabb_empty(), nb;
-    float best = FLT_MAX, leaf_cost;
-    int axis, best_axis = -1, nbins = count < (uint32_t)d->bins ? (int)count : d->bins;   /* no more bins than primitives */
-    float best_pos = 0.0f;
-    for (i = 0; i < count; ++i) fogrt__aabb_grow(&cb, b->centroid[b->idx[first + i]]);
-    nb.lo = fogrt__v(node->bmin[0], node->bmin[1], node->bmin[2]);
-    nb.hi = fogrt__v(node->bmax[0], node->bmax[1], node->bmax[2]);
-    for (axis = 0; axis < 3; ++axis)
-        if (fogrt__split_axis(b, first, count, axis, fogrt__comp(cb.lo, axis), fogrt__comp(cb.hi, axis), nbins, &best, &best_pos))
-            best_axis = axis;
-    *out_axis = best_axis;
-    *out_pos = best_pos;
-    if (best_axis < 0) return false;
-    if (d->heuristic == FOGRT_BVH_VOLUME) return count > (uint32_t)d->max_leaf_size;
-    /* SAH: split when it is cheaper than a leaf, and always above the largest leaf size. */
-    leaf_cost = d->c_int * (float)count;
-    best = d->c_trav + d->c_int * best / FOGRT__MAX(fogrt__aabb_area(&nb), FLT_MIN);
-    return best < leaf_cost || count > (uint32_t)d->max_leaf_size;
+    fogrt__aabb box;
+    if (count > (uint32_t)d->max_leaf_size) return true;
+    if (d->heuristic == FOGRT_BVH_VOLUME) return false;
+    box.lo = fogrt__v(node->bmin[0], node->bmin[1], node->bmin[2]);
+    box.hi = fogrt__v(node->bmax[0], node->bmax[1], node->bmax[2]);
+    return d->c_trav + d->c_int * best / FOGRT__MAX(fogrt__aabb_area(&box), FLT_MIN) < d->c_int * (float)count;
 }
-
+/* Step 2: records whose bin on axis ax is below k to the front (with their indices),
+   growing both sides' centroid bounds. Returns the number on the left. */
+FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__brec *r, uint32_t *id, uint32_t count,
+                                              int ax, int k, fogrt__bjob *left, fogrt__bjob *right)
+{
+    fogrt__f4 lcl = FOGRT__F4_EMPTY_LO, lch = FOGRT__F4_EMPTY_HI, rcl = lcl, rch = lch;
+    uint32_t lo = 0, hi = count;
+    while (lo < hi) {
+        fogrt__f4 c = fogrt__brec_centroid(&r[lo]);
+        int32_t bin[4];
+        fogrt__bin_of(bins, c, bin);
+        if (bin[ax] < k) {
+            lcl = fogrt__f4_min(lcl, c); lch = fogrt__f4_max(lch, c);
+            ++lo;
+        } else {
+            fogrt__brec t = r[lo];
+            uint32_t tid = id[lo];
+            rcl = fogrt__f4_min(rcl, c); rch = fogrt__f4_max(rch, c);
+            --hi;
+            r[lo] = r[hi]; r[hi] = t;
+            id[lo] = id[hi]; id[hi] = tid;
+        }
+    }
+    fogrt__f4_store(left->clo, lcl); fogrt__f4_store(left->chi, lch);
+    fogrt__f4_store(right->clo, rcl); fogrt__f4_store(right->chi, rch);
+    return lo;
+}
+/* The two children's boxes: the unions of the bins on either side of plane k. */
+FOGRT__PRIVATE void fogrt__bins_child_boxes(const fogrt__bins *bins, int ax, int k, fogrt_bvh_node *child)
+{
+    fogrt__f4 lo = FOGRT__F4_EMPTY_LO, hi = FOGRT__F4_EMPTY_HI;
+    int j;
+    for (j = 0; j < bins->nb; ++j) {
+        if (j == k) { fogrt__node_set_box(&child[0], lo, hi); lo = FOGRT__F4_EMPTY_LO; hi = FOGRT__F4_EMPTY_HI; }
+        lo = fogrt__f4_min(lo, fogrt__f4_load(bins->lo[ax][j]));
+        hi = fogrt__f4_max(hi, fogrt__f4_load(bins->hi[ax][j]));
+    }
+    fogrt__node_set_box(&child[1], lo, hi);
+}
+/* The binned split of job's node into child[0] and child[1] (their boxes, and the two jobs'
+   centroid bounds). Returns the number of primitives on the left, or 0 when the node stays
+   a leaf, or must be halved instead (*halve: its centroids coincide but it is too big). */
+FOGRT__PRIVATE uint32_t fogrt__bvh_split_sah(fogrt__build *b, const fogrt__bjob *job, fogrt_bvh_node *child,
+                                             fogrt__bjob *left, fogrt__bjob *right, bool *halve)
+{
+    const fogrt_bvh_node *node = &b->nodes[job->node];
+    uint32_t first = node->left_first, count = node->prim_count;
+    fogrt__bins bins;
+    float best = FLT_MAX;
+    int ax, best_ax = -1, best_k = 0;
+    fogrt__bins_init(&bins, &b->desc, job, count);
+    fogrt__bins_fill(&bins, b->rec + first, count);
+    for (ax = 0; ax < 3; ++ax)
+        if (bins.ok[ax] && fogrt__bins_sweep(&b->desc, &bins, ax, count, &best, &best_k)) best_ax = ax;
+    if (best_ax < 0) {                                   /* all centroids coincide */
+        *halve = count > (uint32_t)b->desc.max_leaf_size;
+        return 0;
+    }
+    if (!fogrt__split_pays(&b->desc, node, count, best)) return 0;
+    fogrt__bins_child_boxes(&bins, best_ax, best_k, child);
+    return fogrt__bins_partition(&bins, b->rec + first, b->idx + first, count, best_ax, best_k, left, right);
+}
+/* Split job's node into the next two nodes, or leave it a leaf (returns false). */
+FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fogrt__bjob *left, fogrt__bjob *right)
+{
+    fogrt_bvh_node *node = &b->nodes[job->node], *child = &b->nodes[b->node_count];
+    uint32_t first = node->left_first, count = node->prim_count, left_count = 0;
+    bool halve = job->depth >= FOGRT__BVH_SAH_DEPTH;
+    if (count <= 1) return false;
+    if (!halve) left_count = fogrt__bvh_split_sah(b, job, child, left, right, &halve);
+    if (halve) {                                         /* balanced, the bounds by a pass */
+        left_count = count / 2;
+        fogrt__brec_bounds(b->rec + first, left_count, &child[0], left->clo, left->chi);
+        fogrt__brec_bounds(b->rec + first + left_count, count - left_count, &child[1], right->clo, right->chi);
+    }
+    if (left_count == 0) return false;
+    FOGRT_ASSERT(left_count < count);
+    child[0].left_first = first;              child[0].prim_count = left_count;
+    child[1].left_first = first + left_count; child[1].prim_count = count - left_count;
+    left->node = b->node_count; right->node = b->node_count + 1;
+    left->depth = right->depth = job->depth + 1;
+    node->left_first = b->node_count;
+    node->prim_count = 0;
+    b->node_count += 2;
+    return true;
+}
+/* The tree over b->rec[0 .. prim_count) (b->idx their primitive ids), depth first with an
+   explicit stack: the root is node 0, node 1 is unused (so that sibling pairs align), and
+   every split appends its two children. */
 FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count)
 {
-    /* Depth-first with an explicit stack of (node, depth). Past FOGRT__BVH_SAH_DEPTH levels
-       (only reached by adversarial inputs) nodes are halved without the heuristic, so the
-       tree depth stays below FOGRT__BVH_MAX_DEPTH, the size of the traversal stack. */
-    uint32_t stack[FOGRT__BVH_MAX_DEPTH + 2], depth[FOGRT__BVH_MAX_DEPTH + 2], sp = 0;
+    fogrt__bjob stack[FOGRT__BVH_MAX_DEPTH + 2];
+    uint32_t sp = 1;
     fogrt_bvh_node *root = &b->nodes[0];
-    memset(&b->nodes[1], 0, sizeof b->nodes[1]);          /* node 1: unused (pairs align) */
+    memset(&b->nodes[1], 0, sizeof b->nodes[1]);
     root->left_first = 0;
     root->prim_count = prim_count;
-    fogrt__node_bounds(b, root, 0, prim_count);
+    stack[0].node = 0; stack[0].depth = 0;
+    fogrt__brec_bounds(b->rec, prim_count, root, stack[0].clo, stack[0].chi);
     b->node_count = 2;
-    stack[sp] = 0; depth[sp++] = 0;
     while (sp > 0) {
-        uint32_t level = depth[--sp];
-        fogrt_bvh_node *node = &b->nodes[stack[sp]];
-        uint32_t first = node->left_first, count = node->prim_count, i, j, left_count, l;
-        int axis = -1;
-        float pos;
-        if (count <= 1) continue;
-        if (level >= FOGRT__BVH_SAH_DEPTH) {
-            left_count = count / 2;                   /* balanced from here on */
-        } else if (!fogrt__find_split(b, node, &axis, &pos)) {
-            if (axis >= 0 || count <= (uint32_t)b->desc.max_leaf_size) continue;
-            /* All centroids coincide but the node is too big: split the list in half. */
-            left_count = count / 2;
-        } else {
-            /* Partition the index range in place: left of the plane first. */
-            i = first; j = first + count;
-            while (i < j) {
-                if (fogrt__comp(b->centroid[b->idx[i]], axis) < pos) ++i;
-                else { uint32_t t = b->idx[i]; b->idx[i] = b->idx[--j]; b->idx[j] = t; }
-            }
-            left_count = i - first;
-            if (left_count == 0 || left_count == count) left_count = count / 2;  /* float edge case */
-        }
-        l = b->node_count;
-        b->node_count += 2;
-        b->nodes[l].left_first = first;             b->nodes[l].prim_count = left_count;
-        b->nodes[l + 1].left_first = first + left_count; b->nodes[l + 1].prim_count = count - left_count;
-        fogrt__node_bounds(b, &b->nodes[l], first, left_count);
-        fogrt__node_bounds(b, &b->nodes[l + 1], first + left_count, count - left_count);
-        node->left_first = l;
-        node->prim_count = 0;
+        fogrt__bjob job = stack[--sp];
         FOGRT_ASSERT(sp + 2 <= FOGRT__BVH_MAX_DEPTH + 2);
-        stack[sp] = l + 1; depth[sp++] = level + 1;
-        stack[sp] = l;     depth[sp++] = level + 1;
+        if (fogrt__bvh_split(b, &job, &stack[sp + 1], &stack[sp])) sp += 2;   /* the left child on top */
     }
 }
 
@@ -2217,17 +2400,6 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 #if FOGRT_WBVH_WIDTH != 4 && FOGRT_WBVH_WIDTH != 8
 #error "fogrt: FOGRT_WBVH_WIDTH must be 4 or 8"
 #endif
-#if !defined(FOGRT_WBVH_SSE) && !defined(FOGRT_WBVH_NO_SIMD) && \
-    (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
-#define FOGRT_WBVH_SSE 1
-#endif
-#ifdef FOGRT_WBVH_NO_SIMD
-#undef FOGRT_WBVH_SSE
-#endif
-#ifdef FOGRT_WBVH_SSE
-#include <emmintrin.h>
-#endif
-
 #define FOGRT__WBVH_W FOGRT_WBVH_WIDTH
 #define FOGRT__WBVH_LEAF FOGRT_WBVH_LEAF
 #ifndef FOGRT__WBVH_STAT
@@ -2841,17 +3013,19 @@ FOGRT__PRIVATE fogrt__aabb fogrt__prim_box(const fogrt_scene *s, uint32_t i)
     }
     return bb;
 }
-/* Boxes and centroids of every primitive, the scene's bounds, and the sizes derived from
-   them: the ray offset floor and the point-light distance clamp (chapter 12). */
+/* The build's record of every primitive (its box), the scene's bounds, and the sizes
+   derived from them: the ray offset floor and the point-light distance clamp (chapter 12). */
 FOGRT__PRIVATE void fogrt__bounds(fogrt_scene *s, fogrt__build *b, uint32_t n)
 {
     fogrt__aabb sb = fogrt__aabb_empty();
     uint32_t i;
     float diag;
     for (i = 0; i < n; ++i) {
-        b->box[i] = fogrt__prim_box(s, i);
-        b->centroid[i] = fogrt__scale(fogrt__add(b->box[i].lo, b->box[i].hi), 0.5f);
-        fogrt__aabb_union(&sb, &b->box[i]);
+        fogrt__aabb box = fogrt__prim_box(s, i);
+        fogrt__brec *r = &b->rec[i];
+        r->lo[0] = box.lo.x; r->lo[1] = box.lo.y; r->lo[2] = box.lo.z; r->lo[3] = 0.0f;
+        r->hi[0] = box.hi.x; r->hi[1] = box.hi.y; r->hi[2] = box.hi.z; r->hi[3] = 0.0f;
+        fogrt__aabb_union(&sb, &box);
         s->prim_index[i] = i;
     }
     if (n == 0) { sb.lo = fogrt__v(0, 0, 0); sb.hi = fogrt__v(0, 0, 0); }
@@ -2985,12 +3159,11 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
     n = s->tri_count + s->sph_count;
     if (n == 0 && s->light_count == 0 && !s->has_env)
         return fogrt__fail(s, FOGRT_RESULT_EMPTY_SCENE, "scene: no geometry and no light");
-    b.box = (fogrt__aabb *)fogrt__alloc(&s->allocator, sizeof(fogrt__aabb) * (n + 1));
-    b.centroid = (fogrt__v3 *)fogrt__alloc(&s->allocator, sizeof(fogrt__v3) * (n + 1));
+    b.rec = (fogrt__brec *)fogrt__alloc(&s->allocator, sizeof(fogrt__brec) * (n + 1));
     s->nodes = (fogrt_bvh_node *)fogrt__alloc(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
     s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
     s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
-    if (b.box && b.centroid && s->nodes && s->prim_index && s->prims && fogrt__build_lights(s) && fogrt__build_env(s)) {
+    if (b.rec && s->nodes && s->prim_index && s->prims && fogrt__build_lights(s) && fogrt__build_env(s)) {
         fogrt__bounds(s, &b, n);
         b.nodes = s->nodes;
         b.idx = s->prim_index;
@@ -3000,8 +3173,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
         fogrt__pack_prims(s, n);
         if (fogrt__wants_wide(&b.desc, n) && !fogrt__wide_build(s)) {
             fogrt__free_built(s);
-            fogrt__free(&s->allocator, b.box);
-            fogrt__free(&s->allocator, b.centroid);
+            fogrt__free(&s->allocator, b.rec);
             return FOGRT_RESULT_OUT_OF_MEMORY;
         }
         s->features = fogrt__features(s);
@@ -3012,8 +3184,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
     } else {
         fogrt__free_built(s);
     }
-    fogrt__free(&s->allocator, b.box);
-    fogrt__free(&s->allocator, b.centroid);
+    fogrt__free(&s->allocator, b.rec);
     return s->built ? FOGRT_RESULT_OK : FOGRT_RESULT_OUT_OF_MEMORY;
 }
 
