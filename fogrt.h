@@ -1845,6 +1845,31 @@ FOGRT__PRIVATE float fogrt__aabb_volume(const fogrt__aabb *b)
     return e.x * e.y * e.z;
 }
 
+/* The big arrays of the build and of the wide tree ask Linux for transparent huge pages
+   (2 MB): fewer page faults while they are filled, and fewer TLB misses when rays wander
+   over a big tree. It is only advice, given for the whole 2 MB pages inside the block,
+   whatever allocator returned it; elsewhere, or with FOGRT_NO_HUGEPAGES, this compiles to a
+   plain allocation. */
+#if defined(__linux__) && !defined(FOGRT_NO_HUGEPAGES)
+#include <sys/mman.h>
+#if defined(MADV_HUGEPAGE)
+#define FOGRT__MADV_HUGEPAGE MADV_HUGEPAGE
+#elif !defined(__cplusplus)
+int madvise(void *addr, size_t length, int advice);   /* hidden by a strict -std=c99 */
+#define FOGRT__MADV_HUGEPAGE 14                        /* its value on Linux */
+#endif
+#endif
+FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size)
+{
+    void *p = fogrt__alloc(a, size);
+#ifdef FOGRT__MADV_HUGEPAGE
+    const uintptr_t page = (uintptr_t)2 << 20;
+    uintptr_t lo = ((uintptr_t)p + page - 1) & ~(page - 1), hi = ((uintptr_t)p + size) & ~(page - 1);
+    if (p && hi > lo) (void)madvise((void *)lo, (size_t)(hi - lo), FOGRT__MADV_HUGEPAGE);
+#endif
+    return p;
+}
+
 /* SIMD: FOGRT_WBVH_SSE (on by default where the compiler targets SSE2, that is every x86-64)
    selects SSE intrinsics here and in chapter 10b; FOGRT_WBVH_NO_SIMD forces plain C99 loops
    that compute exactly the same values lane by lane. */
@@ -1904,6 +1929,7 @@ typedef struct fogrt__build {
     fogrt_bvh_node *nodes;
     uint32_t *idx;
     uint32_t node_count;
+    uint32_t leaf_keep;    /* nodes of at most this many primitives stay leaves, unpriced */
 } fogrt__build;
 
 /* The heuristic's measure of one side: N A (SAH) or N V (the paper). */
@@ -2110,7 +2136,7 @@ FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fo
     fogrt_bvh_node *node = &b->nodes[job->node], *child = &b->nodes[b->node_count];
     uint32_t first = node->left_first, count = node->prim_count, left_count = 0;
     bool halve = job->depth >= FOGRT__BVH_SAH_DEPTH;
-    if (count <= 1) return false;
+    if (count <= 1 || count <= b->leaf_keep) return false;
     if (!halve) left_count = fogrt__bvh_split_sah(b, job, child, left, right, &halve);
     if (halve) {                                         /* balanced, the bounds by a pass */
         left_count = count / 2;
@@ -2454,34 +2480,39 @@ FOGRT__PRIVATE float fogrt__wbvh_node_area(const fogrt_bvh_node *n)
     return fogrt__aabb_area(&b);
 }
 
-/* Copy the primitives s->prims[first .. first + count) into packets from w->tris[*next]. */
+/* Copy the primitives prim_index[first .. first + count) into packets from w->tris[*next],
+   straight from the scene's triangles and spheres (v0 and the edges as fogrt__pack_prims
+   forms them, so the triangle test sees the same floats). */
 FOGRT__PRIVATE void fogrt__wbvh_pack_leaf(const fogrt_scene *s, fogrt__wbvh *w, uint32_t first, uint32_t count,
                                           uint32_t *next)
 {
     uint32_t i;
     for (i = 0; i < count; ++i) {
-        const fogrt__prim *p = &s->prims[first + i];
+        uint32_t id = s->prim_index[first + i], j = i % 4;
         fogrt__wtri *q = &w->tris[*next + i / 4];
-        uint32_t j = i % 4;
+        fogrt__v3 a, b, c;
         if (j == 0) {                                   /* a new packet: all lanes unused */
             memset(q, 0, sizeof *q);
             q->id[0] = q->id[1] = q->id[2] = q->id[3] = FOGRT__WBVH_EMPTY;
         }
-        q->id[j] = p->id;
-        q->v0[0][j] = p->a.x; q->v0[1][j] = p->a.y; q->v0[2][j] = p->a.z;
-        if (p->id < s->tri_count) {
-            q->e1[0][j] = p->b.x; q->e1[1][j] = p->b.y; q->e1[2][j] = p->b.z;
-            q->e2[0][j] = p->c.x; q->e2[1][j] = p->c.y; q->e2[2][j] = p->c.z;
-            q->k[j] = 1e-12f * fogrt__dot(p->b, p->b) * fogrt__dot(p->c, p->c);
-        } else {
-            q->e1[0][j] = p->b.x;                       /* the radius */
+        q->id[j] = id;
+        if (id < s->tri_count) {
+            const fogrt__v3 *v = &s->tri_v[3 * id];
+            a = v[0]; b = fogrt__sub(v[1], v[0]); c = fogrt__sub(v[2], v[0]);
+            q->k[j] = 1e-12f * fogrt__dot(b, b) * fogrt__dot(c, c);
+        } else {                                        /* centre, and the radius in e1.x */
+            a = s->sph_c[id - s->tri_count];
+            b = fogrt__v(s->sph_r[id - s->tri_count], 0.0f, 0.0f); c = fogrt__v(0.0f, 0.0f, 0.0f);
         }
+        q->v0[0][j] = a.x; q->v0[1][j] = a.y; q->v0[2][j] = a.z;
+        q->e1[0][j] = b.x; q->e1[1][j] = b.y; q->e1[2][j] = b.z;
+        q->e2[0][j] = c.x; q->e2[1][j] = c.y; q->e2[2][j] = c.z;
     }
     *next += (count + 3) / 4;
 }
 
 /* The primitives below binary node b if there are at most FOGRT__WBVH_LEAF of them (their
-   count, and in *first where they start in s->prims: a subtree's primitives are
+   count, and in *first where they start in s->prim_index: a subtree's primitives are
    contiguous there), else 0. Looks at no more than 2 FOGRT__WBVH_LEAF - 1 nodes. */
 FOGRT__PRIVATE uint32_t fogrt__wbvh_small(const fogrt_bvh_node *bn, uint32_t b, uint32_t *first)
 {
@@ -2558,14 +2589,14 @@ FOGRT__PRIVATE bool fogrt__wbvh_alloc(const fogrt_scene *s, fogrt__wbvh *w, cons
         if (s->nodes[i].prim_count > 0) packets += (s->nodes[i].prim_count + 3) / 4;
         else ++inner;
     }
-    w->nodes = (fogrt__wnode *)fogrt__alloc(a, sizeof(fogrt__wnode) * (inner > 0 ? inner : 1));
-    w->tris = (fogrt__wtri *)fogrt__alloc(a, sizeof(fogrt__wtri) * (packets > 0 ? packets : 1));
+    w->nodes = (fogrt__wnode *)fogrt__alloc_big(a, sizeof(fogrt__wnode) * (inner > 0 ? inner : 1));
+    w->tris = (fogrt__wtri *)fogrt__alloc_big(a, sizeof(fogrt__wtri) * (packets > 0 ? packets : 1));
     if (w->nodes && w->tris) return true;
     fogrt__wbvh_free(w, a);
     return false;
 }
 /* Build the wide tree from the scene's binary tree (s->nodes) and packed primitives
-   (s->prims), after fogrt__pack_prims (chapter 11): each wide node collects its lanes
+   (s->prim_index, and the primitives themselves): each wide node collects its lanes
    (step 1 above); a lane with at most FOGRT_WBVH_LEAF (4) primitives below it becomes one
    leaf, one full packet (the binary tree's leaves hold about 2 primitives, so this halves
    the packets and the nodes); the others become new wide nodes, handled the same way from
@@ -2575,7 +2606,7 @@ FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, cons
     enum { W = FOGRT__WBVH_W };
     uint32_t stack_b[FOGRT__BVH_MAX_DEPTH * W + 2], stack_w[FOGRT__BVH_MAX_DEPTH * W + 2], sp = 0, next_packet = 0;
     memset(w, 0, sizeof *w);
-    if (!s->nodes || !s->prims || s->tri_count + s->sph_count == 0) return true;   /* nothing to trace */
+    if (!s->nodes || !s->prim_index || s->tri_count + s->sph_count == 0) return true;   /* nothing to trace */
     if (!fogrt__wbvh_alloc(s, w, a)) return false;
     w->node_count = 1;
     stack_b[sp] = 0; stack_w[sp++] = 0;
@@ -3147,45 +3178,58 @@ FOGRT__PRIVATE bool fogrt__wants_wide(const fogrt_build_desc *d, uint32_t n)
 {
     return d->layout == FOGRT_BVH_LAYOUT_WIDE || (d->layout == FOGRT_BVH_LAYOUT_DEFAULT && n >= FOGRT_WBVH_MIN_PRIMS);
 }
-FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
+/* The tree, and the primitives in the form the chosen traversal reads: the wide tree
+   (chapter 10b), which copies them into its leaf packets, or for the binary layout the
+   packed primitives of chapter 10. For the wide layout the binary tree does not split nodes
+   of at most FOGRT_WBVH_LEAF primitives (and max_leaf_size): the collapse makes each one
+   leaf packet whatever its shape, so the wide tree is the same and the build skips its most
+   numerous nodes. Returns false when out of memory. */
+FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n)
 {
     fogrt__build b;
+    bool wide = fogrt__wants_wide(d, n), ok;
+    memset(&b, 0, sizeof b);
+    b.desc = *d;
+    b.rec = (fogrt__brec *)fogrt__alloc_big(&s->allocator, sizeof(fogrt__brec) * (n + 1));
+    s->nodes = (fogrt_bvh_node *)fogrt__alloc_big(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
+    s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
+    if (!wide) s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
+    ok = b.rec && s->nodes && s->prim_index && (wide || s->prims);
+    if (ok) {
+        fogrt__bounds(s, &b, n);
+        b.nodes = s->nodes;
+        b.idx = s->prim_index;
+        b.leaf_keep = wide ? FOGRT__MIN((uint32_t)d->max_leaf_size, (uint32_t)FOGRT__WBVH_LEAF) : 0;
+        if (n > 0) fogrt__bvh_build(&b, n);
+        else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
+        s->node_count = b.node_count;
+        if (wide) ok = fogrt__wide_build(s);
+        else fogrt__pack_prims(s, n);
+    }
+    fogrt__free(&s->allocator, b.rec);
+    return ok;
+}
+FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
+{
+    fogrt_build_desc d;
     uint32_t n;
     fogrt_result r;
     FOGRT_ASSERT(s);
-    memset(&b, 0, sizeof b);
-    if ((r = fogrt__resolve_build(s, desc, &b.desc)) != FOGRT_RESULT_OK) return r;
+    if ((r = fogrt__resolve_build(s, desc, &d)) != FOGRT_RESULT_OK) return r;
     fogrt__free_built(s);
     n = s->tri_count + s->sph_count;
     if (n == 0 && s->light_count == 0 && !s->has_env)
         return fogrt__fail(s, FOGRT_RESULT_EMPTY_SCENE, "scene: no geometry and no light");
-    b.rec = (fogrt__brec *)fogrt__alloc(&s->allocator, sizeof(fogrt__brec) * (n + 1));
-    s->nodes = (fogrt_bvh_node *)fogrt__alloc(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
-    s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
-    s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
-    if (b.rec && s->nodes && s->prim_index && s->prims && fogrt__build_lights(s) && fogrt__build_env(s)) {
-        fogrt__bounds(s, &b, n);
-        b.nodes = s->nodes;
-        b.idx = s->prim_index;
-        if (n > 0) fogrt__bvh_build(&b, n);
-        else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
-        s->node_count = b.node_count;
-        fogrt__pack_prims(s, n);
-        if (fogrt__wants_wide(&b.desc, n) && !fogrt__wide_build(s)) {
-            fogrt__free_built(s);
-            fogrt__free(&s->allocator, b.rec);
-            return FOGRT_RESULT_OUT_OF_MEMORY;
-        }
-        s->features = fogrt__features(s);
-        fogrt__fog_bounds(s, n);
-        if (s->area_light_count == 0 && s->light_count == 0 && !s->has_env)
-            fogrt__log(s, FOGRT_LOG_WARNING, "scene: nothing emits light (no light, emissive material or environment): every image will be black");
-        s->built = true;
-    } else {
+    if (!fogrt__build_lights(s) || !fogrt__build_env(s) || !fogrt__build_tree(s, &d, n)) {
         fogrt__free_built(s);
+        return FOGRT_RESULT_OUT_OF_MEMORY;
     }
-    fogrt__free(&s->allocator, b.rec);
-    return s->built ? FOGRT_RESULT_OK : FOGRT_RESULT_OUT_OF_MEMORY;
+    s->features = fogrt__features(s);
+    fogrt__fog_bounds(s, n);
+    if (s->area_light_count == 0 && s->light_count == 0 && !s->has_env)
+        fogrt__log(s, FOGRT_LOG_WARNING, "scene: nothing emits light (no light, emissive material or environment): every image will be black");
+    s->built = true;
+    return FOGRT_RESULT_OK;
 }
 
 /* ------------------------------------------------------------------------------------------
