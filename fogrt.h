@@ -2379,8 +2379,11 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
         4 for four) from the binary tree: start with a binary node's two children and
         repeatedly replace the child with the largest surface area by its own two children
         until W are collected. A binary subtree of at most 4 primitives is not opened but
-        becomes one leaf (FOGRT_WBVH_LEAF; the binary leaves hold about 2 primitives, so
-        this halves the leaves). The tree gets about three times shallower (W = 8).
+        becomes one leaf (FOGRT_WBVH_LEAF: one packet), and a lane left unopened when the
+        node is full becomes a leaf of two packets when it holds at most 8 primitives,
+        rather than a wide node of two leaf lanes (which half the wide nodes were: on the
+        1M mesh this halves the wide nodes, 98,700 to 48,800). The tree gets about three
+        times shallower (W = 8).
      2. Structure of arrays. A node stores all W minimum x, then all W minimum y, and so on,
         so its W slab tests are the same instructions on W lanes: SSE does four at once.
      3. Leaf packets. A leaf's primitives are copied into a packet of four, again structure
@@ -2405,11 +2408,13 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
        finds (bench/wide_dev.c counts these; FOGRT_WBVH_LEAF 0 removes them).
 
    Memory (W = 8): a node is 256 bytes (48 floats of boxes, 16 words of child references),
-   about one per 10 triangles; a packet of 4 primitives is 176 bytes.
+   about one per 20 triangles; a packet of 4 primitives is 176 bytes (1M mesh: 12.5 and 54
+   bytes per triangle). Both arrays start on a cache line and ask for huge pages (chapter
+   9); the binary tree's packed primitives of chapter 10 are not made for the wide layout.
 
-   SIMD: FOGRT_WBVH_SSE (on by default where the compiler targets SSE2, that is every x86-64)
-   selects the SSE intrinsics; FOGRT_WBVH_NO_SIMD forces the plain C99 loops, which compute
-   exactly the same values lane by lane.
+   SIMD: FOGRT_WBVH_SSE (set in chapter 9: on by default where the compiler targets SSE2,
+   that is every x86-64) selects the SSE intrinsics; FOGRT_WBVH_NO_SIMD forces the plain C99
+   loops, which compute exactly the same values lane by lane.
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_WBVH_MIN_PRIMS
 #define FOGRT_WBVH_MIN_PRIMS 16   /* fewer primitives: the binary tree is as fast (see fogrt_build_desc) */
@@ -2428,6 +2433,12 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 #endif
 #define FOGRT__WBVH_W FOGRT_WBVH_WIDTH
 #define FOGRT__WBVH_LEAF FOGRT_WBVH_LEAF
+/* A lane still unopened when its wide node is full becomes a leaf of up to two packets
+   rather than a wide node of its own when it holds at most this many primitives (else
+   half the wide nodes would choose between two packets). */
+#ifndef FOGRT__WBVH_LEAF2
+#define FOGRT__WBVH_LEAF2 (FOGRT__WBVH_LEAF > 0 ? 8 : 0)
+#endif
 #ifndef FOGRT__WBVH_STAT
 #define FOGRT__WBVH_STAT(what) ((void)0)   /* a counting hook for bench/wide_dev.c */
 #endif
@@ -2458,13 +2469,21 @@ typedef struct fogrt__wtri {
 typedef struct fogrt__wbvh {
     fogrt__wnode *nodes; uint32_t node_count;
     fogrt__wtri *tris; uint32_t tri_packets;
+    void *nodes_mem, *tris_mem;   /* the blocks holding nodes and tris, which start on a cache line */
 } fogrt__wbvh;
 
 FOGRT__PRIVATE void fogrt__wbvh_free(fogrt__wbvh *w, const fogrt_allocator *a)
 {
-    fogrt__free(a, w->nodes);
-    fogrt__free(a, w->tris);
+    fogrt__free(a, w->nodes_mem);
+    fogrt__free(a, w->tris_mem);
     memset(w, 0, sizeof *w);
+}
+/* size bytes starting on a 64-byte cache line (so that a 256-byte node spans 4 lines, not
+   5), inside a block of the allocator stored in *mem. */
+FOGRT__PRIVATE void *fogrt__wbvh_alloc_lines(const fogrt_allocator *a, size_t size, void **mem)
+{
+    *mem = fogrt__alloc_big(a, size + 64);
+    return *mem ? (void *)(((uintptr_t)*mem + 63) & ~(uintptr_t)63) : NULL;
 }
 
 FOGRT__PRIVATE size_t fogrt__wbvh_bytes(const fogrt__wbvh *w)
@@ -2511,24 +2530,24 @@ FOGRT__PRIVATE void fogrt__wbvh_pack_leaf(const fogrt_scene *s, fogrt__wbvh *w, 
     *next += (count + 3) / 4;
 }
 
-/* The primitives below binary node b if there are at most FOGRT__WBVH_LEAF of them (their
-   count, and in *first where they start in s->prim_index: a subtree's primitives are
-   contiguous there), else 0. Looks at no more than 2 FOGRT__WBVH_LEAF - 1 nodes. */
-FOGRT__PRIVATE uint32_t fogrt__wbvh_small(const fogrt_bvh_node *bn, uint32_t b, uint32_t *first)
+/* The primitives below binary node b if there are at most limit (<= FOGRT__WBVH_LEAF2) of
+   them (their count, and in *first where they start in s->prim_index: a subtree's
+   primitives are contiguous there), else 0. Looks at no more than 2 limit - 1 nodes. */
+FOGRT__PRIVATE uint32_t fogrt__wbvh_small(const fogrt_bvh_node *bn, uint32_t b, uint32_t limit, uint32_t *first)
 {
-    uint32_t stack[2 * FOGRT__WBVH_LEAF + 2], sp = 0, count = 0;
+    uint32_t stack[2 * FOGRT__WBVH_LEAF2 + 2], sp = 0, count = 0;
     if (bn[b].prim_count > 0) { *first = bn[b].left_first; return bn[b].prim_count; }
-    if (FOGRT__WBVH_LEAF < 2) return 0;
+    if (limit < 2) return 0;
     stack[sp++] = b;
     *first = UINT32_MAX;
     while (sp > 0) {
         const fogrt_bvh_node *n = &bn[stack[--sp]];
         if (n->prim_count > 0) {
             count += n->prim_count;
-            if (count > FOGRT__WBVH_LEAF) return 0;
+            if (count > limit) return 0;
             if (n->left_first < *first) *first = n->left_first;
         } else {
-            if (sp + 2 > 2 * FOGRT__WBVH_LEAF) return 0;   /* too many nodes: too many primitives */
+            if (sp + 2 > 2 * limit) return 0;              /* too many nodes: too many primitives */
             stack[sp++] = n->left_first; stack[sp++] = n->left_first + 1;
         }
     }
@@ -2545,7 +2564,7 @@ typedef struct fogrt__wlanes {
 FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, fogrt__wlanes *L, uint32_t j, uint32_t node)
 {
     L->lane[j] = node;
-    L->small[j] = fogrt__wbvh_small(bn, node, &L->first[j]);
+    L->small[j] = fogrt__wbvh_small(bn, node, FOGRT__WBVH_LEAF, &L->first[j]);
     L->area[j] = L->small[j] ? 0.0f : fogrt__wbvh_node_area(&bn[node]);
 }
 /* Step 1 for binary node b: start with its two children (a small root is one leaf), then
@@ -2555,7 +2574,7 @@ FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, fogrt__wlanes *L,
 FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, uint32_t b, fogrt__wlanes *L)
 {
     uint32_t j, first;
-    if (fogrt__wbvh_small(bn, b, &first) || bn[b].prim_count > 0) {
+    if (fogrt__wbvh_small(bn, b, FOGRT__WBVH_LEAF, &first) || bn[b].prim_count > 0) {
         fogrt__wbvh_lane(bn, L, 0, b); L->count = 1;   /* only a small root gets here */
         return;
     }
@@ -2578,9 +2597,12 @@ FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, uint32_t b, fo
         fogrt__wbvh_lane(bn, L, (uint32_t)open + 1, child + 1);
         L->count++;
     }
+    for (j = 0; j < L->count; ++j)          /* a lane left with two packets' worth: a leaf */
+        if (!L->small[j]) L->small[j] = fogrt__wbvh_small(bn, L->lane[j], FOGRT__WBVH_LEAF2, &L->first[j]);
 }
 /* Room for the wide tree: at most one wide node per binary inner node (one for a leaf
-   root), and the packets of the binary leaves. */
+   root), and the packets of the binary leaves (a leaf merging several binary leaves needs
+   no more packets than they would on their own). */
 FOGRT__PRIVATE bool fogrt__wbvh_alloc(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
 {
     uint32_t i, inner = 0, packets = 0;
@@ -2589,8 +2611,8 @@ FOGRT__PRIVATE bool fogrt__wbvh_alloc(const fogrt_scene *s, fogrt__wbvh *w, cons
         if (s->nodes[i].prim_count > 0) packets += (s->nodes[i].prim_count + 3) / 4;
         else ++inner;
     }
-    w->nodes = (fogrt__wnode *)fogrt__alloc_big(a, sizeof(fogrt__wnode) * (inner > 0 ? inner : 1));
-    w->tris = (fogrt__wtri *)fogrt__alloc_big(a, sizeof(fogrt__wtri) * (packets > 0 ? packets : 1));
+    w->nodes = (fogrt__wnode *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wnode) * (inner > 0 ? inner : 1), &w->nodes_mem);
+    w->tris = (fogrt__wtri *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wtri) * (packets > 0 ? packets : 1), &w->tris_mem);
     if (w->nodes && w->tris) return true;
     fogrt__wbvh_free(w, a);
     return false;
