@@ -2972,9 +2972,13 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
    over every primitive, the primitives in BVH order in the form the traversal wants, one
    table per area light (chapter 12), the ray offset scale, and the feature bits.
    ------------------------------------------------------------------------------------------ */
+/* Whether a primitive uses a material of this type: the materials are looked at first, so
+   that a scene without one does not scan its million triangles. */
 FOGRT__PRIVATE bool fogrt__material_used(const fogrt_scene *s, fogrt_bsdf_type type)
 {
     uint32_t i;
+    for (i = 0; i < s->material_count && fogrt__bsdf_type(&s->materials[i]) != type; ++i) {}
+    if (i == s->material_count) return false;
     for (i = 0; i < s->tri_count; ++i) if (fogrt__bsdf_type(&s->materials[s->tri_material[i]]) == type) return true;
     for (i = 0; i < s->sph_count; ++i) if (fogrt__bsdf_type(&s->materials[s->sph_material[i]]) == type) return true;
     return false;
@@ -2993,11 +2997,18 @@ FOGRT__PRIVATE bool fogrt__sphere_emits(const fogrt_scene *s, uint32_t i)
 {
     return !fogrt__is_black(s->materials[s->sph_material[i]].emission);
 }
+/* Whether any material emits (if none, no triangle needs looking at). */
+FOGRT__PRIVATE bool fogrt__some_material_emits(const fogrt_scene *s)
+{
+    uint32_t i;
+    for (i = 0; i < s->material_count; ++i) if (!fogrt__is_black(s->materials[i].emission)) return true;
+    return false;
+}
 /* Emissive triangles of one mesh form one light; a CDF over their areas picks one. */
-FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s)
+FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s, uint32_t tri_count)
 {
     uint32_t i, g = 0, k = 0, prev_mesh = UINT32_MAX;
-    for (i = 0; i < s->tri_count; ++i) {
+    for (i = 0; i < tri_count; ++i) {
         fogrt__area_light *L;
         float area;
         if (!fogrt__tri_emits(s, i)) continue;
@@ -3025,8 +3036,8 @@ FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s)
 FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s)
 {
     uint32_t i, n_tri = 0, n_groups = 0, n_sph = 0, g, prev_mesh = UINT32_MAX;
-    uint32_t n_prims = s->tri_count + s->sph_count;
-    for (i = 0; i < s->tri_count; ++i) {
+    uint32_t n_prims = s->tri_count + s->sph_count, tri_count = fogrt__some_material_emits(s) ? s->tri_count : 0;
+    for (i = 0; i < tri_count; ++i) {
         if (!fogrt__tri_emits(s, i)) continue;
         if (s->tri_mesh[i] != prev_mesh) { n_groups++; prev_mesh = s->tri_mesh[i]; }
         n_tri++;
@@ -3038,7 +3049,7 @@ FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s)
     s->light_cdf = (float *)fogrt__alloc(&s->allocator, sizeof(float) * (n_tri + 1));
     if (!s->prim_light || !s->area_lights || !s->light_prims || !s->light_cdf) return false;
     for (i = 0; i < n_prims; ++i) s->prim_light[i] = UINT32_MAX;
-    g = fogrt__mesh_lights(s);
+    g = fogrt__mesh_lights(s, tri_count);
     for (i = 0; i < s->sph_count; ++i) {      /* an emissive sphere is a light of its own */
         fogrt__area_light *L;
         if (!fogrt__sphere_emits(s, i)) continue;
