@@ -2470,6 +2470,7 @@ typedef struct fogrt__wbvh {
     fogrt__wnode *nodes; uint32_t node_count;
     fogrt__wtri *tris; uint32_t tri_packets;
     void *nodes_mem, *tris_mem;   /* the blocks holding nodes and tris, which start on a cache line */
+    uint32_t node_cap;            /* room for this many nodes */
 } fogrt__wbvh;
 
 FOGRT__PRIVATE void fogrt__wbvh_free(fogrt__wbvh *w, const fogrt_allocator *a)
@@ -2600,18 +2601,29 @@ FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, uint32_t b, fo
     for (j = 0; j < L->count; ++j)          /* a lane left with two packets' worth: a leaf */
         if (!L->small[j]) L->small[j] = fogrt__wbvh_small(bn, L->lane[j], FOGRT__WBVH_LEAF2, &L->first[j]);
 }
-/* Room for the wide tree: at most one wide node per binary inner node (one for a leaf
-   root), and the packets of the binary leaves (a leaf merging several binary leaves needs
-   no more packets than they would on their own). */
+/* Room for the wide tree. A wide node is made for the root and for binary subtrees of more
+   than FOGRT__WBVH_LEAF2 primitives only, so the subtree sizes (one pass from the last node
+   back: children come after their parent) bound the nodes; the packets are at most those
+   of the binary leaves (a leaf merging several binary leaves needs no more). */
 FOGRT__PRIVATE bool fogrt__wbvh_alloc(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
 {
-    uint32_t i, inner = 0, packets = 0;
-    for (i = 0; i < s->node_count; ++i) {
-        if (i == 1) continue;
-        if (s->nodes[i].prim_count > 0) packets += (s->nodes[i].prim_count + 3) / 4;
-        else ++inner;
+    uint32_t i = s->node_count, big = 1, packets = 0;
+    uint32_t *size = (uint32_t *)fogrt__alloc(a, sizeof(uint32_t) * (size_t)s->node_count);
+    if (!size) return false;
+    while (i-- > 0) {
+        const fogrt_bvh_node *n = &s->nodes[i];
+        if (i == 1) continue;                            /* node 1 is unused */
+        if (n->prim_count > 0) {
+            size[i] = n->prim_count;
+            packets += (n->prim_count + 3) / 4;
+        } else {
+            size[i] = size[n->left_first] + size[n->left_first + 1];
+            big += size[i] > FOGRT__WBVH_LEAF2 && i > 0;
+        }
     }
-    w->nodes = (fogrt__wnode *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wnode) * (inner > 0 ? inner : 1), &w->nodes_mem);
+    fogrt__free(a, size);
+    w->nodes = (fogrt__wnode *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wnode) * big, &w->nodes_mem);
+    w->node_cap = big;
     w->tris = (fogrt__wtri *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wtri) * (packets > 0 ? packets : 1), &w->tris_mem);
     if (w->nodes && w->tris) return true;
     fogrt__wbvh_free(w, a);
@@ -2651,6 +2663,7 @@ FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, cons
                 wn->child[j] = next_packet; wn->count[j] = L.small[j];
                 fogrt__wbvh_pack_leaf(s, w, L.first[j], L.small[j], &next_packet);
             } else {
+                FOGRT_ASSERT(w->node_count < w->node_cap);
                 wn->child[j] = w->node_count++; wn->count[j] = 0;
                 FOGRT_ASSERT(sp < FOGRT__BVH_MAX_DEPTH * W + 2);
                 stack_b[sp] = L.lane[j]; stack_w[sp++] = wn->child[j];
