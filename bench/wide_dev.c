@@ -30,7 +30,10 @@
       rtcCommitScene on one thread) and the bytes per triangle (Embree's: what its memory
       monitor saw allocated during rtcCommitScene).
 
-   Usage: wide_dev [--check-only | --speed-only] [--reps N] [--rays N] [--no-big] [--hugepages]
+   Usage: wide_dev [--check-only | --speed-only | --build-only] [--reps N] [--rays N] [--no-big] [--hugepages]
+     --build-only: build the bunny and the 1M mesh once each and stop, for counting the
+                  build's instructions: valgrind --tool=callgrind
+                  --toggle-collect=fogrt_scene_build build/bench/wide_dev --build-only
      --hugepages: the wide tree's big arrays in transparent huge pages (Linux madvise), as
                   Embree allocates its own; fogrt itself only ever calls the allocator.
      WIDE_DEV_VERBOSE=1 in the environment prints every disallowed difference.          */
@@ -765,11 +768,12 @@ int main(int argc, char **argv)
     for (i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--check-only")) op.speed = false;
         else if (!strcmp(argv[i], "--speed-only")) op.check = false;
+        else if (!strcmp(argv[i], "--build-only")) op.check = op.speed = false;
         else if (!strcmp(argv[i], "--no-big")) op.big = false;
         else if (!strcmp(argv[i], "--hugepages")) { g_wide_alloc.alloc_fn = huge_alloc; g_wide_alloc.free_fn = huge_free; }
         else if (!strcmp(argv[i], "--reps") && i + 1 < argc) op.reps = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--rays") && i + 1 < argc) op.rays = (size_t)atol(argv[++i]);
-        else { fprintf(stderr, "wide_dev: unknown argument '%s' (use --check-only, --speed-only, --no-big, --hugepages, --reps N, --rays N)\n", argv[i]); return 2; }
+        else { fprintf(stderr, "wide_dev: unknown argument '%s' (use --check-only, --speed-only, --build-only, --no-big, --hugepages, --reps N, --rays N)\n", argv[i]); return 2; }
     }
     if (op.reps < 1 || op.reps > 31 || op.rays < 1000) { fprintf(stderr, "wide_dev: --reps 1..31, --rays >= 1000\n"); return 2; }
 #ifdef FOGRT_WBVH_SSE
