@@ -2010,9 +2010,26 @@ FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
      paper:   H    = N_l V_l + N_r V_r                          (V = volume)
    The SAH also compares with the cost of a leaf (c_int N) and stops when splitting does not
    pay; the volume heuristic has no such criterion, so it splits down to max_leaf_size.
+
+   The build works on a compact array of primitive records (each primitive's box, 2 x 4
+   floats, so one SSE instruction takes the minimum of a whole corner), reordered in place
+   together with the index array, and reads a node's records twice:
+     1. one binning pass for all three axes at once: the centroid of a box is (lo + hi) / 2,
+        its three bin numbers come from one multiply, and each of the three bins it falls in
+        grows by a minimum and a maximum. The cheapest plane is then found from the bins by
+        sweeping each axis from both ends, and the two child boxes are the unions of the bins
+        on each side (exact: a bin's box holds its primitives' boxes);
+     2. one partition pass that swaps records by their bin on the chosen axis (the same bin
+        computation as step 1, so each side gets exactly the primitives its cost was
+        computed for), and grows the centroid bounds each child needs for its own binning.
+   Past FOGRT__BVH_SAH_DEPTH levels (only reached by adversarial inputs) nodes are halved
+   without the heuristic, so the tree depth stays below FOGRT__BVH_MAX_DEPTH, the size of the
+   traversal stack. The 4-float vector below is SSE, or four plain floats with the same
+   results (FOGRT_WBVH_NO_SIMD).
    ------------------------------------------------------------------------------------------ */
 #define FOGRT__BVH_SAH_DEPTH 56
 #define FOGRT__BVH_MAX_DEPTH 96   /* 56 + 32 halvings of at most 2^32 primitives, and margin */
+#define FOGRT__BVH_MAX_BINS 64    /* fogrt_build_desc.bins is at most this */
 typedef struct fogrt__aabb { fogrt__v3 lo, hi; } fogrt__aabb;
 FOGRT__PRIVATE fogrt__aabb fogrt__aabb_empty(void)
 {
@@ -2044,141 +2061,358 @@ FOGRT__PRIVATE float fogrt__aabb_volume(const fogrt__aabb *b)
     return e.x * e.y * e.z;
 }
 
+/* The big arrays of the build and of the wide tree ask Linux for transparent huge pages
+   (2 MB): fewer page faults while they are filled, and fewer TLB misses when rays wander
+   over a big tree. It is only advice, given for the whole 2 MB pages inside the block,
+   whatever allocator returned it; elsewhere, or with FOGRT_NO_HUGEPAGES, this compiles to a
+   plain allocation. */
+#if defined(__linux__) && !defined(FOGRT_NO_HUGEPAGES)
+#include <sys/mman.h>
+#if defined(MADV_HUGEPAGE)
+#define FOGRT__MADV_HUGEPAGE MADV_HUGEPAGE
+#elif !defined(__cplusplus)
+int madvise(void *addr, size_t length, int advice);   /* hidden by a strict -std=c99 */
+#define FOGRT__MADV_HUGEPAGE 14                        /* its value on Linux */
+#endif
+#endif
+FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size)
+{
+    void *p = fogrt__alloc(a, size);
+#ifdef FOGRT__MADV_HUGEPAGE
+    const uintptr_t page = (uintptr_t)2 << 20;
+    uintptr_t lo = ((uintptr_t)p + page - 1) & ~(page - 1), hi = ((uintptr_t)p + size) & ~(page - 1);
+    if (p && hi > lo) (void)madvise((void *)lo, (size_t)(hi - lo), FOGRT__MADV_HUGEPAGE);
+#endif
+    return p;
+}
+
+/* SIMD: FOGRT_WBVH_SSE (on by default where the compiler targets SSE2, that is every x86-64)
+   selects SSE intrinsics here and in chapter 10b; FOGRT_WBVH_NO_SIMD forces plain C99 loops
+   that compute exactly the same values lane by lane. */
+#if !defined(FOGRT_WBVH_SSE) && !defined(FOGRT_WBVH_NO_SIMD) && \
+    (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#define FOGRT_WBVH_SSE 1
+#endif
+#ifdef FOGRT_WBVH_NO_SIMD
+#undef FOGRT_WBVH_SSE
+#endif
+#ifdef FOGRT_WBVH_SSE
+#include <emmintrin.h>
+typedef __m128 fogrt__f4;
+#define fogrt__f4_load(p) _mm_loadu_ps(p)
+#define fogrt__f4_store(p, a) _mm_storeu_ps(p, a)
+#define fogrt__f4_set1(x) _mm_set1_ps(x)
+#define fogrt__f4_min(a, b) _mm_min_ps(a, b)          /* a < b ? a : b, per lane */
+#define fogrt__f4_max(a, b) _mm_max_ps(a, b)          /* a > b ? a : b, per lane */
+#define fogrt__f4_add(a, b) _mm_add_ps(a, b)
+#define fogrt__f4_sub(a, b) _mm_sub_ps(a, b)
+#define fogrt__f4_mul(a, b) _mm_mul_ps(a, b)
+FOGRT__HOT void fogrt__f4_trunc(fogrt__f4 a, int32_t *out)
+{
+    _mm_storeu_si128((__m128i *)(void *)out, _mm_cvttps_epi32(a));
+}
+#else
+typedef struct fogrt__f4 { float v[4]; } fogrt__f4;
+FOGRT__HOT fogrt__f4 fogrt__f4_load(const float *p) { fogrt__f4 r; memcpy(r.v, p, sizeof r.v); return r; }
+FOGRT__HOT void fogrt__f4_store(float *p, fogrt__f4 a) { memcpy(p, a.v, sizeof a.v); }
+FOGRT__HOT fogrt__f4 fogrt__f4_set1(float x) { fogrt__f4 r; r.v[0] = r.v[1] = r.v[2] = r.v[3] = x; return r; }
+#define FOGRT__F4_OP(name, expr) \
+    FOGRT__HOT fogrt__f4 name(fogrt__f4 a, fogrt__f4 b) \
+    { fogrt__f4 r; int i_; for (i_ = 0; i_ < 4; ++i_) { float x = a.v[i_], y = b.v[i_]; r.v[i_] = (expr); } return r; }
+FOGRT__F4_OP(fogrt__f4_min, x < y ? x : y)
+FOGRT__F4_OP(fogrt__f4_max, x > y ? x : y)
+FOGRT__F4_OP(fogrt__f4_add, x + y)
+FOGRT__F4_OP(fogrt__f4_sub, x - y)
+FOGRT__F4_OP(fogrt__f4_mul, x * y)
+#undef FOGRT__F4_OP
+FOGRT__HOT void fogrt__f4_trunc(fogrt__f4 a, int32_t *out)   /* inputs already in [0, nb - 1] */
+{
+    int i;
+    for (i = 0; i < 4; ++i) out[i] = (int32_t)a.v[i];
+}
+#endif
+#define FOGRT__F4_EMPTY_LO fogrt__f4_set1(FLT_MAX)       /* the corners of an empty box */
+#define FOGRT__F4_EMPTY_HI fogrt__f4_set1(-FLT_MAX)
+
+/* A primitive's box as the build reads it (lane 3 unused, always 0). */
+typedef struct fogrt__brec { float lo[4], hi[4]; } fogrt__brec;
+/* A node waiting on the build's stack, with the bounds of its primitives' centroids. */
+typedef struct fogrt__bjob { uint32_t node, depth; float clo[4], chi[4]; } fogrt__bjob;
+
 typedef struct fogrt__build {
     fogrt_build_desc desc;
-    fogrt__aabb *box;      /* per primitive id */
-    fogrt__v3 *centroid;   /* per primitive id */
+    fogrt__brec *rec;      /* per primitive, in the order of idx (reordered with it) */
     fogrt_bvh_node *nodes;
     uint32_t *idx;
     uint32_t node_count;
+    uint32_t leaf_keep;    /* nodes of at most this many primitives stay leaves, unpriced */
 } fogrt__build;
-
-FOGRT__PRIVATE void fogrt__node_bounds(fogrt__build *b, fogrt_bvh_node *node, uint32_t first, uint32_t count)
-{
-    fogrt__aabb bb = fogrt__aabb_empty();
-    uint32_t i;
-    for (i = 0; i < count; ++i) fogrt__aabb_union(&bb, &b->box[b->idx[first + i]]);
-    node->bmin[0] = bb.lo.x; node->bmin[1] = bb.lo.y; node->bmin[2] = bb.lo.z;
-    node->bmax[0] = bb.hi.x; node->bmax[1] = bb.hi.y; node->bmax[2] = bb.hi.z;
-}
 
 /* The heuristic's measure of one side: N A (SAH) or N V (the paper). */
 FOGRT__PRIVATE float fogrt__side_cost(const fogrt_build_desc *d, uint32_t n, const fogrt__aabb *box)
 {
     return (float)n * (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(box) : fogrt__aabb_area(box));
 }
-/* One axis of the binned split search: drop every centroid into one of nbins slices of
-   [lo, hi], then sweep from the left and from the right to price the nbins - 1 planes
-   between the slices. Improves *best (and the plane *pos) where a plane is cheaper.
-   nbins = 1 prices the single plane through the middle of the centroid bounds.          */
-FOGRT__PRIVATE bool fogrt__split_axis(const fogrt__build *b, uint32_t first, uint32_t count, int axis,
-                                      float lo, float hi, int nbins, float *best, float *pos)
+FOGRT__HOT fogrt__f4 fogrt__brec_centroid(const fogrt__brec *r)
 {
-    enum { MAXB = 65 };
-    fogrt__aabb bin_box[MAXB], left_box = fogrt__aabb_empty(), right_box = fogrt__aabb_empty();
-    uint32_t bin_n[MAXB], left_n = 0, right_n = 0, i;
-    float left_cost[MAXB], scale;
+    return fogrt__f4_mul(fogrt__f4_add(fogrt__f4_load(r->lo), fogrt__f4_load(r->hi)), fogrt__f4_set1(0.5f));
+}
+FOGRT__PRIVATE void fogrt__node_set_box(fogrt_bvh_node *node, fogrt__f4 lo, fogrt__f4 hi)
+{
+    float l[4], h[4];
+    int k;
+    fogrt__f4_store(l, lo); fogrt__f4_store(h, hi);
+    for (k = 0; k < 3; ++k) { node->bmin[k] = l[k]; node->bmax[k] = h[k]; }
+}
+/* Box and centroid bounds of count records (the root, and the halved nodes). */
+FOGRT__PRIVATE void fogrt__brec_bounds(const fogrt__brec *r, uint32_t count, fogrt_bvh_node *node, float *clo, float *chi)
+{
+    fogrt__f4 lo = FOGRT__F4_EMPTY_LO, hi = FOGRT__F4_EMPTY_HI, cl = lo, ch = hi;
+    uint32_t i;
+    for (i = 0; i < count; ++i) {
+        fogrt__f4 c = fogrt__brec_centroid(&r[i]);
+        lo = fogrt__f4_min(lo, fogrt__f4_load(r[i].lo)); hi = fogrt__f4_max(hi, fogrt__f4_load(r[i].hi));
+        cl = fogrt__f4_min(cl, c); ch = fogrt__f4_max(ch, c);
+    }
+    fogrt__node_set_box(node, lo, hi);
+    fogrt__f4_store(clo, cl); fogrt__f4_store(chi, ch);
+}
+
+/* The bins of one node: on axis a, bin k holds the primitives whose centroid falls in the
+   k-th of nb equal slices of the centroid bounds; lo/hi is the box of those primitives. */
+typedef struct fogrt__bins {
+    float lo[3][FOGRT__BVH_MAX_BINS][4], hi[3][FOGRT__BVH_MAX_BINS][4];
+    uint32_t n[3][FOGRT__BVH_MAX_BINS];
+    fogrt__f4 origin, scale, top;
+    int nb;
+    bool ok[3];      /* false: every centroid at the same coordinate (no plane to try) */
+} fogrt__bins;
+/* Bin numbers of a record's centroid on the three axes: clamp((c - origin) scale, 0, nb - 1),
+   truncated; a NaN (from a flat axis) lands in bin 0 (max returns its second operand). */
+FOGRT__HOT void fogrt__bin_of(const fogrt__bins *bins, fogrt__f4 c, int32_t *bin)
+{
+    fogrt__f4 f = fogrt__f4_mul(fogrt__f4_sub(c, bins->origin), bins->scale);
+    f = fogrt__f4_min(fogrt__f4_max(f, fogrt__f4_set1(0.0f)), bins->top);
+    fogrt__f4_trunc(f, bin);
+}
+FOGRT__PRIVATE void fogrt__bins_clear(fogrt__bins *bins)
+{
+    int ax, k;
+    for (ax = 0; ax < 3; ++ax)
+        for (k = 0; k < bins->nb; ++k) {
+            fogrt__f4_store(bins->lo[ax][k], FOGRT__F4_EMPTY_LO);
+            fogrt__f4_store(bins->hi[ax][k], FOGRT__F4_EMPTY_HI);
+            bins->n[ax][k] = 0;
+        }
+}
+/* Empty bins over the centroid bounds of job: no more bins than primitives (at least 2, so
+   bins = 1 prices the single plane through the middle). */
+FOGRT__PRIVATE void fogrt__bins_init(fogrt__bins *bins, const fogrt_build_desc *d, const fogrt__bjob *job, uint32_t count)
+{
+    float scale[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+    int nb = count < (uint32_t)d->bins ? (int)count : d->bins, ax;
+    if (nb == 1) nb = 2;
+    for (ax = 0; ax < 3; ++ax) {
+        scale[ax] = (float)nb / (job->chi[ax] - job->clo[ax]);
+        bins->ok[ax] = job->chi[ax] > job->clo[ax] && scale[ax] > 0.0f && scale[ax] < FLT_MAX;
+        if (!bins->ok[ax]) scale[ax] = 0.0f;             /* every centroid in bin 0 */
+    }
+    bins->nb = nb;
+    fogrt__bins_clear(bins);
+    bins->origin = fogrt__f4_load(job->clo);
+    bins->scale = fogrt__f4_load(scale);
+    bins->top = fogrt__f4_set1((float)(nb - 1));
+}
+/* Step 1: every record into its bin on each of the three axes. */
+FOGRT__HOT void fogrt__bin_add(fogrt__bins *bins, int ax, int32_t k, fogrt__f4 lo, fogrt__f4 hi)
+{
+    float *bl = bins->lo[ax][k], *bh = bins->hi[ax][k];
+    bins->n[ax][k]++;
+    fogrt__f4_store(bl, fogrt__f4_min(fogrt__f4_load(bl), lo));
+    fogrt__f4_store(bh, fogrt__f4_max(fogrt__f4_load(bh), hi));
+}
+FOGRT__HOT void fogrt__bin_record(fogrt__bins *bins, const fogrt__brec *r)
+{
+    fogrt__f4 lo = fogrt__f4_load(r->lo), hi = fogrt__f4_load(r->hi);
+    int32_t bin[4];
+    fogrt__bin_of(bins, fogrt__brec_centroid(r), bin);
+    fogrt__bin_add(bins, 0, bin[0], lo, hi);
+    fogrt__bin_add(bins, 1, bin[1], lo, hi);
+    fogrt__bin_add(bins, 2, bin[2], lo, hi);
+}
+/* Neighbouring records mostly fall in the same bins, and then each update waits for the
+   one before; so a big node bins its odd records into a second set, merged at the end,
+   and two chains of updates run side by side (the same bins: min, max and sums are exact). */
+#define FOGRT__BVH_TWO_SETS 64
+FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt__brec *r, uint32_t count)
+{
+    fogrt__bins odd;
+    uint32_t i = 0;
+    int ax, k;
+    if (count >= FOGRT__BVH_TWO_SETS) {
+        odd.nb = bins->nb; odd.origin = bins->origin; odd.scale = bins->scale; odd.top = bins->top;
+        fogrt__bins_clear(&odd);
+        for (; i + 1 < count; i += 2) { fogrt__bin_record(bins, &r[i]); fogrt__bin_record(&odd, &r[i + 1]); }
+        for (ax = 0; ax < 3; ++ax)
+            for (k = 0; k < bins->nb; ++k) {
+                fogrt__f4_store(bins->lo[ax][k], fogrt__f4_min(fogrt__f4_load(bins->lo[ax][k]), fogrt__f4_load(odd.lo[ax][k])));
+                fogrt__f4_store(bins->hi[ax][k], fogrt__f4_max(fogrt__f4_load(bins->hi[ax][k]), fogrt__f4_load(odd.hi[ax][k])));
+                bins->n[ax][k] += odd.n[ax][k];
+            }
+    }
+    for (; i < count; ++i) fogrt__bin_record(bins, &r[i]);
+}
+/* The heuristic's measure (fogrt__side_cost) of n primitives in the box [lo, hi]. */
+FOGRT__HOT float fogrt__f4_side_cost(const fogrt_build_desc *d, uint32_t n, fogrt__f4 lo, fogrt__f4 hi)
+{
+    float e[4];
+    fogrt__f4_store(e, fogrt__f4_sub(hi, lo));
+    if (e[0] < 0.0f) return 0.0f;                         /* empty, as fogrt__aabb_area */
+    return (float)n * (d->heuristic == FOGRT_BVH_VOLUME ? e[0] * e[1] * e[2]
+                                                        : 2.0f * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]));
+}
+/* The cheapest plane of one axis: sweep from the left and from the right to price the
+   nb - 1 planes between the bins (plane k: bins 0..k-1 on the left). Improves *best, and
+   *best_k, where a plane with primitives on both sides is cheaper. */
+FOGRT__PRIVATE bool fogrt__bins_sweep(const fogrt_build_desc *d, const fogrt__bins *bins, int ax, uint32_t count,
+                                      float *best, int *best_k)
+{
+    fogrt__f4 lo = FOGRT__F4_EMPTY_LO, hi = FOGRT__F4_EMPTY_HI;
+    uint32_t left_n = 0, right_n = 0;
+    float left_cost[FOGRT__BVH_MAX_BINS];
     bool improved = false;
     int k;
-    if (nbins == 1) nbins = 2;                     /* one plane = two slices */
-    scale = (float)nbins / (hi - lo);
-    if (!(hi > lo) || !(scale > 0.0f && scale < FLT_MAX)) return false;   /* flat (or degenerate) extent */
-    for (k = 0; k < nbins; ++k) { bin_box[k] = fogrt__aabb_empty(); bin_n[k] = 0; }
-    for (i = 0; i < count; ++i) {
-        uint32_t p = b->idx[first + i];
-        float f = (fogrt__comp(b->centroid[p], axis) - lo) * scale;
-        int bi = f > 0.0f ? (f < (float)nbins ? (int)f : nbins - 1) : 0;   /* NaN -> bin 0 */
-        bin_n[bi]++;
-        fogrt__aabb_union(&bin_box[bi], &b->box[p]);
+    for (k = 0; k < bins->nb - 1; ++k) {
+        left_n += bins->n[ax][k];
+        lo = fogrt__f4_min(lo, fogrt__f4_load(bins->lo[ax][k])); hi = fogrt__f4_max(hi, fogrt__f4_load(bins->hi[ax][k]));
+        left_cost[k] = fogrt__f4_side_cost(d, left_n, lo, hi);
     }
-    for (k = 0; k < nbins - 1; ++k) {
-        left_n += bin_n[k];
-        fogrt__aabb_union(&left_box, &bin_box[k]);
-        left_cost[k] = fogrt__side_cost(&b->desc, left_n, &left_box);
-    }
-    for (k = nbins - 1; k > 0; --k) {
+    lo = FOGRT__F4_EMPTY_LO; hi = FOGRT__F4_EMPTY_HI;
+    for (k = bins->nb - 1; k > 0; --k) {
         float cost;
-        right_n += bin_n[k];
-        fogrt__aabb_union(&right_box, &bin_box[k]);
+        right_n += bins->n[ax][k];
+        lo = fogrt__f4_min(lo, fogrt__f4_load(bins->lo[ax][k])); hi = fogrt__f4_max(hi, fogrt__f4_load(bins->hi[ax][k]));
         if (right_n == 0 || right_n == count) continue;
-        cost = left_cost[k - 1] + fogrt__side_cost(&b->desc, right_n, &right_box);
-        if (cost < *best) { *best = cost; *pos = lo + (float)k / scale; improved = true; }
+        cost = left_cost[k - 1] + fogrt__f4_side_cost(d, right_n, lo, hi);
+        if (cost < *best) { *best = cost; *best_k = k; improved = true; }
     }
     return improved;
 }
-
-/* Find the best binned split of a node. Returns false if the node should stay a leaf. */
-FOGRT__PRIVATE bool fogrt__find_split(fogrt__build *b, const fogrt_bvh_node *node, int *out_axis, float *out_pos)
+/* The leaf rule: with the SAH, split when it is cheaper than a leaf, and always above the
+   largest leaf size; with the volume heuristic, split down to the largest leaf size. */
+FOGRT__PRIVATE bool fogrt__split_pays(const fogrt_build_desc *d, const fogrt_bvh_node *node, uint32_t count, float best)
 {
-    const fogrt_build_desc *d = &b->desc;
-    uint32_t first = node->left_first, count = node->prim_count, i;
-    fogrt__aabb cb = fogrt__aabb_empty(), nb;
-    float best = FLT_MAX, leaf_cost;
-    int axis, best_axis = -1, nbins = count < (uint32_t)d->bins ? (int)count : d->bins;   /* no more bins than primitives */
-    float best_pos = 0.0f;
-    for (i = 0; i < count; ++i) fogrt__aabb_grow(&cb, b->centroid[b->idx[first + i]]);
-    nb.lo = fogrt__v(node->bmin[0], node->bmin[1], node->bmin[2]);
-    nb.hi = fogrt__v(node->bmax[0], node->bmax[1], node->bmax[2]);
-    for (axis = 0; axis < 3; ++axis)
-        if (fogrt__split_axis(b, first, count, axis, fogrt__comp(cb.lo, axis), fogrt__comp(cb.hi, axis), nbins, &best, &best_pos))
-            best_axis = axis;
-    *out_axis = best_axis;
-    *out_pos = best_pos;
-    if (best_axis < 0) return false;
-    if (d->heuristic == FOGRT_BVH_VOLUME) return count > (uint32_t)d->max_leaf_size;
-    /* SAH: split when it is cheaper than a leaf, and always above the largest leaf size. */
-    leaf_cost = d->c_int * (float)count;
-    best = d->c_trav + d->c_int * best / FOGRT__MAX(fogrt__aabb_area(&nb), FLT_MIN);
-    return best < leaf_cost || count > (uint32_t)d->max_leaf_size;
+    fogrt__aabb box;
+    if (count > (uint32_t)d->max_leaf_size) return true;
+    if (d->heuristic == FOGRT_BVH_VOLUME) return false;
+    box.lo = fogrt__v(node->bmin[0], node->bmin[1], node->bmin[2]);
+    box.hi = fogrt__v(node->bmax[0], node->bmax[1], node->bmax[2]);
+    return d->c_trav + d->c_int * best / FOGRT__MAX(fogrt__aabb_area(&box), FLT_MIN) < d->c_int * (float)count;
 }
-
+/* Step 2: records whose bin on axis ax is below k to the front (with their indices),
+   growing both sides' centroid bounds. Returns the number on the left. */
+FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__brec *r, uint32_t *id, uint32_t count,
+                                              int ax, int k, fogrt__bjob *left, fogrt__bjob *right)
+{
+    fogrt__f4 lcl = FOGRT__F4_EMPTY_LO, lch = FOGRT__F4_EMPTY_HI, rcl = lcl, rch = lch;
+    uint32_t lo = 0, hi = count;
+    while (lo < hi) {
+        fogrt__f4 c = fogrt__brec_centroid(&r[lo]);
+        int32_t bin[4];
+        fogrt__bin_of(bins, c, bin);
+        if (bin[ax] < k) {
+            lcl = fogrt__f4_min(lcl, c); lch = fogrt__f4_max(lch, c);
+            ++lo;
+        } else {
+            fogrt__brec t = r[lo];
+            uint32_t tid = id[lo];
+            rcl = fogrt__f4_min(rcl, c); rch = fogrt__f4_max(rch, c);
+            --hi;
+            r[lo] = r[hi]; r[hi] = t;
+            id[lo] = id[hi]; id[hi] = tid;
+        }
+    }
+    fogrt__f4_store(left->clo, lcl); fogrt__f4_store(left->chi, lch);
+    fogrt__f4_store(right->clo, rcl); fogrt__f4_store(right->chi, rch);
+    return lo;
+}
+/* The two children's boxes: the unions of the bins on either side of plane k. */
+FOGRT__PRIVATE void fogrt__bins_child_boxes(const fogrt__bins *bins, int ax, int k, fogrt_bvh_node *child)
+{
+    fogrt__f4 lo = FOGRT__F4_EMPTY_LO, hi = FOGRT__F4_EMPTY_HI;
+    int j;
+    for (j = 0; j < bins->nb; ++j) {
+        if (j == k) { fogrt__node_set_box(&child[0], lo, hi); lo = FOGRT__F4_EMPTY_LO; hi = FOGRT__F4_EMPTY_HI; }
+        lo = fogrt__f4_min(lo, fogrt__f4_load(bins->lo[ax][j]));
+        hi = fogrt__f4_max(hi, fogrt__f4_load(bins->hi[ax][j]));
+    }
+    fogrt__node_set_box(&child[1], lo, hi);
+}
+/* The binned split of job's node into child[0] and child[1] (their boxes, and the two jobs'
+   centroid bounds). Returns the number of primitives on the left, or 0 when the node stays
+   a leaf, or must be halved instead (*halve: its centroids coincide but it is too big). */
+FOGRT__PRIVATE uint32_t fogrt__bvh_split_sah(fogrt__build *b, const fogrt__bjob *job, fogrt_bvh_node *child,
+                                             fogrt__bjob *left, fogrt__bjob *right, bool *halve)
+{
+    const fogrt_bvh_node *node = &b->nodes[job->node];
+    uint32_t first = node->left_first, count = node->prim_count;
+    fogrt__bins bins;
+    float best = FLT_MAX;
+    int ax, best_ax = -1, best_k = 0;
+    fogrt__bins_init(&bins, &b->desc, job, count);
+    fogrt__bins_fill(&bins, b->rec + first, count);
+    for (ax = 0; ax < 3; ++ax)
+        if (bins.ok[ax] && fogrt__bins_sweep(&b->desc, &bins, ax, count, &best, &best_k)) best_ax = ax;
+    if (best_ax < 0) {                                   /* all centroids coincide */
+        *halve = count > (uint32_t)b->desc.max_leaf_size;
+        return 0;
+    }
+    if (!fogrt__split_pays(&b->desc, node, count, best)) return 0;
+    fogrt__bins_child_boxes(&bins, best_ax, best_k, child);
+    return fogrt__bins_partition(&bins, b->rec + first, b->idx + first, count, best_ax, best_k, left, right);
+}
+/* Split job's node into the next two nodes, or leave it a leaf (returns false). */
+FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fogrt__bjob *left, fogrt__bjob *right)
+{
+    fogrt_bvh_node *node = &b->nodes[job->node], *child = &b->nodes[b->node_count];
+    uint32_t first = node->left_first, count = node->prim_count, left_count = 0;
+    bool halve = job->depth >= FOGRT__BVH_SAH_DEPTH;
+    if (count <= 1 || count <= b->leaf_keep) return false;
+    if (!halve) left_count = fogrt__bvh_split_sah(b, job, child, left, right, &halve);
+    if (halve) {                                         /* balanced, the bounds by a pass */
+        left_count = count / 2;
+        fogrt__brec_bounds(b->rec + first, left_count, &child[0], left->clo, left->chi);
+        fogrt__brec_bounds(b->rec + first + left_count, count - left_count, &child[1], right->clo, right->chi);
+    }
+    if (left_count == 0) return false;
+    FOGRT_ASSERT(left_count < count);
+    child[0].left_first = first;              child[0].prim_count = left_count;
+    child[1].left_first = first + left_count; child[1].prim_count = count - left_count;
+    left->node = b->node_count; right->node = b->node_count + 1;
+    left->depth = right->depth = job->depth + 1;
+    node->left_first = b->node_count;
+    node->prim_count = 0;
+    b->node_count += 2;
+    return true;
+}
+/* The tree over b->rec[0 .. prim_count) (b->idx their primitive ids), depth first with an
+   explicit stack: the root is node 0, node 1 is unused (so that sibling pairs align), and
+   every split appends its two children. */
 FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count)
 {
-    /* Depth-first with an explicit stack of (node, depth). Past FOGRT__BVH_SAH_DEPTH levels
-       (only reached by adversarial inputs) nodes are halved without the heuristic, so the
-       tree depth stays below FOGRT__BVH_MAX_DEPTH, the size of the traversal stack. */
-    uint32_t stack[FOGRT__BVH_MAX_DEPTH + 2], depth[FOGRT__BVH_MAX_DEPTH + 2], sp = 0;
+    fogrt__bjob stack[FOGRT__BVH_MAX_DEPTH + 2];
+    uint32_t sp = 1;
     fogrt_bvh_node *root = &b->nodes[0];
-    memset(&b->nodes[1], 0, sizeof b->nodes[1]);          /* node 1: unused (pairs align) */
+    memset(&b->nodes[1], 0, sizeof b->nodes[1]);
     root->left_first = 0;
     root->prim_count = prim_count;
-    fogrt__node_bounds(b, root, 0, prim_count);
+    stack[0].node = 0; stack[0].depth = 0;
+    fogrt__brec_bounds(b->rec, prim_count, root, stack[0].clo, stack[0].chi);
     b->node_count = 2;
-    stack[sp] = 0; depth[sp++] = 0;
     while (sp > 0) {
-        uint32_t level = depth[--sp];
-        fogrt_bvh_node *node = &b->nodes[stack[sp]];
-        uint32_t first = node->left_first, count = node->prim_count, i, j, left_count, l;
-        int axis = -1;
-        float pos;
-        if (count <= 1) continue;
-        if (level >= FOGRT__BVH_SAH_DEPTH) {
-            left_count = count / 2;                   /* balanced from here on */
-        } else if (!fogrt__find_split(b, node, &axis, &pos)) {
-            if (axis >= 0 || count <= (uint32_t)b->desc.max_leaf_size) continue;
-            /* All centroids coincide but the node is too big: split the list in half. */
-            left_count = count / 2;
-        } else {
-            /* Partition the index range in place: left of the plane first. */
-            i = first; j = first + count;
-            while (i < j) {
-                if (fogrt__comp(b->centroid[b->idx[i]], axis) < pos) ++i;
-                else { uint32_t t = b->idx[i]; b->idx[i] = b->idx[--j]; b->idx[j] = t; }
-            }
-            left_count = i - first;
-            if (left_count == 0 || left_count == count) left_count = count / 2;  /* float edge case */
-        }
-        l = b->node_count;
-        b->node_count += 2;
-        b->nodes[l].left_first = first;             b->nodes[l].prim_count = left_count;
-        b->nodes[l + 1].left_first = first + left_count; b->nodes[l + 1].prim_count = count - left_count;
-        fogrt__node_bounds(b, &b->nodes[l], first, left_count);
-        fogrt__node_bounds(b, &b->nodes[l + 1], first + left_count, count - left_count);
-        node->left_first = l;
-        node->prim_count = 0;
+        fogrt__bjob job = stack[--sp];
         FOGRT_ASSERT(sp + 2 <= FOGRT__BVH_MAX_DEPTH + 2);
-        stack[sp] = l + 1; depth[sp++] = level + 1;
-        stack[sp] = l;     depth[sp++] = level + 1;
+        if (fogrt__bvh_split(b, &job, &stack[sp + 1], &stack[sp])) sp += 2;   /* the left child on top */
     }
 }
 
@@ -2386,8 +2620,11 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
         4 for four) from the binary tree: start with a binary node's two children and
         repeatedly replace the child with the largest surface area by its own two children
         until W are collected. A binary subtree of at most 4 primitives is not opened but
-        becomes one leaf (FOGRT_WBVH_LEAF; the binary leaves hold about 2 primitives, so
-        this halves the leaves). The tree gets about three times shallower (W = 8).
+        becomes one leaf (FOGRT_WBVH_LEAF: one packet), and a lane left unopened when the
+        node is full becomes a leaf of two packets when it holds at most 8 primitives,
+        rather than a wide node of two leaf lanes (which half the wide nodes were: on the
+        1M mesh this halves the wide nodes, 98,700 to 48,800). The tree gets about three
+        times shallower (W = 8).
      2. Structure of arrays. A node stores all W minimum x, then all W minimum y, and so on,
         so its W slab tests are the same instructions on W lanes: SSE does four at once.
      3. Leaf packets. A leaf's primitives are copied into a packet of four, again structure
@@ -2412,11 +2649,13 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
        finds (bench/wide_dev.c counts these; FOGRT_WBVH_LEAF 0 removes them).
 
    Memory (W = 8): a node is 256 bytes (48 floats of boxes, 16 words of child references),
-   about one per 10 triangles; a packet of 4 primitives is 176 bytes.
+   about one per 20 triangles; a packet of 4 primitives is 176 bytes (1M mesh: 12.5 and 54
+   bytes per triangle). Both arrays start on a cache line and ask for huge pages (chapter
+   9); the binary tree's packed primitives of chapter 10 are not made for the wide layout.
 
-   SIMD: FOGRT_WBVH_SSE (on by default where the compiler targets SSE2, that is every x86-64)
-   selects the SSE intrinsics; FOGRT_WBVH_NO_SIMD forces the plain C99 loops, which compute
-   exactly the same values lane by lane.
+   SIMD: FOGRT_WBVH_SSE (set in chapter 9: on by default where the compiler targets SSE2,
+   that is every x86-64) selects the SSE intrinsics; FOGRT_WBVH_NO_SIMD forces the plain C99
+   loops, which compute exactly the same values lane by lane.
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_WBVH_MIN_PRIMS
 #define FOGRT_WBVH_MIN_PRIMS 16   /* fewer primitives: the binary tree is as fast (see fogrt_build_desc) */
@@ -2433,19 +2672,14 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 #if FOGRT_WBVH_WIDTH != 4 && FOGRT_WBVH_WIDTH != 8
 #error "fogrt: FOGRT_WBVH_WIDTH must be 4 or 8"
 #endif
-#if !defined(FOGRT_WBVH_SSE) && !defined(FOGRT_WBVH_NO_SIMD) && \
-    (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
-#define FOGRT_WBVH_SSE 1
-#endif
-#ifdef FOGRT_WBVH_NO_SIMD
-#undef FOGRT_WBVH_SSE
-#endif
-#ifdef FOGRT_WBVH_SSE
-#include <emmintrin.h>
-#endif
-
 #define FOGRT__WBVH_W FOGRT_WBVH_WIDTH
 #define FOGRT__WBVH_LEAF FOGRT_WBVH_LEAF
+/* A lane still unopened when its wide node is full becomes a leaf of up to two packets
+   rather than a wide node of its own when it holds at most this many primitives (else
+   half the wide nodes would choose between two packets). */
+#ifndef FOGRT__WBVH_LEAF2
+#define FOGRT__WBVH_LEAF2 (FOGRT__WBVH_LEAF > 0 ? 8 : 0)
+#endif
 #ifndef FOGRT__WBVH_STAT
 #define FOGRT__WBVH_STAT(what) ((void)0)   /* a counting hook for bench/wide_dev.c */
 #endif
@@ -2476,13 +2710,22 @@ typedef struct fogrt__wtri {
 typedef struct fogrt__wbvh {
     fogrt__wnode *nodes; uint32_t node_count;
     fogrt__wtri *tris; uint32_t tri_packets;
+    void *nodes_mem, *tris_mem;   /* the blocks holding nodes and tris, which start on a cache line */
+    uint32_t node_cap;            /* room for this many nodes */
 } fogrt__wbvh;
 
 FOGRT__PRIVATE void fogrt__wbvh_free(fogrt__wbvh *w, const fogrt_allocator *a)
 {
-    fogrt__free(a, w->nodes);
-    fogrt__free(a, w->tris);
+    fogrt__free(a, w->nodes_mem);
+    fogrt__free(a, w->tris_mem);
     memset(w, 0, sizeof *w);
+}
+/* size bytes starting on a 64-byte cache line (so that a 256-byte node spans 4 lines, not
+   5), inside a block of the allocator stored in *mem. */
+FOGRT__PRIVATE void *fogrt__wbvh_alloc_lines(const fogrt_allocator *a, size_t size, void **mem)
+{
+    *mem = fogrt__alloc_big(a, size + 64);
+    return *mem ? (void *)(((uintptr_t)*mem + 63) & ~(uintptr_t)63) : NULL;
 }
 
 FOGRT__PRIVATE size_t fogrt__wbvh_bytes(const fogrt__wbvh *w)
@@ -2498,50 +2741,55 @@ FOGRT__PRIVATE float fogrt__wbvh_node_area(const fogrt_bvh_node *n)
     return fogrt__aabb_area(&b);
 }
 
-/* Copy the primitives s->prims[first .. first + count) into packets from w->tris[*next]. */
+/* Copy the primitives prim_index[first .. first + count) into packets from w->tris[*next],
+   straight from the scene's triangles and spheres (v0 and the edges as fogrt__pack_prims
+   forms them, so the triangle test sees the same floats). */
 FOGRT__PRIVATE void fogrt__wbvh_pack_leaf(const fogrt_scene *s, fogrt__wbvh *w, uint32_t first, uint32_t count,
                                           uint32_t *next)
 {
     uint32_t i;
     for (i = 0; i < count; ++i) {
-        const fogrt__prim *p = &s->prims[first + i];
+        uint32_t id = s->prim_index[first + i], j = i % 4;
         fogrt__wtri *q = &w->tris[*next + i / 4];
-        uint32_t j = i % 4;
+        fogrt__v3 a, b, c;
         if (j == 0) {                                   /* a new packet: all lanes unused */
             memset(q, 0, sizeof *q);
             q->id[0] = q->id[1] = q->id[2] = q->id[3] = FOGRT__WBVH_EMPTY;
         }
-        q->id[j] = p->id;
-        q->v0[0][j] = p->a.x; q->v0[1][j] = p->a.y; q->v0[2][j] = p->a.z;
-        if (p->id < s->tri_count) {
-            q->e1[0][j] = p->b.x; q->e1[1][j] = p->b.y; q->e1[2][j] = p->b.z;
-            q->e2[0][j] = p->c.x; q->e2[1][j] = p->c.y; q->e2[2][j] = p->c.z;
-            q->k[j] = 1e-12f * fogrt__dot(p->b, p->b) * fogrt__dot(p->c, p->c);
-        } else {
-            q->e1[0][j] = p->b.x;                       /* the radius */
+        q->id[j] = id;
+        if (id < s->tri_count) {
+            const fogrt__v3 *v = &s->tri_v[3 * id];
+            a = v[0]; b = fogrt__sub(v[1], v[0]); c = fogrt__sub(v[2], v[0]);
+            q->k[j] = 1e-12f * fogrt__dot(b, b) * fogrt__dot(c, c);
+        } else {                                        /* centre, and the radius in e1.x */
+            a = s->sph_c[id - s->tri_count];
+            b = fogrt__v(s->sph_r[id - s->tri_count], 0.0f, 0.0f); c = fogrt__v(0.0f, 0.0f, 0.0f);
         }
+        q->v0[0][j] = a.x; q->v0[1][j] = a.y; q->v0[2][j] = a.z;
+        q->e1[0][j] = b.x; q->e1[1][j] = b.y; q->e1[2][j] = b.z;
+        q->e2[0][j] = c.x; q->e2[1][j] = c.y; q->e2[2][j] = c.z;
     }
     *next += (count + 3) / 4;
 }
 
-/* The primitives below binary node b if there are at most FOGRT__WBVH_LEAF of them (their
-   count, and in *first where they start in s->prims: a subtree's primitives are
-   contiguous there), else 0. Looks at no more than 2 FOGRT__WBVH_LEAF - 1 nodes. */
-FOGRT__PRIVATE uint32_t fogrt__wbvh_small(const fogrt_bvh_node *bn, uint32_t b, uint32_t *first)
+/* The primitives below binary node b if there are at most limit (<= FOGRT__WBVH_LEAF2) of
+   them (their count, and in *first where they start in s->prim_index: a subtree's
+   primitives are contiguous there), else 0. Looks at no more than 2 limit - 1 nodes. */
+FOGRT__PRIVATE uint32_t fogrt__wbvh_small(const fogrt_bvh_node *bn, uint32_t b, uint32_t limit, uint32_t *first)
 {
-    uint32_t stack[2 * FOGRT__WBVH_LEAF + 2], sp = 0, count = 0;
+    uint32_t stack[2 * FOGRT__WBVH_LEAF2 + 2], sp = 0, count = 0;
     if (bn[b].prim_count > 0) { *first = bn[b].left_first; return bn[b].prim_count; }
-    if (FOGRT__WBVH_LEAF < 2) return 0;
+    if (limit < 2) return 0;
     stack[sp++] = b;
     *first = UINT32_MAX;
     while (sp > 0) {
         const fogrt_bvh_node *n = &bn[stack[--sp]];
         if (n->prim_count > 0) {
             count += n->prim_count;
-            if (count > FOGRT__WBVH_LEAF) return 0;
+            if (count > limit) return 0;
             if (n->left_first < *first) *first = n->left_first;
         } else {
-            if (sp + 2 > 2 * FOGRT__WBVH_LEAF) return 0;   /* too many nodes: too many primitives */
+            if (sp + 2 > 2 * limit) return 0;              /* too many nodes: too many primitives */
             stack[sp++] = n->left_first; stack[sp++] = n->left_first + 1;
         }
     }
@@ -2558,7 +2806,7 @@ typedef struct fogrt__wlanes {
 FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, fogrt__wlanes *L, uint32_t j, uint32_t node)
 {
     L->lane[j] = node;
-    L->small[j] = fogrt__wbvh_small(bn, node, &L->first[j]);
+    L->small[j] = fogrt__wbvh_small(bn, node, FOGRT__WBVH_LEAF, &L->first[j]);
     L->area[j] = L->small[j] ? 0.0f : fogrt__wbvh_node_area(&bn[node]);
 }
 /* Step 1 for binary node b: start with its two children (a small root is one leaf), then
@@ -2568,7 +2816,7 @@ FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, fogrt__wlanes *L,
 FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, uint32_t b, fogrt__wlanes *L)
 {
     uint32_t j, first;
-    if (fogrt__wbvh_small(bn, b, &first) || bn[b].prim_count > 0) {
+    if (fogrt__wbvh_small(bn, b, FOGRT__WBVH_LEAF, &first) || bn[b].prim_count > 0) {
         fogrt__wbvh_lane(bn, L, 0, b); L->count = 1;   /* only a small root gets here */
         return;
     }
@@ -2591,25 +2839,39 @@ FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, uint32_t b, fo
         fogrt__wbvh_lane(bn, L, (uint32_t)open + 1, child + 1);
         L->count++;
     }
+    for (j = 0; j < L->count; ++j)          /* a lane left with two packets' worth: a leaf */
+        if (!L->small[j]) L->small[j] = fogrt__wbvh_small(bn, L->lane[j], FOGRT__WBVH_LEAF2, &L->first[j]);
 }
-/* Room for the wide tree: at most one wide node per binary inner node (one for a leaf
-   root), and the packets of the binary leaves. */
+/* Room for the wide tree. A wide node is made for the root and for binary subtrees of more
+   than FOGRT__WBVH_LEAF2 primitives only, so the subtree sizes (one pass from the last node
+   back: children come after their parent) bound the nodes; the packets are at most those
+   of the binary leaves (a leaf merging several binary leaves needs no more). */
 FOGRT__PRIVATE bool fogrt__wbvh_alloc(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
 {
-    uint32_t i, inner = 0, packets = 0;
-    for (i = 0; i < s->node_count; ++i) {
-        if (i == 1) continue;
-        if (s->nodes[i].prim_count > 0) packets += (s->nodes[i].prim_count + 3) / 4;
-        else ++inner;
+    uint32_t i = s->node_count, big = 1, packets = 0;
+    uint32_t *size = (uint32_t *)fogrt__alloc(a, sizeof(uint32_t) * (size_t)s->node_count);
+    if (!size) return false;
+    while (i-- > 0) {
+        const fogrt_bvh_node *n = &s->nodes[i];
+        if (i == 1) continue;                            /* node 1 is unused */
+        if (n->prim_count > 0) {
+            size[i] = n->prim_count;
+            packets += (n->prim_count + 3) / 4;
+        } else {
+            size[i] = size[n->left_first] + size[n->left_first + 1];
+            big += size[i] > FOGRT__WBVH_LEAF2 && i > 0;
+        }
     }
-    w->nodes = (fogrt__wnode *)fogrt__alloc(a, sizeof(fogrt__wnode) * (inner > 0 ? inner : 1));
-    w->tris = (fogrt__wtri *)fogrt__alloc(a, sizeof(fogrt__wtri) * (packets > 0 ? packets : 1));
+    fogrt__free(a, size);
+    w->nodes = (fogrt__wnode *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wnode) * big, &w->nodes_mem);
+    w->node_cap = big;
+    w->tris = (fogrt__wtri *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wtri) * (packets > 0 ? packets : 1), &w->tris_mem);
     if (w->nodes && w->tris) return true;
     fogrt__wbvh_free(w, a);
     return false;
 }
 /* Build the wide tree from the scene's binary tree (s->nodes) and packed primitives
-   (s->prims), after fogrt__pack_prims (chapter 11): each wide node collects its lanes
+   (s->prim_index, and the primitives themselves): each wide node collects its lanes
    (step 1 above); a lane with at most FOGRT_WBVH_LEAF (4) primitives below it becomes one
    leaf, one full packet (the binary tree's leaves hold about 2 primitives, so this halves
    the packets and the nodes); the others become new wide nodes, handled the same way from
@@ -2619,7 +2881,7 @@ FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, cons
     enum { W = FOGRT__WBVH_W };
     uint32_t stack_b[FOGRT__BVH_MAX_DEPTH * W + 2], stack_w[FOGRT__BVH_MAX_DEPTH * W + 2], sp = 0, next_packet = 0;
     memset(w, 0, sizeof *w);
-    if (!s->nodes || !s->prims || s->tri_count + s->sph_count == 0) return true;   /* nothing to trace */
+    if (!s->nodes || !s->prim_index || s->tri_count + s->sph_count == 0) return true;   /* nothing to trace */
     if (!fogrt__wbvh_alloc(s, w, a)) return false;
     w->node_count = 1;
     stack_b[sp] = 0; stack_w[sp++] = 0;
@@ -2642,6 +2904,7 @@ FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, cons
                 wn->child[j] = next_packet; wn->count[j] = L.small[j];
                 fogrt__wbvh_pack_leaf(s, w, L.first[j], L.small[j], &next_packet);
             } else {
+                FOGRT_ASSERT(w->node_count < w->node_cap);
                 wn->child[j] = w->node_count++; wn->count[j] = 0;
                 FOGRT_ASSERT(sp < FOGRT__BVH_MAX_DEPTH * W + 2);
                 stack_b[sp] = L.lane[j]; stack_w[sp++] = wn->child[j];
@@ -2963,9 +3226,13 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
    over every primitive, the primitives in BVH order in the form the traversal wants, one
    table per area light (chapter 12), the ray offset scale, and the feature bits.
    ------------------------------------------------------------------------------------------ */
+/* Whether a primitive uses a material of this type: the materials are looked at first, so
+   that a scene without one does not scan its million triangles. */
 FOGRT__PRIVATE bool fogrt__material_used(const fogrt_scene *s, fogrt_bsdf_type type)
 {
     uint32_t i;
+    for (i = 0; i < s->material_count && fogrt__bsdf_type(&s->materials[i]) != type; ++i) {}
+    if (i == s->material_count) return false;
     for (i = 0; i < s->tri_count; ++i) if (fogrt__bsdf_type(&s->materials[s->tri_material[i]]) == type) return true;
     for (i = 0; i < s->sph_count; ++i) if (fogrt__bsdf_type(&s->materials[s->sph_material[i]]) == type) return true;
     return false;
@@ -2984,11 +3251,18 @@ FOGRT__PRIVATE bool fogrt__sphere_emits(const fogrt_scene *s, uint32_t i)
 {
     return !fogrt__is_black(s->materials[s->sph_material[i]].emission);
 }
+/* Whether any material emits (if none, no triangle needs looking at). */
+FOGRT__PRIVATE bool fogrt__some_material_emits(const fogrt_scene *s)
+{
+    uint32_t i;
+    for (i = 0; i < s->material_count; ++i) if (!fogrt__is_black(s->materials[i].emission)) return true;
+    return false;
+}
 /* Emissive triangles of one mesh form one light; a CDF over their areas picks one. */
-FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s)
+FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s, uint32_t tri_count)
 {
     uint32_t i, g = 0, k = 0, prev_mesh = UINT32_MAX;
-    for (i = 0; i < s->tri_count; ++i) {
+    for (i = 0; i < tri_count; ++i) {
         fogrt__area_light *L;
         float area;
         if (!fogrt__tri_emits(s, i)) continue;
@@ -3016,8 +3290,8 @@ FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s)
 FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s)
 {
     uint32_t i, n_tri = 0, n_groups = 0, n_sph = 0, g, prev_mesh = UINT32_MAX;
-    uint32_t n_prims = s->tri_count + s->sph_count;
-    for (i = 0; i < s->tri_count; ++i) {
+    uint32_t n_prims = s->tri_count + s->sph_count, tri_count = fogrt__some_material_emits(s) ? s->tri_count : 0;
+    for (i = 0; i < tri_count; ++i) {
         if (!fogrt__tri_emits(s, i)) continue;
         if (s->tri_mesh[i] != prev_mesh) { n_groups++; prev_mesh = s->tri_mesh[i]; }
         n_tri++;
@@ -3029,7 +3303,7 @@ FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s)
     s->light_cdf = (float *)fogrt__alloc(&s->allocator, sizeof(float) * (n_tri + 1));
     if (!s->prim_light || !s->area_lights || !s->light_prims || !s->light_cdf) return false;
     for (i = 0; i < n_prims; ++i) s->prim_light[i] = UINT32_MAX;
-    g = fogrt__mesh_lights(s);
+    g = fogrt__mesh_lights(s, tri_count);
     for (i = 0; i < s->sph_count; ++i) {      /* an emissive sphere is a light of its own */
         fogrt__area_light *L;
         if (!fogrt__sphere_emits(s, i)) continue;
@@ -3057,17 +3331,19 @@ FOGRT__PRIVATE fogrt__aabb fogrt__prim_box(const fogrt_scene *s, uint32_t i)
     }
     return bb;
 }
-/* Boxes and centroids of every primitive, the scene's bounds, and the sizes derived from
-   them: the ray offset floor and the point-light distance clamp (chapter 12). */
+/* The build's record of every primitive (its box), the scene's bounds, and the sizes
+   derived from them: the ray offset floor and the point-light distance clamp (chapter 12). */
 FOGRT__PRIVATE void fogrt__bounds(fogrt_scene *s, fogrt__build *b, uint32_t n)
 {
     fogrt__aabb sb = fogrt__aabb_empty();
     uint32_t i;
     float diag;
     for (i = 0; i < n; ++i) {
-        b->box[i] = fogrt__prim_box(s, i);
-        b->centroid[i] = fogrt__scale(fogrt__add(b->box[i].lo, b->box[i].hi), 0.5f);
-        fogrt__aabb_union(&sb, &b->box[i]);
+        fogrt__aabb box = fogrt__prim_box(s, i);
+        fogrt__brec *r = &b->rec[i];
+        r->lo[0] = box.lo.x; r->lo[1] = box.lo.y; r->lo[2] = box.lo.z; r->lo[3] = 0.0f;
+        r->hi[0] = box.hi.x; r->hi[1] = box.hi.y; r->hi[2] = box.hi.z; r->hi[3] = 0.0f;
+        fogrt__aabb_union(&sb, &box);
         s->prim_index[i] = i;
     }
     if (n == 0) { sb.lo = fogrt__v(0, 0, 0); sb.hi = fogrt__v(0, 0, 0); }
@@ -3196,48 +3472,58 @@ FOGRT__PRIVATE bool fogrt__wants_wide(const fogrt_build_desc *d, uint32_t n)
 {
     return d->layout == FOGRT_BVH_LAYOUT_WIDE || (d->layout == FOGRT_BVH_LAYOUT_DEFAULT && n >= FOGRT_WBVH_MIN_PRIMS);
 }
-FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
+/* The tree, and the primitives in the form the chosen traversal reads: the wide tree
+   (chapter 10b), which copies them into its leaf packets, or for the binary layout the
+   packed primitives of chapter 10. For the wide layout the binary tree does not split nodes
+   of at most FOGRT_WBVH_LEAF primitives (and max_leaf_size): the collapse makes each one
+   leaf packet whatever its shape, so the wide tree is the same and the build skips its most
+   numerous nodes. Returns false when out of memory. */
+FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n)
 {
     fogrt__build b;
+    bool wide = fogrt__wants_wide(d, n), ok;
+    memset(&b, 0, sizeof b);
+    b.desc = *d;
+    b.rec = (fogrt__brec *)fogrt__alloc_big(&s->allocator, sizeof(fogrt__brec) * (n + 1));
+    s->nodes = (fogrt_bvh_node *)fogrt__alloc_big(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
+    s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
+    if (!wide) s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
+    ok = b.rec && s->nodes && s->prim_index && (wide || s->prims);
+    if (ok) {
+        fogrt__bounds(s, &b, n);
+        b.nodes = s->nodes;
+        b.idx = s->prim_index;
+        b.leaf_keep = wide ? FOGRT__MIN((uint32_t)d->max_leaf_size, (uint32_t)FOGRT__WBVH_LEAF) : 0;
+        if (n > 0) fogrt__bvh_build(&b, n);
+        else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
+        s->node_count = b.node_count;
+        if (wide) ok = fogrt__wide_build(s);
+        else fogrt__pack_prims(s, n);
+    }
+    fogrt__free(&s->allocator, b.rec);
+    return ok;
+}
+FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
+{
+    fogrt_build_desc d;
     uint32_t n;
     fogrt_result r;
     FOGRT_ASSERT(s);
-    memset(&b, 0, sizeof b);
-    if ((r = fogrt__resolve_build(s, desc, &b.desc)) != FOGRT_RESULT_OK) return r;
+    if ((r = fogrt__resolve_build(s, desc, &d)) != FOGRT_RESULT_OK) return r;
     fogrt__free_built(s);
     n = s->tri_count + s->sph_count;
     if (n == 0 && s->light_count == 0 && !s->has_env)
         return fogrt__fail(s, FOGRT_RESULT_EMPTY_SCENE, "scene: no geometry and no light");
-    b.box = (fogrt__aabb *)fogrt__alloc(&s->allocator, sizeof(fogrt__aabb) * (n + 1));
-    b.centroid = (fogrt__v3 *)fogrt__alloc(&s->allocator, sizeof(fogrt__v3) * (n + 1));
-    s->nodes = (fogrt_bvh_node *)fogrt__alloc(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
-    s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
-    s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
-    if (b.box && b.centroid && s->nodes && s->prim_index && s->prims && fogrt__build_lights(s) && fogrt__build_env(s)) {
-        fogrt__bounds(s, &b, n);
-        b.nodes = s->nodes;
-        b.idx = s->prim_index;
-        if (n > 0) fogrt__bvh_build(&b, n);
-        else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
-        s->node_count = b.node_count;
-        fogrt__pack_prims(s, n);
-        if (fogrt__wants_wide(&b.desc, n) && !fogrt__wide_build(s)) {
-            fogrt__free_built(s);
-            fogrt__free(&s->allocator, b.box);
-            fogrt__free(&s->allocator, b.centroid);
-            return FOGRT_RESULT_OUT_OF_MEMORY;
-        }
-        s->features = fogrt__features(s);
-        fogrt__fog_bounds(s, n);
-        if (s->area_light_count == 0 && s->light_count == 0 && !s->has_env)
-            fogrt__log(s, FOGRT_LOG_WARNING, "scene: nothing emits light (no light, emissive material or environment): every image will be black");
-        s->built = true;
-    } else {
+    if (!fogrt__build_lights(s) || !fogrt__build_env(s) || !fogrt__build_tree(s, &d, n)) {
         fogrt__free_built(s);
+        return FOGRT_RESULT_OUT_OF_MEMORY;
     }
-    fogrt__free(&s->allocator, b.box);
-    fogrt__free(&s->allocator, b.centroid);
-    return s->built ? FOGRT_RESULT_OK : FOGRT_RESULT_OUT_OF_MEMORY;
+    s->features = fogrt__features(s);
+    fogrt__fog_bounds(s, n);
+    if (s->area_light_count == 0 && s->light_count == 0 && !s->has_env)
+        fogrt__log(s, FOGRT_LOG_WARNING, "scene: nothing emits light (no light, emissive material or environment): every image will be black");
+    s->built = true;
+    return FOGRT_RESULT_OK;
 }
 
 /* ------------------------------------------------------------------------------------------

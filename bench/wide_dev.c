@@ -1,4 +1,4 @@
-/* wide_dev.c - development harness for the wide BVH (bench/wide_bvh.h). Run: make wide-dev.
+/* wide_dev.c - development harness for the wide BVH (fogrt.h chapter 10b). Run: make wide-dev.
 
    1. Correctness, on the CS184 bunny, six random soups (mixed sizes, axis-aligned triangles
       on a grid, degenerate triangles: repeated vertex, collinear, a point; spheres, tiny and
@@ -19,22 +19,23 @@
           closer than brute force's (FOGRT_WBVH_LEAF=0 makes these 0);
         - the unchanged fogrt__traverse is compared too and its differences counted, with
           how often brute force agrees with it and with the wide traversal.
-      Everything is done twice: with trees from fogrt_scene_build and with trees rebuilt by
-      fogrt__bvh_build_fast, whose trees are also checked against brute force on a sample.
+      The binary tree itself (chapter 9's build) is also checked against brute force on a
+      sample of random rays.
    2. Speed, one thread: Mrays/s of the binary traversal, the wide traversal and Embree 3
       (rtcIntersect1 / rtcOccluded1, when HAVE_EMBREE) on the same rays, the three passes
       rotating order within each repetition; medians of the repetitions, and the median of the
       per-repetition ratios (same-run ratios). Ray sets: random (closest hit), bounce
       (closest hit), shadow (any hit, from surface points to random points in the bounds).
-      Also the build seconds (fogrt_scene_build, fogrt__bvh_build vs fogrt__bvh_build_fast
-      alternating, the wide collapse, Embree's rtcCommitScene on one thread) and the bytes
-      per triangle (Embree's: what its memory monitor saw allocated during rtcCommitScene).
+      Also the build seconds (fogrt_scene_build, of which the wide collapse; Embree's
+      rtcCommitScene on one thread) and the bytes per triangle (Embree's: what its memory
+      monitor saw allocated during rtcCommitScene).
 
-   Usage: wide_dev [--check-only | --speed-only] [--reps N] [--rays N] [--no-big] [--hugepages]
-                   [--old-build]
+   Usage: wide_dev [--check-only | --speed-only | --build-only] [--reps N] [--rays N] [--no-big] [--hugepages]
+     --build-only: build the bunny and the 1M mesh once each and stop, for counting the
+                  build's instructions: valgrind --tool=callgrind
+                  --toggle-collect=fogrt_scene_build build/bench/wide_dev --build-only
      --hugepages: the wide tree's big arrays in transparent huge pages (Linux madvise), as
                   Embree allocates its own; fogrt itself only ever calls the allocator.
-     --old-build: trace the trees of fogrt__bvh_build instead of fogrt__bvh_build_fast.
      WIDE_DEV_VERBOSE=1 in the environment prints every disallowed difference.          */
 #define _POSIX_C_SOURCE 200112L
 #define _DEFAULT_SOURCE 1
@@ -42,7 +43,6 @@
 #include "fogrt.h"
 #define FOGRT_LOAD_IMPLEMENTATION
 #include "fogrt_load.h"
-#include "wide_bvh.h"   /* the draft of the faster binary build (section 9b); chapter 10b is in fogrt.h */
 
 /* The binary traversal to compare with. Once fogrt__traverse dispatches to the wide tree,
    build with -DBINARY_TRAVERSE=<the binary one's new name> (e.g. fogrt__bvh2_traverse). */
@@ -422,10 +422,9 @@ static size_t brute_check(const fogrt_scene *s, size_t n, uint64_t seed)
     free(set.r);
     return bad;
 }
-static bool g_fast_build;
 static bool check_scene(const char *name, const fogrt_scene *s, size_t n_per_family, uint64_t seed, size_t *total_rays)
 {
-    size_t brute_n = g_fast_build ? (size_t)(2e8 / (s->tri_count + s->sph_count + 1)) : 0, brute_bad = 0;
+    size_t brute_n = (size_t)(2e8 / (s->tri_count + s->sph_count + 1)), brute_bad = 0;
     fogrt__wbvh w;
     tally tl;
     rays sets[4];
@@ -447,7 +446,7 @@ static bool check_scene(const char *name, const fogrt_scene *s, size_t n_per_fam
            (unsigned long)tl.vs_orig, (unsigned long)tl.wide_right, (unsigned long)tl.bin_right);
     printf("    rays along an edge where the wide tree finds a real hit the binary tree's boxes missed: %lu closer hits, %lu any-hit\n",
            (unsigned long)tl.edge_closer, (unsigned long)tl.edge_any);
-    if (brute_n) printf("    fast-built tree vs brute force: %lu of %lu random rays differ; SAH cost %.3f\n",
+    if (brute_n) printf("    binary tree vs brute force: %lu of %lu random rays differ; SAH cost %.3f\n",
                         (unsigned long)brute_bad, (unsigned long)brute_n, fogrt_bvh_sah_cost(s));
     else printf("    SAH cost %.3f\n", fogrt_bvh_sah_cost(s));
     *total_rays += tl.rays;
@@ -660,7 +659,7 @@ static double trace_pass(tracer k, const fogrt_scene *s, const fogrt__wbvh *w, c
     return wall() - t0;
 }
 
-typedef struct opts { int reps; size_t rays; bool check, speed, big, fast_trace; } opts;
+typedef struct opts { int reps; size_t rays; bool check, speed, big; } opts;
 static double g_wall_total, g_cpu_total;
 
 static void speed_scene(const char *name, const fogrt_scene *s, double bin_build_s, const opts *op)
@@ -671,7 +670,7 @@ static void speed_scene(const char *name, const fogrt_scene *s, double bin_build
     double t0, wide_build_s, wb[MAXR];
     int k, rep, nt = 2;
     void *embree = NULL;
-    size_t bin_bytes = sizeof(fogrt_bvh_node) * s->node_count + sizeof(fogrt__prim) * (size_t)(s->tri_count + s->sph_count);
+    size_t bin_bytes = sizeof(fogrt_bvh_node) * s->node_count + sizeof(uint32_t) * (size_t)(s->tri_count + s->sph_count);
     uint32_t np = s->tri_count + s->sph_count;
 #ifdef HAVE_EMBREE
     emb e;
@@ -688,14 +687,14 @@ static void speed_scene(const char *name, const fogrt_scene *s, double bin_build
     }
     wide_build_s = median(wb, op->reps);
     printf("\n== %s: %u triangles, %u spheres ==\n", name, s->tri_count, s->sph_count);
-    printf("build   scene build (%s) %.4f s | wide collapse +%.4f s", op->fast_trace ? "fast" : "old", bin_build_s, wide_build_s);
+    printf("build   fogrt_scene_build %.4f s | of which the wide collapse %.4f s", bin_build_s, wide_build_s);
 #ifdef HAVE_EMBREE
     {
         double em = median(eb, op->reps);
-        printf(" | embree rtcCommitScene %.4f s | fogrt/embree: binary %.2f, binary+wide %.2f", em, bin_build_s / em, (bin_build_s + wide_build_s) / em);
+        printf(" | embree rtcCommitScene %.4f s | fogrt/embree %.2f", em, bin_build_s / em);
     }
 #endif
-    printf("\nmemory  binary %.1f B/tri (nodes %u x 32 + prims 40) | wide %.1f B/tri (%u nodes x %u + %u packets x %u)",
+    printf("\nmemory  binary tree %.1f B/tri (nodes %u x 32 + index 4; its packed primitives, 40 more, are made only for the binary layout) | wide %.1f B/tri (%u nodes x %u + %u packets x %u)",
            (double)bin_bytes / np, s->node_count, (double)fogrt__wbvh_bytes(&w) / np, w.node_count,
            (unsigned)sizeof(fogrt__wnode), w.tri_packets, (unsigned)sizeof(fogrt__wtri));
 #ifdef HAVE_EMBREE
@@ -734,34 +733,16 @@ static void speed_scene(const char *name, const fogrt_scene *s, double bin_build
 #endif
 }
 
-/* Rebuild a built scene's tree in place with fogrt__bvh_build (fast = false) or
-   fogrt__bvh_build_fast, through the same private steps fogrt_scene_build uses (bounds,
-   tree, packed primitives). Returns the seconds of the tree build alone, so the harness can
-   time both builders on the same input without a copy of fogrt_scene_build. */
-static double rebuild_tree(fogrt_scene *s, bool fast)
+/* The wide layout leaves out chapter 10's packed primitives (its packets hold their own
+   copy); the binary traversal this harness compares with needs them. */
+static void binary_prims(fogrt_scene *s)
 {
-    fogrt__build b;
     uint32_t n = s->tri_count + s->sph_count;
-    double t0, dt;
-    memset(&b, 0, sizeof b);
-    check(fogrt__resolve_build(s, NULL, &b.desc), "resolve_build");
-    if (n == 0) return 0.0;
-    b.box = (fogrt__aabb *)xmalloc(sizeof(fogrt__aabb) * (n + 1));
-    b.centroid = (fogrt__v3 *)xmalloc(sizeof(fogrt__v3) * (n + 1));
-    fogrt__bounds(s, &b, n);
-    b.nodes = s->nodes;
-    b.idx = s->prim_index;
-    t0 = wall();
-    if (fast) { if (!fogrt__bvh_build_fast(&b, n, &s->allocator)) { fprintf(stderr, "wide_dev: out of memory\n"); exit(1); } }
-    else fogrt__bvh_build(&b, n);
-    dt = wall() - t0;
-    s->node_count = b.node_count;
+    if (s->prims) return;
+    s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
+    if (!s->prims) { fprintf(stderr, "wide_dev: out of memory\n"); exit(1); }
     fogrt__pack_prims(s, n);
-    free(b.box); free(b.centroid);
-    return dt;
 }
-static bool g_fast_build;
-
 static fogrt_scene *built(fogrt_scene *s, double *build_s, int reps)
 {
     double t[31];
@@ -770,9 +751,9 @@ static fogrt_scene *built(fogrt_scene *s, double *build_s, int reps)
         double t0 = wall();
         check(fogrt_scene_build(s, NULL), "scene_build");
         t[r] = wall() - t0;
-        if (g_fast_build) rebuild_tree(s, true);
     }
     *build_s = median(t, reps);
+    binary_prims(s);
     return s;
 }
 
@@ -783,16 +764,16 @@ int main(int argc, char **argv)
     fogrt_scene *bunny, *big = NULL;
     double bunny_build = 0.0, big_build = 0.0;
     bool ok = true;
-    op.reps = 5; op.rays = 1u << 19; op.check = op.speed = op.big = true; op.fast_trace = true;
+    op.reps = 5; op.rays = 1u << 19; op.check = op.speed = op.big = true;
     for (i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--check-only")) op.speed = false;
         else if (!strcmp(argv[i], "--speed-only")) op.check = false;
+        else if (!strcmp(argv[i], "--build-only")) op.check = op.speed = false;
         else if (!strcmp(argv[i], "--no-big")) op.big = false;
-        else if (!strcmp(argv[i], "--old-build")) op.fast_trace = false;
         else if (!strcmp(argv[i], "--hugepages")) { g_wide_alloc.alloc_fn = huge_alloc; g_wide_alloc.free_fn = huge_free; }
         else if (!strcmp(argv[i], "--reps") && i + 1 < argc) op.reps = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--rays") && i + 1 < argc) op.rays = (size_t)atol(argv[++i]);
-        else { fprintf(stderr, "wide_dev: unknown argument '%s' (use --check-only, --speed-only, --no-big, --hugepages, --reps N, --rays N)\n", argv[i]); return 2; }
+        else { fprintf(stderr, "wide_dev: unknown argument '%s' (use --check-only, --speed-only, --build-only, --no-big, --hugepages, --reps N, --rays N)\n", argv[i]); return 2; }
     }
     if (op.reps < 1 || op.reps > 31 || op.rays < 1000) { fprintf(stderr, "wide_dev: --reps 1..31, --rays >= 1000\n"); return 2; }
 #ifdef FOGRT_WBVH_SSE
@@ -806,13 +787,7 @@ int main(int argc, char **argv)
     if (op.check) {
         size_t total = 0;
         uint64_t seed;
-        int pass;
-        for (pass = 0; pass < 2; ++pass) {
-        g_fast_build = pass == 1;
-        printf("correctness, %s: wide vs binary traversal with the slack (closest hit: same miss or t within 1 ulp and same prim; any hit: same)\n",
-               pass ? "trees from fogrt__bvh_build_fast" : "trees from fogrt_scene_build");
-        if (bunny) built(bunny, &bunny_build, 1);
-        if (big) built(big, &big_build, 1);
+        printf("correctness: wide vs binary traversal with the slack (closest hit: same miss or t within 1 ulp and same prim; any hit: same)\n");
         if (bunny) ok &= check_scene("CS184 bunny", bunny, 100000, 11, &total);
         for (seed = 1; seed <= 6; ++seed) {
             char name[64];
@@ -829,35 +804,18 @@ int main(int argc, char **argv)
             fogrt_scene_destroy(s);
         }
         if (big) ok &= check_scene("1M-triangle lumpy sphere", big, 30000, 400, &total);
-        }
-        g_fast_build = false;
         printf("correctness: %lu rays in all, %s\n", (unsigned long)total, ok ? "all agree" : "DISAGREEMENTS (see above)");
     }
     if (op.speed) {
         int sc;
         for (sc = 0; sc < 2; ++sc) {
             fogrt_scene *s = sc ? big : bunny;
-            double to[31], tf[31];
+            double to[31];
             int r;
             if (!s) continue;
-            double tb[31], tfa[31], tfast[31];
-            for (r = 0; r < op.reps; ++r) {          /* old and fast tree build, alternating */
-                g_fast_build = false; built(s, &to[r], 1);
-                tb[r] = rebuild_tree(s, false);
-                tfa[r] = rebuild_tree(s, true);
-                tfast[r] = to[r] - tb[r] + tfa[r];     /* fogrt_scene_build with the fast tree */
-            }
-            {
-                double sah_fast = fogrt_bvh_sah_cost(s), sah_old;
-                rebuild_tree(s, false);
-                sah_old = fogrt_bvh_sah_cost(s);
-                if (op.fast_trace) rebuild_tree(s, true);
-                printf("\nbuild   fogrt_scene_build %.4f s, of which fogrt__bvh_build %.4f s (SAH cost %.2f) | fogrt__bvh_build_fast %.4f s (SAH cost %.2f), "
-                       "so the scene build with it %.4f s; medians of %d, alternating",
-                       median(to, op.reps), median(tb, op.reps), sah_old, median(tfa, op.reps), sah_fast, median(tfast, op.reps), op.reps);
-                for (r = 0; r < op.reps; ++r) tf[r] = tfast[r];
-            }
-            speed_scene(sc ? "1M-triangle lumpy sphere" : "CS184 bunny", s, median(op.fast_trace ? tf : to, op.reps), &op);
+            for (r = 0; r < op.reps; ++r) built(s, &to[r], 1);
+            printf("\nbuild   SAH cost %.2f, %u binary nodes", fogrt_bvh_sah_cost(s), s->node_count);
+            speed_scene(sc ? "1M-triangle lumpy sphere" : "CS184 bunny", s, median(to, op.reps), &op);
         }
         printf("\nthe timed passes got %.0f%% of a CPU (below ~90%%: the machine is busy, figures too low)\n",
                100.0 * g_cpu_total / (g_wall_total > 0 ? g_wall_total : 1));
