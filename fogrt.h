@@ -1994,7 +1994,9 @@ FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
     b += (size_t)s->sph_count * (sizeof(fogrt__v3) + sizeof(float) + sizeof(uint32_t));
     if (s->env_map) b += sizeof(float) * 3 * (size_t)s->env_w * (size_t)s->env_h;
     if (s->env_cdf) b += sizeof(float) * ((size_t)s->env_w + 1) * (size_t)s->env_h;
-    if (s->nodes) b += sizeof(fogrt_bvh_node) * s->node_count + p * (sizeof(uint32_t) + sizeof(fogrt__prim));
+    if (s->nodes) b += sizeof(fogrt_bvh_node) * s->node_count + p * sizeof(uint32_t);
+    if (s->prims) b += p * sizeof(fogrt__prim);         /* chapter 10's primitives: the binary layout only */
+    if (s->light_pick) b += sizeof(float) * (s->light_count + s->area_light_count + (s->env_map ? 1u : 0u));
     for (i = 0; s->area_lights && i < s->area_light_count; ++i) lit += s->area_lights[i].count;
     if (s->area_lights) b += sizeof(fogrt__area_light) * s->area_light_count + lit * (sizeof(uint32_t) + sizeof(float));
     if (s->prim_light) b += sizeof(uint32_t) * p;
