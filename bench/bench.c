@@ -573,7 +573,8 @@ typedef struct bench_options {
 
 /* Bytes per triangle of the built scene. fogrt: fogrt_scene_get_memory split into the
    geometry (the same getter before the build: what was added), the binary tree (nodes,
-   prim_index and the packed primitives), the wide tree, and the rest (light and environment
+   prim_index, and the packed primitives when the binary tree is traced), the wide tree, and
+   the rest (light and environment
    tables); then what the counting allocator saw: held after the build (spare capacity
    included) and the most held at once during it. Embree: the geometry buffers set before
    rtcCommitScene, and the bytes rtcCommitScene added (kept after it, and at its peak). */
@@ -581,8 +582,8 @@ static void print_memory(const fogrt_scene *scene, size_t geometry_bytes, size_t
                          const void *embree_scene)
 {
     double tris = (double)(scene->tri_count + scene->sph_count), total = (double)fogrt_scene_get_memory(scene);
-    double binary = (double)scene->node_count * sizeof(fogrt_bvh_node)
-                  + tris * (double)(sizeof(uint32_t) + sizeof(fogrt__prim));
+    double binary = (double)scene->node_count * sizeof(fogrt_bvh_node) + tris * (double)sizeof(uint32_t)
+                  + (scene->prims ? tris * (double)sizeof(fogrt__prim) : 0.0);   /* the binary layout only */
     double wide = scene->wide ? (double)fogrt__wbvh_bytes(scene->wide) : 0.0;
     double geometry = (double)geometry_bytes;
     if (tris < 1.0) tris = 1.0;

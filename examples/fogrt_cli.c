@@ -181,7 +181,7 @@ static void usage(FILE *f)
         "                   collisions, as in the paper (default on)\n"
         "  --lights L       all: every light sampled at every vertex, as CS184 does; power:\n"
         "                   one light per vertex, chosen in proportion to its power (default all)\n"
-        "  --glow on|off    in fog, half of the scattered directions aim at the glow around\n"
+        "  --glow on|off    in fog, some scattered directions (up to half) aim at the glow around\n"
         "                   point and spot lights (needs --equiangular on) (default on)\n"
         "  --mis on|off     multiple importance sampling of light and BSDF/phase samples; off:\n"
         "                   light sampling alone (default on)\n"

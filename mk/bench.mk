@@ -9,7 +9,7 @@
 #     (otherwise bench.c uses a synthetic mesh of the same size);
 #   - Embree 3 for comparison (rtcIntersect1, rtcOccluded1, its memory monitor): when
 #     /usr/include/embree3/rtcore.h exists (Debian/Ubuntu: apt-get install libembree-dev).
-.PHONY: bench callgrind
+.PHONY: bench callgrind bench-levers
 
 BENCH_EMBREE_HEADER := /usr/include/embree3/rtcore.h
 BENCH_HAVE_EMBREE   := $(wildcard $(BENCH_EMBREE_HEADER))
@@ -31,3 +31,13 @@ bench: $(BUILD)/bench/fogrt_bench
 # No OpenMP here on purpose: one thread, a deterministic instruction count.
 callgrind:
 	CC='$(CC)' CFLAGS='$(CFLAGS)' BUILD='$(BUILD)' sh bench/callgrind.sh
+
+# The estimator levers of docs/benchmarks.md in work, not wall time (one thread; the
+# spot-lit part needs $(SHARED)/scenes; a few minutes): lights by power, the glow.
+LEVERS_ARGS ?=
+$(BUILD)/bench/levers: bench/levers.c fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | $(BUILD)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(BENCH_DEFS) -o $@ bench/levers.c $(LDLIBS)
+
+bench-levers: $(BUILD)/bench/levers
+	./$(BUILD)/bench/levers $(LEVERS_ARGS)
