@@ -3121,6 +3121,31 @@ FOGRT__HOT bool fogrt__wbvh_leaf(const fogrt_scene *s, const fogrt__wbvh *w, uin
    the first hit found; hit is written only on a hit). Test the current node's W boxes, visit
    the nearest child hit next and push the others, farthest first, with their entry
    distances; a popped child whose entry lies beyond the closest hit found so far is skipped. */
+/* More than one lane of node n hit (first, and the lanes in mask m): push all but one and
+   return the lane to descend into. For the closest hit the lanes are sorted by entry
+   distance (insertion sort, stable: on equal distance the left child first, as
+   fogrt__traverse orders them) and the nearest is descended first; for any hit the order
+   does not matter and the sort is skipped. */
+FOGRT__PRIVATE unsigned fogrt__wbvh_push(const fogrt__wbvh *w, const fogrt__wnode *n, const float *t, unsigned first,
+                                         unsigned m, bool any_hit, uint32_t *stack_ref, uint32_t *stack_cnt,
+                                         float *stack_t, uint32_t *sp)
+{
+    unsigned lane[FOGRT__WBVH_W], k = 1, i, j;
+    lane[0] = first;
+    for (; m; m &= m - 1) {
+        unsigned l = fogrt__wbvh_ctz(m);
+        for (i = k; !any_hit && i > 0 && t[lane[i - 1]] > t[l]; --i) lane[i] = lane[i - 1];
+        lane[i] = l;
+        ++k;
+    }
+    for (j = k - 1; j > 0; --j) {                        /* push all but the nearest */
+        stack_ref[*sp] = n->child[lane[j]]; stack_cnt[*sp] = n->count[lane[j]];
+        stack_t[(*sp)++] = t[lane[j]];
+        FOGRT__WBVH_PREFETCH(w, n->child[lane[j]], n->count[lane[j]]);
+    }
+    (void)w;
+    return lane[0];
+}
 FOGRT__PRIVATE bool fogrt__wbvh_traverse(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
                                          float tmin, float tmax, fogrt_hit *hit, bool any_hit)
 {
@@ -3145,28 +3170,9 @@ FOGRT__PRIVATE bool fogrt__wbvh_traverse(const fogrt_scene *s, const fogrt__wbvh
             if (m) {
                 unsigned first = fogrt__wbvh_ctz(m);
                 m &= m - 1;
-                if (!m) {                                /* one child hit: the common case */
-                    ref = n->child[first]; cnt = n->count[first];
-                    continue;
-                } else {
-                    /* Sort the lanes hit by entry distance (insertion sort, stable: on equal
-                       distance the left child first, as fogrt__traverse orders them). */
-                    unsigned lane[FOGRT__WBVH_W], k = 1, i, j;
-                    lane[0] = first;
-                    for (; m; m &= m - 1) {
-                        unsigned l = fogrt__wbvh_ctz(m);
-                        for (i = k; i > 0 && t[lane[i - 1]] > t[l]; --i) lane[i] = lane[i - 1];
-                        lane[i] = l;
-                        ++k;
-                    }
-                    for (j = k - 1; j > 0; --j) {        /* push all but the nearest */
-                        stack_ref[sp] = n->child[lane[j]]; stack_cnt[sp] = n->count[lane[j]];
-                        stack_t[sp++] = t[lane[j]];
-                        FOGRT__WBVH_PREFETCH(w, n->child[lane[j]], n->count[lane[j]]);
-                    }
-                    ref = n->child[lane[0]]; cnt = n->count[lane[0]];
-                    continue;
-                }
+                if (m) first = fogrt__wbvh_push(w, n, t, first, m, any_hit, stack_ref, stack_cnt, stack_t, &sp);
+                ref = n->child[first]; cnt = n->count[first];   /* one child hit: the common case */
+                continue;
             }
         } else if (fogrt__wbvh_leaf(s, w, ref, cnt, o, d, tmin, &tmax, hit, any_hit)) {
             found = true;
