@@ -3407,16 +3407,14 @@ FOGRT__PRIVATE uint32_t fogrt__features(const fogrt_scene *s)
 /* The environment map's sampling tables: the weight of pixel (i, j) is its luminance times
    sin(theta) at the row's centre (the solid angle a row covers); per row a CDF over its
    columns, then a CDF over the rows. */
-FOGRT__PRIVATE bool fogrt__build_light_pick(fogrt_scene *s);
-/* The light tables: the environment map's CDFs (rows, and columns within each row), then
-   the light list's CDF by power (chapter 12). */
+/* The environment map's CDFs: rows, and columns within each row. */
 FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s)
 {
     int i, j, w = s->env_w, h = s->env_h;
     double total = 0.0;
     float *rows;
     s->env_total = 0.0;
-    if (!s->env_map) return fogrt__build_light_pick(s);
+    if (!s->env_map) return true;
     s->env_cdf = (float *)fogrt__alloc(&s->allocator, sizeof(float) * ((size_t)w * (size_t)h + (size_t)h));
     if (!s->env_cdf) return false;
     rows = s->env_cdf + (size_t)w * (size_t)h;
@@ -3436,16 +3434,12 @@ FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s)
     for (j = 0; j < h; ++j) rows[j] = total > 0.0 ? (float)((double)rows[j] / total) : (float)(j + 1) / (float)h;
     rows[h - 1] = 1.0f;
     s->env_total = total;
-    return fogrt__build_light_pick(s);
+    return true;
 }
 /* Where the fog is: the medium's box, or with an environment light and no box the box of
-   the geometry (fog filling all space would hide the sky), or everywhere. With point or
-   spot lights in it, also the table of HG per unit angle (chapter 5) for their sampling. */
+   the geometry (fog filling all space would hide the sky), or everywhere. */
 FOGRT__PRIVATE void fogrt__fog_bounds(fogrt_scene *s, uint32_t n)
 {
-#ifndef FOGRT_NO_MEDIUM
-    if ((s->features & FOGRT_FEATURE_MEDIUM) && s->light_count > 0) fogrt__hg_table_build(&s->hg, s->medium.g);
-#endif
     s->fog_bounded = s->medium.bounded;
     s->fog_lo = s->medium.bounds_min; s->fog_hi = s->medium.bounds_max;
     if (s->medium.bounded || !(s->features & FOGRT_FEATURE_MEDIUM) || !s->has_env || n == 0) return;
@@ -3513,6 +3507,17 @@ FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d,
     fogrt__free(&s->allocator, b.rec);
     return ok;
 }
+/* The sampling tables, once the geometry's box and the features are known: the light list's
+   CDF by power and the glow's share (chapter 12), and with point or spot lights in fog the
+   table of HG per unit angle (chapter 5). */
+FOGRT__PRIVATE bool fogrt__build_light_pick(fogrt_scene *s);
+FOGRT__PRIVATE bool fogrt__build_sampling(fogrt_scene *s)
+{
+#ifndef FOGRT_NO_MEDIUM
+    if ((s->features & FOGRT_FEATURE_MEDIUM) && s->light_count > 0) fogrt__hg_table_build(&s->hg, s->medium.g);
+#endif
+    return fogrt__build_light_pick(s);
+}
 FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
 {
     fogrt_build_desc d;
@@ -3530,6 +3535,10 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
     }
     s->features = fogrt__features(s);
     fogrt__fog_bounds(s, n);
+    if (!fogrt__build_sampling(s)) {
+        fogrt__free_built(s);
+        return FOGRT_RESULT_OUT_OF_MEMORY;
+    }
     if (s->area_light_count == 0 && s->light_count == 0 && !s->has_env)
         fogrt__log(s, FOGRT_LOG_WARNING, "scene: nothing emits light (no light, emissive material or environment): every image will be black");
     s->built = true;
@@ -3580,6 +3589,7 @@ typedef struct fogrt__vertex {
     const fogrt_material_desc *m;
     int glow_n;                /* lamps whose glow the next direction may aim at (14 d') */
     uint32_t glow[FOGRT__GLOW_MAX];
+    fogrt__v3 glow_dir[FOGRT__GLOW_MAX];   /* unit, from the vertex to each of them */
 } fogrt__vertex;
 
 /* The state of a path as the integrators of chapter 14 follow it. */
@@ -3883,25 +3893,8 @@ FOGRT__PRIVATE uint32_t fogrt__light_total(const fogrt_scene *s)
 /* Choosing lights by power (render desc light_by_power): each light's radiant flux,
    estimated as luminance x emitting area x pi for an area light, intensity x the solid
    angle it lights for a point or spot light, and for the environment map its mean radiance
-   x pi x the sphere around the geometry. The table is the CDF of these over the light list
-   (uniform when all are 0). */
-FOGRT__PRIVATE float fogrt__geometry_radius(const fogrt_scene *s)
-{
-    fogrt__v3 lo = fogrt__v(FLT_MAX, FLT_MAX, FLT_MAX), hi = fogrt__neg(lo), c;
-    uint32_t i;
-    for (i = 0; i < 3 * s->tri_count; ++i) {
-        c = s->tri_v[i];
-        lo = fogrt__v(FOGRT__MIN(lo.x, c.x), FOGRT__MIN(lo.y, c.y), FOGRT__MIN(lo.z, c.z));
-        hi = fogrt__v(FOGRT__MAX(hi.x, c.x), FOGRT__MAX(hi.y, c.y), FOGRT__MAX(hi.z, c.z));
-    }
-    for (i = 0; i < s->sph_count; ++i) {
-        float r = s->sph_r[i];
-        c = s->sph_c[i];
-        lo = fogrt__v(FOGRT__MIN(lo.x, c.x - r), FOGRT__MIN(lo.y, c.y - r), FOGRT__MIN(lo.z, c.z - r));
-        hi = fogrt__v(FOGRT__MAX(hi.x, c.x + r), FOGRT__MAX(hi.y, c.y + r), FOGRT__MAX(hi.z, c.z + r));
-    }
-    return hi.x >= lo.x ? FOGRT__MAX(0.5f * fogrt__length(fogrt__sub(hi, lo)), 1e-6f) : 1.0f;
-}
+   x pi x the sphere around the geometry's box. The table is the CDF of these over the light
+   list (uniform when all are 0). */
 FOGRT__PRIVATE float fogrt__light_power(const fogrt_scene *s, uint32_t i, float radius)
 {
     if (i < s->light_count) {
@@ -3922,20 +3915,23 @@ FOGRT__PRIVATE float fogrt__light_power(const fogrt_scene *s, uint32_t i, float 
 FOGRT__PRIVATE bool fogrt__build_light_pick(fogrt_scene *s)
 {
     uint32_t i, n = fogrt__light_total(s);
-    double total = 0.0, run = 0.0, lamps = 0.0;
-    float radius = s->env_map ? fogrt__geometry_radius(s) : 1.0f;
+    double total = 0.0, lamps = 0.0, run = 0.0;
+    float radius = FOGRT__MAX(0.5f * fogrt__length(fogrt__sub(s->bmax, s->bmin)), 1e-6f);
     s->glow_share = 0.5f;
     if (n < 2) return true;
     s->light_pick = (float *)fogrt__alloc(&s->allocator, sizeof(float) * n);
     if (!s->light_pick) return false;
-    for (i = 0; i < n; ++i) total += (double)FOGRT__MAX(fogrt__light_power(s, i, radius), 0.0f);
-    for (i = 0; i < s->light_count; ++i) lamps += (double)FOGRT__MAX(fogrt__light_power(s, i, radius), 0.0f);
-    if (total > 0.0) s->glow_share = (float)(0.5 * lamps / total);   /* the lamps' share of the power */
+    for (i = 0; i < n; ++i) {                            /* the powers, then their running sum */
+        s->light_pick[i] = FOGRT__MAX(fogrt__light_power(s, i, radius), 0.0f);
+        total += (double)s->light_pick[i];
+        if (i < s->light_count) lamps += (double)s->light_pick[i];
+    }
     for (i = 0; i < n; ++i) {
-        run += total > 0.0 ? (double)FOGRT__MAX(fogrt__light_power(s, i, radius), 0.0f) : 1.0;
+        run += total > 0.0 ? (double)s->light_pick[i] : 1.0;
         s->light_pick[i] = (float)(run / (total > 0.0 ? total : (double)n));
     }
     s->light_pick[n - 1] = 1.0f;
+    if (total > 0.0) s->glow_share = (float)(0.5 * lamps / total);   /* the lamps' share of the power */
     return true;
 }
 FOGRT__PRIVATE int fogrt__light_sample_count(const fogrt_scene *s, const fogrt__settings *st, uint32_t i)
@@ -3965,8 +3961,9 @@ FOGRT__PRIVATE void fogrt__glow_setup(const fogrt_scene *s, const fogrt__setting
     if (!st->glow || !scattering || !v->in_medium || !(s->medium.sigma_t > 0.0f) || !(s->glow_share > 0.0f)) return;
     for (i = 0; i < s->light_count && v->glow_n < FOGRT__GLOW_MAX; ++i) {
         const fogrt_light_desc *l = &s->lights[i];
-        fogrt__v3 w = fogrt__sub(v->p, l->position);
+        fogrt__v3 w = fogrt__sub(l->position, v->p);
         if (!(fogrt__dot(w, w) > 0.0f)) continue;
+        v->glow_dir[v->glow_n] = fogrt__normalize(w);
         v->glow[v->glow_n++] = i;
     }
 }
@@ -3980,7 +3977,7 @@ FOGRT__PRIVATE float fogrt__glow_mix(const fogrt_scene *s, const fogrt__vertex *
     int k;
 #ifndef FOGRT_NO_MEDIUM
     for (k = 0; k < v->glow_n; ++k)
-        sum += fogrt__glow_hg_pdf(&s->hg, fogrt__normalize(fogrt__sub(s->lights[v->glow[k]].position, v->p)), wi);
+        sum += fogrt__glow_hg_pdf(&s->hg, v->glow_dir[k], wi);
 #else
     (void)s; (void)wi; (void)k;
 #endif
@@ -4504,7 +4501,7 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
     if (glow) {
         int k = FOGRT__MIN((int)(u[0] / s->glow_share * (float)P->v.glow_n), P->v.glow_n - 1);
         light = P->v.glow[k];
-        wi = fogrt__sample_glow_hg(&s->hg, fogrt__normalize(fogrt__sub(s->lights[light].position, P->v.p)), u[1], u[2]);
+        wi = fogrt__sample_glow_hg(&s->hg, P->v.glow_dir[k], u[1], u[2]);
     } else if (P->v.is_medium) {
         wi = fogrt_sample_hg(s->medium.g, P->v.wo, u[1], u[2], NULL);
     } else {
@@ -4521,6 +4518,7 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
     P->rr_scale = pdf / pdf_b;                           /* > 0: f > 0 needs pdf_b > 0 */
     P->o = P->v.is_medium ? P->v.p : fogrt__offset(s, P->v.p, P->v.ng, wi);
     FOGRT__HOOK(fogrt__trace_glow(st, P, u, glow, light, pdf_b, pdf, fogrt__scale(f, 1.0f / pdf)));
+    (void)light;                                         /* read by the trace hook only */
     return true;
 }
 #endif
