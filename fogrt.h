@@ -57,7 +57,7 @@
     FOGRT_WBVH_WIDTH       children per node of the wide BVH, 4 or 8 (8)
     FOGRT_WBVH_LEAF        largest binary subtree the wide BVH makes one leaf, 0..8 (4)
     FOGRT_WBVH_NO_SIMD     plain C99 loops for the wide BVH instead of SSE2 (same results)
-    FOGRT_WBVH_MIN_PRIMS   the default layout is wide from this many primitives (16)
+    FOGRT_WBVH_MIN_PRIMS   the default layout is wide from this many primitives (1: always)
     FOGRT_MAX_PATH_VERTICES  hard cap on path vertices, a safety net behind Russian roulette
                            (default 100000; never reached in practice, see Russian roulette)
 
@@ -367,14 +367,15 @@ typedef enum fogrt_bvh_heuristic {
                      middle of the centroid bounds)
      c_trav, c_int   traversal and intersection cost of the SAH, 1 and 1
      max_leaf_size   4 (>= 1): largest leaf; a node is also split when the SAH prefers it
-     layout          default: wide from 16 primitives (where it pays: random rays on random
-                     triangles, one thread, wide/binary 1.00 at 8, 1.42 at 32, 1.6 to 1.9 from
-                     128 up), binary below; wide: the binary tree collapsed to 8 children per
-                     node for tracing; binary: traced as built. fogrt_scene_get_bvh and
+     layout          default: wide (it pays at every size: random rays on random triangles,
+                     one thread, wide/binary 1.00 at 8, 1.42 at 32, 1.6 to 1.9 from 128 up;
+                     renders of the 14-primitive cross-check boxes 7% faster); wide: the
+                     binary tree collapsed to 8 children per node for tracing; binary:
+                     traced as built. fogrt_scene_get_bvh and
                      fogrt_bvh_sah_cost describe the binary tree.
      resolved        set by fogrt_build_defaults(): the fields hold their real values      */
 typedef enum fogrt_bvh_layout {
-    FOGRT_BVH_LAYOUT_DEFAULT = 0,   /* wide from FOGRT_WBVH_MIN_PRIMS (16) primitives, else binary */
+    FOGRT_BVH_LAYOUT_DEFAULT = 0,   /* wide from FOGRT_WBVH_MIN_PRIMS (1) primitives, else binary */
     FOGRT_BVH_LAYOUT_BINARY,        /* trace the binary tree of the build (chapter 10) */
     FOGRT_BVH_LAYOUT_WIDE,          /* collapse it to 8 children per node (chapter 10b): faster */
     FOGRT_BVH_LAYOUT_NUM,
@@ -1000,12 +1001,17 @@ FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x)
    sigma_t: pdf(t) = sigma_t exp(-sigma_t t). Inverting its CDF 1 - exp(-sigma_t t) = u gives
    t = -ln(1 - u) / sigma_t; log1p keeps it accurate for small u. u < 1 always (the RNG never
    returns 1), so t is finite; the tail beyond 16.6 mean free paths is cut (bias ~ 6e-8).
+   From u = 2^-8 on, logf(1 - u) is used instead: it costs a third of log1pf (which took 8%
+   of a fog render's time), and 1 - u is exact for the renderer's uniforms (multiples of
+   2^-24) and for every u >= 1/2; for other u below 1/2 its rounding moves t by at most
+   2^-17 relative.
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_NO_MEDIUM
 FOGRT__PUBLIC float fogrt_sample_exponential(float sigma_t, float u)
 {
     if (!(sigma_t > 0.0f)) return INFINITY;            /* no medium: never collide */
-    return -log1pf(-FOGRT__MIN(u, FOGRT__ONE_MINUS_EPS)) / sigma_t;
+    u = FOGRT__MIN(u, FOGRT__ONE_MINUS_EPS);
+    return -(u < 0.00390625f ? log1pf(-u) : logf(1.0f - u)) / sigma_t;
 }
 FOGRT__PUBLIC float fogrt_exponential_pdf(float sigma_t, float t)
 {
@@ -1165,15 +1171,32 @@ FOGRT__PRIVATE void fogrt__hg_table_build(fogrt__hg_table *t, float g)
     fogrt__hgt_index(t->c, t->c_start);
     fogrt__hgt_index(t->k, t->k_start);
 }
-/* The bin holding angle x: from the warp (in float), then one step to mend the rounding. */
+/* ln(x) for x >= 1, to 1.2e-5: the exponent from the float's bits, a polynomial for the
+   mantissa. A bin is 0.008 or more wide in ln units, so this only guesses the bin, and the
+   exact edges decide (fogrt__hgt_bin); a library log1pf here cost a tenth of a spot-lit
+   render's time. */
+FOGRT__HOT float fogrt__fast_log(float x)
+{
+    uint32_t bits;
+    float m;
+    int e;
+    memcpy(&bits, &x, sizeof bits);
+    e = (int)((bits >> 23) & 255u) - 127;
+    bits = (bits & 0x007FFFFFu) | 0x3F800000u;            /* the mantissa, in [1, 2) */
+    memcpy(&m, &bits, sizeof m);
+    m -= 1.0f;
+    return (float)e * 0.69314718f +
+           m * (0.99949556f + m * (-0.49190896f + m * (0.28947478f + m * (-0.13606275f + m * 0.03215845f))));
+}
+/* The bin holding angle x: guessed from the warp, then moved until the exact edges hold x. */
 FOGRT__PRIVATE int fogrt__hgt_bin(const fogrt__hg_table *t, double x)
 {
     double d = t->back ? FOGRT__PI_D - x : x;
-    int j = (int)(log1pf((float)(FOGRT__MAX(d, 0.0) / t->x0)) * (float)(t->s * FOGRT__HGT_N)), i;
+    int j = (int)(fogrt__fast_log(1.0f + (float)(FOGRT__MAX(d, 0.0) / t->x0)) * (float)(t->s * FOGRT__HGT_N)), i;
     j = FOGRT__CLAMP(j, 0, FOGRT__HGT_N - 1);
     i = t->back ? FOGRT__HGT_N - 1 - j : j;
-    if (i > 0 && x < t->edge[i]) --i;
-    else if (i < FOGRT__HGT_N - 1 && x >= t->edge[i + 1]) ++i;
+    while (i > 0 && x < t->edge[i]) --i;
+    while (i < FOGRT__HGT_N - 1 && x >= t->edge[i + 1]) ++i;
     return i;
 }
 /* A cumulative cum over the edges (C or K): its value at x and the density there, and its
@@ -2662,7 +2685,7 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
    loops, which compute exactly the same values lane by lane.
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_WBVH_MIN_PRIMS
-#define FOGRT_WBVH_MIN_PRIMS 16   /* fewer primitives: the binary tree is as fast (see fogrt_build_desc) */
+#define FOGRT_WBVH_MIN_PRIMS 1    /* wide at every size: see fogrt_build_desc (an empty scene stays binary) */
 #endif
 #ifndef FOGRT_WBVH_WIDTH
 #define FOGRT_WBVH_WIDTH 8        /* children per wide node: 4 or 8 (8 measured faster) */
