@@ -92,7 +92,7 @@ typedef struct cli_options {
     bool print_camera;
     const char *log_path;               /* --log */
     const char *reference;              /* --reference */
-    bool equiangular, mis, glow;        /* --equiangular, --mis, --glow */
+    bool equiangular, mis, glow, expected; /* --equiangular, --mis, --glow, --expected-emission */
     bool by_power;                      /* --lights power */
     float lens_radius; bool lens_set;   /* -b */
     float focal; bool focal_set;        /* -d */
@@ -183,6 +183,9 @@ static void usage(FILE *f)
         "                   one light per vertex, chosen in proportion to its power (default all)\n"
         "  --glow on|off    in fog, some scattered directions (up to half) aim at the glow around\n"
         "                   point and spot lights (needs --equiangular on) (default on)\n"
+        "  --expected-emission on|off  in fog, a ray adds the light of the lamp it reaches times\n"
+        "                   the fog's transmittance, whether or not it scatters first; off: the\n"
+        "                   paper's way, the lamp's light only when the ray gets there (default on)\n"
         "  --mis on|off     multiple importance sampling of light and BSDF/phase samples; off:\n"
         "                   light sampling alone (default on)\n"
         "  --fresnel F      schlick or exact (default schlick)\n"
@@ -329,7 +332,7 @@ static int parse_args(int argc, char **argv, cli_options *o)
     memset(o, 0, sizeof *o);
     o->spp = 64; o->light_samples = 1; o->threads = 0; o->max_depth = 64; o->accumulate = 1;
     o->width = 800; o->height = 600; o->output = "out.png";
-    o->equiangular = true; o->mis = true; o->glow = true;
+    o->equiangular = true; o->mis = true; o->glow = true; o->expected = true;
     o->integrator = FOGRT_INTEGRATOR_PATH; o->fresnel = FOGRT_FRESNEL_SCHLICK; o->bvh = FOGRT_BVH_SAH;
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i];
@@ -379,6 +382,7 @@ static int parse_args(int argc, char **argv, cli_options *o)
             else return bad_flag(a, "must be all or power, got '%s'", argv[i]);
         }
         else if (strcmp(a, "--glow") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->glow)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
+        else if (strcmp(a, "--expected-emission") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->expected)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--equiangular") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->equiangular)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--mis") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->mis)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "-b") == 0) { NEED(1); if (!parse_float(argv[++i], &o->lens_radius) || o->lens_radius < 0) return bad_flag(a, "lens radius must be a number >= 0, got '%s'", argv[i]); o->lens_set = true; }
@@ -496,6 +500,7 @@ static void fill_render_desc(const cli_options *o, int threads, fogrt_render_des
     rd->mis = o->mis;
     rd->equiangular = o->equiangular;
     rd->glow = o->glow;
+    rd->expected_emission = o->expected;
     rd->light_by_power = o->by_power;
     rd->seed = o->seed;
     rd->threads = threads;

@@ -195,6 +195,10 @@ static fogrt_render_desc base_desc(bool no_nee, bool no_mis)
     rd.nee = !(no_nee);
     rd.mis = !(no_mis);
     rd.seed = 1234;
+    /* The paper's estimator: a ray counts the emitter it reaches only when its free flight
+       gets there (then every no-NEE furnace path is exactly 1, as the zero-variance test
+       checks). fogrt's default, expected_emission, has its own furnace test below. */
+    rd.expected_emission = false;
     return rd;
 }
 
@@ -338,6 +342,38 @@ static void test_white_furnace_light_samples(void)
     s = render_stats(scene, &rd, 16, 16, 32, 1.0, NULL);
     assert_mean(&s, 1.0, 0.1, -1.0, "light_samples 4, no MIS");
     fogrt_scene_destroy(scene);
+}
+
+/* The default estimator, expected_emission: every ray adds T Le of the wall it reaches,
+   whether or not it collides first. Still exactly 1 on average in the furnace (but no longer
+   per path: a path that scatters k times adds k + 1 partial terms), in fog of every
+   thickness and with each way of finding the light. Fails if T is not the probability of
+   reaching the wall (e.g. the fog's span is measured to the wrong end), if the collision
+   branch adds the emission again, or if the emission uses the throughput after the
+   collision's albedo. */
+static void test_white_furnace_expected_emission(void)
+{
+    static const furnace_case cases[] = {
+        { 0.3f, -0.7f, NO_NEE, 8, 8, 96, 0.03 },
+        { 1.0f,  0.0f, NO_NEE, 8, 8, 96, 0.03 },
+        { 3.0f,  0.4f, NO_NEE, 16, 16, 96, 0.03 },   /* thick: many partial terms per path */
+        { 1.0f,  0.0f, NEE_MIS, 8, 8, 96, 0.03 },
+        { 2.0f,  0.9f, NEE_MIS, 8, 8, 96, 0.03 },
+        { 0.3f,  0.5f, NEE_NO_MIS, 16, 16, 64, 0.1 },
+    };
+    int i;
+    for (i = 0; i < (int)(sizeof cases / sizeof cases[0]); ++i) {
+        const furnace_case *fc = &cases[i];
+        fogrt_scene *scene = make_furnace(0.0f, fc->sigma_t, v3(1, 1, 1), fc->g);
+        fogrt_render_desc rd = base_desc(fc->mode == NO_NEE, fc->mode == NEE_NO_MIS);
+        char what[160];
+        image_stats s;
+        rd.expected_emission = true;
+        snprintf(what, sizeof what, "expected emission, sigma_t %g g %g %s", fc->sigma_t, fc->g, mode_name(fc->mode));
+        s = render_stats(scene, &rd, fc->w, fc->h, fc->spp, 1.0, NULL);
+        assert_mean(&s, 1.0, fc->rel_tol, fc->mode == NEE_NO_MIS ? -1.0 : 0.3, what);
+        fogrt_scene_destroy(scene);
+    }
 }
 
 /* Absorbing fog (albedo < 1) must be darker than 1, never brighter, and darker for lower
@@ -595,6 +631,7 @@ int main(void)
     RUN_TEST(test_white_furnace_albedo_one);
     RUN_TEST(test_white_furnace_no_nee_zero_variance);
     RUN_TEST(test_white_furnace_light_samples);
+    RUN_TEST(test_white_furnace_expected_emission);
     RUN_TEST(test_absorbing_fog_is_darker);
     RUN_TEST(test_chromatic_albedo);
     RUN_TEST(test_depth_cap_darkens);

@@ -73,6 +73,46 @@ static void test_bounded_slab_transmittance(void)
     fogrt_scene_destroy(scene);
 }
 
+/* The same slab with expected_emission (the default): the sky a ray reaches counts T Le
+   whether or not the ray collides, so in absorbing fog every single sample is exactly the
+   transmittance; the paper's way (off) gives 0 or 1. Fails if the emission is weighted by
+   the transmittance of another span than the ray's (to the box's far side, or from 0
+   instead of the entry point), or if a collision still adds it in full. */
+static void test_expected_emission_through_slab(void)
+{
+    static const struct { float o[3], d[3], len; } rays[] = {
+        { { 0, 2, 0 },    { 0, -1, 0 },       1.0f },
+        { { 0, 2, 0 },    { 0.6f, -0.8f, 0 }, 1.25f },
+        { { 0, 0.5f, 0 }, { 0, 1, 0 },        0.5f },
+        { { 0, 3, 0 },    { 0, -1, 0 },       1.0f },     /* starts 2 above the slab */
+    };
+    const float sigma = 0.7f;
+    fogrt_scene *scene = sky_scene(sigma, 0.0f, 0.0f, v3(-50, 0, -50), v3(50, 1, 50), false);
+    fogrt_render_desc rd = fogrt_render_defaults();
+    int i, k, mode;
+    TEST_ASSERT_TRUE(rd.expected_emission);
+    for (mode = 0; mode < 2; ++mode)
+        for (i = 0; i < (int)(sizeof rays / sizeof rays[0]); ++i) {
+            fogrt_vec3 o = v3(rays[i].o[0], rays[i].o[1], rays[i].o[2]), d = v3(rays[i].d[0], rays[i].d[1], rays[i].d[2]);
+            float want = expf(-sigma * rays[i].len);
+            int zeros = 0, ones = 0;
+            fogrt_rng rng;
+            char msg[200];
+            rd.expected_emission = mode == 0;
+            fogrt_rng_seed(&rng, 41, (uint64_t)i);
+            for (k = 0; k < 2000; ++k) {
+                float y = fogrt_trace(scene, &rd, o, d, &rng, NULL).y;
+                snprintf(msg, sizeof msg, "ray %d, expected emission %s: sample %.9g, transmittance %.9g",
+                         i, mode == 0 ? "on" : "off", (double)y, (double)want);
+                if (mode == 0) TEST_ASSERT_TRUE_MESSAGE(fabsf(y - want) <= 1e-6f, msg);
+                else TEST_ASSERT_TRUE_MESSAGE(y == 0.0f || y == 1.0f, msg);
+                zeros += y == 0.0f; ones += y == 1.0f;
+            }
+            if (mode == 1) TEST_ASSERT_TRUE(zeros > 0 && ones > 0);    /* the paper's: both outcomes */
+        }
+    fogrt_scene_destroy(scene);
+}
+
 /* A white furnace in a box: fog of albedo 1 in [-1, 1]^3 under a white sky. Whatever
    happens in the box, every path ends in the sky with weight 1, so the mean is 1, with and
    without light sampling (the sky as a constant map is sampled by next-event estimation
@@ -775,6 +815,7 @@ int main(void)
     RUN_TEST(test_fog_shadow_behind_plate);
     RUN_TEST(test_open_fog_nee_agrees);
     RUN_TEST(test_bounded_slab_transmittance);
+    RUN_TEST(test_expected_emission_through_slab);
     RUN_TEST(test_bounded_furnace);
     return UNITY_END();
 }
