@@ -6,8 +6,11 @@
    fogrt_sample_exponential); if that comes before the surface, the path is absorbed there,
    otherwise it reaches the surface with its weight unchanged. On average a surface at
    distance d is therefore seen through T = exp(-sigma_t d) (eq. 7-8, fogrt_transmittance),
-   and shadow rays carry the same factor in closed form. The program checks both numbers,
-   then renders four densities.
+   and shadow rays carry the same factor in closed form. That yes-or-no arrival is the
+   paper's estimator (expected_emission = false here); fogrt's default instead adds the
+   lamp's light times T whether or not the ray collides first, the same mean without the
+   yes-or-no noise. The program checks the numbers, both ways, then renders four densities
+   (fogrt's way in the image, the paper's printed beside it).
    Usage: 05_free_flight [out.png [samples_per_pixel]]                                      */
 #define _POSIX_C_SOURCE 199309L
 #include <math.h>
@@ -41,9 +44,9 @@ int main(int argc, char **argv)
     for (k = 0; k < 4; ++k) {
         fogrt_scene *scene = tut_scene_create();
         fogrt_vec3 o, d, L;
-        double sum = 0.0, sum2 = 0.0, mean;
         uint64_t rays = 0;
         char label[64];
+        int way;
         tut_cornell_box(scene, 0.3f, 12.0f);
         tut_four_spheres(scene);
         tut_fog(scene, sigma[k], 0.0f, 0.0f);     /* albedo 0: the fog only absorbs */
@@ -52,13 +55,22 @@ int main(int argc, char **argv)
            mean of fogrt_trace must be Le T(1.5) (the lamp's radiance is 12). */
         o.x = 0.0f; o.y = 0.0f + 1e-3f; o.z = 0.0f;
         d.x = 0.0f; d.y = 1.0f; d.z = 0.0f;
-        fogrt_rng_seed(&rng, 7, (uint64_t)k);
         rd.max_depth = 0;                          /* emission only: just the attenuation */
-        for (i = 0; i < 100000; ++i) { L = fogrt_trace(scene, &rd, o, d, &rng, &rays); sum += L.x; sum2 += (double)L.x * L.x; }
-        mean = sum / 100000;
-        printf("sigma_t %.2f: ray into the lamp, mean radiance %.4f +- %.4f, Le T(1.498) = %.4f\n", sigma[k],
-               mean, sqrt(fmax(sum2 / 100000 - mean * mean, 0.0) / 100000), 12.0 * fogrt_transmittance(sigma[k], 1.498f));
+        for (way = 0; way < 2; ++way) {            /* the paper's, then fogrt's default */
+            double sum = 0.0, sum2 = 0.0, mean;
+            rd.expected_emission = way == 1;
+            fogrt_rng_seed(&rng, 7, (uint64_t)k);
+            for (i = 0; i < 100000; ++i) { L = fogrt_trace(scene, &rd, o, d, &rng, &rays); sum += L.x; sum2 += (double)L.x * L.x; }
+            mean = sum / 100000;
+            printf("sigma_t %.2f: ray into the lamp, %-17s mean radiance %.4f +- %.4f, Le T(1.498) = %.4f\n", sigma[k],
+                   way ? "fogrt's default:" : "paper's estimator:", mean, sqrt(fmax(sum2 / 100000 - mean * mean, 0.0) / 100000),
+                   12.0 * fogrt_transmittance(sigma[k], 1.498f));
+        }
         rd.max_depth = 64;
+        rd.expected_emission = false;
+        snprintf(label, sizeof label, "paper's, sigma_t %.2f", sigma[k]);
+        tut_render(scene, &rd, spp, label, NULL, k, 1.0f);
+        rd.expected_emission = true;
         snprintf(label, sizeof label, "absorbing fog, sigma_t %.2f", sigma[k]);
         tut_render(scene, &rd, spp, label, &strip, k, 1.0f);
         fogrt_scene_destroy(scene);
