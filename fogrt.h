@@ -57,6 +57,8 @@
     FOGRT_WBVH_WIDTH       children per node of the wide BVH, 4 or 8 (8)
     FOGRT_WBVH_LEAF        largest binary subtree the wide BVH makes one leaf, 0..8 (4)
     FOGRT_WBVH_NO_SIMD     plain C99 loops for the wide BVH instead of SSE2 (same results)
+    FOGRT_WBVH_NO_AVX2     no AVX2 path for the wide BVH (by default used when the processor
+                           has it: chosen at fogrt_scene_build on GCC/Clang x86-64; same results)
     FOGRT_WBVH_MIN_PRIMS   the default layout is wide from this many primitives (16)
     FOGRT_MAX_PATH_VERTICES  hard cap on path vertices, a safety net behind Russian roulette
                            (default 100000; never reached in practice, see Russian roulette)
@@ -2100,6 +2102,23 @@ FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size)
 #ifdef FOGRT_WBVH_NO_SIMD
 #undef FOGRT_WBVH_SSE
 #endif
+/* AVX2 (chapter 10b's 8-lane box and triangle tests, on top of SSE): FOGRT_WBVH_AVX2 is 1
+   where the compiler targets AVX2 anyway (-mavx2, -march=native on a recent x86), 2 where
+   GCC or Clang compile for x86-64 without it: the AVX2 functions then get
+   __attribute__((target("avx2"))) and the scene build asks the processor once
+   (__builtin_cpu_supports) whether to use them. FOGRT_WBVH_NO_AVX2 (or FOGRT_WBVH_NO_SIMD)
+   keeps the SSE path; every path gives the same answers. */
+#if defined(FOGRT_WBVH_SSE) && !defined(FOGRT_WBVH_AVX2) && !defined(FOGRT_WBVH_NO_AVX2)
+#if defined(__AVX2__)
+#define FOGRT_WBVH_AVX2 1
+#elif defined(__x86_64__) && ((defined(__clang__) && __clang_major__ >= 4) || \
+                              (!defined(__clang__) && defined(__GNUC__) && __GNUC__ >= 5))
+#define FOGRT_WBVH_AVX2 2
+#endif
+#endif
+#if defined(FOGRT_WBVH_NO_AVX2) || !defined(FOGRT_WBVH_SSE)
+#undef FOGRT_WBVH_AVX2
+#endif
 #ifdef FOGRT_WBVH_SSE
 #include <emmintrin.h>
 typedef __m128 fogrt__f4;
@@ -2690,6 +2709,19 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 #define FOGRT__WBVH_EMPTY 0xFFFFFFFFu             /* count[] of a lane with no child */
 /* Each wide level pushes at most W - 1 children and uses up at least one binary level. */
 #define FOGRT__WBVH_STACK ((FOGRT__BVH_MAX_DEPTH + 2) * (FOGRT__WBVH_W - 1) + 2)
+/* The AVX2 path (FOGRT_WBVH_AVX2, chapter 9) takes the 8 lanes of a node at once, so it
+   exists for W = 8 only. FOGRT__AVX2_FN marks its functions: compiled for AVX2 with
+   target("avx2") when the rest of the file is not (they are then never forced inline: a
+   function for AVX2 cannot be inlined into one that is not, only the reverse). */
+#if defined(FOGRT_WBVH_AVX2) && FOGRT__WBVH_W == 8
+#define FOGRT__WBVH_HAS_AVX2 1
+#include <immintrin.h>
+#if FOGRT_WBVH_AVX2 == 2
+#define FOGRT__AVX2_FN static inline __attribute__((target("avx2"), unused))
+#else
+#define FOGRT__AVX2_FN FOGRT__HOT
+#endif
+#endif
 
 /* A wide node. Lane i is child i: its box is lo/hi[axis][i] (box[0..2] = minimum x, y, z,
    box[3..5] = maximum x, y, z); count[i] = 0 means an inner child (wide node child[i]),
@@ -2716,6 +2748,7 @@ typedef struct fogrt__wbvh {
     fogrt__wtri *tris; uint32_t tri_packets;
     void *nodes_mem, *tris_mem;   /* the blocks holding nodes and tris, which start on a cache line */
     uint32_t node_cap;            /* room for this many nodes */
+    bool avx2;                    /* traced by the AVX2 path (the build asks the processor) */
 } fogrt__wbvh;
 
 FOGRT__PRIVATE void fogrt__wbvh_free(fogrt__wbvh *w, const fogrt_allocator *a)
@@ -2874,6 +2907,19 @@ FOGRT__PRIVATE bool fogrt__wbvh_alloc(const fogrt_scene *s, fogrt__wbvh *w, cons
     fogrt__wbvh_free(w, a);
     return false;
 }
+/* Whether this processor runs the AVX2 path: asked once per build where the file is not
+   compiled for AVX2 anyway (the answer is cached by the compiler's runtime). */
+FOGRT__PRIVATE bool fogrt__wbvh_avx2_usable(void)
+{
+#if defined(FOGRT__WBVH_HAS_AVX2) && FOGRT_WBVH_AVX2 == 2
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") != 0;
+#elif defined(FOGRT__WBVH_HAS_AVX2)
+    return true;
+#else
+    return false;
+#endif
+}
 /* Build the wide tree from the scene's binary tree (s->nodes) and packed primitives
    (s->prim_index, and the primitives themselves): each wide node collects its lanes
    (step 1 above); a lane with at most FOGRT_WBVH_LEAF (4) primitives below it becomes one
@@ -2885,6 +2931,7 @@ FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, cons
     enum { W = FOGRT__WBVH_W };
     uint32_t stack_b[FOGRT__BVH_MAX_DEPTH * W + 2], stack_w[FOGRT__BVH_MAX_DEPTH * W + 2], sp = 0, next_packet = 0;
     memset(w, 0, sizeof *w);
+    w->avx2 = fogrt__wbvh_avx2_usable();
     if (!s->nodes || !s->prim_index || s->tri_count + s->sph_count == 0) return true;   /* nothing to trace */
     if (!fogrt__wbvh_alloc(s, w, a)) return false;
     w->node_count = 1;
@@ -2934,13 +2981,29 @@ FOGRT__PRIVATE void fogrt__wide_release(fogrt_scene *s)
     s->wide = NULL;
 }
 
+/* The ray as the wide traversal reads it: the origin, the reciprocal direction (chapter
+   10's, so the same values) and the rows of box[] holding the near and far face per axis:
+   the minimum unless the ray goes down that axis. */
+typedef struct fogrt__wray { fogrt__v3 o, inv; int near_row[3], far_row[3]; } fogrt__wray;
+FOGRT__HOT void fogrt__wray_setup(fogrt__wray *r, fogrt__v3 o, fogrt__v3 d)
+{
+    int a;
+    r->o = o;
+    r->inv = fogrt__v(fogrt__safe_rcp(d.x), fogrt__safe_rcp(d.y), fogrt__safe_rcp(d.z));
+    for (a = 0; a < 3; ++a) {
+        bool negative = fogrt__comp(r->inv, a) < 0.0f;
+        r->near_row[a] = negative ? 3 + a : a;
+        r->far_row[a] = negative ? a : 3 + a;
+    }
+}
+
 /* The W slab tests of one node: bit i of the result is set when the ray enters child i
    between tmin and tmax, and t[i] is then its entry distance. Per lane these are exactly the
    operations of fogrt__slab: near and far face by the sign of the direction, t0 = the
    largest entry (a NaN entry ignored), t1 = the smallest exit, hit iff t0 <= t1 (1 + 2 ulp). */
 #ifdef FOGRT_WBVH_SSE
-FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r, const int near_row[3],
-                                      const int far_row[3], float tmin, float tmax, float *t)
+FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__wray *r, float tmin, float tmax,
+                                      float *t)
 {
     unsigned mask = 0;
     int g;
@@ -2949,16 +3012,16 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r
         __m128i empty = _mm_cmpeq_epi32(_mm_loadu_si128((const __m128i *)(const void *)&n->count[g]),
                                         _mm_set1_epi32(-1));
         o = _mm_set1_ps(r->o.x); inv = _mm_set1_ps(r->inv.x);
-        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[near_row[0]][g]), o), inv);
-        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[far_row[0]][g]), o), inv);
+        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->near_row[0]][g]), o), inv);
+        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->far_row[0]][g]), o), inv);
         t0 = _mm_max_ps(tn, t0); t1 = _mm_min_ps(tf, t1);      /* max(a, b) = a > b ? a : b */
         o = _mm_set1_ps(r->o.y); inv = _mm_set1_ps(r->inv.y);
-        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[near_row[1]][g]), o), inv);
-        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[far_row[1]][g]), o), inv);
+        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->near_row[1]][g]), o), inv);
+        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->far_row[1]][g]), o), inv);
         t0 = _mm_max_ps(tn, t0); t1 = _mm_min_ps(tf, t1);
         o = _mm_set1_ps(r->o.z); inv = _mm_set1_ps(r->inv.z);
-        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[near_row[2]][g]), o), inv);
-        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[far_row[2]][g]), o), inv);
+        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->near_row[2]][g]), o), inv);
+        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->far_row[2]][g]), o), inv);
         t0 = _mm_max_ps(tn, t0); t1 = _mm_min_ps(tf, t1);
         _mm_storeu_ps(&t[g], t0);
         mask |= (unsigned)(_mm_movemask_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(1.00000024f)))) &
@@ -2967,8 +3030,8 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r
     return mask;
 }
 #else
-FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r, const int near_row[3],
-                                      const int far_row[3], float tmin, float tmax, float *t)
+FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__wray *r, float tmin, float tmax,
+                                      float *t)
 {
     float t1[FOGRT__WBVH_W];
     unsigned mask = 0;
@@ -2977,8 +3040,8 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r
     for (i = 0; i < FOGRT__WBVH_W; ++i) { t[i] = tmin; t1[i] = tmax; }
     for (a = 0; a < 3; ++a)                               /* x, then y, then z, as fogrt__slab */
         for (i = 0; i < FOGRT__WBVH_W; ++i) {
-            float tn = (n->box[near_row[a]][i] - o[a]) * inv[a];
-            float tf = (n->box[far_row[a]][i] - o[a]) * inv[a];
+            float tn = (n->box[r->near_row[a]][i] - o[a]) * inv[a];
+            float tf = (n->box[r->far_row[a]][i] - o[a]) * inv[a];
             t[i] = tn > t[i] ? tn : t[i];
             t1[i] = tf < t1[i] ? tf : t1[i];
         }
@@ -2987,6 +3050,42 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r
     return mask;
 }
 #endif
+#ifdef FOGRT__WBVH_HAS_AVX2
+/* The same W = 8 slab tests in one pass of 8-lane AVX instructions (the SSE version above
+   makes two passes of 4): the same operations in the same order, so the same bits. */
+FOGRT__AVX2_FN unsigned fogrt__wbvh_slabs8(const fogrt__wnode *n, const fogrt__wray *r, float tmin, float tmax,
+                                           float *t)
+{
+    __m256 t0 = _mm256_set1_ps(tmin), t1 = _mm256_set1_ps(tmax), tn, tf, o, inv;
+    __m256i empty = _mm256_cmpeq_epi32(_mm256_loadu_si256((const __m256i *)(const void *)n->count),
+                                       _mm256_set1_epi32(-1));
+    o = _mm256_set1_ps(r->o.x); inv = _mm256_set1_ps(r->inv.x);
+    tn = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->near_row[0]]), o), inv);
+    tf = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->far_row[0]]), o), inv);
+    t0 = _mm256_max_ps(tn, t0); t1 = _mm256_min_ps(tf, t1);
+    o = _mm256_set1_ps(r->o.y); inv = _mm256_set1_ps(r->inv.y);
+    tn = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->near_row[1]]), o), inv);
+    tf = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->far_row[1]]), o), inv);
+    t0 = _mm256_max_ps(tn, t0); t1 = _mm256_min_ps(tf, t1);
+    o = _mm256_set1_ps(r->o.z); inv = _mm256_set1_ps(r->inv.z);
+    tn = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->near_row[2]]), o), inv);
+    tf = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->far_row[2]]), o), inv);
+    t0 = _mm256_max_ps(tn, t0); t1 = _mm256_min_ps(tf, t1);
+    _mm256_storeu_ps(t, t0);
+    return (unsigned)(_mm256_movemask_ps(_mm256_cmp_ps(t0, _mm256_mul_ps(t1, _mm256_set1_ps(1.00000024f)), _CMP_LE_OS)) &
+                      ~_mm256_movemask_ps(_mm256_castsi256_ps(empty)));
+}
+#endif
+/* The box test of the chosen path. */
+FOGRT__HOT unsigned fogrt__wbvh_test(const fogrt__wnode *n, const fogrt__wray *r, float tmin, float tmax, float *t,
+                                     bool avx2)
+{
+#ifdef FOGRT__WBVH_HAS_AVX2
+    if (avx2) return fogrt__wbvh_slabs8(n, r, tmin, tmax, t);
+#endif
+    (void)avx2;
+    return fogrt__wbvh_slabs(n, r, tmin, tmax, t);
+}
 
 /* One packet against the ray: fogrt__hit_triangle on all four lanes. Returns the mask of
    lanes hit in (tmin, tmax) and their t, u, v. */
@@ -3121,71 +3220,101 @@ FOGRT__HOT bool fogrt__wbvh_leaf(const fogrt_scene *s, const fogrt__wbvh *w, uin
    the first hit found; hit is written only on a hit). Test the current node's W boxes, visit
    the nearest child hit next and push the others, farthest first, with their entry
    distances; a popped child whose entry lies beyond the closest hit found so far is skipped. */
-/* More than one lane of node n hit (first, and the lanes in mask m): push all but one and
-   return the lane to descend into. For the closest hit the lanes are sorted by entry
-   distance (insertion sort, stable: on equal distance the left child first, as
-   fogrt__traverse orders them) and the nearest is descended first; for any hit the order
-   does not matter and the sort is skipped. */
-FOGRT__PRIVATE unsigned fogrt__wbvh_push(const fogrt__wbvh *w, const fogrt__wnode *n, const float *t, unsigned first,
-                                         unsigned m, bool any_hit, uint32_t *stack_ref, uint32_t *stack_cnt,
-                                         float *stack_t, uint32_t *sp)
+typedef struct fogrt__wentry { float t; uint32_t ref, cnt; } fogrt__wentry;   /* a pushed child */
+/* More than one lane of node n hit (the lanes in mask m): push them all and pop the one to
+   descend into. For the closest hit each lane is inserted at its place among the lanes of
+   this node already pushed (insertion sort on the stack, stable: on equal distance the left
+   child comes first, as fogrt__traverse orders them), so the nearest is on top; for any hit
+   the order does not matter and the sort is skipped. */
+FOGRT__HOT fogrt__wentry fogrt__wbvh_push(const fogrt__wbvh *w, const fogrt__wnode *n, const float *t, unsigned m,
+                                          bool any_hit, fogrt__wentry *stack, uint32_t *sp)
 {
-    unsigned lane[FOGRT__WBVH_W], k = 1, i, j;
-    lane[0] = first;
+    uint32_t base = *sp, i = base;
     for (; m; m &= m - 1) {
         unsigned l = fogrt__wbvh_ctz(m);
-        for (i = k; !any_hit && i > 0 && t[lane[i - 1]] > t[l]; --i) lane[i] = lane[i - 1];
-        lane[i] = l;
-        ++k;
-    }
-    for (j = k - 1; j > 0; --j) {                        /* push all but the nearest */
-        stack_ref[*sp] = n->child[lane[j]]; stack_cnt[*sp] = n->count[lane[j]];
-        stack_t[(*sp)++] = t[lane[j]];
-        FOGRT__WBVH_PREFETCH(w, n->child[lane[j]], n->count[lane[j]]);
+        fogrt__wentry e;
+        e.t = t[l]; e.ref = n->child[l]; e.cnt = n->count[l];
+        FOGRT__WBVH_PREFETCH(w, e.ref, e.cnt);
+        for (i = *sp; !any_hit && i > base && stack[i - 1].t <= e.t; --i) stack[i] = stack[i - 1];
+        stack[i] = e;
+        ++*sp;
     }
     (void)w;
-    return lane[0];
+    return stack[--*sp];
 }
-FOGRT__PRIVATE bool fogrt__wbvh_traverse(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
-                                         float tmin, float tmax, fogrt_hit *hit, bool any_hit)
+/* The traversal loop, one body for both paths: avx2 (a constant in each caller below)
+   picks the box test. tcull is fogrt__cull(tmax), updated when tmax shrinks. */
+FOGRT__HOT bool fogrt__wbvh_walk(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                 float tmin, float tmax, fogrt_hit *hit, bool any_hit, bool avx2)
 {
-    uint32_t stack_ref[FOGRT__WBVH_STACK], stack_cnt[FOGRT__WBVH_STACK], sp = 0, ref = 0, cnt = 0;
-    float stack_t[FOGRT__WBVH_STACK];
-    int near_row[3], far_row[3], a;
-    fogrt__ray r;
+    fogrt__wentry stack[FOGRT__WBVH_STACK];
+    uint32_t sp = 0, ref = 0, cnt = 0;
+    float tcull = fogrt__cull(tmax);
+    fogrt__wray r;
     bool found = false;
-    if (!s->built || w->node_count == 0) return false;
-    fogrt__ray_setup(&r, o, d);
-    for (a = 0; a < 3; ++a) {          /* the near face is the minimum unless the ray goes down */
-        bool negative = fogrt__comp(r.inv, a) < 0.0f;
-        near_row[a] = negative ? 3 + a : a;
-        far_row[a] = negative ? a : 3 + a;
-    }
+    fogrt__wray_setup(&r, o, d);
     for (;;) {
         if (cnt == 0) {                                  /* a wide node: test its W boxes */
             const fogrt__wnode *n = &w->nodes[ref];
             float t[FOGRT__WBVH_W];
             FOGRT__WBVH_STAT(node);
-            unsigned m = fogrt__wbvh_slabs(n, &r, near_row, far_row, tmin, fogrt__cull(tmax), t);
-            if (m) {
+            unsigned m = fogrt__wbvh_test(n, &r, tmin, tcull, t, avx2);
+            if (m & (m - 1)) {
+                fogrt__wentry e = fogrt__wbvh_push(w, n, t, m, any_hit, stack, &sp);
+                ref = e.ref; cnt = e.cnt;
+                continue;
+            }
+            if (m) {                                     /* one child hit: the common case */
                 unsigned first = fogrt__wbvh_ctz(m);
-                m &= m - 1;
-                if (m) first = fogrt__wbvh_push(w, n, t, first, m, any_hit, stack_ref, stack_cnt, stack_t, &sp);
-                ref = n->child[first]; cnt = n->count[first];   /* one child hit: the common case */
+                ref = n->child[first]; cnt = n->count[first];
                 continue;
             }
         } else if (fogrt__wbvh_leaf(s, w, ref, cnt, o, d, tmin, &tmax, hit, any_hit)) {
             found = true;
             if (any_hit) return true;
+            tcull = fogrt__cull(tmax);
         }
         /* pop the next child that can still hold a closer hit */
         for (;;) {
             if (sp == 0) return found;
             --sp;
-            if (stack_t[sp] <= fogrt__cull(tmax)) break;
+            if (stack[sp].t <= tcull) break;
         }
-        ref = stack_ref[sp]; cnt = stack_cnt[sp];
+        ref = stack[sp].ref; cnt = stack[sp].cnt;
     }
+}
+/* The four traversals: closest or any hit, SSE (or plain C) or AVX2 boxes. */
+FOGRT__PRIVATE bool fogrt__wbvh_closest(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                        float tmin, float tmax, fogrt_hit *hit)
+{
+    return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, false, false);
+}
+FOGRT__PRIVATE bool fogrt__wbvh_any(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                    float tmin, float tmax, fogrt_hit *hit)
+{
+    return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, true, false);
+}
+#ifdef FOGRT__WBVH_HAS_AVX2
+FOGRT__AVX2_FN bool fogrt__wbvh_closest_avx2(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                             float tmin, float tmax, fogrt_hit *hit)
+{
+    return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, false, true);
+}
+FOGRT__AVX2_FN bool fogrt__wbvh_any_avx2(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                         float tmin, float tmax, fogrt_hit *hit)
+{
+    return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, true, true);
+}
+#endif
+FOGRT__HOT bool fogrt__wbvh_traverse(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                     float tmin, float tmax, fogrt_hit *hit, bool any_hit)
+{
+    if (!s->built || w->node_count == 0) return false;
+#ifdef FOGRT__WBVH_HAS_AVX2
+    if (w->avx2) return any_hit ? fogrt__wbvh_any_avx2(s, w, o, d, tmin, tmax, hit)
+                                : fogrt__wbvh_closest_avx2(s, w, o, d, tmin, tmax, hit);
+#endif
+    return any_hit ? fogrt__wbvh_any(s, w, o, d, tmin, tmax, hit) : fogrt__wbvh_closest(s, w, o, d, tmin, tmax, hit);
 }
 
 /* Either tree, as the build chose: the wide one when there is one. */
