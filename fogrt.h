@@ -2747,7 +2747,6 @@ typedef struct fogrt__wbvh {
     fogrt__wnode *nodes; uint32_t node_count;
     fogrt__wtri *tris; uint32_t tri_packets;
     void *nodes_mem, *tris_mem;   /* the blocks holding nodes and tris, which start on a cache line */
-    uint32_t node_cap;            /* room for this many nodes */
     bool avx2;                    /* traced by the AVX2 path (the build asks the processor) */
 } fogrt__wbvh;
 
@@ -2809,56 +2808,48 @@ FOGRT__PRIVATE void fogrt__wbvh_pack_leaf(const fogrt_scene *s, fogrt__wbvh *w, 
     *next += (count + 3) / 4;
 }
 
-/* The primitives below binary node b if there are at most limit (<= FOGRT__WBVH_LEAF2) of
-   them (their count, and in *first where they start in s->prim_index: a subtree's
-   primitives are contiguous there), else 0. Looks at no more than 2 limit - 1 nodes. */
-FOGRT__PRIVATE uint32_t fogrt__wbvh_small(const fogrt_bvh_node *bn, uint32_t b, uint32_t limit, uint32_t *first)
+/* The primitives below binary node b if there are at most limit of them (their count,
+   from the subtree sizes of fogrt__wbvh_sizes; a binary leaf always counts), else 0. */
+FOGRT__PRIVATE uint32_t fogrt__wbvh_small(const fogrt_bvh_node *bn, const uint32_t *size, uint32_t b, uint32_t limit)
 {
-    uint32_t stack[2 * FOGRT__WBVH_LEAF2 + 2], sp = 0, count = 0;
-    if (bn[b].prim_count > 0) { *first = bn[b].left_first; return bn[b].prim_count; }
-    if (limit < 2) return 0;
-    stack[sp++] = b;
-    *first = UINT32_MAX;
-    while (sp > 0) {
-        const fogrt_bvh_node *n = &bn[stack[--sp]];
-        if (n->prim_count > 0) {
-            count += n->prim_count;
-            if (count > limit) return 0;
-            if (n->left_first < *first) *first = n->left_first;
-        } else {
-            if (sp + 2 > 2 * limit) return 0;              /* too many nodes: too many primitives */
-            stack[sp++] = n->left_first; stack[sp++] = n->left_first + 1;
-        }
-    }
-    return count;
+    if (bn[b].prim_count > 0) return bn[b].prim_count;
+    return limit >= 2 && size[b] <= limit ? size[b] : 0;
+}
+/* Where the primitives below binary node b start in s->prim_index: a subtree's primitives
+   are contiguous there, the left child's first, so they start at its leftmost leaf. */
+FOGRT__PRIVATE uint32_t fogrt__wbvh_first(const fogrt_bvh_node *bn, uint32_t b)
+{
+    while (bn[b].prim_count == 0) b = bn[b].left_first;
+    return bn[b].left_first;
 }
 
 /* The lanes of the wide node being filled: lane j stands for binary node lane[j]; small[j]
-   > 0 makes it a leaf of that many primitives from first[j]; area[j] is its box's surface
-   area (0 for a leaf: a leaf is never opened). */
+   > 0 makes it a leaf of that many primitives; area[j] is its box's surface area (0 for a
+   leaf: a leaf is never opened). */
 typedef struct fogrt__wlanes {
-    uint32_t lane[FOGRT__WBVH_W], small[FOGRT__WBVH_W], first[FOGRT__WBVH_W], count;
+    uint32_t lane[FOGRT__WBVH_W], small[FOGRT__WBVH_W], count;
     float area[FOGRT__WBVH_W];
 } fogrt__wlanes;
-FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, fogrt__wlanes *L, uint32_t j, uint32_t node)
+FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, const uint32_t *size, fogrt__wlanes *L, uint32_t j,
+                                     uint32_t node)
 {
     L->lane[j] = node;
-    L->small[j] = fogrt__wbvh_small(bn, node, FOGRT__WBVH_LEAF, &L->first[j]);
+    L->small[j] = fogrt__wbvh_small(bn, size, node, FOGRT__WBVH_LEAF);
     L->area[j] = L->small[j] ? 0.0f : fogrt__wbvh_node_area(&bn[node]);
 }
 /* Step 1 for binary node b: start with its two children (a small root is one leaf), then
    open the lane with the largest surface area (the one a ray is most likely to enter) into
    its two children, keeping the tree's left-to-right order, until W lanes are collected or
    none can be opened. */
-FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, uint32_t b, fogrt__wlanes *L)
+FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, const uint32_t *size, uint32_t b, fogrt__wlanes *L)
 {
-    uint32_t j, first;
-    if (fogrt__wbvh_small(bn, b, FOGRT__WBVH_LEAF, &first) || bn[b].prim_count > 0) {
-        fogrt__wbvh_lane(bn, L, 0, b); L->count = 1;   /* only a small root gets here */
+    uint32_t j;
+    if (fogrt__wbvh_small(bn, size, b, FOGRT__WBVH_LEAF)) {
+        fogrt__wbvh_lane(bn, size, L, 0, b); L->count = 1;   /* only a small root gets here */
         return;
     }
-    fogrt__wbvh_lane(bn, L, 0, bn[b].left_first);
-    fogrt__wbvh_lane(bn, L, 1, bn[b].left_first + 1);
+    fogrt__wbvh_lane(bn, size, L, 0, bn[b].left_first);
+    fogrt__wbvh_lane(bn, size, L, 1, bn[b].left_first + 1);
     L->count = 2;
     while (L->count < FOGRT__WBVH_W) {
         int open = -1;
@@ -2869,43 +2860,66 @@ FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, uint32_t b, fo
         if (open < 0) break;
         child = bn[L->lane[open]].left_first;
         for (j = L->count; j > (uint32_t)open + 1; --j) {
-            L->lane[j] = L->lane[j - 1]; L->small[j] = L->small[j - 1];
-            L->first[j] = L->first[j - 1]; L->area[j] = L->area[j - 1];
+            L->lane[j] = L->lane[j - 1]; L->small[j] = L->small[j - 1]; L->area[j] = L->area[j - 1];
         }
-        fogrt__wbvh_lane(bn, L, (uint32_t)open, child);
-        fogrt__wbvh_lane(bn, L, (uint32_t)open + 1, child + 1);
+        fogrt__wbvh_lane(bn, size, L, (uint32_t)open, child);
+        fogrt__wbvh_lane(bn, size, L, (uint32_t)open + 1, child + 1);
         L->count++;
     }
     for (j = 0; j < L->count; ++j)          /* a lane left with two packets' worth: a leaf */
-        if (!L->small[j]) L->small[j] = fogrt__wbvh_small(bn, L->lane[j], FOGRT__WBVH_LEAF2, &L->first[j]);
+        if (!L->small[j]) L->small[j] = fogrt__wbvh_small(bn, size, L->lane[j], FOGRT__WBVH_LEAF2);
 }
-/* Room for the wide tree. A wide node is made for the root and for binary subtrees of more
-   than FOGRT__WBVH_LEAF2 primitives only, so the subtree sizes (one pass from the last node
-   back: children come after their parent) bound the nodes; the packets are at most those
-   of the binary leaves (a leaf merging several binary leaves needs no more). */
-FOGRT__PRIVATE bool fogrt__wbvh_alloc(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
+/* The number of primitives below every binary node (one pass from the last node back:
+   children come after their parent; node 1 is unused). NULL when out of memory. */
+FOGRT__PRIVATE uint32_t *fogrt__wbvh_sizes(const fogrt_scene *s, const fogrt_allocator *a)
 {
-    uint32_t i = s->node_count, big = 1, packets = 0;
+    uint32_t i = s->node_count;
     uint32_t *size = (uint32_t *)fogrt__alloc(a, sizeof(uint32_t) * (size_t)s->node_count);
-    if (!size) return false;
+    if (!size) return NULL;
+    size[1] = 0;
     while (i-- > 0) {
         const fogrt_bvh_node *n = &s->nodes[i];
-        if (i == 1) continue;                            /* node 1 is unused */
-        if (n->prim_count > 0) {
-            size[i] = n->prim_count;
-            packets += (n->prim_count + 3) / 4;
-        } else {
-            size[i] = size[n->left_first] + size[n->left_first + 1];
-            big += size[i] > FOGRT__WBVH_LEAF2 && i > 0;
+        if (i != 1) size[i] = n->prim_count > 0 ? n->prim_count : size[n->left_first] + size[n->left_first + 1];
+    }
+    return size;
+}
+/* The wide nodes are first laid out as records (lane j's binary node, child and count;
+   no boxes), for which the subtree sizes bound the room: a wide node is made for the root
+   and for binary subtrees of more than FOGRT__WBVH_LEAF2 primitives only. The nodes and
+   packets then get blocks of exactly the size counted. */
+typedef struct fogrt__wrec { uint32_t lane[FOGRT__WBVH_W], child[FOGRT__WBVH_W], count[FOGRT__WBVH_W]; } fogrt__wrec;
+FOGRT__PRIVATE uint32_t fogrt__wbvh_bound(const fogrt_scene *s, const uint32_t *size)
+{
+    uint32_t i, big = 1;
+    for (i = 2; i < s->node_count; ++i) big += s->nodes[i].prim_count == 0 && size[i] > FOGRT__WBVH_LEAF2;
+    return big;
+}
+/* Step 1 for every wide node, from a stack: the records rec[0 .. *nodes) in the order the
+   nodes will be stored, and the number of packets. */
+FOGRT__PRIVATE void fogrt__wbvh_layout(const fogrt_scene *s, const uint32_t *size, fogrt__wrec *rec, uint32_t cap,
+                                       uint32_t *nodes, uint32_t *packets)
+{
+    uint32_t stack_b[FOGRT__BVH_MAX_DEPTH * FOGRT__WBVH_W + 2], stack_w[FOGRT__BVH_MAX_DEPTH * FOGRT__WBVH_W + 2];
+    uint32_t sp = 0, j;
+    *nodes = 1; *packets = 0;
+    stack_b[sp] = 0; stack_w[sp++] = 0;
+    while (sp > 0) {
+        fogrt__wlanes L;
+        fogrt__wrec *r;
+        --sp;
+        r = &rec[stack_w[sp]];
+        fogrt__wbvh_collect(s->nodes, size, stack_b[sp], &L);
+        for (j = 0; j < FOGRT__WBVH_W; ++j) {
+            r->lane[j] = L.lane[j < L.count ? j : 0];
+            if (j >= L.count) { r->child[j] = 0; r->count[j] = FOGRT__WBVH_EMPTY; }
+            else if (L.small[j]) { r->child[j] = *packets; r->count[j] = L.small[j]; *packets += (L.small[j] + 3) / 4; }
+            else {
+                FOGRT_ASSERT(*nodes < cap && sp < FOGRT__BVH_MAX_DEPTH * FOGRT__WBVH_W + 2);
+                r->child[j] = (*nodes)++; r->count[j] = 0;
+                stack_b[sp] = L.lane[j]; stack_w[sp++] = r->child[j];
+            }
         }
     }
-    fogrt__free(a, size);
-    w->nodes = (fogrt__wnode *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wnode) * big, &w->nodes_mem);
-    w->node_cap = big;
-    w->tris = (fogrt__wtri *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wtri) * (packets > 0 ? packets : 1), &w->tris_mem);
-    if (w->nodes && w->tris) return true;
-    fogrt__wbvh_free(w, a);
-    return false;
 }
 /* Whether this processor runs the AVX2 path: asked once per build where the file is not
    compiled for AVX2 anyway (the answer is cached by the compiler's runtime). */
@@ -2925,44 +2939,42 @@ FOGRT__PRIVATE bool fogrt__wbvh_avx2_usable(void)
    (step 1 above); a lane with at most FOGRT_WBVH_LEAF (4) primitives below it becomes one
    leaf, one full packet (the binary tree's leaves hold about 2 primitives, so this halves
    the packets and the nodes); the others become new wide nodes, handled the same way from
-   a stack. Returns false when out of memory (w is then empty). */
+   a stack. Then each node gets its lanes' boxes and each leaf its packets. Returns false
+   when out of memory (w is then empty). */
 FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
 {
-    enum { W = FOGRT__WBVH_W };
-    uint32_t stack_b[FOGRT__BVH_MAX_DEPTH * W + 2], stack_w[FOGRT__BVH_MAX_DEPTH * W + 2], sp = 0, next_packet = 0;
+    uint32_t *size, i, j, cap;
+    fogrt__wrec *rec = NULL;
     memset(w, 0, sizeof *w);
     w->avx2 = fogrt__wbvh_avx2_usable();
     if (!s->nodes || !s->prim_index || s->tri_count + s->sph_count == 0) return true;   /* nothing to trace */
-    if (!fogrt__wbvh_alloc(s, w, a)) return false;
-    w->node_count = 1;
-    stack_b[sp] = 0; stack_w[sp++] = 0;
-    while (sp > 0) {
-        fogrt__wlanes L;
-        fogrt__wnode *wn;
-        uint32_t j;
-        --sp;
-        wn = &w->nodes[stack_w[sp]];
-        fogrt__wbvh_collect(s->nodes, stack_b[sp], &L);
-        for (j = 0; j < W; ++j) {
-            const fogrt_bvh_node *bj = &s->nodes[L.lane[j < L.count ? j : 0]];
+    if (!(size = fogrt__wbvh_sizes(s, a))) return false;
+    cap = fogrt__wbvh_bound(s, size);
+    if ((rec = (fogrt__wrec *)fogrt__alloc(a, sizeof(fogrt__wrec) * cap)) != NULL) {
+        fogrt__wbvh_layout(s, size, rec, cap, &w->node_count, &w->tri_packets);
+        w->nodes = (fogrt__wnode *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wnode) * w->node_count, &w->nodes_mem);
+        w->tris = (fogrt__wtri *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wtri) * (w->tri_packets ? w->tri_packets : 1u), &w->tris_mem);
+    }
+    fogrt__free(a, size);
+    if (!w->nodes || !w->tris) { fogrt__free(a, rec); fogrt__wbvh_free(w, a); return false; }
+    for (i = 0; i < w->node_count; ++i) {
+        fogrt__wnode *wn = &w->nodes[i];
+        for (j = 0; j < FOGRT__WBVH_W; ++j) {
+            const fogrt_bvh_node *bj = &s->nodes[rec[i].lane[j]];
+            bool used = rec[i].count[j] != FOGRT__WBVH_EMPTY;
             int k;
             for (k = 0; k < 3; ++k) {                  /* an unused lane: an empty box */
-                wn->box[k][j] = j < L.count ? bj->bmin[k] : FLT_MAX;
-                wn->box[3 + k][j] = j < L.count ? bj->bmax[k] : -FLT_MAX;
+                wn->box[k][j] = used ? bj->bmin[k] : FLT_MAX;
+                wn->box[3 + k][j] = used ? bj->bmax[k] : -FLT_MAX;
             }
-            if (j >= L.count) { wn->child[j] = 0; wn->count[j] = FOGRT__WBVH_EMPTY; }
-            else if (L.small[j]) {
-                wn->child[j] = next_packet; wn->count[j] = L.small[j];
-                fogrt__wbvh_pack_leaf(s, w, L.first[j], L.small[j], &next_packet);
-            } else {
-                FOGRT_ASSERT(w->node_count < w->node_cap);
-                wn->child[j] = w->node_count++; wn->count[j] = 0;
-                FOGRT_ASSERT(sp < FOGRT__BVH_MAX_DEPTH * W + 2);
-                stack_b[sp] = L.lane[j]; stack_w[sp++] = wn->child[j];
+            wn->child[j] = rec[i].child[j]; wn->count[j] = rec[i].count[j];
+            if (used && wn->count[j] > 0) {
+                uint32_t next = wn->child[j];
+                fogrt__wbvh_pack_leaf(s, w, fogrt__wbvh_first(s->nodes, rec[i].lane[j]), wn->count[j], &next);
             }
         }
     }
-    w->tri_packets = next_packet;
+    fogrt__free(a, rec);
     return true;
 }
 /* The scene's wide tree: built by fogrt_scene_build (chapter 11), released with the rest of
