@@ -2649,12 +2649,15 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
         1M mesh this halves the wide nodes, 98,700 to 48,800). The tree gets about three
         times shallower (W = 8).
      2. Structure of arrays. A node stores all W minimum x, then all W minimum y, and so on,
-        so its W slab tests are the same instructions on W lanes: SSE does four at once.
+        so its W slab tests are the same instructions on W lanes: SSE does four at once,
+        AVX2 all eight.
      3. Leaf packets. A leaf's primitives are copied into a packet of four, again structure
         of arrays (four v0.x, then four v0.y, ...), and one packet is tested with the
         Moller-Trumbore test of chapter 10 on four lanes at once.
      4. Traversal: test the W boxes of the current node, go on with the nearest child hit,
-        push the others, farthest first, with their entry distances.
+        push the others, farthest first, with their entry distances (sorted where they are
+        pushed, on the stack); any-hit rays push them unsorted. Closest and any hit are
+        compiled as two traversals, so neither tests which it is in its loop.
 
    The answers are those of fogrt__bvh2_traverse. Every box test is fogrt__slab's (the same
    operations in the same order on each lane: the same entry distance, the same NaN rules,
@@ -2673,12 +2676,24 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 
    Memory (W = 8): a node is 256 bytes (48 floats of boxes, 16 words of child references),
    about one per 20 triangles; a packet of 4 primitives is 176 bytes (1M mesh: 12.5 and 54
-   bytes per triangle). Both arrays start on a cache line and ask for huge pages (chapter
-   9); the binary tree's packed primitives of chapter 10 are not made for the wide layout.
+   bytes per triangle). The collapse first lays the nodes out as small records, then gives
+   nodes and packets blocks of exactly the size used. Both arrays start on a cache line and
+   ask for huge pages (chapter 9); the binary tree's packed primitives of chapter 10 are not
+   made for the wide layout.
 
    SIMD: FOGRT_WBVH_SSE (set in chapter 9: on by default where the compiler targets SSE2,
    that is every x86-64) selects the SSE intrinsics; FOGRT_WBVH_NO_SIMD forces the plain C99
-   loops, which compute exactly the same values lane by lane.
+   loops, which compute exactly the same values lane by lane. On top of SSE, the AVX2 path
+   (FOGRT_WBVH_AVX2, W = 8) tests a node's 8 boxes in one pass of 8-lane instructions instead
+   of two of 4 (the same operations per lane, in the same order, without fused multiply-add,
+   so the same bits). The compiler need not target AVX2: on GCC and Clang the AVX2 functions
+   carry __attribute__((target("avx2"))), fogrt__wbvh_build asks the processor once
+   (__builtin_cpu_supports) and stores the answer in the tree, and the traversal picks its
+   loop by it. The loop is written once (fogrt__wbvh_walk, forced inline) with the path as
+   a constant argument; each path's entry inlines it with its own box test. A function for
+   AVX2 can inline ordinary ones but not the reverse, so the AVX2 box test is not forced
+   inline: it is inlined where it is called, in the AVX2 entries. bench/wide_dev.c checks
+   the two paths against each other bit for bit.
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_WBVH_MIN_PRIMS
 #define FOGRT_WBVH_MIN_PRIMS 16   /* fewer primitives: the binary tree is as fast (see fogrt_build_desc) */
@@ -3290,7 +3305,7 @@ FOGRT__HOT bool fogrt__wbvh_walk(const fogrt_scene *s, const fogrt__wbvh *w, fog
         for (;;) {
             if (sp == 0) return found;
             --sp;
-            if (stack[sp].t <= tcull) break;
+            if (any_hit || stack[sp].t <= tcull) break;   /* any hit: tcull has not moved since the push */
         }
         ref = stack[sp].ref; cnt = stack[sp].cnt;
     }
