@@ -57,6 +57,8 @@
     FOGRT_WBVH_WIDTH       children per node of the wide BVH, 4 or 8 (8)
     FOGRT_WBVH_LEAF        largest binary subtree the wide BVH makes one leaf, 0..8 (4)
     FOGRT_WBVH_NO_SIMD     plain C99 loops for the wide BVH instead of SSE2 (same results)
+    FOGRT_WBVH_NO_AVX2     no AVX2 path for the wide BVH (by default used when the processor
+                           has it: chosen at fogrt_scene_build on GCC/Clang x86-64; same results)
     FOGRT_WBVH_MIN_PRIMS   the default layout is wide from this many primitives (1: always)
     FOGRT_MAX_PATH_VERTICES  hard cap on path vertices, a safety net behind Russian roulette
                            (default 100000; never reached in practice, see Russian roulette)
@@ -2124,6 +2126,23 @@ FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size)
 #ifdef FOGRT_WBVH_NO_SIMD
 #undef FOGRT_WBVH_SSE
 #endif
+/* AVX2 (chapter 10b's 8-lane box and triangle tests, on top of SSE): FOGRT_WBVH_AVX2 is 1
+   where the compiler targets AVX2 anyway (-mavx2, -march=native on a recent x86), 2 where
+   GCC or Clang compile for x86-64 without it: the AVX2 functions then get
+   __attribute__((target("avx2"))) and the scene build asks the processor once
+   (__builtin_cpu_supports) whether to use them. FOGRT_WBVH_NO_AVX2 (or FOGRT_WBVH_NO_SIMD)
+   keeps the SSE path; every path gives the same answers. */
+#if defined(FOGRT_WBVH_SSE) && !defined(FOGRT_WBVH_AVX2) && !defined(FOGRT_WBVH_NO_AVX2)
+#if defined(__AVX2__)
+#define FOGRT_WBVH_AVX2 1
+#elif defined(__x86_64__) && ((defined(__clang__) && __clang_major__ >= 4) || \
+                              (!defined(__clang__) && defined(__GNUC__) && __GNUC__ >= 5))
+#define FOGRT_WBVH_AVX2 2
+#endif
+#endif
+#if defined(FOGRT_WBVH_NO_AVX2) || !defined(FOGRT_WBVH_SSE)
+#undef FOGRT_WBVH_AVX2
+#endif
 #ifdef FOGRT_WBVH_SSE
 #include <emmintrin.h>
 typedef __m128 fogrt__f4;
@@ -2654,12 +2673,15 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
         1M mesh this halves the wide nodes, 98,700 to 48,800). The tree gets about three
         times shallower (W = 8).
      2. Structure of arrays. A node stores all W minimum x, then all W minimum y, and so on,
-        so its W slab tests are the same instructions on W lanes: SSE does four at once.
+        so its W slab tests are the same instructions on W lanes: SSE does four at once,
+        AVX2 all eight.
      3. Leaf packets. A leaf's primitives are copied into a packet of four, again structure
         of arrays (four v0.x, then four v0.y, ...), and one packet is tested with the
         Moller-Trumbore test of chapter 10 on four lanes at once.
      4. Traversal: test the W boxes of the current node, go on with the nearest child hit,
-        push the others, farthest first, with their entry distances.
+        push the others, farthest first, with their entry distances (sorted where they are
+        pushed, on the stack); any-hit rays push them unsorted. Closest and any hit are
+        compiled as two traversals, so neither tests which it is in its loop.
 
    The answers are those of fogrt__bvh2_traverse. Every box test is fogrt__slab's (the same
    operations in the same order on each lane: the same entry distance, the same NaN rules,
@@ -2678,12 +2700,24 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 
    Memory (W = 8): a node is 256 bytes (48 floats of boxes, 16 words of child references),
    about one per 20 triangles; a packet of 4 primitives is 176 bytes (1M mesh: 12.5 and 54
-   bytes per triangle). Both arrays start on a cache line and ask for huge pages (chapter
-   9); the binary tree's packed primitives of chapter 10 are not made for the wide layout.
+   bytes per triangle). The collapse first lays the nodes out as small records, then gives
+   nodes and packets blocks of exactly the size used. Both arrays start on a cache line and
+   ask for huge pages (chapter 9); the binary tree's packed primitives of chapter 10 are not
+   made for the wide layout.
 
    SIMD: FOGRT_WBVH_SSE (set in chapter 9: on by default where the compiler targets SSE2,
    that is every x86-64) selects the SSE intrinsics; FOGRT_WBVH_NO_SIMD forces the plain C99
-   loops, which compute exactly the same values lane by lane.
+   loops, which compute exactly the same values lane by lane. On top of SSE, the AVX2 path
+   (FOGRT_WBVH_AVX2, W = 8) tests a node's 8 boxes in one pass of 8-lane instructions instead
+   of two of 4 (the same operations per lane, in the same order, without fused multiply-add,
+   so the same bits). The compiler need not target AVX2: on GCC and Clang the AVX2 functions
+   carry __attribute__((target("avx2"))), fogrt__wbvh_build asks the processor once
+   (__builtin_cpu_supports) and stores the answer in the tree, and the traversal picks its
+   loop by it. The loop is written once (fogrt__wbvh_walk, forced inline) with the path as
+   a constant argument; each path's entry inlines it with its own box test. A function for
+   AVX2 can inline ordinary ones but not the reverse, so the AVX2 box test is not forced
+   inline: it is inlined where it is called, in the AVX2 entries. bench/wide_dev.c checks
+   the two paths against each other bit for bit.
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_WBVH_MIN_PRIMS
 #define FOGRT_WBVH_MIN_PRIMS 1    /* wide at every size: see fogrt_build_desc (an empty scene stays binary) */
@@ -2714,6 +2748,19 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 #define FOGRT__WBVH_EMPTY 0xFFFFFFFFu             /* count[] of a lane with no child */
 /* Each wide level pushes at most W - 1 children and uses up at least one binary level. */
 #define FOGRT__WBVH_STACK ((FOGRT__BVH_MAX_DEPTH + 2) * (FOGRT__WBVH_W - 1) + 2)
+/* The AVX2 path (FOGRT_WBVH_AVX2, chapter 9) takes the 8 lanes of a node at once, so it
+   exists for W = 8 only. FOGRT__AVX2_FN marks its functions: compiled for AVX2 with
+   target("avx2") when the rest of the file is not (they are then never forced inline: a
+   function for AVX2 cannot be inlined into one that is not, only the reverse). */
+#if defined(FOGRT_WBVH_AVX2) && FOGRT__WBVH_W == 8
+#define FOGRT__WBVH_HAS_AVX2 1
+#include <immintrin.h>
+#if FOGRT_WBVH_AVX2 == 2
+#define FOGRT__AVX2_FN static inline __attribute__((target("avx2"), unused))
+#else
+#define FOGRT__AVX2_FN FOGRT__HOT
+#endif
+#endif
 
 /* A wide node. Lane i is child i: its box is lo/hi[axis][i] (box[0..2] = minimum x, y, z,
    box[3..5] = maximum x, y, z); count[i] = 0 means an inner child (wide node child[i]),
@@ -2739,7 +2786,7 @@ typedef struct fogrt__wbvh {
     fogrt__wnode *nodes; uint32_t node_count;
     fogrt__wtri *tris; uint32_t tri_packets;
     void *nodes_mem, *tris_mem;   /* the blocks holding nodes and tris, which start on a cache line */
-    uint32_t node_cap;            /* room for this many nodes */
+    bool avx2;                    /* traced by the AVX2 path (the build asks the processor) */
 } fogrt__wbvh;
 
 FOGRT__PRIVATE void fogrt__wbvh_free(fogrt__wbvh *w, const fogrt_allocator *a)
@@ -2800,56 +2847,48 @@ FOGRT__PRIVATE void fogrt__wbvh_pack_leaf(const fogrt_scene *s, fogrt__wbvh *w, 
     *next += (count + 3) / 4;
 }
 
-/* The primitives below binary node b if there are at most limit (<= FOGRT__WBVH_LEAF2) of
-   them (their count, and in *first where they start in s->prim_index: a subtree's
-   primitives are contiguous there), else 0. Looks at no more than 2 limit - 1 nodes. */
-FOGRT__PRIVATE uint32_t fogrt__wbvh_small(const fogrt_bvh_node *bn, uint32_t b, uint32_t limit, uint32_t *first)
+/* The primitives below binary node b if there are at most limit of them (their count,
+   from the subtree sizes of fogrt__wbvh_sizes; a binary leaf always counts), else 0. */
+FOGRT__PRIVATE uint32_t fogrt__wbvh_small(const fogrt_bvh_node *bn, const uint32_t *size, uint32_t b, uint32_t limit)
 {
-    uint32_t stack[2 * FOGRT__WBVH_LEAF2 + 2], sp = 0, count = 0;
-    if (bn[b].prim_count > 0) { *first = bn[b].left_first; return bn[b].prim_count; }
-    if (limit < 2) return 0;
-    stack[sp++] = b;
-    *first = UINT32_MAX;
-    while (sp > 0) {
-        const fogrt_bvh_node *n = &bn[stack[--sp]];
-        if (n->prim_count > 0) {
-            count += n->prim_count;
-            if (count > limit) return 0;
-            if (n->left_first < *first) *first = n->left_first;
-        } else {
-            if (sp + 2 > 2 * limit) return 0;              /* too many nodes: too many primitives */
-            stack[sp++] = n->left_first; stack[sp++] = n->left_first + 1;
-        }
-    }
-    return count;
+    if (bn[b].prim_count > 0) return bn[b].prim_count;
+    return limit >= 2 && size[b] <= limit ? size[b] : 0;
+}
+/* Where the primitives below binary node b start in s->prim_index: a subtree's primitives
+   are contiguous there, the left child's first, so they start at its leftmost leaf. */
+FOGRT__PRIVATE uint32_t fogrt__wbvh_first(const fogrt_bvh_node *bn, uint32_t b)
+{
+    while (bn[b].prim_count == 0) b = bn[b].left_first;
+    return bn[b].left_first;
 }
 
 /* The lanes of the wide node being filled: lane j stands for binary node lane[j]; small[j]
-   > 0 makes it a leaf of that many primitives from first[j]; area[j] is its box's surface
-   area (0 for a leaf: a leaf is never opened). */
+   > 0 makes it a leaf of that many primitives; area[j] is its box's surface area (0 for a
+   leaf: a leaf is never opened). */
 typedef struct fogrt__wlanes {
-    uint32_t lane[FOGRT__WBVH_W], small[FOGRT__WBVH_W], first[FOGRT__WBVH_W], count;
+    uint32_t lane[FOGRT__WBVH_W], small[FOGRT__WBVH_W], count;
     float area[FOGRT__WBVH_W];
 } fogrt__wlanes;
-FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, fogrt__wlanes *L, uint32_t j, uint32_t node)
+FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, const uint32_t *size, fogrt__wlanes *L, uint32_t j,
+                                     uint32_t node)
 {
     L->lane[j] = node;
-    L->small[j] = fogrt__wbvh_small(bn, node, FOGRT__WBVH_LEAF, &L->first[j]);
+    L->small[j] = fogrt__wbvh_small(bn, size, node, FOGRT__WBVH_LEAF);
     L->area[j] = L->small[j] ? 0.0f : fogrt__wbvh_node_area(&bn[node]);
 }
 /* Step 1 for binary node b: start with its two children (a small root is one leaf), then
    open the lane with the largest surface area (the one a ray is most likely to enter) into
    its two children, keeping the tree's left-to-right order, until W lanes are collected or
    none can be opened. */
-FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, uint32_t b, fogrt__wlanes *L)
+FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, const uint32_t *size, uint32_t b, fogrt__wlanes *L)
 {
-    uint32_t j, first;
-    if (fogrt__wbvh_small(bn, b, FOGRT__WBVH_LEAF, &first) || bn[b].prim_count > 0) {
-        fogrt__wbvh_lane(bn, L, 0, b); L->count = 1;   /* only a small root gets here */
+    uint32_t j;
+    if (fogrt__wbvh_small(bn, size, b, FOGRT__WBVH_LEAF)) {
+        fogrt__wbvh_lane(bn, size, L, 0, b); L->count = 1;   /* only a small root gets here */
         return;
     }
-    fogrt__wbvh_lane(bn, L, 0, bn[b].left_first);
-    fogrt__wbvh_lane(bn, L, 1, bn[b].left_first + 1);
+    fogrt__wbvh_lane(bn, size, L, 0, bn[b].left_first);
+    fogrt__wbvh_lane(bn, size, L, 1, bn[b].left_first + 1);
     L->count = 2;
     while (L->count < FOGRT__WBVH_W) {
         int open = -1;
@@ -2860,86 +2899,121 @@ FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, uint32_t b, fo
         if (open < 0) break;
         child = bn[L->lane[open]].left_first;
         for (j = L->count; j > (uint32_t)open + 1; --j) {
-            L->lane[j] = L->lane[j - 1]; L->small[j] = L->small[j - 1];
-            L->first[j] = L->first[j - 1]; L->area[j] = L->area[j - 1];
+            L->lane[j] = L->lane[j - 1]; L->small[j] = L->small[j - 1]; L->area[j] = L->area[j - 1];
         }
-        fogrt__wbvh_lane(bn, L, (uint32_t)open, child);
-        fogrt__wbvh_lane(bn, L, (uint32_t)open + 1, child + 1);
+        fogrt__wbvh_lane(bn, size, L, (uint32_t)open, child);
+        fogrt__wbvh_lane(bn, size, L, (uint32_t)open + 1, child + 1);
         L->count++;
     }
     for (j = 0; j < L->count; ++j)          /* a lane left with two packets' worth: a leaf */
-        if (!L->small[j]) L->small[j] = fogrt__wbvh_small(bn, L->lane[j], FOGRT__WBVH_LEAF2, &L->first[j]);
+        if (!L->small[j]) L->small[j] = fogrt__wbvh_small(bn, size, L->lane[j], FOGRT__WBVH_LEAF2);
 }
-/* Room for the wide tree. A wide node is made for the root and for binary subtrees of more
-   than FOGRT__WBVH_LEAF2 primitives only, so the subtree sizes (one pass from the last node
-   back: children come after their parent) bound the nodes; the packets are at most those
-   of the binary leaves (a leaf merging several binary leaves needs no more). */
-FOGRT__PRIVATE bool fogrt__wbvh_alloc(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
+/* The number of primitives below every binary node (one pass from the last node back:
+   children come after their parent; node 1 is unused). NULL when out of memory. */
+FOGRT__PRIVATE uint32_t *fogrt__wbvh_sizes(const fogrt_scene *s, const fogrt_allocator *a)
 {
-    uint32_t i = s->node_count, big = 1, packets = 0;
+    uint32_t i = s->node_count;
     uint32_t *size = (uint32_t *)fogrt__alloc(a, sizeof(uint32_t) * (size_t)s->node_count);
-    if (!size) return false;
+    if (!size) return NULL;
+    size[1] = 0;
     while (i-- > 0) {
         const fogrt_bvh_node *n = &s->nodes[i];
-        if (i == 1) continue;                            /* node 1 is unused */
-        if (n->prim_count > 0) {
-            size[i] = n->prim_count;
-            packets += (n->prim_count + 3) / 4;
-        } else {
-            size[i] = size[n->left_first] + size[n->left_first + 1];
-            big += size[i] > FOGRT__WBVH_LEAF2 && i > 0;
+        if (i != 1) size[i] = n->prim_count > 0 ? n->prim_count : size[n->left_first] + size[n->left_first + 1];
+    }
+    return size;
+}
+/* The wide nodes are first laid out as records (lane j's binary node, child and count;
+   no boxes), for which the subtree sizes bound the room: a wide node is made for the root
+   and for binary subtrees of more than FOGRT__WBVH_LEAF2 primitives only. The nodes and
+   packets then get blocks of exactly the size counted. */
+typedef struct fogrt__wrec { uint32_t lane[FOGRT__WBVH_W], child[FOGRT__WBVH_W], count[FOGRT__WBVH_W]; } fogrt__wrec;
+FOGRT__PRIVATE uint32_t fogrt__wbvh_bound(const fogrt_scene *s, const uint32_t *size)
+{
+    uint32_t i, big = 1;
+    for (i = 2; i < s->node_count; ++i) big += s->nodes[i].prim_count == 0 && size[i] > FOGRT__WBVH_LEAF2;
+    return big;
+}
+/* Step 1 for every wide node, from a stack: the records rec[0 .. *nodes) in the order the
+   nodes will be stored, and the number of packets. */
+FOGRT__PRIVATE void fogrt__wbvh_layout(const fogrt_scene *s, const uint32_t *size, fogrt__wrec *rec, uint32_t cap,
+                                       uint32_t *nodes, uint32_t *packets)
+{
+    uint32_t stack_b[FOGRT__BVH_MAX_DEPTH * FOGRT__WBVH_W + 2], stack_w[FOGRT__BVH_MAX_DEPTH * FOGRT__WBVH_W + 2];
+    uint32_t sp = 0, j;
+    *nodes = 1; *packets = 0;
+    stack_b[sp] = 0; stack_w[sp++] = 0;
+    while (sp > 0) {
+        fogrt__wlanes L;
+        fogrt__wrec *r;
+        --sp;
+        r = &rec[stack_w[sp]];
+        fogrt__wbvh_collect(s->nodes, size, stack_b[sp], &L);
+        for (j = 0; j < FOGRT__WBVH_W; ++j) {
+            r->lane[j] = L.lane[j < L.count ? j : 0];
+            if (j >= L.count) { r->child[j] = 0; r->count[j] = FOGRT__WBVH_EMPTY; }
+            else if (L.small[j]) { r->child[j] = *packets; r->count[j] = L.small[j]; *packets += (L.small[j] + 3) / 4; }
+            else {
+                FOGRT_ASSERT(*nodes < cap && sp < FOGRT__BVH_MAX_DEPTH * FOGRT__WBVH_W + 2);
+                r->child[j] = (*nodes)++; r->count[j] = 0;
+                stack_b[sp] = L.lane[j]; stack_w[sp++] = r->child[j];
+            }
         }
     }
-    fogrt__free(a, size);
-    w->nodes = (fogrt__wnode *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wnode) * big, &w->nodes_mem);
-    w->node_cap = big;
-    w->tris = (fogrt__wtri *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wtri) * (packets > 0 ? packets : 1), &w->tris_mem);
-    if (w->nodes && w->tris) return true;
-    fogrt__wbvh_free(w, a);
+}
+/* Whether this processor runs the AVX2 path: asked once per build where the file is not
+   compiled for AVX2 anyway (the answer is cached by the compiler's runtime). */
+FOGRT__PRIVATE bool fogrt__wbvh_avx2_usable(void)
+{
+#if defined(FOGRT__WBVH_HAS_AVX2) && FOGRT_WBVH_AVX2 == 2
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") != 0;
+#elif defined(FOGRT__WBVH_HAS_AVX2)
+    return true;
+#else
     return false;
+#endif
 }
 /* Build the wide tree from the scene's binary tree (s->nodes) and packed primitives
    (s->prim_index, and the primitives themselves): each wide node collects its lanes
    (step 1 above); a lane with at most FOGRT_WBVH_LEAF (4) primitives below it becomes one
    leaf, one full packet (the binary tree's leaves hold about 2 primitives, so this halves
    the packets and the nodes); the others become new wide nodes, handled the same way from
-   a stack. Returns false when out of memory (w is then empty). */
+   a stack. Then each node gets its lanes' boxes and each leaf its packets. Returns false
+   when out of memory (w is then empty). */
 FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
 {
-    enum { W = FOGRT__WBVH_W };
-    uint32_t stack_b[FOGRT__BVH_MAX_DEPTH * W + 2], stack_w[FOGRT__BVH_MAX_DEPTH * W + 2], sp = 0, next_packet = 0;
+    uint32_t *size, i, j, cap;
+    fogrt__wrec *rec = NULL;
     memset(w, 0, sizeof *w);
+    w->avx2 = fogrt__wbvh_avx2_usable();
     if (!s->nodes || !s->prim_index || s->tri_count + s->sph_count == 0) return true;   /* nothing to trace */
-    if (!fogrt__wbvh_alloc(s, w, a)) return false;
-    w->node_count = 1;
-    stack_b[sp] = 0; stack_w[sp++] = 0;
-    while (sp > 0) {
-        fogrt__wlanes L;
-        fogrt__wnode *wn;
-        uint32_t j;
-        --sp;
-        wn = &w->nodes[stack_w[sp]];
-        fogrt__wbvh_collect(s->nodes, stack_b[sp], &L);
-        for (j = 0; j < W; ++j) {
-            const fogrt_bvh_node *bj = &s->nodes[L.lane[j < L.count ? j : 0]];
+    if (!(size = fogrt__wbvh_sizes(s, a))) return false;
+    cap = fogrt__wbvh_bound(s, size);
+    if ((rec = (fogrt__wrec *)fogrt__alloc(a, sizeof(fogrt__wrec) * cap)) != NULL) {
+        fogrt__wbvh_layout(s, size, rec, cap, &w->node_count, &w->tri_packets);
+        w->nodes = (fogrt__wnode *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wnode) * w->node_count, &w->nodes_mem);
+        w->tris = (fogrt__wtri *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wtri) * (w->tri_packets ? w->tri_packets : 1u), &w->tris_mem);
+    }
+    fogrt__free(a, size);
+    if (!w->nodes || !w->tris) { fogrt__free(a, rec); fogrt__wbvh_free(w, a); return false; }
+    for (i = 0; i < w->node_count; ++i) {
+        fogrt__wnode *wn = &w->nodes[i];
+        for (j = 0; j < FOGRT__WBVH_W; ++j) {
+            const fogrt_bvh_node *bj = &s->nodes[rec[i].lane[j]];
+            bool used = rec[i].count[j] != FOGRT__WBVH_EMPTY;
             int k;
             for (k = 0; k < 3; ++k) {                  /* an unused lane: an empty box */
-                wn->box[k][j] = j < L.count ? bj->bmin[k] : FLT_MAX;
-                wn->box[3 + k][j] = j < L.count ? bj->bmax[k] : -FLT_MAX;
+                wn->box[k][j] = used ? bj->bmin[k] : FLT_MAX;
+                wn->box[3 + k][j] = used ? bj->bmax[k] : -FLT_MAX;
             }
-            if (j >= L.count) { wn->child[j] = 0; wn->count[j] = FOGRT__WBVH_EMPTY; }
-            else if (L.small[j]) {
-                wn->child[j] = next_packet; wn->count[j] = L.small[j];
-                fogrt__wbvh_pack_leaf(s, w, L.first[j], L.small[j], &next_packet);
-            } else {
-                FOGRT_ASSERT(w->node_count < w->node_cap);
-                wn->child[j] = w->node_count++; wn->count[j] = 0;
-                FOGRT_ASSERT(sp < FOGRT__BVH_MAX_DEPTH * W + 2);
-                stack_b[sp] = L.lane[j]; stack_w[sp++] = wn->child[j];
+            wn->child[j] = rec[i].child[j]; wn->count[j] = rec[i].count[j];
+            if (used && wn->count[j] > 0) {
+                uint32_t next = wn->child[j];
+                fogrt__wbvh_pack_leaf(s, w, fogrt__wbvh_first(s->nodes, rec[i].lane[j]), wn->count[j], &next);
             }
         }
     }
-    w->tri_packets = next_packet;
+    fogrt__free(a, rec);
     return true;
 }
 /* The scene's wide tree: built by fogrt_scene_build (chapter 11), released with the rest of
@@ -2958,13 +3032,29 @@ FOGRT__PRIVATE void fogrt__wide_release(fogrt_scene *s)
     s->wide = NULL;
 }
 
+/* The ray as the wide traversal reads it: the origin, the reciprocal direction (chapter
+   10's, so the same values) and the rows of box[] holding the near and far face per axis:
+   the minimum unless the ray goes down that axis. */
+typedef struct fogrt__wray { fogrt__v3 o, inv; int near_row[3], far_row[3]; } fogrt__wray;
+FOGRT__HOT void fogrt__wray_setup(fogrt__wray *r, fogrt__v3 o, fogrt__v3 d)
+{
+    int a;
+    r->o = o;
+    r->inv = fogrt__v(fogrt__safe_rcp(d.x), fogrt__safe_rcp(d.y), fogrt__safe_rcp(d.z));
+    for (a = 0; a < 3; ++a) {
+        bool negative = fogrt__comp(r->inv, a) < 0.0f;
+        r->near_row[a] = negative ? 3 + a : a;
+        r->far_row[a] = negative ? a : 3 + a;
+    }
+}
+
 /* The W slab tests of one node: bit i of the result is set when the ray enters child i
    between tmin and tmax, and t[i] is then its entry distance. Per lane these are exactly the
    operations of fogrt__slab: near and far face by the sign of the direction, t0 = the
    largest entry (a NaN entry ignored), t1 = the smallest exit, hit iff t0 <= t1 (1 + 2 ulp). */
 #ifdef FOGRT_WBVH_SSE
-FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r, const int near_row[3],
-                                      const int far_row[3], float tmin, float tmax, float *t)
+FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__wray *r, float tmin, float tmax,
+                                      float *t)
 {
     unsigned mask = 0;
     int g;
@@ -2973,16 +3063,16 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r
         __m128i empty = _mm_cmpeq_epi32(_mm_loadu_si128((const __m128i *)(const void *)&n->count[g]),
                                         _mm_set1_epi32(-1));
         o = _mm_set1_ps(r->o.x); inv = _mm_set1_ps(r->inv.x);
-        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[near_row[0]][g]), o), inv);
-        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[far_row[0]][g]), o), inv);
+        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->near_row[0]][g]), o), inv);
+        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->far_row[0]][g]), o), inv);
         t0 = _mm_max_ps(tn, t0); t1 = _mm_min_ps(tf, t1);      /* max(a, b) = a > b ? a : b */
         o = _mm_set1_ps(r->o.y); inv = _mm_set1_ps(r->inv.y);
-        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[near_row[1]][g]), o), inv);
-        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[far_row[1]][g]), o), inv);
+        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->near_row[1]][g]), o), inv);
+        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->far_row[1]][g]), o), inv);
         t0 = _mm_max_ps(tn, t0); t1 = _mm_min_ps(tf, t1);
         o = _mm_set1_ps(r->o.z); inv = _mm_set1_ps(r->inv.z);
-        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[near_row[2]][g]), o), inv);
-        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[far_row[2]][g]), o), inv);
+        tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->near_row[2]][g]), o), inv);
+        tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->far_row[2]][g]), o), inv);
         t0 = _mm_max_ps(tn, t0); t1 = _mm_min_ps(tf, t1);
         _mm_storeu_ps(&t[g], t0);
         mask |= (unsigned)(_mm_movemask_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(1.00000024f)))) &
@@ -2991,8 +3081,8 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r
     return mask;
 }
 #else
-FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r, const int near_row[3],
-                                      const int far_row[3], float tmin, float tmax, float *t)
+FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__wray *r, float tmin, float tmax,
+                                      float *t)
 {
     float t1[FOGRT__WBVH_W];
     unsigned mask = 0;
@@ -3001,8 +3091,8 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r
     for (i = 0; i < FOGRT__WBVH_W; ++i) { t[i] = tmin; t1[i] = tmax; }
     for (a = 0; a < 3; ++a)                               /* x, then y, then z, as fogrt__slab */
         for (i = 0; i < FOGRT__WBVH_W; ++i) {
-            float tn = (n->box[near_row[a]][i] - o[a]) * inv[a];
-            float tf = (n->box[far_row[a]][i] - o[a]) * inv[a];
+            float tn = (n->box[r->near_row[a]][i] - o[a]) * inv[a];
+            float tf = (n->box[r->far_row[a]][i] - o[a]) * inv[a];
             t[i] = tn > t[i] ? tn : t[i];
             t1[i] = tf < t1[i] ? tf : t1[i];
         }
@@ -3011,6 +3101,42 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__ray *r
     return mask;
 }
 #endif
+#ifdef FOGRT__WBVH_HAS_AVX2
+/* The same W = 8 slab tests in one pass of 8-lane AVX instructions (the SSE version above
+   makes two passes of 4): the same operations in the same order, so the same bits. */
+FOGRT__AVX2_FN unsigned fogrt__wbvh_slabs8(const fogrt__wnode *n, const fogrt__wray *r, float tmin, float tmax,
+                                           float *t)
+{
+    __m256 t0 = _mm256_set1_ps(tmin), t1 = _mm256_set1_ps(tmax), tn, tf, o, inv;
+    __m256i empty = _mm256_cmpeq_epi32(_mm256_loadu_si256((const __m256i *)(const void *)n->count),
+                                       _mm256_set1_epi32(-1));
+    o = _mm256_set1_ps(r->o.x); inv = _mm256_set1_ps(r->inv.x);
+    tn = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->near_row[0]]), o), inv);
+    tf = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->far_row[0]]), o), inv);
+    t0 = _mm256_max_ps(tn, t0); t1 = _mm256_min_ps(tf, t1);
+    o = _mm256_set1_ps(r->o.y); inv = _mm256_set1_ps(r->inv.y);
+    tn = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->near_row[1]]), o), inv);
+    tf = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->far_row[1]]), o), inv);
+    t0 = _mm256_max_ps(tn, t0); t1 = _mm256_min_ps(tf, t1);
+    o = _mm256_set1_ps(r->o.z); inv = _mm256_set1_ps(r->inv.z);
+    tn = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->near_row[2]]), o), inv);
+    tf = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->far_row[2]]), o), inv);
+    t0 = _mm256_max_ps(tn, t0); t1 = _mm256_min_ps(tf, t1);
+    _mm256_storeu_ps(t, t0);
+    return (unsigned)(_mm256_movemask_ps(_mm256_cmp_ps(t0, _mm256_mul_ps(t1, _mm256_set1_ps(1.00000024f)), _CMP_LE_OS)) &
+                      ~_mm256_movemask_ps(_mm256_castsi256_ps(empty)));
+}
+#endif
+/* The box test of the chosen path. */
+FOGRT__HOT unsigned fogrt__wbvh_test(const fogrt__wnode *n, const fogrt__wray *r, float tmin, float tmax, float *t,
+                                     bool avx2)
+{
+#ifdef FOGRT__WBVH_HAS_AVX2
+    if (avx2) return fogrt__wbvh_slabs8(n, r, tmin, tmax, t);
+#endif
+    (void)avx2;
+    return fogrt__wbvh_slabs(n, r, tmin, tmax, t);
+}
 
 /* One packet against the ray: fogrt__hit_triangle on all four lanes. Returns the mask of
    lanes hit in (tmin, tmax) and their t, u, v. */
@@ -3145,71 +3271,101 @@ FOGRT__HOT bool fogrt__wbvh_leaf(const fogrt_scene *s, const fogrt__wbvh *w, uin
    the first hit found; hit is written only on a hit). Test the current node's W boxes, visit
    the nearest child hit next and push the others, farthest first, with their entry
    distances; a popped child whose entry lies beyond the closest hit found so far is skipped. */
-/* More than one lane of node n hit (first, and the lanes in mask m): push all but one and
-   return the lane to descend into. For the closest hit the lanes are sorted by entry
-   distance (insertion sort, stable: on equal distance the left child first, as
-   fogrt__traverse orders them) and the nearest is descended first; for any hit the order
-   does not matter and the sort is skipped. */
-FOGRT__PRIVATE unsigned fogrt__wbvh_push(const fogrt__wbvh *w, const fogrt__wnode *n, const float *t, unsigned first,
-                                         unsigned m, bool any_hit, uint32_t *stack_ref, uint32_t *stack_cnt,
-                                         float *stack_t, uint32_t *sp)
+typedef struct fogrt__wentry { float t; uint32_t ref, cnt; } fogrt__wentry;   /* a pushed child */
+/* More than one lane of node n hit (the lanes in mask m): push them all and pop the one to
+   descend into. For the closest hit each lane is inserted at its place among the lanes of
+   this node already pushed (insertion sort on the stack, stable: on equal distance the left
+   child comes first, as fogrt__traverse orders them), so the nearest is on top; for any hit
+   the order does not matter and the sort is skipped. */
+FOGRT__HOT fogrt__wentry fogrt__wbvh_push(const fogrt__wbvh *w, const fogrt__wnode *n, const float *t, unsigned m,
+                                          bool any_hit, fogrt__wentry *stack, uint32_t *sp)
 {
-    unsigned lane[FOGRT__WBVH_W], k = 1, i, j;
-    lane[0] = first;
+    uint32_t base = *sp, i = base;
     for (; m; m &= m - 1) {
         unsigned l = fogrt__wbvh_ctz(m);
-        for (i = k; !any_hit && i > 0 && t[lane[i - 1]] > t[l]; --i) lane[i] = lane[i - 1];
-        lane[i] = l;
-        ++k;
-    }
-    for (j = k - 1; j > 0; --j) {                        /* push all but the nearest */
-        stack_ref[*sp] = n->child[lane[j]]; stack_cnt[*sp] = n->count[lane[j]];
-        stack_t[(*sp)++] = t[lane[j]];
-        FOGRT__WBVH_PREFETCH(w, n->child[lane[j]], n->count[lane[j]]);
+        fogrt__wentry e;
+        e.t = t[l]; e.ref = n->child[l]; e.cnt = n->count[l];
+        FOGRT__WBVH_PREFETCH(w, e.ref, e.cnt);
+        for (i = *sp; !any_hit && i > base && stack[i - 1].t <= e.t; --i) stack[i] = stack[i - 1];
+        stack[i] = e;
+        ++*sp;
     }
     (void)w;
-    return lane[0];
+    return stack[--*sp];
 }
-FOGRT__PRIVATE bool fogrt__wbvh_traverse(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
-                                         float tmin, float tmax, fogrt_hit *hit, bool any_hit)
+/* The traversal loop, one body for both paths: avx2 (a constant in each caller below)
+   picks the box test. tcull is fogrt__cull(tmax), updated when tmax shrinks. */
+FOGRT__HOT bool fogrt__wbvh_walk(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                 float tmin, float tmax, fogrt_hit *hit, bool any_hit, bool avx2)
 {
-    uint32_t stack_ref[FOGRT__WBVH_STACK], stack_cnt[FOGRT__WBVH_STACK], sp = 0, ref = 0, cnt = 0;
-    float stack_t[FOGRT__WBVH_STACK];
-    int near_row[3], far_row[3], a;
-    fogrt__ray r;
+    fogrt__wentry stack[FOGRT__WBVH_STACK];
+    uint32_t sp = 0, ref = 0, cnt = 0;
+    float tcull = fogrt__cull(tmax);
+    fogrt__wray r;
     bool found = false;
-    if (!s->built || w->node_count == 0) return false;
-    fogrt__ray_setup(&r, o, d);
-    for (a = 0; a < 3; ++a) {          /* the near face is the minimum unless the ray goes down */
-        bool negative = fogrt__comp(r.inv, a) < 0.0f;
-        near_row[a] = negative ? 3 + a : a;
-        far_row[a] = negative ? a : 3 + a;
-    }
+    fogrt__wray_setup(&r, o, d);
     for (;;) {
         if (cnt == 0) {                                  /* a wide node: test its W boxes */
             const fogrt__wnode *n = &w->nodes[ref];
             float t[FOGRT__WBVH_W];
             FOGRT__WBVH_STAT(node);
-            unsigned m = fogrt__wbvh_slabs(n, &r, near_row, far_row, tmin, fogrt__cull(tmax), t);
-            if (m) {
+            unsigned m = fogrt__wbvh_test(n, &r, tmin, tcull, t, avx2);
+            if (m & (m - 1)) {
+                fogrt__wentry e = fogrt__wbvh_push(w, n, t, m, any_hit, stack, &sp);
+                ref = e.ref; cnt = e.cnt;
+                continue;
+            }
+            if (m) {                                     /* one child hit: the common case */
                 unsigned first = fogrt__wbvh_ctz(m);
-                m &= m - 1;
-                if (m) first = fogrt__wbvh_push(w, n, t, first, m, any_hit, stack_ref, stack_cnt, stack_t, &sp);
-                ref = n->child[first]; cnt = n->count[first];   /* one child hit: the common case */
+                ref = n->child[first]; cnt = n->count[first];
                 continue;
             }
         } else if (fogrt__wbvh_leaf(s, w, ref, cnt, o, d, tmin, &tmax, hit, any_hit)) {
             found = true;
             if (any_hit) return true;
+            tcull = fogrt__cull(tmax);
         }
         /* pop the next child that can still hold a closer hit */
         for (;;) {
             if (sp == 0) return found;
             --sp;
-            if (stack_t[sp] <= fogrt__cull(tmax)) break;
+            if (any_hit || stack[sp].t <= tcull) break;   /* any hit: tcull has not moved since the push */
         }
-        ref = stack_ref[sp]; cnt = stack_cnt[sp];
+        ref = stack[sp].ref; cnt = stack[sp].cnt;
     }
+}
+/* The four traversals: closest or any hit, SSE (or plain C) or AVX2 boxes. */
+FOGRT__PRIVATE bool fogrt__wbvh_closest(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                        float tmin, float tmax, fogrt_hit *hit)
+{
+    return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, false, false);
+}
+FOGRT__PRIVATE bool fogrt__wbvh_any(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                    float tmin, float tmax, fogrt_hit *hit)
+{
+    return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, true, false);
+}
+#ifdef FOGRT__WBVH_HAS_AVX2
+FOGRT__AVX2_FN bool fogrt__wbvh_closest_avx2(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                             float tmin, float tmax, fogrt_hit *hit)
+{
+    return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, false, true);
+}
+FOGRT__AVX2_FN bool fogrt__wbvh_any_avx2(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                         float tmin, float tmax, fogrt_hit *hit)
+{
+    return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, true, true);
+}
+#endif
+FOGRT__HOT bool fogrt__wbvh_traverse(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
+                                     float tmin, float tmax, fogrt_hit *hit, bool any_hit)
+{
+    if (!s->built || w->node_count == 0) return false;
+#ifdef FOGRT__WBVH_HAS_AVX2
+    if (w->avx2) return any_hit ? fogrt__wbvh_any_avx2(s, w, o, d, tmin, tmax, hit)
+                                : fogrt__wbvh_closest_avx2(s, w, o, d, tmin, tmax, hit);
+#endif
+    return any_hit ? fogrt__wbvh_any(s, w, o, d, tmin, tmax, hit) : fogrt__wbvh_closest(s, w, o, d, tmin, tmax, hit);
 }
 
 /* Either tree, as the build chose: the wide one when there is one. */

@@ -335,7 +335,7 @@ static bool ulp1(float a, float b)
     if (ib < 0) ib = (int32_t)0x80000000 - ib;
     return (ia > ib ? ia - ib : ib - ia) <= 1;
 }
-typedef struct tally { size_t rays, bad_closest, bad_any, ties, hits, wide_right, bin_right, vs_orig, edge_closer, edge_any; } tally;
+typedef struct tally { size_t rays, bad_closest, bad_any, ties, hits, wide_right, bin_right, vs_orig, edge_closer, edge_any, bad_path, path_rays; } tally;
 static float prim_t(const fogrt_scene *s, uint32_t id, const ray *r)
 {
     float t = -1.0f, u, v;
@@ -375,6 +375,20 @@ static void compare(const fogrt_scene *s, const fogrt__wbvh *w, const rays *set,
             aa = traverse_slack(s, r->o, r->d, r->tmin, r->tmax, &tmp, true);
             ab = fogrt__wbvh_traverse(s, w, r->o, r->d, r->tmin, r->tmax, &tmp, true);
             if (a_orig != aa) aa = !ab;                   /* the unpatched one differs: report it */
+        }
+        if (w->avx2) {   /* the AVX2 path against the SSE (or plain C) one: bit for bit the same */
+            fogrt__wbvh w4 = *w;
+            fogrt_hit c, tmp;
+            bool hc, ac;
+            memset(&c, 0, sizeof c);
+            w4.avx2 = false;
+            hc = fogrt__wbvh_traverse(s, &w4, r->o, r->d, r->tmin, r->tmax, &c, false);
+            ac = fogrt__wbvh_traverse(s, &w4, r->o, r->d, r->tmin, r->tmax, &tmp, true);
+            tl->path_rays++;
+            if (hc != hb || ac != ab || (hb && (memcmp(&c.t, &b.t, 4) || c.prim != b.prim || memcmp(&c.u, &b.u, 4) || memcmp(&c.v, &b.v, 4)))) {
+                tl->bad_path++;
+                if (printed++ < 5) fprintf(stderr, "  %s: AVX2 and SSE paths differ at ray %lu\n", what, (unsigned long)i);
+            }
         }
         tl->rays++;
         tl->hits += ha;
@@ -446,12 +460,14 @@ static bool check_scene(const char *name, const fogrt_scene *s, size_t n_per_fam
            (unsigned long)tl.vs_orig, (unsigned long)tl.wide_right, (unsigned long)tl.bin_right);
     printf("    rays along an edge where the wide tree finds a real hit the binary tree's boxes missed: %lu closer hits, %lu any-hit\n",
            (unsigned long)tl.edge_closer, (unsigned long)tl.edge_any);
+    if (tl.path_rays) printf("    AVX2 path vs SSE path (closest and any hit, bit for bit): %lu of %lu rays differ\n",
+                             (unsigned long)tl.bad_path, (unsigned long)tl.path_rays);
     if (brute_n) printf("    binary tree vs brute force: %lu of %lu random rays differ; SAH cost %.3f\n",
                         (unsigned long)brute_bad, (unsigned long)brute_n, fogrt_bvh_sah_cost(s));
     else printf("    SAH cost %.3f\n", fogrt_bvh_sah_cost(s));
     *total_rays += tl.rays;
     fogrt__wbvh_free(&w, &s->allocator);
-    return tl.bad_closest == 0 && tl.bad_any == 0 && brute_bad == 0;
+    return tl.bad_closest == 0 && tl.bad_any == 0 && tl.bad_path == 0 && brute_bad == 0;
 }
 
 /* ---- scenes ---- */
@@ -777,7 +793,12 @@ int main(int argc, char **argv)
     }
     if (op.reps < 1 || op.reps > 31 || op.rays < 1000) { fprintf(stderr, "wide_dev: --reps 1..31, --rays >= 1000\n"); return 2; }
 #ifdef FOGRT_WBVH_SSE
-    printf("wide BVH: width %d, SSE path\n", FOGRT__WBVH_W);
+    {
+        fogrt__wbvh probe;
+        memset(&probe, 0, sizeof probe);
+        probe.avx2 = fogrt__wbvh_avx2_usable();
+        printf("wide BVH: width %d, %s path\n", FOGRT__WBVH_W, probe.avx2 ? "AVX2 (checked against SSE)" : "SSE");
+    }
 #else
     printf("wide BVH: width %d, scalar path\n", FOGRT__WBVH_W);
 #endif
