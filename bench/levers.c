@@ -8,7 +8,12 @@
         on, 4 seeds: the relative MSE against a reference rendered first (glow on, 1024 spp
         in 2 seeds; --reference-spp N to change) times the CPU seconds, and the rays per
         sample. The error estimate of fogrt_image_error is printed too.
-   Usage: bench/levers [--no-spot] [--reference-spp N] */
+     3. expected emission (render desc expected_emission, 14 b) on the cross-check's
+        lamp-lit box (tests/crosscheck/scenes.py: fog_iso, fog_forward, fog_back, glass_fog with exact
+        Fresnel), 128 x 96, --lamp-spp samples (32), one thread, expected_emission off
+        and on, 4 seeds: the relative MSE against a reference (on, --reference-spp samples
+        in 2 seeds) times the CPU seconds, and the rays per sample.
+   Usage: bench/levers [--no-spot] [--no-lamp] [--reference-spp N] [--lamp-spp N] */
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
 #ifdef HAVE_FOGRT_LOAD
@@ -88,6 +93,44 @@ static fogrt_scene *many_lights_box(bool fog)
     return s;
 }
 
+/* The cross-check's box (tests/crosscheck/scenes.py, box_scene): x in [-1, 1], y in [0, 2],
+   z in [-1, 1], open toward the camera, a square lamp of radiance 20 under the ceiling, fog
+   everywhere outside the glass; a grey diffuse sphere, or (glass) a glass sphere. */
+static fogrt_scene *lamp_box(float sigma_t, float albedo, float g, bool glass)
+{
+    fogrt_scene *s = NULL;
+    fogrt_camera_desc c;
+    fogrt_medium_desc md;
+    fogrt_material_desc lm;
+    uint32_t w, r, gr, lamp, ball;
+    const float h = 0.3f, y = 1.98f;
+    if (fogrt_scene_create(NULL, &s) != FOGRT_RESULT_OK) return NULL;
+    w = material(s, v3(0.725f, 0.71f, 0.68f)); r = material(s, v3(0.63f, 0.065f, 0.05f));
+    gr = material(s, v3(0.14f, 0.45f, 0.09f));
+    memset(&lm, 0, sizeof lm);
+    lm.type = glass ? FOGRT_BSDF_GLASS : FOGRT_BSDF_DIFFUSE;
+    lm.reflectance = glass ? v3(1, 1, 1) : v3(0.6f, 0.6f, 0.6f); lm.transmittance = v3(1, 1, 1); lm.ior = 1.5f;
+    fogrt_scene_add_material(s, &lm, &ball);
+    lm.type = FOGRT_BSDF_DIFFUSE; lm.reflectance = v3(0, 0, 0); lm.emission = v3(20, 20, 20);
+    fogrt_scene_add_material(s, &lm, &lamp);
+    quad(s, v3(-1, 0, -1), v3(-1, 0, 1), v3(1, 0, 1), v3(1, 0, -1), w);
+    quad(s, v3(-1, 2, -1), v3(1, 2, -1), v3(1, 2, 1), v3(-1, 2, 1), w);
+    quad(s, v3(-1, 0, -1), v3(1, 0, -1), v3(1, 2, -1), v3(-1, 2, -1), w);
+    quad(s, v3(-1, 0, -1), v3(-1, 2, -1), v3(-1, 2, 1), v3(-1, 0, 1), r);
+    quad(s, v3(1, 0, -1), v3(1, 0, 1), v3(1, 2, 1), v3(1, 2, -1), gr);
+    quad(s, v3(-h, y, -h), v3(h, y, -h), v3(h, y, h), v3(-h, y, h), lamp);   /* faces down */
+    if (glass) fogrt_scene_add_sphere(s, v3(0.0f, 0.6f, 0.2f), 0.6f, ball);
+    else fogrt_scene_add_sphere(s, v3(-0.4f, 0.45f, -0.3f), 0.45f, ball);
+    memset(&c, 0, sizeof c);
+    c.position = v3(0, 1, 3.2f); c.look_at = v3(0, 1, 0); c.up = v3(0, 1, 0); c.fov_deg = 40.0f;
+    fogrt_scene_set_camera(s, &c);
+    memset(&md, 0, sizeof md);
+    md.sigma_t = sigma_t; md.albedo = v3(albedo, albedo, albedo); md.g = g;
+    fogrt_scene_set_medium(s, &md);
+    if (fogrt_scene_build(s, NULL) != FOGRT_RESULT_OK) { fogrt_scene_destroy(s); return NULL; }
+    return s;
+}
+
 static void by_power(const fogrt_scene *s, const char *name)
 {
     int p;
@@ -108,25 +151,26 @@ static void by_power(const fogrt_scene *s, const char *name)
     }
 }
 
-#ifdef HAVE_FOGRT_LOAD
 typedef struct spot_run { double rel_mse, cpu, rays, estimate; } spot_run;
 
 static double luminance(const float *c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
 
-static spot_run spot_render(const fogrt_scene *s, bool glow, uint64_t seed, int spp, const float *ref, float *out)
+/* One render of W x H on one thread, timed in CPU seconds, with its relative MSE against
+   ref (when given); the image goes to out (when given). */
+static spot_run render_run(const fogrt_scene *s, const fogrt_render_desc *rd0, int W, int H, int spp,
+                           const float *ref, float *out)
 {
-    enum { W = 160, H = 120 };
     spot_run r;
-    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_render_desc rd;
     fogrt_image img;
     fogrt_render_stats st;
     fogrt_error_estimate e;
     double t0, num = 0.0, den = 0.0;
-    float *rgb = out ? out : (float *)malloc(sizeof(float) * 3 * W * H);
+    float *rgb = out ? out : (float *)malloc(sizeof(float) * 3 * (size_t)W * (size_t)H);
     int i;
     memset(&r, 0, sizeof r);
     if (!rgb || fogrt_image_alloc(&img, W, H, NULL) != FOGRT_RESULT_OK) { if (!out) free(rgb); return r; }
-    rd.glow = glow; rd.seed = seed; rd.threads = 1; rd.max_depth = 64;
+    rd = *rd0; rd.threads = 1;
     t0 = cpu_seconds();
     fogrt_render(s, &rd, &img, spp, &st);
     r.cpu = cpu_seconds() - t0;
@@ -142,6 +186,53 @@ static spot_run spot_render(const fogrt_scene *s, bool glow, uint64_t seed, int 
     fogrt_image_free(&img);
     if (!out) free(rgb);
     return r;
+}
+
+/* 3. The lamp-lit box, expected_emission off and on; the reference with it on. */
+static void lamp_scenes(int ref_spp, int spp)
+{
+    enum { W = 128, H = 96 };
+    static const struct { const char *name; float sigma_t, albedo, g; bool glass; } sc[4] = {
+        { "fog_iso", 0.5f, 0.8f, 0.0f, false }, { "fog_forward", 0.5f, 0.8f, 0.7f, false },
+        { "fog_back", 0.5f, 0.8f, -0.7f, false }, { "glass_fog", 0.2f, 0.9f, 0.5f, true } };
+    float *ref = (float *)malloc(sizeof(float) * 3 * W * H), *half = (float *)malloc(sizeof(float) * 3 * W * H);
+    int i, k, q, seed;
+    printf("lamp-lit box (the cross-check's), 128x96, %d spp, 1 thread, max depth 64, exact Fresnel; reference %d spp\n",
+           spp, ref_spp);
+    for (q = 0; q < 4 && ref && half; q++) {
+        fogrt_scene *s = lamp_box(sc[q].sigma_t, sc[q].albedo, sc[q].g, sc[q].glass);
+        fogrt_render_desc rd = fogrt_render_defaults();
+        double sum[2] = { 0.0, 0.0 };
+        if (!s) continue;
+        rd.max_depth = 64; rd.fresnel = FOGRT_FRESNEL_EXACT;
+        memset(ref, 0, sizeof(float) * 3 * W * H);
+        for (k = 0; k < 2; k++) {
+            rd.seed = 100 + (uint64_t)k;
+            render_run(s, &rd, W, H, ref_spp / 2, NULL, half);
+            for (i = 0; i < 3 * W * H; i++) ref[i] += 0.5f * half[i];
+        }
+        for (seed = 1; seed <= 4; seed++)
+            for (k = 0; k < 2; k++) {
+                spot_run r;
+                rd.seed = (uint64_t)seed; rd.expected_emission = k != 0;
+                r = render_run(s, &rd, W, H, spp, ref, NULL);
+                sum[k] += r.rel_mse * r.cpu;
+                printf("  %-11s seed %d expected_emission %-3s  CPU %.2f s  rays/sample %5.2f  rel. MSE %.5f  x CPU s %.4f\n",
+                       sc[q].name, seed, k ? "on" : "off", r.cpu, r.rays, r.rel_mse, r.rel_mse * r.cpu);
+            }
+        printf("  %-11s mean rel. MSE x CPU s: off %.4f  on %.4f  (off / on %.1f)\n", sc[q].name, sum[0] / 4.0,
+               sum[1] / 4.0, sum[1] > 0.0 ? sum[0] / sum[1] : 0.0);
+        fogrt_scene_destroy(s);
+    }
+    free(ref); free(half);
+}
+
+#ifdef HAVE_FOGRT_LOAD
+static spot_run spot_render(const fogrt_scene *s, bool glow, uint64_t seed, int spp, const float *ref, float *out)
+{
+    fogrt_render_desc rd = fogrt_render_defaults();
+    rd.glow = glow; rd.seed = seed; rd.max_depth = 64;
+    return render_run(s, &rd, 160, 120, spp, ref, out);
 }
 
 static void spot_scene(int ref_spp)
@@ -184,13 +275,16 @@ static void spot_scene(int ref_spp)
 int main(int argc, char **argv)
 {
     fogrt_scene *s = NULL;
-    int i, ref_spp = 2048;
-    bool spot = true;
+    int i, ref_spp = 2048, lamp_spp = 32;
+    bool spot = true, lamp = true;
     for (i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--no-spot") == 0) spot = false;
+        else if (strcmp(argv[i], "--no-lamp") == 0) lamp = false;
         else if (strcmp(argv[i], "--reference-spp") == 0 && i + 1 < argc) ref_spp = atoi(argv[++i]);
-        else { fprintf(stderr, "usage: %s [--no-spot] [--reference-spp N]\n", argv[0]); return 2; }
+        else if (strcmp(argv[i], "--lamp-spp") == 0 && i + 1 < argc) lamp_spp = atoi(argv[++i]);
+        else { fprintf(stderr, "usage: %s [--no-spot] [--no-lamp] [--reference-spp N] [--lamp-spp N]\n", argv[0]); return 2; }
     }
+    if (lamp_spp < 1) lamp_spp = 1;
     if (ref_spp < 2) ref_spp = 2;
     if (fogrt_scene_create(NULL, &s) == FOGRT_RESULT_OK && fogrt_scene_add_default(s) == FOGRT_RESULT_OK &&
         fogrt_scene_build(s, NULL) == FOGRT_RESULT_OK)
@@ -206,5 +300,6 @@ int main(int argc, char **argv)
 #else
     (void)spot;
 #endif
+    if (lamp) lamp_scenes(ref_spp, lamp_spp);
     return 0;
 }
