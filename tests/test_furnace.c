@@ -251,6 +251,25 @@ typedef struct furnace_case { float sigma_t, g; int mode, w, h, spp; double rel_
    unbounded: infinite variance as points approach the wall; measured unbiased to 0.2% with
    4 million samples), so it gets thin fog and a 10% tolerance, still far tighter than the
    error of a missing shadow-ray transmittance (+25%) or a double-counted emitter (+50%). */
+/* Each case's furnace (black walls emitting 1, fog of albedo 1) must average to 1. */
+static void run_furnace_cases(const furnace_case *cases, int n, bool expected_emission)
+{
+    int i;
+    for (i = 0; i < n; ++i) {
+        const furnace_case *fc = &cases[i];
+        fogrt_scene *scene = make_furnace(0.0f, fc->sigma_t, v3(1, 1, 1), fc->g);
+        fogrt_render_desc rd = base_desc(fc->mode == NO_NEE, fc->mode == NEE_NO_MIS);
+        char what[160];
+        image_stats s;
+        rd.expected_emission = expected_emission;
+        snprintf(what, sizeof what, "%ssigma_t %g g %g %s", expected_emission ? "expected emission, " : "",
+                 fc->sigma_t, fc->g, mode_name(fc->mode));
+        s = render_stats(scene, &rd, fc->w, fc->h, fc->spp, 1.0, NULL);
+        assert_mean(&s, 1.0, fc->rel_tol, fc->mode == NEE_NO_MIS ? -1.0 : 0.3, what);
+        fogrt_scene_destroy(scene);
+    }
+}
+
 static void test_white_furnace_albedo_one(void)
 {
     static const furnace_case cases[] = {
@@ -266,18 +285,7 @@ static void test_white_furnace_albedo_one(void)
         { 0.3f, -0.7f, NEE_NO_MIS, 16, 16, 64, 0.1 }, /* NEE alone: heavy tail, looser */
         { 0.3f,  0.5f, NEE_NO_MIS, 16, 16, 64, 0.1 },
     };
-    int i;
-    for (i = 0; i < (int)(sizeof cases / sizeof cases[0]); ++i) {
-        const furnace_case *fc = &cases[i];
-        fogrt_scene *scene = make_furnace(0.0f, fc->sigma_t, v3(1, 1, 1), fc->g);
-        fogrt_render_desc rd = base_desc(fc->mode == NO_NEE, fc->mode == NEE_NO_MIS);
-        char what[160];
-        image_stats s;
-        snprintf(what, sizeof what, "sigma_t %g g %g %s", fc->sigma_t, fc->g, mode_name(fc->mode));
-        s = render_stats(scene, &rd, fc->w, fc->h, fc->spp, 1.0, NULL);
-        assert_mean(&s, 1.0, fc->rel_tol, fc->mode == NEE_NO_MIS ? -1.0 : 0.3, what);
-        fogrt_scene_destroy(scene);
-    }
+    run_furnace_cases(cases, (int)(sizeof cases / sizeof cases[0]), false);
 }
 
 /* Without NEE and without Russian roulette (rr_depth beyond any path; fogrt caps the
@@ -361,19 +369,7 @@ static void test_white_furnace_expected_emission(void)
         { 2.0f,  0.9f, NEE_MIS, 8, 8, 96, 0.03 },
         { 0.3f,  0.5f, NEE_NO_MIS, 16, 16, 64, 0.1 },
     };
-    int i;
-    for (i = 0; i < (int)(sizeof cases / sizeof cases[0]); ++i) {
-        const furnace_case *fc = &cases[i];
-        fogrt_scene *scene = make_furnace(0.0f, fc->sigma_t, v3(1, 1, 1), fc->g);
-        fogrt_render_desc rd = base_desc(fc->mode == NO_NEE, fc->mode == NEE_NO_MIS);
-        char what[160];
-        image_stats s;
-        rd.expected_emission = true;
-        snprintf(what, sizeof what, "expected emission, sigma_t %g g %g %s", fc->sigma_t, fc->g, mode_name(fc->mode));
-        s = render_stats(scene, &rd, fc->w, fc->h, fc->spp, 1.0, NULL);
-        assert_mean(&s, 1.0, fc->rel_tol, fc->mode == NEE_NO_MIS ? -1.0 : 0.3, what);
-        fogrt_scene_destroy(scene);
-    }
+    run_furnace_cases(cases, (int)(sizeof cases / sizeof cases[0]), true);
 }
 
 /* Absorbing fog (albedo < 1) must be darker than 1, never brighter, and darker for lower
