@@ -4285,8 +4285,9 @@ FOGRT__PUBLIC void fogrt_camera_ray(const fogrt_scene *s, int width, int height,
         the surface with probability T and weight T/T = 1. Point and spot lights are gathered
         along the way by equiangular sampling with the phase function (fogrt__equiangular,
         not in the paper).
-     b. fogrt__surface_event: at a surface, add its emission (weighted by MIS when next-event
-        estimation could have found it too) and set up the shading frame.
+     b. fogrt__surface_emission: add the emission the ray reaches (weighted by MIS when
+        next-event estimation could have found it too; in fog by T, whether or not the
+        free flight collided first), and fogrt__surface_event: set up the surface's frame.
      c. fogrt__light_step: at the scattering vertex, fog or surface, sample the lights
         (eq. 3 / 13, chapter 12).
      d. fogrt__scatter: the new direction: Henyey-Greenstein in the fog (eq. 11-12), the BSDF
@@ -4578,30 +4579,27 @@ FOGRT__PRIVATE bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settin
    gives every path exactly 1, this one only on average. expected_emission off, the caller
    passes tr = 1 when the ray reached the surface and 0 when it collided. */
 FOGRT__PRIVATE void fogrt__surface_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                            const fogrt_hit *hit, fogrt__v3 beta, float tr)
+                                            const fogrt_material_desc *m, const fogrt_hit *hit, fogrt__v3 p,
+                                            fogrt__v3 ng, fogrt__v3 beta, float tr)
 {
-    const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit->prim)];
-    fogrt__v3 p, ng, ns;
     float w = 1.0f;
-    if (fogrt__is_black(m->emission) || !(tr > 0.0f)) return;
-    fogrt__surface_frame(s, P->o, P->d, hit, &p, &ng, &ns);
-    if (!(fogrt__dot(P->d, ng) < 0.0f)) return;                           /* the front side emits */
+    if (fogrt__is_black(m->emission) || !(tr > 0.0f) || !(fogrt__dot(P->d, ng) < 0.0f)) return;   /* the front side emits */
     if (!P->prev_delta && st->nee)
         w = st->mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->light_samples *
                                              fogrt__area_light_pdf(s, st, hit->prim, P->prev_p, p, ng)) : 0.0f;
     fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, m->emission), w * tr), "emission");
 }
-/* b. A surface (its emission was added by fogrt__next_event): its shading frame. Returns
-   false when the path ends here (the depth limit, or a black diffuse surface). */
-FOGRT__PRIVATE bool fogrt__surface_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                         const fogrt_hit *hit, int limit)
+/* b. The surface the ray reached, at p with normals ng, ns (fogrt__surface_frame; its
+   emission was added by fogrt__next_event): its shading frame. Returns false when the path
+   ends here (the depth limit, or a black diffuse surface). */
+FOGRT__PRIVATE bool fogrt__surface_event(const fogrt__settings *st, fogrt__path *P, const fogrt_material_desc *m,
+                                         uint32_t prim, int limit, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns)
 {
-    fogrt__v3 ng, ns, wo = fogrt__neg(P->d);
-    const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit->prim)];
-    fogrt__surface_frame(s, P->o, P->d, hit, &P->v.p, &ng, &ns);
+    fogrt__v3 wo = fogrt__neg(P->d);
+    P->v.p = p;
     P->type = fogrt__bsdf_type(m);
-    FOGRT__HOOK(fogrt__trace_surface(st, P, hit->prim));
-    (void)st;                                            /* read by the trace hook only */
+    FOGRT__HOOK(fogrt__trace_surface(st, P, prim));
+    (void)st; (void)prim;                                /* read by the trace hook only */
     if (P->bounces >= limit || (P->type == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance))) return false;
     P->entering = fogrt__dot(wo, ng) > 0.0f;
     if (P->type != FOGRT_BSDF_REFRACTION && P->type != FOGRT_BSDF_GLASS) {   /* reflective: two-sided */
@@ -4630,8 +4628,12 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
 #endif
     if (!st->expected_emission) tr = collided ? 0.0f : 1.0f;   /* the paper's: Le when reached */
     if (found) {                                        /* its emission: tr Le, collided or not */
-        fogrt__surface_emission(s, st, P, &hit, beta, tr);
-        return collided || fogrt__surface_event(s, st, P, &hit, limit);
+        const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit.prim)];
+        fogrt__v3 p, ng, ns;
+        if (collided && (fogrt__is_black(m->emission) || !(tr > 0.0f))) return true;   /* nothing to add there */
+        fogrt__surface_frame(s, P->o, P->d, &hit, &p, &ng, &ns);   /* once, for both */
+        fogrt__surface_emission(s, st, P, m, &hit, p, ng, beta, tr);
+        return collided || fogrt__surface_event(st, P, m, hit.prim, limit, p, ng, ns);
     }
     if (s->has_env && tr > 0.0f) {                      /* escapes: the environment, also as tr Le */
         float w = 1.0f;                                 /* a map is also sampled by NEE: MIS */
