@@ -650,7 +650,8 @@ typedef struct fogrt_render_desc {
     bool equiangular;
     bool glow;
     bool light_by_power;
-    bool expected_emission;    /* fog: a ray adds T Le of the emitter it reaches, collided or not (14 b) */
+    bool expected_emission;    /* fog: a ray adds T Le of the emitter it reaches, and T times the light
+                                  sampled at the surface it reaches, collided or not (14 b, b') */
     int light_samples;
     uint64_t seed;
     int threads;
@@ -3787,6 +3788,7 @@ typedef struct fogrt__path {
     int bounces;               /* scattering events so far */
     fogrt_bsdf_type type;      /* surface: the BSDF of v */
     fogrt__vertex v;           /* the vertex just found */
+    float seg_tr;              /* the fog's transmittance over the ray to the surface it reached (14 b') */
     fogrt_rng *rng;
     uint64_t *rays;
 } fogrt__path;
@@ -4288,6 +4290,8 @@ FOGRT__PUBLIC void fogrt_camera_ray(const fogrt_scene *s, int width, int height,
      b. fogrt__surface_emission: add the emission the ray reaches (weighted by MIS when
         next-event estimation could have found it too; in fog by T, whether or not the
         free flight collided first), and fogrt__surface_event: set up the surface's frame.
+     b'. fogrt__light_behind (not in the paper): after a fog collision, the light sampled at
+        the surface behind it, times T; step c counts it T times when the ray gets there.
      c. fogrt__light_step: at the scattering vertex, fog or surface, sample the lights
         (eq. 3 / 13, chapter 12).
      d. fogrt__scatter: the new direction: Henyey-Greenstein in the fog (eq. 11-12), the BSDF
@@ -4592,14 +4596,24 @@ FOGRT__PRIVATE void fogrt__surface_emission(const fogrt_scene *s, const fogrt__s
 /* b. The surface the ray reached, at p with normals ng, ns (fogrt__surface_frame; its
    emission was added by fogrt__next_event): its shading frame. Returns false when the path
    ends here (the depth limit, or a black diffuse surface). */
+FOGRT__PRIVATE bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_desc *m, int limit, fogrt__v3 p,
+                                          fogrt__v3 ng, fogrt__v3 ns);
 FOGRT__PRIVATE bool fogrt__surface_event(const fogrt__settings *st, fogrt__path *P, const fogrt_material_desc *m,
                                          uint32_t prim, int limit, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns)
 {
-    fogrt__v3 wo = fogrt__neg(P->d);
     P->v.p = p;
     P->type = fogrt__bsdf_type(m);
     FOGRT__HOOK(fogrt__trace_surface(st, P, prim));
     (void)st; (void)prim;                                /* read by the trace hook only */
+    return fogrt__surface_vertex(P, m, limit, p, ng, ns);
+}
+/* The vertex itself: its BSDF, sides and frame (also set up on the side by b' below). */
+FOGRT__PRIVATE bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_desc *m, int limit, fogrt__v3 p,
+                                          fogrt__v3 ng, fogrt__v3 ns)
+{
+    fogrt__v3 wo = fogrt__neg(P->d);
+    P->v.p = p;
+    P->type = fogrt__bsdf_type(m);
     if (P->bounces >= limit || (P->type == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance))) return false;
     P->entering = fogrt__dot(wo, ng) > 0.0f;
     if (P->type != FOGRT_BSDF_REFRACTION && P->type != FOGRT_BSDF_GLASS) {   /* reflective: two-sided */
@@ -4611,6 +4625,37 @@ FOGRT__PRIVATE bool fogrt__surface_event(const fogrt__settings *st, fogrt__path 
     P->v.is_medium = false; P->v.in_medium = P->in_medium;
     P->v.glow_n = 0;
     return true;
+}
+
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P);
+/* b'. The light sampled at the surface behind a fog collision (with expected_emission; not
+   in the paper). The light that next-event estimation finds at a surface flickers the way
+   a lamp seen through fog does: the ray gets to the surface with probability T, so the
+   paper's estimate is that light or nothing. In the spot-lit fog (the paper's scene) the
+   floor and the bunny in the beam, seen through fog, flickered so. So the light sampled at
+   the surface counts T times, always: here, behind a collision (the surface's vertex is set
+   up on the side, then the fog vertex put back), and at the surface itself in step c when
+   the ray gets there (fogrt__light_step scales it by T). Its mean is the paper's; the path
+   still goes on from one of the two, as in the paper. Where T is below 1/16 the sample
+   behind the collision is taken with probability 16 T and counts 1/16: dense fog does not
+   cost a shadow ray per bounce for surfaces it hides. */
+#define FOGRT__BEHIND_MIN 0.0625f
+FOGRT__PRIVATE void fogrt__light_behind(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                        const fogrt_material_desc *m, const fogrt_hit *hit, fogrt__v3 beta, int limit)
+{
+    fogrt__vertex keep = P->v;
+    fogrt_bsdf_type type = P->type;
+    bool entering = P->entering;
+    fogrt__v3 p, ng, ns;
+    float tr = P->seg_tr;
+    if (tr < FOGRT__BEHIND_MIN && !(fogrt_rng_float(P->rng) * FOGRT__BEHIND_MIN < tr)) return;
+    fogrt__surface_frame(s, P->o, P->d, hit, &p, &ng, &ns);
+    if (fogrt__surface_vertex(P, m, limit, p, ng, ns) && fogrt__is_scattering(P)) {
+        fogrt__glow_setup(s, st, &P->v, P->type == FOGRT_BSDF_DIFFUSE);
+        fogrt__gather(P, st, P->bounces + 1, fogrt__scale(fogrt__mul(beta, fogrt__sample_lights(s, st, P)),
+                                                          FOGRT__MAX(tr, FOGRT__BEHIND_MIN)), "light sample");
+    }
+    P->v = keep; P->type = type; P->entering = entering;
 }
 
 /* a + b: follow the ray to its next event, a fog collision or a surface. False when the
@@ -4626,10 +4671,13 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
 #ifndef FOGRT_NO_MEDIUM
     collided = fogrt__free_flight(s, st, P, found ? hit.t : INFINITY, P->bounces < limit, &tr);
 #endif
+    P->seg_tr = tr;
     if (!st->expected_emission) tr = collided ? 0.0f : 1.0f;   /* the paper's: Le when reached */
     if (found) {                                        /* its emission: tr Le, collided or not */
         const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit.prim)];
         fogrt__v3 p, ng, ns;
+        if (collided && st->expected_emission && st->nee && tr > 0.0f)
+            fogrt__light_behind(s, st, P, m, &hit, beta, limit);                      /* b' */
         if (collided && (fogrt__is_black(m->emission) || !(tr > 0.0f))) return true;   /* nothing to add there */
         fogrt__surface_frame(s, P->o, P->d, &hit, &p, &ng, &ns);   /* once, for both */
         fogrt__surface_emission(s, st, P, m, &hit, p, ng, beta, tr);
@@ -4651,8 +4699,9 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
 FOGRT__PRIVATE void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
 {
     fogrt__glow_setup(s, st, &P->v, fogrt__is_scattering(P) && (P->v.is_medium || P->type == FOGRT_BSDF_DIFFUSE));
-    if (st->nee && fogrt__is_scattering(P))
-        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__sample_lights(s, st, P)), "light sample");
+    if (st->nee && fogrt__is_scattering(P))             /* at a surface seen through fog: T times (b') */
+        fogrt__gather(P, st, P->bounces + 1, fogrt__scale(fogrt__mul(P->beta, fogrt__sample_lights(s, st, P)),
+                                                          P->v.is_medium || !st->expected_emission ? 1.0f : P->seg_tr), "light sample");
 }
 
 /* d. The new direction from a surface: sample the BSDF in the shading frame. */

@@ -61,6 +61,7 @@ typedef struct ladder_point {
     double est;          /* fogrt_image_error's relative_error squared */
     double est_no_1_n;   /* negative control: the per-sample variance, no division by n */
     double meas;         /* measured relative MSE, reference noise subtracted */
+    double mse;          /* its numerator per pixel: the measured MSE, reference noise subtracted */
 } ladder_point;
 
 static double luminance_mean(const fogrt_image *img, int p) { return pixel_luminance(img, p); }
@@ -84,6 +85,7 @@ static ladder_point measure(const fogrt_image *img, const fogrt_image *ref)
     lp.est = e.relative_error * e.relative_error;
     lp.est_no_1_n = var_sample / mean_sq;
     lp.meas = (sq_err - ref_var) / mean_sq;
+    lp.mse = (sq_err - ref_var) / (W * H);
     return lp;
 }
 
@@ -146,11 +148,17 @@ static void check_tracks(fogrt_integrator integrator, const char *name)
                  name, lp[k].spp, lp[k].est_no_1_n / lp[k].meas);
         TEST_ASSERT_TRUE_MESSAGE(lp[k].est_no_1_n / lp[k].meas > 2.0, msg);
     }
-    /* The error falls as 1/n: over the ladder (64x the samples) by a factor near 64. */
-    snprintf(msg, sizeof msg, "%s: measured relMSE fell by %.1fx from %d to %d spp, expected about %dx",
-             name, lp[0].meas / lp[N_LADDER - 1].meas, LADDER_MIN, LADDER_MAX, LADDER_MAX / LADDER_MIN);
-    TEST_ASSERT_TRUE_MESSAGE(lp[0].meas / lp[N_LADDER - 1].meas > 0.5 * LADDER_MAX / LADDER_MIN &&
-                             lp[0].meas / lp[N_LADDER - 1].meas < 2.0 * LADDER_MAX / LADDER_MIN, msg);
+    /* The error falls as 1/n: over the ladder (64x the samples) by a factor near 64. This is
+       checked on the MSE, the numerator: the relative MSE's denominator, sum_p mean_p^2 of
+       the image itself, also holds the image's noise (sum_p Var[mean_p] on top of the
+       true sum_p mean_p^2: a third more at 4 spp here), so the relative MSE at 4 spp comes
+       out low and its fall over the ladder short of the MSE's. */
+    snprintf(msg, sizeof msg, "%s: measured MSE fell by %.1fx from %d to %d spp (relative MSE by %.1fx), expected about %dx",
+             name, lp[0].mse / lp[N_LADDER - 1].mse, LADDER_MIN, LADDER_MAX, lp[0].meas / lp[N_LADDER - 1].meas,
+             LADDER_MAX / LADDER_MIN);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(lp[0].mse / lp[N_LADDER - 1].mse > 0.5 * LADDER_MAX / LADDER_MIN &&
+                             lp[0].mse / lp[N_LADDER - 1].mse < 2.0 * LADDER_MAX / LADDER_MIN, msg);
     fogrt_scene_destroy(scene);
 }
 

@@ -113,6 +113,53 @@ static void test_expected_emission_through_slab(void)
     fogrt_scene_destroy(scene);
 }
 
+/* The light sampled at a surface seen through fog (chapter 14 b'): with expected_emission
+   it counts T times whether or not the ray collides first. A diffuse floor lit by a point
+   light, in absorbing fog (albedo 0: nothing but the floor's direct light reaches the
+   camera): every sample is then exactly T_camera x f cos I / r^2 x T_light, with it on; the
+   paper's way gives that light without the T_camera, or 0. Fails if a collision drops the
+   surface behind it, if the surface itself counts the light in full as well (twice the
+   mean), or if the weight is the transmittance of another span. */
+static void test_light_behind_collision(void)
+{
+    const float sigma = 0.7f;
+    fogrt_scene *scene = NULL;
+    fogrt_light_desc point;
+    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_vec3 o = v3(0.5f, 2.0f, 0.0f), d = v3(0.0f, -1.0f, 0.0f);
+    double r2 = 0.25 + 1.0, cos_f = 1.0 / sqrt(r2);
+    double direct = 0.5 / 3.14159265358979 * cos_f * 2.0 / r2 * exp(-sigma * sqrt(r2));
+    double want = exp(-2.0 * sigma) * direct;
+    int k, mode;
+    uint32_t floor_m;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
+    floor_m = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.5f, 0.5f, 0.5f), v3(0, 0, 0));
+    add_quad_corners(scene, v3(-50, 0, -50), v3(-50, 0, 50), v3(50, 0, 50), v3(50, 0, -50), floor_m);
+    memset(&point, 0, sizeof point);
+    point.type = FOGRT_LIGHT_POINT; point.position = v3(0.0f, 1.0f, 0.0f); point.intensity = v3(2.0f, 2.0f, 2.0f);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_light(scene, &point));
+    set_medium(scene, sigma, v3(0, 0, 0), 0.0f);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    TEST_ASSERT_TRUE(rd.expected_emission);
+    for (mode = 0; mode < 2; ++mode) {
+        int zeros = 0, lit = 0;
+        fogrt_rng rng;
+        char msg[200];
+        rd.expected_emission = mode == 0;
+        fogrt_rng_seed(&rng, 43, (uint64_t)mode);
+        for (k = 0; k < 2000; ++k) {
+            float y = fogrt_trace(scene, &rd, o, d, &rng, NULL).y;
+            snprintf(msg, sizeof msg, "expected emission %s: sample %.9g, want %.9g (or %.9g and 0 off)",
+                     mode == 0 ? "on" : "off", (double)y, want, direct);
+            if (mode == 0) TEST_ASSERT_TRUE_MESSAGE(fabs(y - want) <= 2e-6 * want, msg);
+            else TEST_ASSERT_TRUE_MESSAGE(y == 0.0f || fabs(y - direct) <= 2e-6 * direct, msg);
+            zeros += y == 0.0f; lit += y != 0.0f;
+        }
+        if (mode == 1) TEST_ASSERT_TRUE(zeros > 0 && lit > 0);     /* the paper's: both outcomes */
+    }
+    fogrt_scene_destroy(scene);
+}
+
 /* A white furnace in a box: fog of albedo 1 in [-1, 1]^3 under a white sky. Whatever
    happens in the box, every path ends in the sky with weight 1, so the mean is 1, with and
    without light sampling (the sky as a constant map is sampled by next-event estimation
@@ -816,6 +863,7 @@ int main(void)
     RUN_TEST(test_open_fog_nee_agrees);
     RUN_TEST(test_bounded_slab_transmittance);
     RUN_TEST(test_expected_emission_through_slab);
+    RUN_TEST(test_light_behind_collision);
     RUN_TEST(test_bounded_furnace);
     return UNITY_END();
 }
