@@ -4501,6 +4501,15 @@ FOGRT__PRIVATE bool fogrt__clip_to_cone(const fogrt_light_desc *l, fogrt__v3 o, 
     return true;
 }
 
+/* A scattering vertex in the fog at p, wo the way back. Only what a fog vertex reads is set
+   (no shading frame): zeroing the whole struct was 3% of a spot-lit render. */
+FOGRT__PRIVATE void fogrt__fog_vertex(fogrt__vertex *v, fogrt__v3 p, fogrt__v3 wo)
+{
+    v->p = p; v->wo = wo;
+    v->is_medium = true; v->in_medium = true;
+    v->ng = fogrt__v(0.0f, 0.0f, 0.0f); v->m = NULL;
+    v->glow_n = 0;
+}
 /* Single scattering from point and spot lights along one fog segment [0, t_max] of the
    ray, by equiangular sampling with the phase function: per light, a distance t with pdf ~
    HG(mu(t)) / r^2 (fogrt__sample_equiangular_hg, chapter 6; plain equiangular when g = 0), then
@@ -4527,8 +4536,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
     float sigma_t = s->medium.sigma_t, pick;
     uint32_t i, last;
     fogrt__vertex v;
-    memset(&v, 0, sizeof v);
-    v.wo = fogrt__neg(P->d); v.is_medium = true; v.in_medium = true;
+    fogrt__fog_vertex(&v, P->o, fogrt__neg(P->d));
     pick = fogrt__equiangular_lights(s, st, P, &i, &last);
     for (; i < last; ++i) {
         const fogrt_light_desc *l = &s->lights[i];
@@ -4571,9 +4579,7 @@ FOGRT__PRIVATE bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settin
         fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, a, b)), "equiangular");
     if (!(t < b)) return false;                          /* leaves the fog or reaches the surface: T / T = 1 */
     P->beta = fogrt__mul(P->beta, s->medium.albedo);     /* sigma_s T / (sigma_t T) */
-    memset(&P->v, 0, sizeof P->v);
-    P->v.p = fogrt__madd(P->o, P->d, t); P->v.wo = fogrt__neg(P->d);
-    P->v.is_medium = true; P->v.in_medium = true;
+    fogrt__fog_vertex(&P->v, fogrt__madd(P->o, P->d, t), fogrt__neg(P->d));
     return true;
 }
 #endif
@@ -4659,6 +4665,7 @@ FOGRT__PRIVATE void fogrt__light_behind(const fogrt_scene *s, const fogrt__setti
     bool entering = P->entering;
     fogrt__v3 p, ng, ns;
     float tr = P->seg_tr;
+    if (!st->expected_emission || !st->nee || s->light_count == 0 || !(tr > 0.0f)) return;
     if (tr < FOGRT__BEHIND_MIN && !(fogrt_rng_float(P->rng) * FOGRT__BEHIND_MIN < tr)) return;
     fogrt__surface_frame(s, P->o, P->d, hit, &p, &ng, &ns);
     if (fogrt__surface_vertex(P, m, limit, p, ng, ns) && fogrt__is_scattering(P)) {
@@ -4687,8 +4694,7 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
     if (found) {                                        /* its emission: tr Le, collided or not */
         const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit.prim)];
         fogrt__v3 p, ng, ns;
-        if (collided && st->expected_emission && st->nee && s->light_count > 0 && tr > 0.0f)
-            fogrt__light_behind(s, st, P, m, &hit, beta, limit);                      /* b' */
+        if (collided) fogrt__light_behind(s, st, P, m, &hit, beta, limit);          /* b' */
         if (collided && (fogrt__is_black(m->emission) || !(tr > 0.0f))) return true;   /* nothing to add there */
         fogrt__surface_frame(s, P->o, P->d, &hit, &p, &ng, &ns);   /* once, for both */
         fogrt__surface_emission(s, st, P, m, &hit, p, ng, beta, tr);

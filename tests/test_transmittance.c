@@ -73,6 +73,33 @@ static void test_bounded_slab_transmittance(void)
     fogrt_scene_destroy(scene);
 }
 
+/* Samples of one ray with expected_emission on and off: on, every sample is want_on (to
+   tol_on); off (the paper's way), every sample is 0 or want_off (to tol_off), and both
+   outcomes are seen. */
+static void check_expected_samples(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d, uint64_t seed, double want_on,
+                                   double tol_on, double want_off, double tol_off, const char *what)
+{
+    fogrt_render_desc rd = fogrt_render_defaults();
+    int k, mode;
+    TEST_ASSERT_TRUE(rd.expected_emission);
+    for (mode = 0; mode < 2; ++mode) {
+        int zeros = 0, lit = 0;
+        fogrt_rng rng;
+        char msg[240];
+        rd.expected_emission = mode == 0;
+        fogrt_rng_seed(&rng, seed, (uint64_t)mode);
+        for (k = 0; k < 2000; ++k) {
+            double y = fogrt_trace(scene, &rd, o, d, &rng, NULL).y;
+            snprintf(msg, sizeof msg, "%s, expected emission %s: sample %.9g, want %.9g (off: %.9g or 0)",
+                     what, mode == 0 ? "on" : "off", y, want_on, want_off);
+            if (mode == 0) TEST_ASSERT_TRUE_MESSAGE(fabs(y - want_on) <= tol_on, msg);
+            else TEST_ASSERT_TRUE_MESSAGE(y == 0.0 || fabs(y - want_off) <= tol_off, msg);
+            zeros += y == 0.0; lit += y != 0.0;
+        }
+        if (mode == 1) TEST_ASSERT_TRUE_MESSAGE(zeros > 0 && lit > 0, what);   /* the paper's: both outcomes */
+    }
+}
+
 /* The same slab with expected_emission (the default): the sky a ray reaches counts T Le
    whether or not the ray collides, so in absorbing fog every single sample is exactly the
    transmittance; the paper's way (off) gives 0 or 1. Fails if the emission is weighted by
@@ -88,28 +115,13 @@ static void test_expected_emission_through_slab(void)
     };
     const float sigma = 0.7f;
     fogrt_scene *scene = sky_scene(sigma, 0.0f, 0.0f, v3(-50, 0, -50), v3(50, 1, 50), false);
-    fogrt_render_desc rd = fogrt_render_defaults();
-    int i, k, mode;
-    TEST_ASSERT_TRUE(rd.expected_emission);
-    for (mode = 0; mode < 2; ++mode)
-        for (i = 0; i < (int)(sizeof rays / sizeof rays[0]); ++i) {
-            fogrt_vec3 o = v3(rays[i].o[0], rays[i].o[1], rays[i].o[2]), d = v3(rays[i].d[0], rays[i].d[1], rays[i].d[2]);
-            float want = expf(-sigma * rays[i].len);
-            int zeros = 0, ones = 0;
-            fogrt_rng rng;
-            char msg[200];
-            rd.expected_emission = mode == 0;
-            fogrt_rng_seed(&rng, 41, (uint64_t)i);
-            for (k = 0; k < 2000; ++k) {
-                float y = fogrt_trace(scene, &rd, o, d, &rng, NULL).y;
-                snprintf(msg, sizeof msg, "ray %d, expected emission %s: sample %.9g, transmittance %.9g",
-                         i, mode == 0 ? "on" : "off", (double)y, (double)want);
-                if (mode == 0) TEST_ASSERT_TRUE_MESSAGE(fabsf(y - want) <= 1e-6f, msg);
-                else TEST_ASSERT_TRUE_MESSAGE(y == 0.0f || y == 1.0f, msg);
-                zeros += y == 0.0f; ones += y == 1.0f;
-            }
-            if (mode == 1) TEST_ASSERT_TRUE(zeros > 0 && ones > 0);    /* the paper's: both outcomes */
-        }
+    int i;
+    for (i = 0; i < (int)(sizeof rays / sizeof rays[0]); ++i) {
+        char what[64];
+        snprintf(what, sizeof what, "ray %d (the sky through the slab)", i);
+        check_expected_samples(scene, v3(rays[i].o[0], rays[i].o[1], rays[i].o[2]), v3(rays[i].d[0], rays[i].d[1], rays[i].d[2]),
+                               41 + (uint64_t)i, (double)expf(-sigma * rays[i].len), 1e-6, 1.0, 0.0, what);
+    }
     fogrt_scene_destroy(scene);
 }
 
@@ -125,12 +137,9 @@ static void test_light_behind_collision(void)
     const float sigma = 0.7f;
     fogrt_scene *scene = NULL;
     fogrt_light_desc point;
-    fogrt_render_desc rd = fogrt_render_defaults();
-    fogrt_vec3 o = v3(0.5f, 2.0f, 0.0f), d = v3(0.0f, -1.0f, 0.0f);
     double r2 = 0.25 + 1.0, cos_f = 1.0 / sqrt(r2);
     double direct = 0.5 / 3.14159265358979 * cos_f * 2.0 / r2 * exp(-sigma * sqrt(r2));
     double want = exp(-2.0 * sigma) * direct;
-    int k, mode;
     uint32_t floor_m;
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
     floor_m = add_basic_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.5f, 0.5f, 0.5f), v3(0, 0, 0));
@@ -140,23 +149,8 @@ static void test_light_behind_collision(void)
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_light(scene, &point));
     set_medium(scene, sigma, v3(0, 0, 0), 0.0f);
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
-    TEST_ASSERT_TRUE(rd.expected_emission);
-    for (mode = 0; mode < 2; ++mode) {
-        int zeros = 0, lit = 0;
-        fogrt_rng rng;
-        char msg[200];
-        rd.expected_emission = mode == 0;
-        fogrt_rng_seed(&rng, 43, (uint64_t)mode);
-        for (k = 0; k < 2000; ++k) {
-            float y = fogrt_trace(scene, &rd, o, d, &rng, NULL).y;
-            snprintf(msg, sizeof msg, "expected emission %s: sample %.9g, want %.9g (or %.9g and 0 off)",
-                     mode == 0 ? "on" : "off", (double)y, want, direct);
-            if (mode == 0) TEST_ASSERT_TRUE_MESSAGE(fabs(y - want) <= 2e-6 * want, msg);
-            else TEST_ASSERT_TRUE_MESSAGE(y == 0.0f || fabs(y - direct) <= 2e-6 * direct, msg);
-            zeros += y == 0.0f; lit += y != 0.0f;
-        }
-        if (mode == 1) TEST_ASSERT_TRUE(zeros > 0 && lit > 0);     /* the paper's: both outcomes */
-    }
+    check_expected_samples(scene, v3(0.5f, 2.0f, 0.0f), v3(0.0f, -1.0f, 0.0f), 43, want, 2e-6 * want, direct, 2e-6 * direct,
+                           "the floor's direct light through absorbing fog");
     fogrt_scene_destroy(scene);
 }
 
