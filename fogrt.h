@@ -5021,10 +5021,18 @@ typedef struct fogrt__job {
 
 /* The stratified pixel positions. Sobol's first two dimensions form a (0,2)-sequence: for
    every k, each aligned block of 2^k points puts exactly one point in every elementary box
-   of area 2^-k of the unit square (the 4 points 0..3 one per quadrant, and so on). The
-   first dimension is the bit-reversed index (van der Corput); the second XORs, for every
-   set bit k of the index, the column v_k = v_{k-1} ^ (v_{k-1} >> 1) (v_0 = 2^31: the
-   matrix of the polynomial x + 1). Both are 32-bit fractions. */
+   of area 2^-k of the unit square (points 0..3 one per quadrant, and so on). They are
+   easiest to write, and to scramble, with the bits reversed (the first binary digit of a
+   coordinate in bit 0): the first dimension is then the index itself (van der Corput),
+   the second XORs, for every set bit k of the index, the column w_k = w_{k-1} ^ (w_{k-1}
+   << 1), w_0 = 1 (bit i of w_k is binomial(k, i) mod 2: the matrix of the polynomial x + 1). */
+FOGRT__PRIVATE uint32_t fogrt__sobol2_reversed(uint32_t index)
+{
+    uint32_t w = 1u, y = 0u;
+    for (; index; index >>= 1, w ^= w << 1)
+        if (index & 1u) y ^= w;
+    return y;
+}
 FOGRT__PRIVATE uint32_t fogrt__reverse_bits(uint32_t x)
 {
     x = (x << 16) | (x >> 16);
@@ -5033,31 +5041,26 @@ FOGRT__PRIVATE uint32_t fogrt__reverse_bits(uint32_t x)
     x = ((x & 0x33333333u) << 2) | ((x >> 2) & 0x33333333u);
     return ((x & 0x55555555u) << 1) | ((x >> 1) & 0x55555555u);
 }
-FOGRT__PRIVATE uint32_t fogrt__sobol_dim2(uint32_t index)
+/* A random nested (Owen-type) scramble of a bit-reversed coordinate, returned as a 32-bit
+   fraction. Nested means: each digit k is flipped or not depending only on the seed and
+   the digits before it, so points sharing their first digits are moved together and every
+   elementary interval goes to an elementary interval: the (0,2) structure survives. In the
+   reversed form any bijection whose bit k depends only on bits 0..k is such a scramble, and
+   three cheap ones compose to a well-mixed one: adding a number (carries run only upward),
+   multiplying by an odd number, and x ^= x * (an even number) (the product's bit k comes
+   from bits below k). The first step adds a uniform random 32-bit number, so whatever
+   follows, each point alone is uniform over [0, 1): the pixel estimate stays unbiased.
+   It is a cheap stand-in for Owen's scramble by one random bit per tree node: it draws
+   from fewer permutations, but is as stratified (the even constants are the golden-ratio
+   and MurmurHash3 mixing constants with their last bit cleared). */
+FOGRT__PRIVATE uint32_t fogrt__nested_scramble(uint32_t reversed, uint64_t seed)
 {
-    uint32_t v = 0x80000000u, y = 0u;
-    for (; index; index >>= 1, v ^= v >> 1)
-        if (index & 1u) y ^= v;
-    return y;
-}
-/* Owen's nested uniform scramble of a 32-bit fraction, done by hashing: bit b (from the
-   top) is flipped or not by one random bit drawn for the node of the binary tree that the
-   b bits above it name (node = those bits with a leading 1). Points that share their top
-   bits share those flips, so the scramble moves whole elementary intervals and keeps the
-   (0,2) structure, yet every point ends up uniform over the square. The top
-   FOGRT__OWEN_BITS bits are scrambled this way (exact for the first 2^16 points of a
-   stream); the bits below are random bits of the deepest node (they only place a point
-   inside its 2^-16 interval). */
-#define FOGRT__OWEN_BITS 16
-FOGRT__PRIVATE uint32_t fogrt__owen_scramble(uint32_t x, uint64_t seed)
-{
-    uint32_t out = x ^ (uint32_t)(fogrt__hash64(seed ^ (((uint64_t)x >> (32 - FOGRT__OWEN_BITS)) | (1u << FOGRT__OWEN_BITS))) & 0xFFFFu);
-    int b;
-    for (b = 0; b < FOGRT__OWEN_BITS; ++b) {
-        uint32_t node = b ? (x >> (32 - b)) | (1u << b) : 1u;
-        out ^= (uint32_t)(fogrt__hash64(seed ^ node) >> 63) << (31 - b);
-    }
-    return out;
+    uint32_t x = reversed + (uint32_t)seed;
+    x ^= x * 0x9E3779B8u;
+    x *= (uint32_t)(seed >> 32) | 1u;
+    x ^= x * 0x85EBCA6Au;
+    x ^= x * 0xC2B2AE34u;
+    return fogrt__reverse_bits(x);
 }
 /* The position in pixel `pix` of sample `index`: stream index mod FOGRT_IMAGE_STREAMS, point
    index / FOGRT_IMAGE_STREAMS of that stream's sequence, scrambled with seeds drawn from
@@ -5067,8 +5070,8 @@ FOGRT__PRIVATE void fogrt__pixel_position(uint64_t base, uint64_t pix, uint32_t 
 {
     uint32_t point = index / FOGRT_IMAGE_STREAMS, stream = index % FOGRT_IMAGE_STREAMS;
     uint64_t key = fogrt__hash64(base ^ fogrt__hash64(0x5354524154494649ULL ^ (pix * FOGRT_IMAGE_STREAMS + stream)));
-    uint32_t ux = fogrt__owen_scramble(fogrt__reverse_bits(point), key);
-    uint32_t uy = fogrt__owen_scramble(fogrt__sobol_dim2(point), fogrt__hash64(key));
+    uint32_t ux = fogrt__nested_scramble(point, key);
+    uint32_t uy = fogrt__nested_scramble(fogrt__sobol2_reversed(point), fogrt__hash64(key));
     *jx = (float)(ux >> 8) * 5.9604644775390625e-8f;   /* the top 24 bits: [0, 1 - 2^-24] */
     *jy = (float)(uy >> 8) * 5.9604644775390625e-8f;
 }
