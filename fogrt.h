@@ -4901,6 +4901,9 @@ FOGRT__PUBLIC fogrt_result fogrt_image_alloc(fogrt_image *img, int width, int he
     if (a) img->allocator = *a;
     if (width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
     if ((uint64_t)width * (uint64_t)height > ((uint64_t)1 << 31) / 16) return FOGRT_RESULT_TOO_LARGE;
+    /* the largest array, the stream sums, must fit in a size_t (32-bit platforms) */
+    if ((uint64_t)width * (uint64_t)height * (uint64_t)(sizeof(double) * FOGRT_IMAGE_STREAMS) > (uint64_t)(size_t)-1)
+        return FOGRT_RESULT_TOO_LARGE;
     n = (size_t)width * (size_t)height;
     img->sum = (double *)fogrt__alloc(&img->allocator, sizeof(double) * 3 * n);
     img->sum_sq = (double *)fogrt__alloc(&img->allocator, sizeof(double) * n);
