@@ -665,12 +665,23 @@ FOGRT_API fogrt_render_desc fogrt_render_defaults(void);
 
 /* Accumulation buffer owned by the caller: per pixel the sum of sample radiance (RGB), the
    sum of squared sample luminance (both in double: no finite sample can overflow them), and
-   the sample count. Adding samples is progressive. */
+   the sample count. Adding samples is progressive.
+   The samples of a pixel are dealt round-robin to FOGRT_IMAGE_STREAMS independent streams
+   (sample index i to stream i mod 4), each with its own random scramble of a stratified
+   pattern of pixel positions; per stream the image keeps the luminance sum and the count,
+   and the error estimate compares the streams (fogrt_image_pixel_variance). 84 bytes per
+   pixel from fogrt_image_alloc: 24 RGB sum, 8 sum of squares, 4 count, 32 stream sums,
+   16 stream counts. An image filled by the caller may leave stream_sum and stream_count
+   NULL: fogrt_render then keeps no stream sums and the estimate falls back to the sample
+   variance (which overestimates the error of stratified samples). */
+#define FOGRT_IMAGE_STREAMS 4
 typedef struct fogrt_image {
     int width, height;
     double *sum;         /* 3 * width * height: sum of sample radiance (RGB) */
     double *sum_sq;      /* width * height: sum of squared sample luminance */
     uint32_t *count;     /* width * height */
+    double *stream_sum;      /* FOGRT_IMAGE_STREAMS * width * height: per pixel, each stream's luminance sum */
+    uint32_t *stream_count;  /* FOGRT_IMAGE_STREAMS * width * height: per pixel, each stream's samples */
     uint64_t rejected;   /* non-finite samples seen and dropped */
     fogrt_allocator allocator;   /* what fogrt_image_alloc used; fogrt_image_free uses it too */
 } fogrt_image;
@@ -688,8 +699,11 @@ typedef struct fogrt_error_estimate {
     uint64_t samples;
     uint64_t rejected;
 } fogrt_error_estimate;
-/* The render's own estimate of its relative RMS error, from per-pixel sample variance. */
+/* The render's own estimate of its relative RMS error, from the per-pixel variances below. */
 FOGRT_API void fogrt_image_error(const fogrt_image *img, fogrt_error_estimate *out);
+/* The estimated variance of pixel `pixel`'s mean luminance (index y * width + x): from the
+   spread of its stream means, unbiased for stratified samples too; 0 below 2 samples. */
+FOGRT_API double fogrt_image_pixel_variance(const fogrt_image *img, size_t pixel);
 
 typedef struct fogrt_render_stats {
     uint64_t camera_rays;    /* samples taken */
@@ -4873,6 +4887,12 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance_direct(const fogrt_scene *s, const fogr
    Every pixel accumulates, in double, the sum of its sample radiance and of its squared
    luminance: a double cannot overflow for any finite float sample (2^32 samples of 3.4e38,
    squared, stay below 1e87), so the image and its error estimate stay finite.
+   Pixel positions are stratified: a pixel's samples go round-robin to FOGRT_IMAGE_STREAMS
+   streams, and each stream walks its own Owen-scrambled (0,2)-sequence over the pixel, so
+   its first 4, 16, 64, ... points fill the pixel evenly (edges and small lamps converge
+   faster than with independent points). The streams are independent of each other, which
+   is what the error estimate needs: the spread of the stream means measures the error of
+   their average whatever the correlation inside one stream.
    ------------------------------------------------------------------------------------------ */
 FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void)
 {
@@ -4947,11 +4967,19 @@ FOGRT__PUBLIC fogrt_result fogrt_image_alloc(fogrt_image *img, int width, int he
     if (a) img->allocator = *a;
     if (width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
     if ((uint64_t)width * (uint64_t)height > ((uint64_t)1 << 31) / 16) return FOGRT_RESULT_TOO_LARGE;
+    /* the largest array, the stream sums, must fit in a size_t (32-bit platforms) */
+    if ((uint64_t)width * (uint64_t)height * (uint64_t)(sizeof(double) * FOGRT_IMAGE_STREAMS) > (uint64_t)(size_t)-1)
+        return FOGRT_RESULT_TOO_LARGE;
     n = (size_t)width * (size_t)height;
     img->sum = (double *)fogrt__alloc(&img->allocator, sizeof(double) * 3 * n);
     img->sum_sq = (double *)fogrt__alloc(&img->allocator, sizeof(double) * n);
     img->count = (uint32_t *)fogrt__alloc(&img->allocator, sizeof(uint32_t) * n);
-    if (!img->sum || !img->sum_sq || !img->count) { fogrt_image_free(img); return FOGRT_RESULT_OUT_OF_MEMORY; }
+    img->stream_sum = (double *)fogrt__alloc(&img->allocator, sizeof(double) * FOGRT_IMAGE_STREAMS * n);
+    img->stream_count = (uint32_t *)fogrt__alloc(&img->allocator, sizeof(uint32_t) * FOGRT_IMAGE_STREAMS * n);
+    if (!img->sum || !img->sum_sq || !img->count || !img->stream_sum || !img->stream_count) {
+        fogrt_image_free(img);
+        return FOGRT_RESULT_OUT_OF_MEMORY;
+    }
     img->width = width; img->height = height;
     fogrt_image_clear(img);
     return FOGRT_RESULT_OK;
@@ -4962,6 +4990,7 @@ FOGRT__PUBLIC void fogrt_image_free(fogrt_image *img)
     if (!img) return;
     a = img->allocator;
     fogrt__free(&a, img->sum); fogrt__free(&a, img->sum_sq); fogrt__free(&a, img->count);
+    fogrt__free(&a, img->stream_sum); fogrt__free(&a, img->stream_count);
     memset(img, 0, sizeof *img);
     img->allocator = a;
 }
@@ -4973,6 +5002,8 @@ FOGRT__PUBLIC void fogrt_image_clear(fogrt_image *img)
     if (img->sum) memset(img->sum, 0, sizeof(double) * 3 * n);
     if (img->sum_sq) memset(img->sum_sq, 0, sizeof(double) * n);
     if (img->count) memset(img->count, 0, sizeof(uint32_t) * n);
+    if (img->stream_sum) memset(img->stream_sum, 0, sizeof(double) * FOGRT_IMAGE_STREAMS * n);
+    if (img->stream_count) memset(img->stream_count, 0, sizeof(uint32_t) * FOGRT_IMAGE_STREAMS * n);
     img->rejected = 0;
 }
 FOGRT__PUBLIC void fogrt_image_resolve(const fogrt_image *img, float *rgb)
@@ -4988,10 +5019,43 @@ FOGRT__PUBLIC void fogrt_image_resolve(const fogrt_image *img, float *rgb)
     }
 }
 FOGRT__PRIVATE double fogrt__luminance_d(double r, double g, double b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
-/* Relative RMS error of the image, estimated from the samples themselves: each pixel's mean
-   has variance s^2 / n (s^2 the sample variance of its luminance), so
-     relative error = sqrt(sum_p s_p^2 / n_p) / sqrt(sum_p mean_p^2).
-   It falls as 1/sqrt(samples): this is the number to plot against seconds. */
+/* The variance of one pixel's mean luminance m. With R streams holding n_r samples and
+   means m_r (n = sum n_r, m = sum n_r m_r / n), the between-stream spread
+     V = sum_r n_r (m_r - m)^2 / ((R - 1) n)
+   is unbiased for Var[m] when the streams are independent and equally filled, whatever the
+   correlation inside one stream (stratified positions make it negative, and the sample
+   variance s^2 / n would then overestimate the error). For independent samples it is
+   unbiased for any n_r (the between-group sum of squares of an analysis of variance), and
+   with one sample per stream it is exactly s^2 / n. Streams without samples are left out;
+   an image without stream sums gets the plain s^2 / n. Rejected samples count as zeros,
+   as in the mean. */
+FOGRT__PUBLIC double fogrt_image_pixel_variance(const fogrt_image *img, size_t pixel)
+{
+    double c, mean, var;
+    FOGRT_ASSERT(img);
+    c = img->count[pixel];
+    if (c < 2.0) return 0.0;
+    if (img->stream_sum && img->stream_count) {
+        const double *S = img->stream_sum + (size_t)FOGRT_IMAGE_STREAMS * pixel;
+        const uint32_t *N = img->stream_count + (size_t)FOGRT_IMAGE_STREAMS * pixel;
+        double total = 0.0, n = 0.0, ssb = 0.0;
+        int r, used = 0;
+        for (r = 0; r < FOGRT_IMAGE_STREAMS; ++r) { total += S[r]; n += (double)N[r]; used += N[r] > 0; }
+        if (used < 2) return 0.0;
+        mean = total / n;
+        for (r = 0; r < FOGRT_IMAGE_STREAMS; ++r)
+            if (N[r] > 0) { double d = S[r] / (double)N[r] - mean; ssb += (double)N[r] * d * d; }
+        return ssb / ((double)(used - 1) * n);
+    }
+    mean = fogrt__luminance_d(img->sum[3 * pixel], img->sum[3 * pixel + 1], img->sum[3 * pixel + 2]) / c;
+    var = (img->sum_sq[pixel] / c - mean * mean) / (c - 1.0);
+    return var > 0.0 ? var : 0.0;   /* rounding can make a noise-free pixel slightly negative */
+}
+/* Relative RMS error of the image, estimated from the samples themselves: the variance of
+   each pixel's mean (above), summed, against the sum of the squared means:
+     relative error = sqrt(sum_p Var[mean_p]) / sqrt(sum_p mean_p^2).
+   It falls as 1/sqrt(samples) (faster where stratification helps): this is the number to
+   plot against seconds. */
 FOGRT__PUBLIC void fogrt_image_error(const fogrt_image *img, fogrt_error_estimate *out)
 {
     double var_sum = 0.0, mean_sq_sum = 0.0, lum_sum = 0.0;
@@ -5000,15 +5064,13 @@ FOGRT__PUBLIC void fogrt_image_error(const fogrt_image *img, fogrt_error_estimat
     memset(out, 0, sizeof *out);
     n = (size_t)img->width * (size_t)img->height;
     for (i = 0; i < n; ++i) {
-        double c = img->count[i], mean, var;
+        double c = img->count[i], mean;
         if (c < 1.0) continue;
         mean = fogrt__luminance_d(img->sum[3 * i], img->sum[3 * i + 1], img->sum[3 * i + 2]) / c;
         lum_sum += mean;
         mean_sq_sum += mean * mean;
         out->samples += img->count[i];
-        if (c < 2.0) continue;
-        var = (img->sum_sq[i] / c - mean * mean) * c / (c - 1.0);
-        if (var > 0.0) var_sum += var / c;
+        var_sum += fogrt_image_pixel_variance(img, i);
     }
     out->relative_error = mean_sq_sum > 0.0 ? sqrt(var_sum / mean_sq_sum) : 0.0;
     if (!(out->relative_error < DBL_MAX)) out->relative_error = DBL_MAX;   /* never NaN or Inf */
@@ -5026,18 +5088,77 @@ typedef struct fogrt__job {
     int spp;
 } fogrt__job;
 
+/* The stratified pixel positions. Sobol's first two dimensions form a (0,2)-sequence: for
+   every k, each aligned block of 2^k points puts exactly one point in every elementary box
+   of area 2^-k of the unit square (points 0..3 one per quadrant, and so on). They are
+   easiest to write, and to scramble, with the bits reversed (the first binary digit of a
+   coordinate in bit 0): the first dimension is then the index itself (van der Corput),
+   the second XORs, for every set bit k of the index, the column w_k = w_{k-1} ^ (w_{k-1}
+   << 1), w_0 = 1 (bit i of w_k is binomial(k, i) mod 2: the matrix of the polynomial x + 1). */
+FOGRT__PRIVATE uint32_t fogrt__sobol2_reversed(uint32_t index)
+{
+    uint32_t w = 1u, y = 0u;
+    for (; index; index >>= 1, w ^= w << 1)
+        if (index & 1u) y ^= w;
+    return y;
+}
+FOGRT__PRIVATE uint32_t fogrt__reverse_bits(uint32_t x)
+{
+    x = (x << 16) | (x >> 16);
+    x = ((x & 0x00FF00FFu) << 8) | ((x >> 8) & 0x00FF00FFu);
+    x = ((x & 0x0F0F0F0Fu) << 4) | ((x >> 4) & 0x0F0F0F0Fu);
+    x = ((x & 0x33333333u) << 2) | ((x >> 2) & 0x33333333u);
+    return ((x & 0x55555555u) << 1) | ((x >> 1) & 0x55555555u);
+}
+/* A random nested (Owen-type) scramble of a bit-reversed coordinate, returned as a 32-bit
+   fraction. Nested means: each digit k is flipped or not depending only on the seed and
+   the digits before it, so points sharing their first digits are moved together and every
+   elementary interval goes to an elementary interval: the (0,2) structure survives. In the
+   reversed form any bijection whose bit k depends only on bits 0..k is such a scramble, and
+   three cheap ones compose to a well-mixed one: adding a number (carries run only upward),
+   multiplying by an odd number, and x ^= x * (an even number) (the product's bit k comes
+   from bits below k). The first step adds a uniform random 32-bit number, so whatever
+   follows, each point alone is uniform over [0, 1): the pixel estimate stays unbiased.
+   It is a cheap stand-in for Owen's scramble by one random bit per tree node: it draws
+   from fewer permutations, but is as stratified (the even constants are the golden-ratio
+   and MurmurHash3 mixing constants with their last bit cleared). */
+FOGRT__PRIVATE uint32_t fogrt__nested_scramble(uint32_t reversed, uint64_t seed)
+{
+    uint32_t x = reversed + (uint32_t)seed;
+    x ^= x * 0x9E3779B8u;
+    x *= (uint32_t)(seed >> 32) | 1u;
+    x ^= x * 0x85EBCA6Au;
+    x ^= x * 0xC2B2AE34u;
+    return fogrt__reverse_bits(x);
+}
+/* The position in pixel `pix` of sample `index`: stream index mod FOGRT_IMAGE_STREAMS, point
+   index / FOGRT_IMAGE_STREAMS of that stream's sequence, scrambled with seeds drawn from
+   (seed, pixel, stream). A function of (seed, pixel, index) only, so batches and threads do
+   not change it, and a later batch continues each stream's sequence. */
+FOGRT__PRIVATE void fogrt__pixel_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy)
+{
+    uint32_t point = index / FOGRT_IMAGE_STREAMS, stream = index % FOGRT_IMAGE_STREAMS;
+    uint64_t key = fogrt__hash64(base ^ fogrt__hash64(0x5354524154494649ULL ^ (pix * FOGRT_IMAGE_STREAMS + stream)));
+    uint32_t ux = fogrt__nested_scramble(point, key);
+    uint32_t uy = fogrt__nested_scramble(fogrt__sobol2_reversed(point), fogrt__hash64(key));
+    *jx = (float)(ux >> 8) * 5.9604644775390625e-8f;   /* the top 24 bits: [0, 1 - 2^-24] */
+    *jy = (float)(uy >> 8) * 5.9604644775390625e-8f;
+}
+
 /* Sample number `index` of pixel (x, y). Every sample has its own random stream, derived
    from (seed, pixel, sample index): the image does not depend on the thread that renders
-   it. The pixel filter is a box: the camera ray goes through a uniform point of the pixel. */
+   it. The pixel filter is a box: the camera ray goes through a stratified point of the
+   pixel (above); the lens and the whole path use the sample's own random numbers. */
 FOGRT__PRIVATE fogrt__v3 fogrt__sample_pixel(const fogrt__job *job, int width, int height, int x, int y,
                                              uint32_t index, uint64_t *rays)
 {
-    uint64_t key = (((uint64_t)y * (uint64_t)width + (uint64_t)x) << 32) | (uint64_t)index;
+    uint64_t pix = (uint64_t)y * (uint64_t)width + (uint64_t)x;
+    uint64_t key = (pix << 32) | (uint64_t)index;
     fogrt_rng rng;
     fogrt__v3 o, d;
     float jx, jy, l1, l2;
     fogrt_rng_seed(&rng, fogrt__hash64(key ^ job->base), 0);
-    jx = fogrt_rng_float(&rng); jy = fogrt_rng_float(&rng);
+    fogrt__pixel_position(job->base, pix, index, &jx, &jy);
     l1 = fogrt_rng_float(&rng); l2 = fogrt_rng_float(&rng);
     fogrt__camera_generate(&job->cam, width, height, (float)x + jx, (float)y + jy, l1, l2, &o, &d);
 #ifdef FOGRT_TRACE
@@ -5052,22 +5173,28 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_pixel(const fogrt__job *job, int width, i
     return fogrt__radiance(job->s, &job->st, o, d, &rng, rays);
 }
 /* One row of pixels, spp samples each. The NaN firewall: a non-finite sample is counted,
-   never added. */
+   never added (a zero in the mean, in its stream's mean too). Sample `index` adds its
+   luminance to stream index mod FOGRT_IMAGE_STREAMS, the stream its position came from. */
 FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *rays, uint64_t *rejected)
 {
     fogrt_image *img = job->img;
     int x, k, width = img->width, height = img->height;
+    bool streams = img->stream_sum && img->stream_count;
     for (x = 0; x < width; ++x) {
         size_t pix = (size_t)y * (size_t)width + (size_t)x;
         for (k = 0; k < job->spp; ++k) {
-            fogrt__v3 Lr = fogrt__sample_pixel(job, width, height, x, y, img->count[pix] + (uint32_t)k, rays);
+            uint32_t index = img->count[pix] + (uint32_t)k;
+            size_t slot = (size_t)FOGRT_IMAGE_STREAMS * pix + index % FOGRT_IMAGE_STREAMS;
+            fogrt__v3 Lr = fogrt__sample_pixel(job, width, height, x, y, index, rays);
             double lum;
+            if (streams) ++img->stream_count[slot];
             if (!fogrt__v3_finite(Lr)) { ++*rejected; continue; }
             lum = fogrt__luminance_d(Lr.x, Lr.y, Lr.z);
             img->sum[3 * pix + 0] += (double)Lr.x;
             img->sum[3 * pix + 1] += (double)Lr.y;
             img->sum[3 * pix + 2] += (double)Lr.z;
             img->sum_sq[pix] += lum * lum;
+            if (streams) img->stream_sum[slot] += lum;
         }
         img->count[pix] += (uint32_t)job->spp;
     }

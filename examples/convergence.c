@@ -224,9 +224,8 @@ static int render_reference(const fogrt_scene *scene, int w, int h, double ref_b
     if (!rgb || !var) { fprintf(stderr, "convergence: out of memory\n"); return -1; }
     fogrt_image_resolve(&img, rgb);
     for (i = 0; i < n; ++i) {
-        double c = img.count[i], m = lum_d(img.sum + 3 * i) / c;
-        double v = c > 1.0 ? (img.sum_sq[i] / c - m * m) / (c - 1.0) : 0.0;
-        var[3 * i] = var[3 * i + 1] = var[3 * i + 2] = (float)(v > 0.0 ? v : 0.0);
+        double v = fogrt_image_pixel_variance(&img, i);   /* between-stream: unbiased for stratified positions */
+        var[3 * i] = var[3 * i + 1] = var[3 * i + 2] = (float)v;
     }
     if (fogrt_write_pfm(ref_path, w, h, rgb) != FOGRT_RESULT_OK || fogrt_write_pfm(var_path, w, h, var) != FOGRT_RESULT_OK) {
         fprintf(stderr, "convergence: cannot write %s / %s\n", ref_path, var_path);

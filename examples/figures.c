@@ -203,13 +203,9 @@ static void shot_render(shot *s, const fogrt_scene *scene, const fogrt_render_de
     s->seconds += cpu_seconds() - t0;
 }
 static double pix_lum(const fogrt_image *img, size_t i) { return img->count[i] ? lum3(img->sum + 3 * i) / img->count[i] : 0.0; }
-static double pix_var(const fogrt_image *img, size_t i)
-{
-    double c = img->count[i], m = pix_lum(img, i), v;
-    if (c < 2.0) return 0.0;
-    v = (img->sum_sq[i] / c - m * m) / (c - 1.0);
-    return v > 0.0 ? v : 0.0;
-}
+/* The variance of pixel i's mean luminance: fogrt's between-stream estimate (the sample
+   variance would overestimate it, the pixel positions being stratified). */
+static double pix_var(const fogrt_image *img, size_t i) { return fogrt_image_pixel_variance(img, i); }
 static double mean_lum(const fogrt_image *img)
 {
     size_t i, n = (size_t)W * H;
@@ -253,6 +249,11 @@ static halves render_halves(const fogrt_scene *scene, fogrt_render_desc rd, int 
         for (c = 0; c < 3; ++c) merged->img.sum[3 * i + c] = a.img.sum[3 * i + c] + b.img.sum[3 * i + c];
         merged->img.sum_sq[i] = a.img.sum_sq[i] + b.img.sum_sq[i];
         merged->img.count[i] = a.img.count[i] + b.img.count[i];
+        /* stream r of the merge holds both halves' stream r: still independent of the others */
+        for (c = 0; c < FOGRT_IMAGE_STREAMS; ++c) {
+            merged->img.stream_sum[FOGRT_IMAGE_STREAMS * i + c] = a.img.stream_sum[FOGRT_IMAGE_STREAMS * i + c] + b.img.stream_sum[FOGRT_IMAGE_STREAMS * i + c];
+            merged->img.stream_count[FOGRT_IMAGE_STREAMS * i + c] = a.img.stream_count[FOGRT_IMAGE_STREAMS * i + c] + b.img.stream_count[FOGRT_IMAGE_STREAMS * i + c];
+        }
         m = pix_lum(&merged->img, i);
         se += 0.25 * (la - lb) * (la - lb);
         norm += m * m;

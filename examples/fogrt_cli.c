@@ -54,11 +54,12 @@ int cli_trace_path(const fogrt_scene *scene, const fogrt_render_desc *rd, int wi
    Options and their defaults (keep in step with usage())
    ------------------------------------------------------------------------------------------ */
 #define CLI_MAX_SIDE 32768
-/* Image memory limit, checked before anything is allocated: the accumulation buffer (36
-   bytes per pixel: double RGB sum, double sum of squares, 32-bit count), the resolved float
-   image (12), the 8-bit image (3), the encoded output (up to 13) and the reference (12):
-   76, rounded up. */
-#define CLI_BYTES_PER_PIXEL 80.0
+/* Image memory limit, checked before anything is allocated: the accumulation buffer (84
+   bytes per pixel: double RGB sum, double sum of squares, 32-bit count, and per each of the
+   4 sample streams a double luminance sum and a 32-bit count), the resolved float image
+   (12), the 8-bit image (3), the encoded output (up to 13) and the reference (12): 124,
+   rounded up. */
+#define CLI_BYTES_PER_PIXEL 128.0
 #define CLI_MAX_IMAGE_BYTES (2.0 * 1024.0 * 1024.0 * 1024.0)
 /* Ceilings of an open-ended render (--target-error without -s). */
 #define CLI_CEILING_SPP 65536
@@ -163,8 +164,9 @@ static void usage(FILE *f)
         "  --print-camera      print the camera that would be used and exit (default off)\n"
         "  --exposure EV       PNG/JPG brightness: the image is multiplied by 2^EV before the\n"
         "                      sRGB curve, EV in [-64, 64] (default 0); PFM is never scaled\n"
-        "  Pixel filter: each sample is jittered uniformly over its pixel and weighted 1 (a\n"
-        "  box filter one pixel wide).\n"
+        "  Pixel filter: each sample lands on a stratified point of its pixel (4 independently\n"
+        "  scrambled (0,2)-sequences per pixel; with -a independent uniform points) and is\n"
+        "  weighted 1 (a box filter one pixel wide).\n"
         "\n");
     fprintf(f,
         "Fog and method flags:\n"
@@ -1250,6 +1252,10 @@ static void render_adaptive(const fogrt_scene *scene, const fogrt_render_desc *r
                     lum = 0.2126f * L.x + 0.7152f * L.y + 0.0722f * L.z;
                     img->sum[3 * pix] += (double)L.x; img->sum[3 * pix + 1] += (double)L.y; img->sum[3 * pix + 2] += (double)L.z;
                     img->sum_sq[pix] += (double)lum * (double)lum;
+                    /* independent samples: dealt round-robin to the image's streams, so
+                       fogrt_image_error's between-stream estimate applies as to fogrt_render's */
+                    img->stream_sum[FOGRT_IMAGE_STREAMS * pix + n % FOGRT_IMAGE_STREAMS] += (double)lum;
+                    img->stream_count[FOGRT_IMAGE_STREAMS * pix + n % FOGRT_IMAGE_STREAMS]++;
                     s1 += (double)lum; s2 += (double)lum * (double)lum;
                     n++;
                 }

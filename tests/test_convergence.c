@@ -75,11 +75,10 @@ static ladder_point measure(const fogrt_image *img, const fogrt_image *ref)
     fogrt_image_error(img, &e);
     for (p = 0; p < W * H; ++p) {
         double m = luminance_mean(img, p), d = m - luminance_mean(ref, p);
-        double n = img->count[p];
         sq_err += d * d;
         ref_var += pixel_luminance_variance(ref, p);
         mean_sq += m * m;
-        var_sample += pixel_luminance_variance(img, p) * n;   /* s_p^2: the variance of one sample */
+        var_sample += pixel_sample_variance(img, p);   /* s_p^2: the variance of one sample */
     }
     lp.spp = (int)img->count[0];
     lp.est = e.relative_error * e.relative_error;

@@ -110,6 +110,8 @@ static void assert_same_image(const fogrt_image *a, const fogrt_image *b, const 
     TEST_ASSERT_TRUE_MESSAGE(memcmp(a->sum, b->sum, sizeof(double) * 3 * n) == 0, what);
     TEST_ASSERT_TRUE_MESSAGE(memcmp(a->sum_sq, b->sum_sq, sizeof(double) * n) == 0, what);
     TEST_ASSERT_TRUE_MESSAGE(memcmp(a->count, b->count, sizeof(uint32_t) * n) == 0, what);
+    TEST_ASSERT_TRUE_MESSAGE(memcmp(a->stream_sum, b->stream_sum, sizeof(double) * FOGRT_IMAGE_STREAMS * n) == 0, what);
+    TEST_ASSERT_TRUE_MESSAGE(memcmp(a->stream_count, b->stream_count, sizeof(uint32_t) * FOGRT_IMAGE_STREAMS * n) == 0, what);
     TEST_ASSERT_EQUAL_UINT64_MESSAGE(a->rejected, b->rejected, what);
 }
 
@@ -224,12 +226,20 @@ static void test_threads_bit_identical(void)
 }
 
 /* Progressive rendering: 2 + 2 samples (and 1 + 3) in separate calls give the same bits as
-   4 in one call. */
+   4 in one call; and 3 + 6 + 7 the same as 16, batches that split the pixel streams'
+   stratified sequences (4 points each) in the middle. */
 static void test_split_samples_identical(void)
 {
     fogrt_scene *scene = default_scene();
     fogrt_render_desc rd = render_desc(48, 36, 3);
     fogrt_image once, split;
+    render_new(scene, &rd, 16, &once, NULL);
+    render_new(scene, &rd, 3, &split, NULL);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_render(scene, &rd, &split, 6, NULL));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_render(scene, &rd, &split, 7, NULL));
+    assert_same_image(&once, &split, "16 spp vs 3 + 6 + 7 spp");
+    fogrt_image_free(&once);
+    fogrt_image_free(&split);
     render_new(scene, &rd, 4, &once, NULL);
     render_new(scene, &rd, 2, &split, NULL);
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_render(scene, &rd, &split, 2, NULL));
@@ -241,6 +251,81 @@ static void test_split_samples_identical(void)
     fogrt_image_free(&once);
     fogrt_image_free(&split);
     fogrt_scene_destroy(scene);
+}
+
+/* The stratified pixel positions (chapter 15). In each stream of a pixel (sample indices
+   r, r + 4, r + 8, ...) every aligned block of 2^m points is a (0,m,2)-net: for each split
+   of the pixel into 2^a columns and 2^b rows, a + b = m, every cell holds exactly one
+   point (checked for m = 4 over 200 pixel streams and m = 6 over 8, with later blocks too:
+   points 16..31). Each point alone is uniform over the pixel (chi-square over 8 x 8 cells
+   of point 0 and of point 5, over 4096 pixel streams, below 113.7, the p = 1e-4 bound for
+   63 degrees of freedom), and the four streams of a pixel are uncorrelated (|r| of their
+   x and y below 4.5 / sqrt(N)). Fails on a scramble that is not nested (cells hold 0 or 2
+   points), on one that is not uniform, or on streams that share their scramble. */
+static int count_net_failures(uint64_t base, uint64_t pix, int stream, int first, int m)
+{
+    int a, fails = 0, n = 1 << m;
+    for (a = 0; a <= m; ++a) {
+        int cells[64] = { 0 }, i, b = m - a;
+        for (i = 0; i < n; ++i) {
+            float jx, jy;
+            int cx, cy;
+            fogrt__pixel_position(base, pix, (uint32_t)(FOGRT_IMAGE_STREAMS * (first + i) + stream), &jx, &jy);
+            TEST_ASSERT_TRUE(jx >= 0.0f && jx < 1.0f && jy >= 0.0f && jy < 1.0f);
+            cx = (int)(jx * (float)(1 << a)); cy = (int)(jy * (float)(1 << b));
+            cells[(cy << a) + cx]++;
+        }
+        for (i = 0; i < n; ++i) fails += cells[i] != 1;
+    }
+    return fails;
+}
+static double chi2_8x8(uint64_t base, int point)
+{
+    double cells[64] = { 0 }, chi2 = 0.0, expected = 4096.0 / 64.0;
+    int i;
+    for (i = 0; i < 4096; ++i) {
+        float jx, jy;
+        fogrt__pixel_position(base, (uint64_t)(i / 4), (uint32_t)(FOGRT_IMAGE_STREAMS * point + i % 4), &jx, &jy);
+        cells[(int)(jy * 8.0f) * 8 + (int)(jx * 8.0f)] += 1.0;
+    }
+    for (i = 0; i < 64; ++i) chi2 += (cells[i] - expected) * (cells[i] - expected) / expected;
+    return chi2;
+}
+static void test_pixel_positions_stratified(void)
+{
+    uint64_t base = fogrt__hash64(7);
+    int p, r, fails = 0, pairs = 0;
+    double c0, c5, sxy[FOGRT_IMAGE_STREAMS][2], cross[2] = { 0.0, 0.0 };
+    char msg[200];
+    for (p = 0; p < 50; ++p)
+        for (r = 0; r < FOGRT_IMAGE_STREAMS; ++r) {
+            fails += count_net_failures(base, (uint64_t)p * 7919u, r, 0, 4);
+            fails += count_net_failures(base, (uint64_t)p * 7919u, r, 16, 4);
+        }
+    for (p = 0; p < 8; ++p) fails += count_net_failures(base, (uint64_t)p, p % 4, 0, 6);
+    snprintf(msg, sizeof msg, "%d cells of the (0,m,2)-net checks do not hold exactly one point", fails);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, fails, msg);
+    c0 = chi2_8x8(base, 0);
+    c5 = chi2_8x8(base, 5);
+    snprintf(msg, sizeof msg, "uniformity: chi-square %.1f (point 0), %.1f (point 5), 63 dof", c0, c5);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(c0 < 113.7 && c5 < 113.7, msg);
+    /* correlation of the streams' first points, stream 0 against streams 1..3 */
+    for (p = 0; p < 4096; ++p) {
+        for (r = 0; r < FOGRT_IMAGE_STREAMS; ++r) {
+            float jx, jy;
+            fogrt__pixel_position(base, (uint64_t)p, (uint32_t)r, &jx, &jy);
+            sxy[r][0] = jx - 0.5; sxy[r][1] = jy - 0.5;
+        }
+        for (r = 1; r < FOGRT_IMAGE_STREAMS; ++r) {
+            cross[0] += sxy[0][0] * sxy[r][0] * 12.0;   /* 12 = 1 / Var[U(0,1)]: a correlation */
+            cross[1] += sxy[0][1] * sxy[r][1] * 12.0;
+        }
+        pairs += FOGRT_IMAGE_STREAMS - 1;
+    }
+    snprintf(msg, sizeof msg, "streams: correlation %.4f (x), %.4f (y) over %d pairs", cross[0] / pairs, cross[1] / pairs, pairs);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(fabs(cross[0] / pairs) < 4.5 / sqrt((double)pairs) && fabs(cross[1] / pairs) < 4.5 / sqrt((double)pairs), msg);
 }
 
 /* The same seed gives the same image; another seed gives a different one (in most pixels,
@@ -390,12 +475,16 @@ static void test_nee_unbiased_without_fog(void)
     fogrt_render_desc rd = render_desc(24, 18, 0);
     batch_estimate with_mis, without_mis, no_nee;
     TEST_ASSERT_EQUAL_UINT32(0, fogrt_scene_get_features(scene) & FOGRT_FEATURE_MEDIUM);
-    with_mis = batch_mean(scene, &rd, 8, 10, 100);
+    /* 20 batches each: no NEE finds the small lamp only by hitting it, its batch means are
+       heavy-tailed, and 10 batches (9 degrees of freedom) estimated its standard error so
+       poorly that an unbiased pair landed 4.1 errors apart (the stratified pixel positions
+       drew new samples; 6 x 40 further batches agreed within 2.2 errors) */
+    with_mis = batch_mean(scene, &rd, 8, 20, 100);
     rd.mis = false;
-    without_mis = batch_mean(scene, &rd, 8, 10, 200);
+    without_mis = batch_mean(scene, &rd, 8, 20, 200);
     rd.mis = true;
     rd.nee = false;
-    no_nee = batch_mean(scene, &rd, 8, 10, 300);
+    no_nee = batch_mean(scene, &rd, 8, 20, 300);
     assert_means_agree(with_mis, no_nee, "NEE + MIS vs no NEE");
     assert_means_agree(without_mis, no_nee, "NEE without MIS vs no NEE");
     fogrt_scene_destroy(scene);
@@ -830,6 +919,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_default_scene_renders);
     RUN_TEST(test_threads_bit_identical);
     RUN_TEST(test_split_samples_identical);
+    RUN_TEST(test_pixel_positions_stratified);
     RUN_TEST(test_seeds);
     RUN_TEST(test_progress_and_cancel);
     RUN_TEST(test_error_estimate);

@@ -140,12 +140,20 @@ static inline double pixel_luminance(const fogrt_image *img, int p)
     return luminance(img->sum[3 * p], img->sum[3 * p + 1], img->sum[3 * p + 2]) / img->count[p];
 }
 
-/* The variance of pixel p's mean luminance, from its sample variance: (E[L^2] - mean^2) / (n - 1),
+/* The sample variance s^2 of pixel p's luminance samples: (E[L^2] - mean^2) n / (n - 1),
    clamped at 0 (rounding can make it slightly negative for a noise-free pixel). */
-static inline double pixel_luminance_variance(const fogrt_image *img, int p)
+static inline double pixel_sample_variance(const fogrt_image *img, int p)
 {
     double n = img->count[p], mean = pixel_luminance(img, p);
-    return fmax(img->sum_sq[p] / n - mean * mean, 0.0) / (n - 1.0);
+    return fmax(img->sum_sq[p] / n - mean * mean, 0.0) * n / (n - 1.0);
+}
+
+/* The variance of pixel p's mean luminance: fogrt's estimate from the spread of the pixel's
+   independent sample streams. Not s^2 / n: the pixel positions are stratified, so the
+   samples of a pixel are not independent and s^2 / n would overestimate. */
+static inline double pixel_luminance_variance(const fogrt_image *img, int p)
+{
+    return fogrt_image_pixel_variance(img, (size_t)p);
 }
 
 /* The standard error of the mean of n samples, from their sum and sum of squares. */
