@@ -4146,10 +4146,8 @@ FOGRT__PRIVATE bool fogrt__sample_light(const fogrt_scene *s, uint32_t i, fogrt_
     return fogrt__sample_env(s, u, ls);
 }
 /* The lamps whose glow (chapter 6) a scattering vertex in fog may aim its next direction
-   at (chapter 14, d'): every point light, and a spot light when the vertex lies in its cone
-   or in the mirror cone behind it (only there do the lines that pass next to the lamp run
-   inside its beam). At most FOGRT__GLOW_MAX, the first that qualify; none on a mirror or
-   glass surface, outside the fog, or with the glow switched off. */
+   at (chapter 14, d'): every point and spot light. At most FOGRT__GLOW_MAX, the first
+   ones; none on a mirror or glass surface, outside the fog, or with the glow switched off. */
 FOGRT__PRIVATE void fogrt__glow_setup(const fogrt_scene *s, const fogrt__settings *st, fogrt__vertex *v, bool scattering)
 {
     uint32_t i;
@@ -4628,11 +4626,10 @@ FOGRT__PRIVATE bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_d
 FOGRT__PRIVATE bool fogrt__surface_event(const fogrt__settings *st, fogrt__path *P, const fogrt_material_desc *m,
                                          uint32_t prim, int limit, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns)
 {
-    P->v.p = p;
-    P->type = fogrt__bsdf_type(m);
+    bool goes_on = fogrt__surface_vertex(P, m, limit, p, ng, ns);   /* sets v.p and the type first */
     FOGRT__HOOK(fogrt__trace_surface(st, P, prim));
     (void)st; (void)prim;                                /* read by the trace hook only */
-    return fogrt__surface_vertex(P, m, limit, p, ng, ns);
+    return goes_on;
 }
 /* The vertex itself: its BSDF, sides and frame (also set up on the side by b' below). */
 FOGRT__PRIVATE bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_desc *m, int limit, fogrt__v3 p,
@@ -4671,20 +4668,25 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt_
    behind the collision is taken with probability 16 T and counts 1/16: dense fog does not
    cost a shadow ray per bounce for surfaces it hides. */
 #define FOGRT__BEHIND_MIN 0.0625f
+
+/* Whether to take that sample behind this collision (the roulette draw, when T is small). */
+FOGRT__PRIVATE bool fogrt__light_behind_wanted(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
+{
+    float tr = P->seg_tr;
+    if (!st->expected_emission || !st->nee || s->light_count == 0 || !(tr > 0.0f)) return false;
+    return tr >= FOGRT__BEHIND_MIN || fogrt_rng_float(P->rng) * FOGRT__BEHIND_MIN < tr;
+}
+/* The sample itself, at the surface point p with normals ng, ns (fogrt__surface_frame). */
 FOGRT__PRIVATE void fogrt__light_behind(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                        const fogrt_material_desc *m, const fogrt_hit *hit, fogrt__v3 beta, int limit)
+                                        const fogrt_material_desc *m, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns,
+                                        fogrt__v3 beta, int limit)
 {
     fogrt__vertex keep = P->v;
     fogrt_bsdf_type type = P->type;
     bool entering = P->entering;
-    fogrt__v3 p, ng, ns;
-    float tr = P->seg_tr;
-    if (!st->expected_emission || !st->nee || s->light_count == 0 || !(tr > 0.0f)) return;
-    if (tr < FOGRT__BEHIND_MIN && !(fogrt_rng_float(P->rng) * FOGRT__BEHIND_MIN < tr)) return;
-    fogrt__surface_frame(s, P->o, P->d, hit, &p, &ng, &ns);
     if (fogrt__surface_vertex(P, m, limit, p, ng, ns) && fogrt__is_scattering(P)) {
         fogrt__glow_setup(s, st, &P->v, P->type == FOGRT_BSDF_DIFFUSE);
-        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(beta, fogrt__sample_lights(s, st, P, FOGRT__MAX(tr, FOGRT__BEHIND_MIN), true)),
+        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(beta, fogrt__sample_lights(s, st, P, FOGRT__MAX(P->seg_tr, FOGRT__BEHIND_MIN), true)),
                       "light sample");
     }
     P->v = keep; P->type = type; P->entering = entering;
@@ -4708,9 +4710,10 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
     if (found) {                                        /* its emission: tr Le, collided or not */
         const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit.prim)];
         fogrt__v3 p, ng, ns;
-        if (collided) fogrt__light_behind(s, st, P, m, &hit, beta, limit);          /* b' */
-        if (collided && (fogrt__is_black(m->emission) || !(tr > 0.0f))) return true;   /* nothing to add there */
-        fogrt__surface_frame(s, P->o, P->d, &hit, &p, &ng, &ns);   /* once, for both */
+        bool behind = collided && fogrt__light_behind_wanted(s, st, P);
+        if (collided && !behind && (fogrt__is_black(m->emission) || !(tr > 0.0f))) return true;   /* nothing to add there */
+        fogrt__surface_frame(s, P->o, P->d, &hit, &p, &ng, &ns);   /* once, for all three */
+        if (behind) fogrt__light_behind(s, st, P, m, p, ng, ns, beta, limit);                     /* b' */
         fogrt__surface_emission(s, st, P, m, &hit, p, ng, beta, tr);
         return collided || fogrt__surface_event(st, P, m, hit.prim, limit, p, ng, ns);
     }
