@@ -1409,18 +1409,26 @@ FOGRT__PRIVATE float fogrt__sample_equiangular_hg(const fogrt__hg_table *T, floa
 }
 /* The glow with HG: alpha from K (density G per unit alpha, then 1 / (2 pi sin alpha) per
    steradian). */
-FOGRT__PRIVATE fogrt__v3 fogrt__sample_glow_hg(const fogrt__hg_table *T, fogrt__v3 to_light, float u1, float u2)
+FOGRT__PRIVATE float fogrt__glow_hg_density(const fogrt__hg_table *T, double sin_alpha, double dens)   /* per steradian */
+{
+    return (float)(dens / (T->k[FOGRT__HGT_N] * 2.0 * FOGRT__PI_D * FOGRT__MAX(sin_alpha, 1e-30)));
+}
+/* *pdf: the density at the angle drawn (the direction returned is that angle to float
+   rounding), which spares fogrt__glow_hg_pdf's atan2 and table look-up. */
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_glow_hg(const fogrt__hg_table *T, fogrt__v3 to_light, float u1, float u2, float *pdf)
 {
     fogrt__frame f = fogrt__frame_from_z(to_light);
-    double alpha = fogrt__hgt_invert(T, T->k, T->k_start, (double)u1 * T->k[FOGRT__HGT_N], NULL);
-    return fogrt__around(&f, (float)cos(alpha), (float)sin(alpha), u2);
+    double dens, alpha = fogrt__hgt_invert(T, T->k, T->k_start, (double)u1 * T->k[FOGRT__HGT_N], &dens);
+    double sa = sin(alpha);
+    *pdf = fogrt__glow_hg_density(T, sa, dens);
+    return fogrt__around(&f, (float)cos(alpha), (float)sa, u2);
 }
 FOGRT__PRIVATE float fogrt__glow_hg_pdf(const fogrt__hg_table *T, fogrt__v3 to_light, fogrt__v3 wi)
 {
     fogrt__v3 a = fogrt__sub(wi, to_light), b = fogrt__add(wi, to_light);
     double alpha = 2.0 * atan2((double)fogrt__length(a), (double)fogrt__length(b)), dens;
     (void)fogrt__hgt_at(T, T->k, alpha, &dens);
-    return (float)(dens / (T->k[FOGRT__HGT_N] * 2.0 * FOGRT__PI_D * FOGRT__MAX(sin(alpha), 1e-30)));
+    return fogrt__glow_hg_density(T, sin(alpha), dens);
 }
 #endif
 
@@ -1601,6 +1609,7 @@ struct fogrt_scene {
     float *env_cdf;            /* built: per row the CDF over its columns (w), then the rows' CDF (h) */
     double env_total;          /* built: sum of luminance x sin(theta) over the map */
     float *light_pick;         /* built: the light list's CDF by power (fogrt__light_pick, chapter 12) */
+    float *spot_cos;           /* built: per point or spot light, cos(cutoff) and cos(beam) */
     float glow_share;          /* built: the share of scattered directions aimed at the glow (14 d') */
     fogrt_camera_desc camera; bool has_camera;
     fogrt_medium_desc medium;
@@ -1682,6 +1691,7 @@ FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s)
     fogrt__free(&s->allocator, s->prim_light); s->prim_light = NULL;
     fogrt__free(&s->allocator, s->env_cdf); s->env_cdf = NULL;
     fogrt__free(&s->allocator, s->light_pick); s->light_pick = NULL;
+    fogrt__free(&s->allocator, s->spot_cos); s->spot_cos = NULL;
     s->built = false;
 }
 FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s)
@@ -2040,6 +2050,7 @@ FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
     if (s->nodes) b += sizeof(fogrt_bvh_node) * s->node_count + p * sizeof(uint32_t);
     if (s->prims) b += p * sizeof(fogrt__prim);         /* chapter 10's primitives: the binary layout only */
     if (s->light_pick) b += sizeof(float) * (s->light_count + s->area_light_count + (s->env_map ? 1u : 0u));
+    if (s->spot_cos) b += sizeof(float) * 2 * s->light_count;
     for (i = 0; s->area_lights && i < s->area_light_count; ++i) lit += s->area_lights[i].count;
     if (s->area_lights) b += sizeof(fogrt__area_light) * s->area_light_count + lit * (sizeof(uint32_t) + sizeof(float));
     if (s->prim_light) b += sizeof(uint32_t) * p;
@@ -3708,9 +3719,18 @@ FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d,
 FOGRT__PRIVATE bool fogrt__build_light_pick(fogrt_scene *s);
 FOGRT__PRIVATE bool fogrt__build_sampling(fogrt_scene *s)
 {
+    uint32_t i;
 #ifndef FOGRT_NO_MEDIUM
     if ((s->features & FOGRT_FEATURE_MEDIUM) && s->light_count > 0) fogrt__hg_table_build(&s->hg, s->medium.g);
 #endif
+    if (s->light_count > 0) {                           /* the spot cones' cosines, once */
+        s->spot_cos = (float *)fogrt__alloc(&s->allocator, sizeof(float) * 2 * s->light_count);
+        if (!s->spot_cos) return false;
+        for (i = 0; i < s->light_count; ++i) {
+            s->spot_cos[2 * i] = cosf(s->lights[i].cutoff_deg * (FOGRT__PI / 180.0f));
+            s->spot_cos[2 * i + 1] = cosf(s->lights[i].beam_deg * (FOGRT__PI / 180.0f));
+        }
+    }
     return fogrt__build_light_pick(s);
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
@@ -3914,8 +3934,11 @@ FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_ligh
     float d2 = fogrt__dot(to, to), d, pdf, t;
     if (!(d2 > 0.0f)) return false;                    /* x is the light: no direction */
     d = sqrtf(d2);
-    if (l->type == FOGRT_LIGHT_SPOT)
-        I = fogrt__scale(I, fogrt_spot_falloff(l->cutoff_deg, l->beam_deg, -fogrt__dot(to, l->direction) / d));
+    if (l->type == FOGRT_LIGHT_SPOT) {                 /* the profile, its acos only near the band */
+        const float *sc = s->spot_cos + 2 * (l - s->lights), c = -fogrt__dot(to, l->direction) / d;
+        if (c < sc[0] - 1e-4f) return false;             /* clearly outside the cutoff */
+        if (!(c > sc[1] + 1e-4f)) I = fogrt__scale(I, fogrt_spot_falloff(l->cutoff_deg, l->beam_deg, c));
+    }
     if (fogrt__is_black(I)) return false;
     ls->pdf = 1.0f;
     ls->delta = true;
@@ -4165,17 +4188,23 @@ FOGRT__PRIVATE void fogrt__glow_setup(const fogrt_scene *s, const fogrt__setting
    point and spot lights' share of the scene's light power, chapter 12: 1/2 when they are
    all the light), 1 - c the phase function or BSDF (pdf_b), c the glows of the vertex's
    lamps, each chosen with equal probability. */
-FOGRT__PRIVATE float fogrt__glow_mix(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float pdf_b)
+FOGRT__PRIVATE float fogrt__glow_mix_known(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float pdf_b,
+                                           int known, float pdf_known)
+    /* known >= 0: wi was drawn from that lamp's glow, whose density there is pdf_known */
 {
     float sum = 0.0f;
     int k;
 #ifndef FOGRT_NO_MEDIUM
     for (k = 0; k < v->glow_n; ++k)
-        sum += fogrt__glow_hg_pdf(&s->hg, v->glow_dir[k], wi);
+        sum += k == known ? pdf_known : fogrt__glow_hg_pdf(&s->hg, v->glow_dir[k], wi);
 #else
-    (void)s; (void)wi; (void)k;
+    (void)s; (void)wi; (void)k; (void)known; (void)pdf_known;
 #endif
     return (1.0f - s->glow_share) * pdf_b + s->glow_share * sum / (float)FOGRT__MAX(v->glow_n, 1);
+}
+FOGRT__PRIVATE float fogrt__glow_mix(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float pdf_b)
+{
+    return fogrt__glow_mix_known(s, v, wi, pdf_b, -1, 0.0f);
 }
 /* One light sample's share of the light reflected at v (eq. 13): f Le T V w / (n pdf),
    with w the MIS weight (1 for a delta light, or with MIS off). */
@@ -4191,9 +4220,9 @@ FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt
     fogrt__v3 f, c = fogrt__v(0.0f, 0.0f, 0.0f);
     float pdf_b, tr = 0.0f, w = 0.0f;
     f = fogrt__vertex_f(s, v, ls->wi, &pdf_b);
-    if (v->glow_n > 0) pdf_b = fogrt__glow_mix(s, v, ls->wi, pdf_b);   /* how scattering picks wi */
     if (!fogrt__is_black(f)) tr = fogrt__shadow(s, v, ls, P->rays);
     if (tr != 0.0f) {
+        if (v->glow_n > 0 && !ls->delta && st->mis) pdf_b = fogrt__glow_mix(s, v, ls->wi, pdf_b);   /* how scattering picks wi */
         w = ls->delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls->pdf, pdf_b);
         c = fogrt__scale(fogrt__mul(f, ls->Le), tr * w / (ls->pdf * (float)n));
     }
@@ -4476,11 +4505,12 @@ FOGRT__PRIVATE void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogr
    the forward nappe of a cone with a half-angle below 90 degrees is convex, so a line meets
    it in one interval. Its ends are among the roots of the quadratic "on the cone surface"
    and the plane through the apex; the inside test at the midpoints picks the interval.
-   Returns false when the ray misses the cone. */
-FOGRT__PRIVATE bool fogrt__clip_to_cone(const fogrt_light_desc *l, fogrt__v3 o, fogrt__v3 d, float *a, float *b)
+   cos_c is the cosine of the cutoff (s->spot_cos, chapter 12). Returns false when the ray
+   misses the cone. */
+FOGRT__PRIVATE bool fogrt__clip_to_cone(const fogrt_light_desc *l, float cos_c, fogrt__v3 o, fogrt__v3 d, float *a, float *b)
 {
     fogrt__v3 w = fogrt__sub(o, l->position);
-    float cos_c = cosf(l->cutoff_deg * (FOGRT__PI / 180.0f)), c2 = cos_c * cos_c;
+    float c2 = cos_c * cos_c;
     float da = fogrt__dot(d, l->direction), wa = fogrt__dot(w, l->direction);
     float A = da * da - c2, B = da * wa - c2 * fogrt__dot(d, w), C = wa * wa - c2 * fogrt__dot(w, w);
     float t[6], lo = FLT_MAX, hi = -FLT_MAX, end = *b;
@@ -4558,7 +4588,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
             fogrt__light_sample ls;
             float u[3], t, pdf_t, t_lo = t_min, t_hi = t_max, h;
             u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
-            if (l->type == FOGRT_LIGHT_SPOT && !fogrt__clip_to_cone(l, P->o, P->d, &t_lo, &t_hi)) continue;
+            if (l->type == FOGRT_LIGHT_SPOT && !fogrt__clip_to_cone(l, s->spot_cos[2 * i], P->o, P->d, &t_lo, &t_hi)) continue;
             h = FOGRT__MAX(fogrt__length(fogrt__cross(oc, P->d)), sqrtf(s->r2_min));  /* ray through the light */
             t = fogrt__sample_equiangular_hg(&s->hg, fogrt__dot(oc, P->d), h, t_lo, t_hi, u[0], &pdf_t);
             if (!(pdf_t > 0.0f)) continue;
@@ -4784,14 +4814,15 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
     fogrt__v3 f, wi, wo_l;
     fogrt_bsdf_sample bs;
     uint32_t light = 0;
-    float u[3], pdf_b, pdf;
+    float u[3], pdf_b, pdf, pdf_k = 0.0f;
+    int k = -1;
     bool glow;
     u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
     glow = u[0] < s->glow_share;
     if (glow) {
-        int k = FOGRT__MIN((int)(u[0] / s->glow_share * (float)P->v.glow_n), P->v.glow_n - 1);
+        k = FOGRT__MIN((int)(u[0] / s->glow_share * (float)P->v.glow_n), P->v.glow_n - 1);
         light = P->v.glow[k];
-        wi = fogrt__sample_glow_hg(&s->hg, P->v.glow_dir[k], u[1], u[2]);
+        wi = fogrt__sample_glow_hg(&s->hg, P->v.glow_dir[k], u[1], u[2], &pdf_k);
     } else if (P->v.is_medium) {
         wi = fogrt_sample_hg(s->medium.g, P->v.wo, u[1], u[2], NULL);
     } else {
@@ -4800,8 +4831,9 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
         wi = fogrt__normalize(fogrt__to_world(&P->v.frame, bs.wi));
     }
     f = fogrt__vertex_f(s, &P->v, wi, &pdf_b);          /* phase, or f |cos| (0 through the surface) */
-    pdf = fogrt__glow_mix(s, &P->v, wi, pdf_b);
-    if (fogrt__is_black(f) || !(pdf > 0.0f)) return false;
+    if (fogrt__is_black(f)) return false;
+    pdf = fogrt__glow_mix_known(s, &P->v, wi, pdf_b, k, pdf_k);
+    if (!(pdf > 0.0f)) return false;
     P->d = wi;
     P->beta = fogrt__mul(P->beta, fogrt__scale(f, 1.0f / pdf));
     P->prev_pdf = pdf; P->prev_delta = false;

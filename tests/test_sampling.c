@@ -578,7 +578,8 @@ static void test_glow_hg_sampling(void)
         glowhg_pdf_args pa;
         fogrt_rng rng;
         fogrt__frame fr = fogrt__frame_from_z(p);
-        long invalid = 0;
+        long invalid = 0, pdf_off = 0;
+        double worst = 0.0;
         char name[64], param[128], msg[160];
         fogrt__hg_table_build(T, gs[k]);
         hg_fine_build(f, gs[k]);
@@ -591,12 +592,20 @@ static void test_glow_hg_sampling(void)
         fogrt_rng_seed(&rng, 4300 + (uint64_t)k, 5);
         for (long i = 0; i < n; i++) {
             float u1 = fogrt_rng_float(&rng), u2 = fogrt_rng_float(&rng);
-            fogrt_vec3 w = fogrt__sample_glow_hg(T, p, u1, u2);
+            float pdf_drawn, pdf_eval;
+            fogrt_vec3 w = fogrt__sample_glow_hg(T, p, u1, u2, &pdf_drawn);
             double dx = (double)w.x - p.x, dy = (double)w.y - p.y, dz = (double)w.z - p.z;
             double alpha = 2.0 * asin(fmin(1.0, 0.5 * sqrt(dx * dx + dy * dy + dz * dz)));
             double phi = atan2(fogrt__dot(w, fr.t), fogrt__dot(w, fr.s)) + STATS_PI;
             int row = 0, col = (int)(phi / (2.0 * STATS_PI) * HG_PEAK_COLS);
             if (!isfinite(alpha) || !(fabs(fogrt__dot(w, w) - 1.0f) < 1e-5f)) { invalid++; continue; }
+            /* the density it returns is the one fogrt__glow_hg_pdf finds at the direction,
+               where a float direction holds the angle (from 1e-3 rad: to 1e-4 of it; at an
+               edge of the table the direction may still fall in the next bin) */
+            pdf_eval = fogrt__glow_hg_pdf(T, p, w);
+            if (alpha < 1e-3) { if (!(pdf_drawn > 0.0f)) pdf_off++; }
+            else if (!(pdf_drawn > 0.0f) || !(fabs(pdf_drawn / pdf_eval - 1.0) < 0.05)) pdf_off++;
+            else worst = fmax(worst, fabs(pdf_drawn / pdf_eval - 1.0));
             while (row < HG_PEAK_ROWS - 1 && alpha >= edge[row + 1]) row++;
             observed[row * HG_PEAK_COLS + (col < HG_PEAK_COLS ? col : HG_PEAK_COLS - 1)] += 1.0;
         }
@@ -604,6 +613,10 @@ static void test_glow_hg_sampling(void)
         snprintf(param, sizeof param, "g=%g, to_light=(%g,%g,%g)", (double)gs[k], (double)p.x, (double)p.y, (double)p.z);
         REPORT(t, stats_chi2_verdict(name, "fogrt__sample_glow_hg", param, HG_PEAK_ROWS, HG_PEAK_COLS, edge, "angle to lamp",
                                      col_edge, "phi", observed, expected, invalid, false));
+        snprintf(msg, sizeof msg, "glow_hg g=%g: drawn pdf against fogrt__glow_hg_pdf: %ld off by 5%% or more, else at most %.2e",
+                 (double)gs[k], pdf_off, worst);
+        TEST_MESSAGE(msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, (int)pdf_off, msg);
         pa.T = T; pa.p = p;
         double integral = stats_integrate_1d(glowhg_pdf_1d, &pa, 1e-6, STATS_PI - 1e-6, 1e-9, 40);
         snprintf(msg, sizeof msg, "glow_hg g=%g: the pdf integrates to %.7f", (double)gs[k], integral);
