@@ -866,7 +866,9 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #define FOGRT__PRIVATE static
 #endif
 /* The few small functions in the BVH's inner loops are forced inline: at -O2 gcc otherwise
-   keeps them as calls, which costs about a quarter of the traversal time. */
+   keeps them as calls, which costs about a quarter of the traversal time. So are a few of
+   the integrator's steps (chapters 12 and 14): as calls, with the fog code in their callers,
+   they made a fog-free render pay 2-4% for that code (make callgrind, docs/benchmarks.md). */
 #if defined(__GNUC__) || defined(__clang__)
 #define FOGRT__HOT static inline __attribute__((always_inline, unused))
 #else
@@ -974,7 +976,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__to_world(const fogrt__frame *f, fogrt__v3 v)
 /* The direction at polar angle theta (given by its cosine and sine) from the frame's n and
    azimuth 2 pi u: how every sampler of a cone or lobe (HG eq. 12, spheres) turns its two
    angles into a direction. */
-FOGRT__PRIVATE fogrt__v3 fogrt__around(const fogrt__frame *f, float cos_theta, float sin_theta, float u)
+FOGRT__HOT fogrt__v3 fogrt__around(const fogrt__frame *f, float cos_theta, float sin_theta, float u)
 {
     float phi = 2.0f * FOGRT__PI * u;
     return fogrt__normalize(fogrt__to_world(f, fogrt__v(sin_theta * cosf(phi), sin_theta * sinf(phi), cos_theta)));
@@ -3854,7 +3856,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt_
 /* What the vertex sends toward -wi from light arriving along wi: f |cos| at a surface (in
    world space, with the geometric-side test against light leaks), the phase function in the
    fog. *pdf is the density with which BSDF / phase sampling would have chosen wi. */
-FOGRT__PRIVATE fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf)
+FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf)
 {
     fogrt__v3 wo_l, wi_l;
 #ifndef FOGRT_NO_MEDIUM
@@ -3903,7 +3905,7 @@ FOGRT__PRIVATE float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o,
 /* Visibility times transmittance (eq. 8) between the vertex and the light sample's point.
    The shadow ray starts at the offset origin and aims at the target itself, stopping a ray
    offset short of it (the target may lie on a surface: the emitter). */
-FOGRT__PRIVATE float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, const fogrt__light_sample *ls,
+FOGRT__HOT float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, const fogrt__light_sample *ls,
                                    uint64_t *rays)
 {
     fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, ls->wi);
@@ -4252,7 +4254,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_light_n(const fogrt_scene *s, const fogrt
     }
     return L;
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
+FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
                                                float lamp_scale, bool lamps_only)
 {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
@@ -4457,7 +4459,9 @@ FOGRT__PRIVATE void fogrt__trace_roulette(const fogrt__settings *st, const fogrt
 FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__settings *st, const fogrt__path *P, fogrt__v3 c, bool counted,
                                         const char *source)
 {
-    fogrt_trace_event e = fogrt__event(FOGRT_TRACE_CONTRIBUTION, P);
+    fogrt_trace_event e;
+    if (fogrt__is_black(c)) return;                     /* only light that adds something */
+    e = fogrt__event(FOGRT_TRACE_CONTRIBUTION, P);
     e.value = c; e.flag = counted; e.source = source;
     fogrt__emit(st, &e);
 }
@@ -4467,7 +4471,7 @@ FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__settings *st, const fogrt__
 FOGRT__PRIVATE void fogrt__gather(fogrt__path *P, const fogrt__settings *st, int bounces, fogrt__v3 c, const char *source)
 {
     if (bounces >= st->min_depth) P->L = fogrt__add(P->L, c);
-    if (!fogrt__is_black(c)) FOGRT__HOOK(fogrt__trace_gather(st, P, c, bounces >= st->min_depth, source));
+    FOGRT__HOOK(fogrt__trace_gather(st, P, c, bounces >= st->min_depth, source));
     (void)source;
 }
 FOGRT__PRIVATE bool fogrt__is_scattering(const fogrt__path *P)
@@ -4651,7 +4655,7 @@ FOGRT__PRIVATE void fogrt__surface_emission(const fogrt_scene *s, const fogrt__s
 /* b. The surface the ray reached, at p with normals ng, ns (fogrt__surface_frame; its
    emission was added by fogrt__next_event): its shading frame. Returns false when the path
    ends here (the depth limit, or a black diffuse surface). */
-FOGRT__PRIVATE bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_desc *m, int limit, fogrt__v3 p,
+FOGRT__HOT bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_desc *m, int limit, fogrt__v3 p,
                                           fogrt__v3 ng, fogrt__v3 ns);
 FOGRT__PRIVATE bool fogrt__surface_event(const fogrt__settings *st, fogrt__path *P, const fogrt_material_desc *m,
                                          uint32_t prim, int limit, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns)
@@ -4662,7 +4666,7 @@ FOGRT__PRIVATE bool fogrt__surface_event(const fogrt__settings *st, fogrt__path 
     return goes_on;
 }
 /* The vertex itself: its BSDF, sides and frame (also set up on the side by b' below). */
-FOGRT__PRIVATE bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_desc *m, int limit, fogrt__v3 p,
+FOGRT__HOT bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_desc *m, int limit, fogrt__v3 p,
                                           fogrt__v3 ng, fogrt__v3 ns)
 {
     fogrt__v3 wo = fogrt__neg(P->d);
@@ -4681,7 +4685,7 @@ FOGRT__PRIVATE bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_d
     return true;
 }
 
-FOGRT__PRIVATE fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
+FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
                                                float lamp_scale, bool lamps_only);
 /* b'. The light of point and spot lights at the surface behind a fog collision (with
    expected_emission; not in the paper). The light that next-event estimation finds at a
@@ -4732,11 +4736,14 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
     const fogrt__v3 beta = P->beta;                     /* before a collision's albedo */
     ++*P->rays;
     found = fogrt__traverse(s, P->o, P->d, 0.0f, INFINITY, &hit, false);
+    P->seg_tr = 1.0f;
 #ifndef FOGRT_NO_MEDIUM
-    collided = fogrt__free_flight(s, st, P, found ? hit.t : INFINITY, P->bounces < limit, &tr);
+    if (P->in_medium) {                                 /* (a fog-free ray skips all of this) */
+        collided = fogrt__free_flight(s, st, P, found ? hit.t : INFINITY, P->bounces < limit, &tr);
+        P->seg_tr = tr;
+        if (!st->expected_emission) tr = collided ? 0.0f : 1.0f;   /* the paper's: Le when reached */
+    }
 #endif
-    P->seg_tr = tr;
-    if (!st->expected_emission) tr = collided ? 0.0f : 1.0f;   /* the paper's: Le when reached */
     if (found) {                                        /* its emission: tr Le, collided or not */
         const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit.prim)];
         fogrt__v3 p, ng, ns;
@@ -4754,22 +4761,22 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
                                                  fogrt__pick_prob(s, st, fogrt__light_total(s) - 1)) : 0.0f;
         fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, fogrt__env_radiance(s, P->d)), w * tr), "environment");
     }
-    if (!collided) FOGRT__HOOK(fogrt__trace_simple(st, P, FOGRT_TRACE_ESCAPE));
+    FOGRT__HOOK(collided ? (void)0 : fogrt__trace_simple(st, P, FOGRT_TRACE_ESCAPE));
     return collided;
 }
 
 /* c. Light sampling at the scattering vertex (next-event estimation, chapter 12); a mirror
    or glass vertex cannot be reached by a light sample and is skipped. */
-FOGRT__PRIVATE void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
+FOGRT__HOT void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
 {
-    fogrt__glow_setup(s, st, &P->v, fogrt__is_scattering(P) && (P->v.is_medium || P->type == FOGRT_BSDF_DIFFUSE));
+    if (st->glow) fogrt__glow_setup(s, st, &P->v, fogrt__is_scattering(P) && (P->v.is_medium || P->type == FOGRT_BSDF_DIFFUSE));
     if (st->nee && fogrt__is_scattering(P))             /* lamps at a surface seen through fog: T times (b') */
         fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__sample_lights(s, st, P,
                       P->v.is_medium || !st->expected_emission ? 1.0f : P->seg_tr, false)), "light sample");
 }
 
 /* d. The new direction from a surface: sample the BSDF in the shading frame. */
-FOGRT__PRIVATE bool fogrt__scatter_surface(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
+FOGRT__HOT bool fogrt__scatter_surface(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
 {
     fogrt_bsdf_sample bs;
     const fogrt__v3 ng = P->v.ng, wo = P->v.wo;
@@ -4847,10 +4854,11 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
 
 /* d. The new direction: Henyey-Greenstein in the fog (eq. 11-12, weight p / pdf = 1), the
    BSDF on a surface; near a lamp, the mixture of d'. */
-FOGRT__PRIVATE bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
+FOGRT__HOT bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
 {
     P->prev_p = P->v.p;
 #ifndef FOGRT_NO_MEDIUM
+    if (!P->v.in_medium) return fogrt__scatter_surface(s, st, P);   /* (a vertex outside the fog: only d) */
     if (P->v.glow_n > 0) return fogrt__scatter_glow(s, st, P);
     if (P->v.is_medium) {
         float u1 = fogrt_rng_float(P->rng), u2 = fogrt_rng_float(P->rng);
@@ -4942,6 +4950,12 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void)
     };
     return d;
 }
+/* Point or spot lights in fog: what the glow of 14 d' needs (without them the glow's checks
+   are skipped at every vertex). */
+FOGRT__PRIVATE bool fogrt__lamps_in_fog(const fogrt_scene *s)
+{
+    return (s->features & FOGRT_FEATURE_MEDIUM) && s->light_count > 0;
+}
 /* The settings the integrators read, from a desc (NULL: the defaults). A desc must come
    from fogrt_render_defaults(): a zeroed one would silently mean "max depth 0, no light
    sampling", so it is refused with a message saying so. */
@@ -4965,7 +4979,7 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
     st->nee = d.nee;
     st->mis = d.mis;
     st->equiangular = d.equiangular;
-    st->glow = d.glow && d.nee && d.equiangular;
+    st->glow = d.glow && d.nee && d.equiangular && fogrt__lamps_in_fog(s);
     st->expected_emission = d.expected_emission;
     st->by_power = d.light_by_power && s->light_pick && fogrt__light_total(s) > 1;
     st->integrator = d.integrator == FOGRT_INTEGRATOR_DIRECT ? FOGRT_INTEGRATOR_DIRECT : FOGRT_INTEGRATOR_PATH;
