@@ -1326,6 +1326,16 @@ FOGRT__PUBLIC float fogrt_spot_falloff(float cutoff_deg, float beam_deg, float c
     return FOGRT__CLAMP((cutoff_deg - theta) / (cutoff_deg - beam_deg), 0.0f, 1.0f);
 }
 
+/* The same profile for a light of a built scene, from its two cosines (s->spot_cos: the
+   cutoff's, the beam's): outside the band between them, by a margin far above acosf's
+   rounding, it is 0 or 1 without the acos. */
+FOGRT__PRIVATE float fogrt__spot_profile(const fogrt_light_desc *l, const float *cosines, float cos_theta)
+{
+    if (cos_theta < cosines[0] - 1e-4f) return 0.0f;
+    if (cos_theta > cosines[1] + 1e-4f) return 1.0f;
+    return fogrt_spot_falloff(l->cutoff_deg, l->beam_deg, cos_theta);
+}
+
 #ifndef FOGRT_NO_MEDIUM
 /* Equiangular: with theta the angle seen from the light, t = delta + h tan(theta) and theta is
    uniform between theta_a = atan((a - delta)/h) and theta_b = atan((b - delta)/h). Near the
@@ -3936,11 +3946,8 @@ FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_ligh
     float d2 = fogrt__dot(to, to), d, pdf, t;
     if (!(d2 > 0.0f)) return false;                    /* x is the light: no direction */
     d = sqrtf(d2);
-    if (l->type == FOGRT_LIGHT_SPOT) {                 /* the profile, its acos only near the band */
-        const float *sc = s->spot_cos + 2 * (l - s->lights), c = -fogrt__dot(to, l->direction) / d;
-        if (c < sc[0] - 1e-4f) return false;             /* clearly outside the cutoff */
-        if (!(c > sc[1] + 1e-4f)) I = fogrt__scale(I, fogrt_spot_falloff(l->cutoff_deg, l->beam_deg, c));
-    }
+    if (l->type == FOGRT_LIGHT_SPOT)
+        I = fogrt__scale(I, fogrt__spot_profile(l, s->spot_cos + 2 * (l - s->lights), -fogrt__dot(to, l->direction) / d));
     if (fogrt__is_black(I)) return false;
     ls->pdf = 1.0f;
     ls->delta = true;
