@@ -467,6 +467,116 @@ static void test_equiangular_near_line(void)
     }
 }
 
+/* The angles of the HG-weighted samplers in float (fogrt__atan2_pos, fogrt__psi_of,
+   fogrt__cos_sin, chapter 6) against long double: atan2 to a few float ulps of relative
+   error at every ratio (small angles keep their digits), and the equiangular distance with
+   the phase function next to the ray's line (h down to 1e-7, g at both signs and near +-1)
+   within 4 x 2^-24 of the same table inverted with long double angles. */
+static void test_hg_angles_precision(void)
+{
+    static const double hs[] = { 1e-2, 1e-4, 1e-6, 1e-7 };
+    static const float gs[] = { 0.6f, -0.5f, 0.99f, -0.99f, 0.0f };
+    double worst_atan = 0.0;
+    char msg[200];
+    int i, j, k;
+    for (i = -300; i <= 300; ++i) {                      /* ratios 1e-30 .. 1e30 */
+        float y = powf(10.0f, (float)i / 10.0f), x = 1.0f;
+        double e = fabs((double)fogrt__atan2_pos(y, x) / atan2((double)y, (double)x) - 1.0);
+        if (e > worst_atan) worst_atan = e;
+    }
+    TEST_ASSERT_EQUAL_FLOAT(0.0f, fogrt__atan2_pos(0.0f, 1.0f));
+    TEST_ASSERT_EQUAL_FLOAT(1.5707963f, fogrt__atan2_pos(1.0f, 0.0f));
+    TEST_ASSERT_TRUE(fogrt__atan2_pos(0.0f, 0.0f) == 0.0f);
+    snprintf(msg, sizeof msg, "fogrt__atan2_pos: worst relative error %.2g (ratios 1e-30 to 1e30)", worst_atan);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(worst_atan <= 4e-7, msg);
+    {   /* psi next to 0 and pi: its distance to the end keeps its digits; the naive float
+           pi/2 + atan((t - delta) / h) does not (negative control) */
+        double exact = (double)atan2l(1e-7L, 1.0L);
+        double ours0 = fogrt__psi_of(0.0f, 1.0f, 1e-7f), ours1 = FOGRT__PI_D - fogrt__psi_of(1.0f, 0.0f, 1e-7f);
+        double naive = (double)(atan2f(-1.0f, 1e-7f) + 1.57079633f);
+        snprintf(msg, sizeof msg, "psi at 1e-7 from 0 and from pi: relative errors %.2g, %.2g; naive float %.2g (must exceed 0.1)",
+                 fabs(ours0 / exact - 1.0), fabs(ours1 / exact - 1.0), fabs(naive / exact - 1.0));
+        TEST_MESSAGE(msg);
+        TEST_ASSERT_TRUE_MESSAGE(fabs(ours0 / exact - 1.0) <= 4e-7 && fabs(ours1 / exact - 1.0) <= 4e-7 &&
+                                 fabs(naive / exact - 1.0) > 0.1, msg);
+    }
+    for (j = 0; j < COUNT(gs); ++j) {
+        fogrt__hg_table *T = (fogrt__hg_table *)malloc(sizeof *T);
+        TEST_ASSERT_NOT_NULL(T);
+        fogrt__hg_table_build(T, gs[j]);
+        for (i = 0; i < COUNT(hs); ++i) {
+            const float delta = 0.37f, a = 0.0f, b = 1.0f, h = (float)hs[i];
+            double worst_t = 0.0, worst_pdf = 0.0;
+            double ca = fogrt__hgt_at(T, T->c, (double)atan2l((long double)h, (long double)delta - a), NULL);
+            double cb = fogrt__hgt_at(T, T->c, (double)atan2l((long double)h, (long double)delta - b), NULL);
+            for (k = 1; k < 2048; ++k) {
+                float u = (float)k / 2048.0f, pdf, t = fogrt__sample_equiangular_hg(T, delta, h, a, b, u, &pdf);
+                double dens, psi = fogrt__hgt_invert(T, T->c, T->c_start, ca + (double)u * (cb - ca), &dens);
+                long double tr = (long double)delta - (long double)h * cosl((long double)psi) / sinl((long double)psi), dt;
+                if (tr < a) tr = a;
+                if (tr > b) tr = b;
+                dt = (long double)t - delta;
+                {
+                    double pr = (double)((long double)dens / ((long double)(cb - ca) * ((long double)h + dt * dt / h)));
+                    double et = (double)fabsl((long double)t - tr) / 5.96e-8, ep = pr > 0.0 ? fabs((double)pdf / pr - 1.0) : 0.0;
+                    TEST_ASSERT_TRUE(t >= a && t <= b && pdf >= 0.0f && isfinite(pdf));
+                    if (et > worst_t) worst_t = et;
+                    if (ep > worst_pdf) worst_pdf = ep;
+                }
+            }
+            snprintf(msg, sizeof msg, "equiangular with HG, g %g, h %g: worst |t - t_exact| %.2f x 2^-24, pdf %.2g", (double)gs[j], hs[i], worst_t, worst_pdf);
+            TEST_MESSAGE(msg);
+            TEST_ASSERT_TRUE_MESSAGE(worst_t <= 4.0 && worst_pdf <= 1e-5, msg);
+        }
+        free(T);
+    }
+}
+
+/* fogrt__clip_to_cone (chapter 14) against the inside test along the line: for random lines
+   (from inside and outside the cone, some along its axis, finite and infinite segments,
+   cones of 5 to 80 degrees) every point clearly inside the forward cone lies in the
+   returned interval and no point clearly outside does. */
+static void test_clip_to_cone_lines(void)
+{
+    static const float cutoffs[] = { 5.0f, 30.0f, 60.0f, 80.0f };
+    fogrt_rng rng;
+    long bad = 0, inside_pts = 0;
+    int c, i, k;
+    char msg[160];
+    fogrt_rng_seed(&rng, 77, 5);
+    for (c = 0; c < COUNT(cutoffs); ++c)
+        for (i = 0; i < 20000; ++i) {
+            fogrt_light_desc l;
+            float cos_c = cosf(cutoffs[c] * 3.14159265f / 180.0f), lo = 0.0f, hi, B;
+            fogrt__v3 o, d;
+            bool hit;
+            memset(&l, 0, sizeof l);
+            l.type = FOGRT_LIGHT_SPOT; l.cutoff_deg = cutoffs[c];
+            l.position = fogrt__v(0.1f, 1.4f, -0.2f);
+            l.direction = fogrt__normalize(fogrt__v(0.2f, -1.0f, 0.1f));
+            o = fogrt__v(4.0f * fogrt_rng_float(&rng) - 2.0f, 3.0f * fogrt_rng_float(&rng) - 1.5f, 4.0f * fogrt_rng_float(&rng) - 2.0f);
+            d = fogrt__normalize(fogrt__v(2.0f * fogrt_rng_float(&rng) - 1.0f, 2.0f * fogrt_rng_float(&rng) - 1.0f, 2.0f * fogrt_rng_float(&rng) - 1.0f));
+            if (i % 4 == 0) d = fogrt__normalize(fogrt__add(l.direction, fogrt__scale(d, 0.3f)));   /* along the axis */
+            if (i % 8 == 1) d = fogrt__neg(d);
+            B = (i & 1) ? 6.0f : 0.1f + 3.0f * fogrt_rng_float(&rng);
+            hi = (i & 1) ? INFINITY : B;
+            hit = fogrt__clip_to_cone(&l, cos_c, o, d, &lo, &hi);
+            for (k = 0; k <= 400; ++k) {
+                float t = k == 400 ? B : B * (float)k / 400.0f;   /* the last point exactly at the end */
+                fogrt__v3 x = fogrt__sub(fogrt__madd(o, d, t), l.position);
+                float ax = fogrt__dot(x, l.direction), x2 = fogrt__dot(x, x), g = ax * ax - cos_c * cos_c * x2;
+                bool in = ax > 0.0f && g > 1e-3f * x2, out = ax < -1e-3f * sqrtf(x2) || g < -1e-3f * x2;
+                bool within = hit && t >= lo && t <= hi;
+                inside_pts += in;
+                if ((in && !within) || (out && hit && t > lo && t < hi)) ++bad;
+            }
+        }
+    snprintf(msg, sizeof msg, "%ld of the points tested clearly inside; %ld misplaced", inside_pts, bad);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(bad == 0 && inside_pts > 100000, msg);
+}
+
 /* fogrt_sample_bsdf fed u = 0 and 1 - 2^-24 in all three uniforms, for every BSDF, ior,
    Fresnel mode and incident direction. When it returns true: wi unit and on the side its
    lobe says; weight finite and non-negative; pdf finite and positive; for non-delta lobes the
@@ -1435,6 +1545,8 @@ int main(void)
     RUN_TEST(test_samplers_at_extreme_uniforms);
     RUN_TEST(test_equiangular_extremes);
     RUN_TEST(test_equiangular_near_line);
+    RUN_TEST(test_hg_angles_precision);
+    RUN_TEST(test_clip_to_cone_lines);
     RUN_TEST(test_fresnel_grazing);
     RUN_TEST(test_bsdf_sample_extremes);
     RUN_TEST(test_refraction_extremes);
