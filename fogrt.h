@@ -1151,6 +1151,7 @@ typedef struct fogrt__hg_table {
     double k[FOGRT__HGT_N + 1];         /* K at the edges: G(alpha) per unit alpha */
     uint16_t c_start[FOGRT__HGT_N + 1], k_start[FOGRT__HGT_N + 1];   /* the inverse's index */
     float k_norm;                       /* 1 / (2 pi K(pi)): the glow's density per steradian (chapter 6) */
+    float inv_x0, sn;                   /* 1 / x0 and s N: the bin guess of fogrt__hgt_bin */
 } fogrt__hg_table;
 FOGRT__PRIVATE double fogrt__hg_angle(double g, double psi)   /* HG(cos psi), base formed without cancellation */
 {
@@ -1192,6 +1193,7 @@ FOGRT__PRIVATE void fogrt__hg_table_build(fogrt__hg_table *t, float g)
     fogrt__hgt_index(t->c, t->c_start);
     fogrt__hgt_index(t->k, t->k_start);
     t->k_norm = (float)(1.0 / (2.0 * FOGRT__PI_D * t->k[FOGRT__HGT_N]));
+    t->inv_x0 = (float)(1.0 / t->x0); t->sn = (float)(t->s * FOGRT__HGT_N);
 }
 /* ln(x) for x >= 1, to 1.2e-5: the exponent from the float's bits, a polynomial for the
    mantissa. A bin is 0.008 or more wide in ln units, so this only guesses the bin, and the
@@ -1214,7 +1216,7 @@ FOGRT__HOT float fogrt__fast_log(float x)
 FOGRT__PRIVATE int fogrt__hgt_bin(const fogrt__hg_table *t, double x)
 {
     double d = t->back ? FOGRT__PI_D - x : x;
-    int j = (int)(fogrt__fast_log(1.0f + (float)(FOGRT__MAX(d, 0.0) / t->x0)) * (float)(t->s * FOGRT__HGT_N)), i;
+    int j = (int)(fogrt__fast_log(1.0f + (float)FOGRT__MAX(d, 0.0) * t->inv_x0) * t->sn), i;
     j = FOGRT__CLAMP(j, 0, FOGRT__HGT_N - 1);
     i = t->back ? FOGRT__HGT_N - 1 - j : j;
     while (i > 0 && x < t->edge[i]) --i;
