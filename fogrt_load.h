@@ -1101,9 +1101,9 @@ FOGRT__LD fogrt_result fogrt__ld_build_ids(fogrt__ld *L)
             if (L->ids[h] == 0) { L->ids[h] = i + 1; break; }
             k = L->ids[h] - 1;
             {
-                uint32_t klen;
+                uint32_t klen = 0;
                 const char *kv = fogrt__ld_attr(L, (int32_t)k, "id", &klen);
-                if (klen == len && memcmp(kv, v, len) == 0) break;   /* duplicate: keep the first */
+                if (kv && klen == len && memcmp(kv, v, len) == 0) break;   /* duplicate: keep the first */
             }
         }
     }
@@ -1116,9 +1116,9 @@ FOGRT__LD int32_t fogrt__ld_lookup(const fogrt__ld *L, const char *v, uint32_t l
     if (!v || !L->ids) return -1;
     if (len && v[0] == '#') { ++v; --len; }
     for (h = fogrt__ld_hash(v, len) & (L->ids_cap - 1); L->ids[h]; h = (h + 1) & (L->ids_cap - 1)) {
-        uint32_t klen, k = L->ids[h] - 1;
+        uint32_t klen = 0, k = L->ids[h] - 1;
         const char *kv = fogrt__ld_attr(L, (int32_t)k, "id", &klen);
-        if (klen == len && memcmp(kv, v, len) == 0) return (int32_t)k;
+        if (kv && klen == len && memcmp(kv, v, len) == 0) return (int32_t)k;
     }
     return -1;
 }
