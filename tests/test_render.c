@@ -156,6 +156,52 @@ static void assert_means_agree(batch_estimate a, batch_estimate b, const char *w
     TEST_ASSERT_TRUE_MESSAGE(fabs(a.mean - b.mean) <= tol, msg);
 }
 
+/* The roulette's pilot (chapter 15): in an open box lit by a spot light and seen through
+   fog from outside (the paper's kind of scene) the light deep in the scene outweighs the
+   pixels, and k > 1; the default scene and fog-free scenes keep k = 1 exactly; the same
+   scene built twice gets the same k; and the image mean with the pilot's k agrees with
+   the mean with k = 1 (20 independent renders each): k changes the cost, not the answer. */
+static fogrt_scene *spot_box(void)
+{
+    fogrt_scene *scene = NULL;
+    fogrt_light_desc l;
+    uint32_t white;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
+    white = add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.7f, 0.7f, 0.7f), v3(0, 0, 0));
+    add_quad_corners(scene, v3(-1, 0, -1), v3(-1, 0, 1), v3(1, 0, 1), v3(1, 0, -1), white);     /* floor */
+    add_quad_corners(scene, v3(-1, 2, -1), v3(1, 2, -1), v3(1, 2, 1), v3(-1, 2, 1), white);     /* ceiling */
+    add_quad_corners(scene, v3(-1, 0, -1), v3(1, 0, -1), v3(1, 2, -1), v3(-1, 2, -1), white);   /* back */
+    add_quad_corners(scene, v3(-1, 0, 1), v3(-1, 0, -1), v3(-1, 2, -1), v3(-1, 2, 1), white);   /* left */
+    add_quad_corners(scene, v3(1, 0, -1), v3(1, 0, 1), v3(1, 2, 1), v3(1, 2, -1), white);       /* right */
+    memset(&l, 0, sizeof l);
+    l.type = FOGRT_LIGHT_SPOT; l.position = v3(0, 1.9f, 0); l.direction = v3(0, -1, 0);
+    l.intensity = v3(5, 5, 5); l.cutoff_deg = 30.0f; l.beam_deg = 20.0f;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_light(scene, &l));
+    set_camera(scene, v3(0, 1, 4.8f), v3(0, 1, 0), 40.0f);
+    set_medium(scene, 0.5f, v3(0.9f, 0.9f, 0.9f), 0.6f);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    return scene;
+}
+static void test_roulette_pilot(void)
+{
+    fogrt_scene *spot = spot_box(), *again = spot_box(), *def = default_scene(), *bare = area_light_box(0.0f, false, 0.3f);
+    fogrt_render_desc rd = render_desc(32, 24, 0);
+    batch_estimate with_k, with_1;
+    float k = spot->rr_k;
+    char msg[160];
+    snprintf(msg, sizeof msg, "pilot k: spot-lit box seen through fog %.4f (built twice: %.4f), default scene %.4f, fog-free box %.4f",
+             (double)k, (double)again->rr_k, (double)def->rr_k, (double)bare->rr_k);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(k > 1.2f && k <= 4.0f, msg);
+    TEST_ASSERT_TRUE_MESSAGE(memcmp(&k, &again->rr_k, sizeof k) == 0, msg);
+    TEST_ASSERT_TRUE_MESSAGE(def->rr_k == 1.0f && bare->rr_k == 1.0f, msg);
+    with_k = batch_mean(spot, &rd, 16, 20, 500);
+    spot->rr_k = 1.0f;                                   /* the plain roulette, same scene */
+    with_1 = batch_mean(spot, &rd, 16, 20, 600);
+    assert_means_agree(with_k, with_1, "spot-lit fog, roulette with the pilot's k vs k = 1");
+    fogrt_scene_destroy(spot); fogrt_scene_destroy(again); fogrt_scene_destroy(def); fogrt_scene_destroy(bare);
+}
+
 /* ------------------------------------------------------------------------------------------
    The default scene
    ------------------------------------------------------------------------------------------ */
@@ -935,5 +981,6 @@ int main(int argc, char **argv)
     RUN_TEST(test_environment_only);
     RUN_TEST(test_tonemap);
     RUN_TEST(test_write_files);
+    RUN_TEST(test_roulette_pilot);
     return UNITY_END();
 }
