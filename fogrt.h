@@ -5114,7 +5114,8 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__sett
    the default scene's K is 0.47, the CS184 boxes' about 0.4) renders exactly as before;
    and k, like q, is fixed before the path is drawn, so the estimate stays unbiased. Only
    scenes with fog and lights run the pilot (12288 paths: 60 ms for the spot-lit box).
-   The spot-lit box: k = 2.4, relMSE x CPU 0.56 -> 0.47 at equal samples. */
+   The paper's spot-lit box: k = 2.4; at 32 spp relMSE 0.675 -> 0.51, relMSE x CPU 0.55 -> 0.50
+   (docs/benchmarks.md, session 7). */
 #define FOGRT__PILOT_W 64
 #define FOGRT__PILOT_H 48
 #define FOGRT__PILOT_SPP 16
