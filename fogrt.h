@@ -1104,15 +1104,20 @@ FOGRT__PRIVATE void fogrt__sample_hg_pm(float g, float u, float *one_minus_mu, f
     *one_minus_mu = FOGRT__CLAMP((1.0f - g) * (1.0f - g) * (1.0f - u) * (1.0f + g + D) / D2, 0.0f, 2.0f);
     *one_plus_mu = FOGRT__CLAMP((1.0f + g) * (1.0f + g) * u * (1.0f - g + D) / D2, 0.0f, 2.0f);
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf)
+/* The same for a unit wo (the integrator's, which skips the normalisation). */
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg_unit(float g, fogrt__v3 wo, float u1, float u2, float *pdf)
 {
-    fogrt__frame f = fogrt__frame_from_z(fogrt__neg(fogrt__normalize(wo)));   /* z: propagation */
+    fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));   /* z: propagation */
     float omm, opm, mu;
     g = fogrt__clamp_g(g);
     fogrt__sample_hg_pm(g, FOGRT__CLAMP(u1, 0.0f, 1.0f), &omm, &opm);
     mu = omm < opm ? 1.0f - omm : opm - 1.0f;          /* from the nearer end: no rounding */
     if (pdf) *pdf = fogrt__hg_phase_pm(g, omm, opm);
     return fogrt__around(&f, mu, sqrtf(omm * opm), u2);
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf)
+{
+    return fogrt__sample_hg_unit(g, fogrt__normalize(wo), u1, u2, pdf);
 }
 /* mu = cos(d, wi) with d = -wo. Near the peaks 1 - mu and 1 + mu are taken from the chord
    lengths, |wi + wo|^2 / 2 and |wi - wo|^2 / 2, which keep their precision where a rounded
@@ -4910,14 +4915,15 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
         k = FOGRT__MIN((int)(u[0] / s->glow_share * (float)P->v.glow_n), P->v.glow_n - 1);
         light = P->v.glow[k];
         wi = fogrt__sample_glow_hg(&s->hg, P->v.glow_dir[k], u[1], u[2], &pdf_k);
-    } else if (P->v.is_medium) {
-        wi = fogrt_sample_hg(s->medium.g, P->v.wo, u[1], u[2], NULL);
+    } else if (P->v.is_medium) {                        /* the phase function at the angle drawn */
+        wi = fogrt__sample_hg_unit(s->medium.g, P->v.wo, u[1], u[2], &pdf_b);
     } else {
         wo_l = fogrt__to_local(&P->v.frame, P->v.wo);
         if (!fogrt_sample_bsdf(P->v.m, st->fresnel, wo_l, 0.5f, u[1], u[2], &bs)) return false;
         wi = fogrt__normalize(fogrt__to_world(&P->v.frame, bs.wi));
     }
-    f = fogrt__vertex_f(s, &P->v, wi, &pdf_b);          /* phase, or f |cos| (0 through the surface) */
+    if (!glow && P->v.is_medium) f = fogrt__v(pdf_b, pdf_b, pdf_b);
+    else f = fogrt__vertex_f(s, &P->v, wi, &pdf_b);     /* phase, or f |cos| (0 through the surface) */
     if (fogrt__is_black(f)) return false;
     pdf = fogrt__glow_mix_known(s, &P->v, wi, pdf_b, k, pdf_k);
     if (!(pdf > 0.0f)) return false;
@@ -4942,7 +4948,7 @@ FOGRT__HOT bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *st, 
     if (P->v.glow_n > 0) return fogrt__scatter_glow(s, st, P);
     if (P->v.is_medium) {
         float u1 = fogrt_rng_float(P->rng), u2 = fogrt_rng_float(P->rng);
-        P->d = fogrt_sample_hg(s->medium.g, P->v.wo, u1, u2, &P->prev_pdf);
+        P->d = fogrt__sample_hg_unit(s->medium.g, P->v.wo, u1, u2, &P->prev_pdf);
         P->prev_delta = false;
         P->o = P->v.p;
         FOGRT__HOOK(fogrt__trace_phase(st, P, s->medium.g, u1, u2));
@@ -5104,55 +5110,77 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__sett
    roulette (Vorba and Krivanek 2016) makes q proportional to throughput x the radiance
    the vertex receives / the value of its pixel, both learned per region; fogrt keeps one
    number for the scene, the mean of that ratio at each path's first roulette:
-     K = mean over paths of (light gathered after the first roulette / throughput there)
-                            / (mean value of the path's tile of pixels),
+     K = mean over the paths that reach a roulette of
+         (light gathered after the first roulette / throughput there)
+         / (mean value of the path's tile of pixels),
    from a pilot of 64 x 48 x 16 camera paths (tiles of 8 x 8 of its pixels) with the
-   default settings, run once by fogrt_scene_build on one thread with a fixed seed (the
-   same K on every run, every thread count, every split of the samples). The roulette
-   then keeps a path with q = min(0.95, k x throughput), k = K clamped to [1, 4]. k is
-   never below 1, so a scene whose deep vertices see less light than its pixels (most:
-   the default scene's K is 0.47, the CS184 boxes' about 0.4) renders exactly as before;
-   and k, like q, is fixed before the path is drawn, so the estimate stays unbiased. Only
-   scenes with fog and lights run the pilot (12288 paths: 60 ms for the spot-lit box).
-   The paper's spot-lit box: k = 2.4; at 32 spp relMSE 0.675 -> 0.51, relMSE x CPU 0.55 -> 0.50
-   (docs/benchmarks.md, session 7). */
+   default settings, run by fogrt_scene_build with a fixed seed, its rows in parallel and
+   summed in order: the same K on every run, every thread count, every split of the
+   samples. The roulette then keeps a path with q = min(0.95, k x throughput), k = K
+   clamped to [1, 4]. k is never below 1, so a scene whose deep vertices see less light
+   than its pixels (most: the default scene's K is 0.47, the CS184 boxes' about 0.4)
+   renders exactly as before; and k, like q, is fixed before the path is drawn, so the
+   estimate stays unbiased. Only scenes with fog and lights run the pilot: 12288 paths,
+   35 ms on 2 threads for the spot-lit box. There k = 2.4: at 32 spp relMSE 0.675 -> 0.51,
+   relMSE x CPU 0.55 -> 0.50 (docs/benchmarks.md, session 7). */
 #define FOGRT__PILOT_W 64
 #define FOGRT__PILOT_H 48
 #define FOGRT__PILOT_SPP 16
 #define FOGRT__PILOT_TILE 8
+/* One row of the pilot: per tile of the row, the pixel values' sum, the paths, and the
+   light gathered after the first roulette over the throughput there; returns the paths that
+   got to a roulette. */
+FOGRT__PRIVATE long fogrt__pilot_row(const fogrt_scene *s, const fogrt__settings *st, const fogrt__camera *cam, int y,
+                                     double *value, double *paths, double *gathered)
+{
+    long probes = 0;
+    uint64_t rays = 0;
+    int x, k;
+    for (x = 0; x < FOGRT__PILOT_W; ++x)
+        for (k = 0; k < FOGRT__PILOT_SPP; ++k) {
+            uint64_t key = ((uint64_t)(y * FOGRT__PILOT_W + x) << 8) | (uint64_t)k;
+            int tile = x / FOGRT__PILOT_TILE;
+            fogrt_rng rng;
+            fogrt__v3 o, d, L;
+            float probe;
+            fogrt_rng_seed(&rng, fogrt__hash64(key ^ 0x50494C4F54ULL), 0);
+            fogrt__camera_generate(cam, FOGRT__PILOT_W, FOGRT__PILOT_H, (float)x + fogrt_rng_float(&rng),
+                                   (float)y + fogrt_rng_float(&rng), fogrt_rng_float(&rng), fogrt_rng_float(&rng), &o, &d);
+            L = fogrt__radiance_path_probe(s, st, o, d, &rng, &rays, &probe);
+            if (!fogrt__v3_finite(L) || !(probe < FLT_MAX)) continue;
+            value[tile] += (double)fogrt__luminance(L); paths[tile] += 1.0;
+            if (probe >= 0.0f) { gathered[tile] += (double)probe; ++probes; }
+        }
+    return probes;
+}
+/* The pilot itself: its rows in parallel, each summed alone and then all in row order, so
+   K is the same on any thread count. */
 FOGRT__PRIVATE float fogrt__roulette_pilot(const fogrt_scene *s)
 {
     enum { TX = FOGRT__PILOT_W / FOGRT__PILOT_TILE, TY = FOGRT__PILOT_H / FOGRT__PILOT_TILE };
-    double tile_value[TX * TY], tile_paths[TX * TY], tile_gathered[TX * TY], K = 0.0;
+    double value[FOGRT__PILOT_H][TX], paths[FOGRT__PILOT_H][TX], gathered[FOGRT__PILOT_H][TX], K = 0.0;
+    long row_probes[FOGRT__PILOT_H], probes = 0;
     fogrt__settings st;
     fogrt__camera cam;
-    long probes = 0;
-    uint64_t rays = 0;
-    int x, y, k;
+    int y, t;
     if (!(s->features & FOGRT_FEATURE_MEDIUM) || fogrt__light_total(s) == 0 ||
         fogrt__resolve_render(s, NULL, &st, NULL) != FOGRT_RESULT_OK || st.rr_depth >= st.max_depth) return 1.0f;
     st.rr_k = 1.0f; st.rr_probe = true;
     cam = fogrt__camera_setup(s, FOGRT__PILOT_W, FOGRT__PILOT_H);
-    memset(tile_value, 0, sizeof tile_value); memset(tile_paths, 0, sizeof tile_paths);
-    memset(tile_gathered, 0, sizeof tile_gathered);
+    memset(value, 0, sizeof value); memset(paths, 0, sizeof paths); memset(gathered, 0, sizeof gathered);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
     for (y = 0; y < FOGRT__PILOT_H; ++y)
-        for (x = 0; x < FOGRT__PILOT_W; ++x)
-            for (k = 0; k < FOGRT__PILOT_SPP; ++k) {
-                uint64_t key = ((uint64_t)(y * FOGRT__PILOT_W + x) << 8) | (uint64_t)k;
-                int tile = (y / FOGRT__PILOT_TILE) * TX + x / FOGRT__PILOT_TILE;
-                fogrt_rng rng;
-                fogrt__v3 o, d, L;
-                float probe;
-                fogrt_rng_seed(&rng, fogrt__hash64(key ^ 0x50494C4F54ULL), 0);
-                fogrt__camera_generate(&cam, FOGRT__PILOT_W, FOGRT__PILOT_H, (float)x + fogrt_rng_float(&rng),
-                                       (float)y + fogrt_rng_float(&rng), fogrt_rng_float(&rng), fogrt_rng_float(&rng), &o, &d);
-                L = fogrt__radiance_path_probe(s, &st, o, d, &rng, &rays, &probe);
-                if (!fogrt__v3_finite(L) || !(probe < FLT_MAX)) continue;
-                tile_value[tile] += (double)fogrt__luminance(L); tile_paths[tile] += 1.0;
-                if (probe >= 0.0f) { tile_gathered[tile] += (double)probe; ++probes; }
-            }
-    for (k = 0; k < TX * TY; ++k)
-        if (tile_value[k] > 0.0) K += tile_gathered[k] / (tile_value[k] / tile_paths[k]);
+        row_probes[y] = fogrt__pilot_row(s, &st, &cam, y, value[y], paths[y], gathered[y]);
+    for (t = 0; t < TX * TY; ++t) {                      /* tile (t % TX, t / TX), its rows in order */
+        double v = 0.0, n = 0.0, g = 0.0;
+        for (y = (t / TX) * FOGRT__PILOT_TILE; y < (t / TX + 1) * FOGRT__PILOT_TILE; ++y) {
+            v += value[y][t % TX]; n += paths[y][t % TX]; g += gathered[y][t % TX];
+        }
+        if (v > 0.0) K += g / (v / n);
+    }
+    for (y = 0; y < FOGRT__PILOT_H; ++y) probes += row_probes[y];
     if (probes < 64) return 1.0f;
     K /= (double)probes;
     return K > 1.0 ? (float)FOGRT__MIN(K, 4.0) : 1.0f;

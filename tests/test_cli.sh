@@ -149,13 +149,24 @@ pfm_ok() {
     [ "$(wc -c <"$1")" -eq $((hdr + $2 * $3 * 12)) ]
 }
 now() { date +%s.%N; }
+# wait_rendering CSV: wait (up to 60 s) until the render's --log has its first batch row, so
+# that a signal sent next lands in the render whatever the machine's speed (a sanitizer
+# build takes a second to build the scene and run the roulette's pilot)
+wait_rendering() {
+    n=0
+    while [ $n -lt 1200 ]; do
+        [ "$(wc -l <"$1" 2>/dev/null || echo 0)" -ge 2 ] && return 0
+        sleep 0.05; n=$((n + 1))
+    done
+    return 1
+}
 fogrt_abs=$(cd "$(dirname "$fogrt")" && pwd)/$(basename "$fogrt")
 lit=tests/data/dae_mirror_node.dae
 
-# -- interrupt_256spp: SIGINT 2 s into a 256-spp render writes the image so far, exits 130 --
+# -- interrupt_256spp: SIGINT during a 256-spp render writes the image so far, exits 130 --
 "$fogrt" -s 256 -r 320 240 -f "$tmp/int.pfm" --log "$tmp/int.csv" 2>"$tmp/int.err" &
 pid=$!
-sleep 2
+wait_rendering "$tmp/int.csv"; sleep 0.5
 t_sig=$(now)
 kill -INT "$pid"
 wait "$pid"
@@ -172,9 +183,9 @@ set -- $(pfm_stats "$tmp/int.pfm")
 check "[ $3 -gt 0 ]" "interrupt_256spp: the written image is black"
 echo "test_cli.sh: interrupt_256spp: stopped ${stop} s after SIGINT, wrote int.pfm with ${spp_int:-?}, exit $st"
 # -- interrupt_sigterm: the same for SIGTERM --
-"$fogrt" -s 256 -r 160 120 -f "$tmp/term.pfm" 2>"$tmp/term.err" &
+"$fogrt" -s 256 -r 160 120 -f "$tmp/term.pfm" --log "$tmp/term.csv" 2>"$tmp/term.err" &
 pid=$!
-sleep 1
+wait_rendering "$tmp/term.csv"
 kill -TERM "$pid"; wait "$pid"; st=$?
 check "[ $st -eq 130 ] && pfm_ok '$tmp/term.pfm' 160 120" "interrupt_sigterm: exit $st or no image"
 # -- interrupt_twice: a second Ctrl-C quits at once, leaving no temporary file --
