@@ -1430,9 +1430,9 @@ FOGRT__PRIVATE float fogrt__atan2_pos(float y, float x)
 }
 /* Angles near 0 and pi keep their digits when each is formed as its distance to the nearer
    end: psi = pi/2 + atan((t - delta) / h) is atan2(h, delta - t) below pi/2 and pi minus
-   atan2(h, t - delta) above, and atan2f keeps its relative precision for small angles (so
-   HG's peak, at psi = 0 for g >= 0 and pi for g < 0, is resolved as in double, at a
-   fraction of double atan2's cost). */
+   atan2(h, t - delta) above, and fogrt__atan2_pos keeps its relative precision for small
+   angles (so HG's peak, at psi = 0 for g >= 0 and pi for g < 0, is resolved as in double,
+   at a fraction of double atan2's cost). */
 FOGRT__PRIVATE double fogrt__psi_of(float t, float delta, float h)
 {
     float y = (float)((double)t - (double)delta);
@@ -3817,7 +3817,6 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
     if (s->area_light_count == 0 && s->light_count == 0 && !s->has_env)
         fogrt__log(s, FOGRT_LOG_WARNING, "scene: nothing emits light (no light, emissive material or environment): every image will be black");
     s->built = true;
-    s->rr_k = 1.0f;
     s->rr_k = fogrt__roulette_pilot(s);               /* chapter 15 (renders with the tree just built) */
     return FOGRT_RESULT_OK;
 }
@@ -4570,15 +4569,16 @@ FOGRT__PRIVATE void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogr
    the forward nappe of a cone with a half-angle below 90 degrees is convex, so a line meets
    it in one interval. Its ends are among the roots of the quadratic "on the cone surface"
    and the plane through the apex; the inside test at the midpoints picks the interval.
-   The two common cases need no sorting: a line steeper than the cone (A < 0) is inside the
-   double cone between the two roots only, all in one nappe (it could change nappes only
-   at the apex, along a direction inside the cone); a line along the cone (A > 0) is
-   inside beyond the roots, the far side in the forward nappe when it runs the spot's way.
+   The two common cases need no sorting (fogrt__clip_to_cone_quadratic, first).
    cos_c is the cosine of the cutoff (s->spot_cos, chapter 12). Returns false when the ray
    misses the cone. */
-/* The two common cases of fogrt__clip_to_cone below (the quadratic A t^2 + 2 B t + C >= 0
-   inside the double cone, da and wa the direction's and the origin's components along the
-   axis): 1 with [*a, *b] clipped, 0 for a miss, -1 when the general case must decide. */
+/* The common cases, from the quadratic A t^2 + 2 B t + C >= 0 of the double cone (da and wa
+   the direction's and the origin's components along the axis): a line steeper than the
+   cone (A < 0) is inside between the two roots only, all in one nappe (it could change
+   nappes only at the apex, along a direction inside the cone); a line along the cone
+   (A > 0) is inside beyond the roots, the far side in the forward nappe when it runs the
+   spot's way. Returns 1 with [*a, *b] clipped, 0 for a miss, -1 when the general case
+   must decide (A = 0, or no real root with A > 0, which rounding alone can make). */
 FOGRT__PRIVATE int fogrt__clip_to_cone_quadratic(float A, float B, float C, float da, float wa, float *a, float *b)
 {
     float disc = B * B - A * C, q, r0, r1, lo, hi;
@@ -4979,16 +4979,10 @@ FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__path *P)
     return u < q;
 }
 
-/* Algorithm 1: global illumination with Russian roulette and next-event estimation. */
-FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path_probe(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o,
-                                                    fogrt__v3 d, fogrt_rng *rng, uint64_t *rays, float *probe);
-FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o,
-                                              fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
-{
-    return fogrt__radiance_path_probe(s, st, o, d, rng, rays, NULL);
-}
-/* probe (the pilot, with st->rr_probe): the luminance gathered after the first roulette
-   over the throughput there, or -1 when the path never got there. */
+/* Algorithm 1: global illumination with Russian roulette and next-event estimation.
+   probe (the roulette's pilot, chapter 15, with st->rr_probe; else NULL): the luminance
+   gathered after the first roulette over the throughput there, or -1 when the path never
+   got there. */
 FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path_probe(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o,
                                                     fogrt__v3 d, fogrt_rng *rng, uint64_t *rays, float *probe)
 {
@@ -5004,6 +4998,11 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path_probe(const fogrt_scene *s, const 
     }
     if (probe) *probe = P.probed ? (fogrt__luminance(P.L) - P.probe_lum) * P.probe_inv : -1.0f;
     return P.L;
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o,
+                                              fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
+{
+    return fogrt__radiance_path_probe(s, st, o, d, rng, rays, NULL);
 }
 
 /* The paper's baseline: direct lighting at the first scattering vertex only. */
