@@ -155,7 +155,7 @@ now() { date +%s.%N; }
 wait_rendering() {
     n=0
     while [ $n -lt 1200 ]; do
-        [ "$(wc -l <"$1" 2>/dev/null || echo 0)" -ge 2 ] && return 0
+        [ -f "$1" ] && [ "$(wc -l <"$1")" -ge 2 ] && return 0
         sleep 0.05; n=$((n + 1))
     done
     return 1

@@ -156,11 +156,14 @@ static void assert_means_agree(batch_estimate a, batch_estimate b, const char *w
     TEST_ASSERT_TRUE_MESSAGE(fabs(a.mean - b.mean) <= tol, msg);
 }
 
-/* The roulette's pilot (chapter 15): in an open box lit by a spot light and seen through
-   fog from outside (the paper's kind of scene) the light deep in the scene outweighs the
-   pixels, and k > 1; the default scene and fog-free scenes keep k = 1 exactly; the same
-   scene built twice gets the same k; and the image mean with the pilot's k agrees with
-   the mean with k = 1 (20 independent renders each): k changes the cost, not the answer. */
+/* The roulette's pilot (chapter 15) chooses k > 1 where the light found after the first
+   roulette is a large share of the noise for its share of the time: an open box lit by a
+   spot light and seen through fog from outside (the paper's kind of scene), a closed
+   diffuse box (much of its light comes after several bounces) and the same box with a
+   mirror and glass (caustics); it keeps k = 1 exactly where nothing is found after a
+   roulette (a lit floor under an open sky); the same scene built twice gets the same k;
+   and the image mean with the pilot's k agrees with the mean with k = 1 (20 independent
+   renders each, in two scenes): k changes the cost, not the answer. */
 static fogrt_scene *spot_box(void)
 {
     fogrt_scene *scene = NULL;
@@ -182,24 +185,48 @@ static fogrt_scene *spot_box(void)
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
     return scene;
 }
+static fogrt_scene *lit_floor(void)
+{
+    fogrt_scene *scene = NULL;
+    fogrt_light_desc l;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
+    add_quad_corners(scene, v3(-1, 0, -1), v3(-1, 0, 1), v3(1, 0, 1), v3(1, 0, -1),
+                     add_material(scene, FOGRT_BSDF_DIFFUSE, v3(0.7f, 0.7f, 0.7f), v3(0, 0, 0)));
+    memset(&l, 0, sizeof l);
+    l.type = FOGRT_LIGHT_POINT; l.position = v3(0, 1, 0); l.intensity = v3(2, 2, 2);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_add_light(scene, &l));
+    set_camera(scene, v3(0, 1.5f, 2.5f), v3(0, 0, 0), 50.0f);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    return scene;
+}
 static void test_roulette_pilot(void)
 {
-    fogrt_scene *spot = spot_box(), *again = spot_box(), *def = default_scene(), *bare = area_light_box(0.0f, false, 0.3f);
+    fogrt_scene *spot = spot_box(), *again = spot_box(), *box = area_light_box(0.0f, false, 0.3f);
+    fogrt_scene *glass = area_light_box(0.0f, true, 0.15f), *open = lit_floor(), *def = default_scene();
     fogrt_render_desc rd = render_desc(32, 24, 0);
     batch_estimate with_k, with_1;
     float k = spot->rr_k;
-    char msg[160];
-    snprintf(msg, sizeof msg, "pilot k: spot-lit box seen through fog %.4f (built twice: %.4f), default scene %.4f, fog-free box %.4f",
-             (double)k, (double)again->rr_k, (double)def->rr_k, (double)bare->rr_k);
+    char msg[240];
+    snprintf(msg, sizeof msg, "pilot k: spot-lit box seen through fog %.2f (built twice: %.2f), closed diffuse box %.2f, "
+             "with glass and a mirror %.2f, lit floor %.2f, default scene %.2f",
+             (double)k, (double)again->rr_k, (double)box->rr_k, (double)glass->rr_k, (double)open->rr_k, (double)def->rr_k);
     TEST_MESSAGE(msg);
-    TEST_ASSERT_TRUE_MESSAGE(k > 1.2f && k <= 4.0f, msg);
     TEST_ASSERT_TRUE_MESSAGE(memcmp(&k, &again->rr_k, sizeof k) == 0, msg);
-    TEST_ASSERT_TRUE_MESSAGE(def->rr_k == 1.0f && bare->rr_k == 1.0f, msg);
+    TEST_ASSERT_TRUE_MESSAGE(k > 1.2f && k <= 4.0f, msg);
+    TEST_ASSERT_TRUE_MESSAGE(box->rr_k > 1.2f && box->rr_k <= 4.0f, msg);
+    TEST_ASSERT_TRUE_MESSAGE(glass->rr_k > 1.2f && glass->rr_k <= 4.0f, msg);
+    TEST_ASSERT_TRUE_MESSAGE(open->rr_k == 1.0f, msg);
+    TEST_ASSERT_TRUE_MESSAGE(def->rr_k >= 1.0f && def->rr_k <= 4.0f, msg);
     with_k = batch_mean(spot, &rd, 16, 20, 500);
     spot->rr_k = 1.0f;                                   /* the plain roulette, same scene */
     with_1 = batch_mean(spot, &rd, 16, 20, 600);
     assert_means_agree(with_k, with_1, "spot-lit fog, roulette with the pilot's k vs k = 1");
-    fogrt_scene_destroy(spot); fogrt_scene_destroy(again); fogrt_scene_destroy(def); fogrt_scene_destroy(bare);
+    with_k = batch_mean(glass, &rd, 16, 20, 700);
+    glass->rr_k = 1.0f;
+    with_1 = batch_mean(glass, &rd, 16, 20, 800);
+    assert_means_agree(with_k, with_1, "fog-free box with glass, roulette with the pilot's k vs k = 1");
+    fogrt_scene_destroy(spot); fogrt_scene_destroy(again); fogrt_scene_destroy(box); fogrt_scene_destroy(glass);
+    fogrt_scene_destroy(open); fogrt_scene_destroy(def);
 }
 
 /* ------------------------------------------------------------------------------------------
