@@ -375,6 +375,11 @@ typedef enum fogrt_bvh_heuristic {
                      binary tree collapsed to 8 children per node for tracing; binary:
                      traced as built. fogrt_scene_get_bvh and
                      fogrt_bvh_sah_cost describe the binary tree.
+     roulette_pilot  true: the build ends with the roulette's pilot (chapter 15: one or two
+                     passes of 12288 camera paths in a scene with a light, tens of
+                     milliseconds), which sets the roulette's k for the scene's renders;
+                     false: k = 1 (q = throughput), for a build timed alone or a scene
+                     rebuilt every frame
      resolved        set by fogrt_build_defaults(): the fields hold their real values      */
 typedef enum fogrt_bvh_layout {
     FOGRT_BVH_LAYOUT_DEFAULT = 0,   /* wide from FOGRT_WBVH_MIN_PRIMS (1) primitives, else binary */
@@ -391,6 +396,7 @@ typedef struct fogrt_build_desc {
     float c_int;
     int max_leaf_size;
     fogrt_bvh_layout layout;
+    bool roulette_pilot;
     bool resolved;
 } fogrt_build_desc;
 
@@ -3735,8 +3741,8 @@ FOGRT__PRIVATE void fogrt__fog_bounds(fogrt_scene *s, uint32_t n)
 
 FOGRT__PUBLIC fogrt_build_desc fogrt_build_defaults(void)
 {
-    /* heuristic, bins, c_trav, c_int, max_leaf_size, layout, resolved */
-    static const fogrt_build_desc d = { FOGRT_BVH_SAH, FOGRT_BVH_BINS, 1.0f, 1.0f, 4, FOGRT_BVH_LAYOUT_DEFAULT, true };
+    /* heuristic, bins, c_trav, c_int, max_leaf_size, layout, roulette_pilot, resolved */
+    static const fogrt_build_desc d = { FOGRT_BVH_SAH, FOGRT_BVH_BINS, 1.0f, 1.0f, 4, FOGRT_BVH_LAYOUT_DEFAULT, true, true };
     return d;
 }
 /* The desc (NULL: the defaults), checked. Like the render desc it must come from
@@ -3837,7 +3843,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
     if (s->area_light_count == 0 && s->light_count == 0 && !s->has_env)
         fogrt__log(s, FOGRT_LOG_WARNING, "scene: nothing emits light (no light, emissive material or environment): every image will be black");
     s->built = true;
-    s->rr_k = fogrt__roulette_pilot(s);               /* chapter 15 (renders with the tree just built) */
+    s->rr_k = d.roulette_pilot ? fogrt__roulette_pilot(s) : 1.0f;   /* chapter 15 (renders with the tree just built) */
     return FOGRT_RESULT_OK;
 }
 

@@ -161,7 +161,8 @@ static void assert_means_agree(batch_estimate a, batch_estimate b, const char *w
    spot light and seen through fog from outside (the paper's kind of scene), a closed
    diffuse box (much of its light comes after several bounces) and the same box with a
    mirror and glass (caustics); it keeps k = 1 exactly where nothing is found after a
-   roulette (a lit floor under an open sky); the same scene built twice gets the same k;
+   roulette (a lit floor under an open sky), and where the build is told not to run it
+   (roulette_pilot = false); the same scene built twice gets the same k;
    and the image mean with the pilot's k agrees with the mean with k = 1 (20 independent
    renders each, in two scenes): k changes the cost, not the answer. */
 static fogrt_scene *spot_box(void)
@@ -217,6 +218,14 @@ static void test_roulette_pilot(void)
     TEST_ASSERT_TRUE_MESSAGE(glass->rr_k > 1.2f && glass->rr_k <= 4.0f, msg);
     TEST_ASSERT_TRUE_MESSAGE(open->rr_k == 1.0f, msg);
     TEST_ASSERT_TRUE_MESSAGE(def->rr_k >= 1.0f && def->rr_k <= 4.0f, msg);
+    {   /* roulette_pilot = false: the same scene rebuilt keeps k = 1 */
+        fogrt_build_desc bd = fogrt_build_defaults();
+        bd.roulette_pilot = false;
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(again, &bd));
+        TEST_ASSERT_EQUAL_FLOAT(1.0f, again->rr_k);
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(again, NULL));
+        TEST_ASSERT_TRUE_MESSAGE(memcmp(&k, &again->rr_k, sizeof k) == 0, msg);
+    }
     with_k = batch_mean(spot, &rd, 16, 20, 500);
     spot->rr_k = 1.0f;                                   /* the plain roulette, same scene */
     with_1 = batch_mean(spot, &rd, 16, 20, 600);

@@ -128,6 +128,7 @@ int main(int argc, char **argv)
         add_mesh_sphere(scene, tut_material(scene, FOGRT_BSDF_DIFFUSE, 0.8f, 0.8f, 0.8f));
         tut_check(fogrt_scene_add_sphere(scene, ball_c, ball_r, 0), "fogrt_scene_add_sphere");
         bd.heuristic = h == 0 ? FOGRT_BVH_SAH : FOGRT_BVH_VOLUME;
+        bd.roulette_pilot = false;      /* time the BVH alone: the pilot (chapter 15) renders */
         t0 = tut_now();
         tut_check(fogrt_scene_build(scene, &bd), "fogrt_scene_build");
         build_s = tut_now() - t0;
