@@ -3266,13 +3266,13 @@ FOGRT__HOT unsigned fogrt__wbvh_tri4(const fogrt__wtri *q, fogrt__v3 o, fogrt__v
     {   /* Before dividing: the same tests on U, V, T with their signs made det's and a slack
            of 2^-20 (16 roundings) on the side of passing, so a lane that fails here fails
            the exact tests below too; most packets end here without a division. */
-        const __m128 sign = _mm_and_ps(det, _mm_set1_ps(-0.0f));
-        const __m128 adet = _mm_xor_ps(det, sign), lo = _mm_mul_ps(adet, _mm_set1_ps(-9.5367432e-7f));
+        const __m128 slack = _mm_set1_ps(9.5367432e-7f), abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF));
+        const __m128 sign = _mm_and_ps(det, _mm_set1_ps(-0.0f)), adet = _mm_xor_ps(det, sign);
         const __m128 us = _mm_xor_ps(uu, sign), vs = _mm_xor_ps(vv, sign), ts = _mm_xor_ps(tt, sign);
+        const __m128 lo = _mm_mul_ps(adet, _mm_set1_ps(-9.5367432e-7f));             /* -2^-20 |det| */
+        const __m128 bmin = _mm_mul_ps(_mm_set1_ps(tmin), adet), bmax = _mm_mul_ps(_mm_set1_ps(tmax), adet);
         __m128 pre = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(us, lo), _mm_cmpge_ps(vs, lo)));
         pre = _mm_and_ps(pre, _mm_cmple_ps(_mm_add_ps(us, vs), _mm_mul_ps(adet, _mm_set1_ps(1.00000095f))));
-        const __m128 bmin = _mm_mul_ps(_mm_set1_ps(tmin), adet), bmax = _mm_mul_ps(_mm_set1_ps(tmax), adet);
-        const __m128 slack = _mm_set1_ps(9.5367432e-7f), abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF));
         pre = _mm_and_ps(pre, _mm_cmpgt_ps(ts, _mm_sub_ps(bmin, _mm_mul_ps(_mm_and_ps(bmin, abs_mask), slack))));
         pre = _mm_and_ps(pre, _mm_cmplt_ps(ts, _mm_add_ps(bmax, _mm_mul_ps(_mm_and_ps(bmax, abs_mask), slack))));
         if (!_mm_movemask_ps(pre)) return 0;
@@ -4567,7 +4567,7 @@ FOGRT__PRIVATE bool fogrt__is_scattering(const fogrt__path *P)
 }
 
 FOGRT__HOT void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, const fogrt_hit *h,
-                                         fogrt__v3 *p, fogrt__v3 *ng, fogrt__v3 *ns)
+                                     fogrt__v3 *p, fogrt__v3 *ng, fogrt__v3 *ns)
 {
     *p = fogrt__madd(o, d, h->t);
     if (h->prim < s->tri_count) {
@@ -4754,8 +4754,8 @@ FOGRT__PRIVATE bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settin
    gives every path exactly 1, this one only on average. expected_emission off, the caller
    passes tr = 1 when the ray reached the surface and 0 when it collided. */
 FOGRT__HOT void fogrt__surface_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                            const fogrt_material_desc *m, const fogrt_hit *hit, fogrt__v3 p,
-                                            fogrt__v3 ng, fogrt__v3 beta, float tr)
+                                        const fogrt_material_desc *m, const fogrt_hit *hit, fogrt__v3 p,
+                                        fogrt__v3 ng, fogrt__v3 beta, float tr)
 {
     float w = 1.0f;
     if (fogrt__is_black(m->emission) || !(tr > 0.0f) || !(fogrt__dot(P->d, ng) < 0.0f)) return;   /* the front side emits */
@@ -4770,7 +4770,7 @@ FOGRT__HOT void fogrt__surface_emission(const fogrt_scene *s, const fogrt__setti
 FOGRT__HOT bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_desc *m, int limit, fogrt__v3 p,
                                           fogrt__v3 ng, fogrt__v3 ns);
 FOGRT__HOT bool fogrt__surface_event(const fogrt__settings *st, fogrt__path *P, const fogrt_material_desc *m,
-                                         uint32_t prim, int limit, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns)
+                                     uint32_t prim, int limit, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns)
 {
     bool goes_on = fogrt__surface_vertex(P, m, limit, p, ng, ns);   /* sets v.p and the type first */
     FOGRT__HOOK(fogrt__trace_surface(st, P, prim));
@@ -4838,8 +4838,6 @@ FOGRT__PRIVATE void fogrt__light_behind(const fogrt_scene *s, const fogrt__setti
     P->v = keep; P->type = type; P->entering = entering;
 }
 
-/* a + b: follow the ray to its next event, a fog collision or a surface. False when the
-   path ends: the ray escaped (the environment is added), or the surface ends it. */
 /* A ray that leaves the scene: the environment's light, also as tr Le. */
 FOGRT__PRIVATE void fogrt__escape(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, fogrt__v3 beta,
                                   float tr)
@@ -4890,6 +4888,8 @@ FOGRT__HOT bool fogrt__ray_end(const fogrt_scene *s, const fogrt__settings *st, 
     FOGRT__HOOK(fogrt__trace_simple(st, P, FOGRT_TRACE_ESCAPE));
     return false;
 }
+/* a + b: follow the ray to its next event, a fog collision or a surface. False when the
+   path ends: the ray escaped (the environment is added), or the surface ends it. */
 FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit)
 {
     fogrt_hit hit;
@@ -4910,7 +4910,6 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
 #endif
     return fogrt__ray_end(s, st, P, found, &hit, beta, 1.0f, limit);
 }
-
 
 /* c. Light sampling at the scattering vertex (next-event estimation, chapter 12); a mirror
    or glass vertex cannot be reached by a light sample and is skipped. */
@@ -5187,13 +5186,13 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__sett
    and the pilot takes the k' in 1, 1.1, ..., 4 that makes it least. The model sees only
    the first roulette (the later ones change with k' too), so when it finds k' > 1 the
    pilot runs again with that k and chooses once more. Found: 3.3 in the paper's spot-lit
-   fog (the deep vertices see the lit cone), 2.2 in the cross-check's fog-free box with glass and
-   a mirror (the caustics are found late), 2.3 in the CS184 bunny's box, 1.3 in the default scene,
-   1 in the CS184 boxes filled with fog (sigma_t 0.2-0.3: paths after the roulette add
-   little noise for their cost). The k' tried start at 1: below it a closed form of this
-   model was too crude (it gave 0.3 where 0.6 is best, and 0.8 for the default scene, 5%
-   worse than 1), so those scenes keep q = throughput. And k, like q,
-   is fixed before a path is drawn, so the estimate stays unbiased. The pilot is 64 x 48
+   fog (the deep vertices see the lit cone), 2.2 in the cross-check's fog-free box with
+   glass and a mirror (the caustics are found late), 2.3 in the CS184 bunny's box, 1.3 in
+   the default scene, 1 in the CS184 boxes filled with fog (sigma_t 0.2-0.3: paths after
+   the roulette add little noise for their cost). The k' tried start at 1: below it a
+   closed form of this model was too crude (it gave 0.3 where 0.6 is best, and 0.8 for
+   the default scene, 5% worse than 1), so those scenes keep q = throughput. And k, like
+   q, is fixed before a path is drawn, so the estimate stays unbiased. The pilot is 64 x 48
    pixels x 16 paths with the default settings, run by fogrt_scene_build in every scene
    with a light, with a fixed seed, its rows in parallel, each summed alone and then all in
    row order: the same k on every run, thread count and split of the samples. Cost: 12288
