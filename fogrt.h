@@ -2860,7 +2860,9 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 /* A wide node. Lane i is child i: its box is lo/hi[axis][i] (box[0..2] = minimum x, y, z,
    box[3..5] = maximum x, y, z); count[i] = 0 means an inner child (wide node child[i]),
    count[i] > 0 a leaf of that many primitives starting at packet child[i], and
-   FOGRT__WBVH_EMPTY an unused lane (always after the used ones). */
+   FOGRT__WBVH_EMPTY an unused lane (always after the used ones). An unused lane's box is
+   empty, minimum +inf and maximum -inf: every ray leaves it (t1 = -inf) before entering
+   it (t0 = +inf), whatever its direction, so the slab tests need no other check. */
 typedef struct fogrt__wnode {
     float box[6][FOGRT__WBVH_W];
     uint32_t child[FOGRT__WBVH_W];
@@ -3097,9 +3099,9 @@ FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, cons
             const fogrt_bvh_node *bj = &s->nodes[rec[i].lane[j]];
             bool used = rec[i].count[j] != FOGRT__WBVH_EMPTY;
             int k;
-            for (k = 0; k < 3; ++k) {                  /* an unused lane: an empty box */
-                wn->box[k][j] = used ? bj->bmin[k] : FLT_MAX;
-                wn->box[3 + k][j] = used ? bj->bmax[k] : -FLT_MAX;
+            for (k = 0; k < 3; ++k) {    /* an unused lane: the empty box no ray enters */
+                wn->box[k][j] = used ? bj->bmin[k] : INFINITY;
+                wn->box[3 + k][j] = used ? bj->bmax[k] : -INFINITY;
             }
             wn->child[j] = rec[i].child[j]; wn->count[j] = rec[i].count[j];
             if (used && wn->count[j] > 0) {
@@ -3155,8 +3157,6 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__wray *
     int g;
     for (g = 0; g < FOGRT__WBVH_W; g += 4) {
         __m128 t0 = _mm_set1_ps(tmin), t1 = _mm_set1_ps(tmax), tn, tf, o, inv;
-        __m128i empty = _mm_cmpeq_epi32(_mm_loadu_si128((const __m128i *)(const void *)&n->count[g]),
-                                        _mm_set1_epi32(-1));
         o = _mm_set1_ps(r->o.x); inv = _mm_set1_ps(r->inv.x);
         tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->near_row[0]][g]), o), inv);
         tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->far_row[0]][g]), o), inv);
@@ -3170,8 +3170,7 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__wray *
         tf = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(&n->box[r->far_row[2]][g]), o), inv);
         t0 = _mm_max_ps(tn, t0); t1 = _mm_min_ps(tf, t1);
         _mm_storeu_ps(&t[g], t0);
-        mask |= (unsigned)(_mm_movemask_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(1.00000024f)))) &
-                           ~_mm_movemask_ps(_mm_castsi128_ps(empty))) << g;
+        mask |= (unsigned)_mm_movemask_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(1.00000024f)))) << g;
     }
     return mask;
 }
@@ -3192,7 +3191,7 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__wray *
             t1[i] = tf < t1[i] ? tf : t1[i];
         }
     for (i = 0; i < FOGRT__WBVH_W; ++i)
-        mask |= (unsigned)(t[i] <= t1[i] * 1.00000024f && n->count[i] != FOGRT__WBVH_EMPTY) << i;
+        mask |= (unsigned)(t[i] <= t1[i] * 1.00000024f) << i;
     return mask;
 }
 #endif
@@ -3203,8 +3202,6 @@ FOGRT__AVX2_FN unsigned fogrt__wbvh_slabs8(const fogrt__wnode *n, const fogrt__w
                                            float *t)
 {
     __m256 t0 = _mm256_set1_ps(tmin), t1 = _mm256_set1_ps(tmax), tn, tf, o, inv;
-    __m256i empty = _mm256_cmpeq_epi32(_mm256_loadu_si256((const __m256i *)(const void *)n->count),
-                                       _mm256_set1_epi32(-1));
     o = _mm256_set1_ps(r->o.x); inv = _mm256_set1_ps(r->inv.x);
     tn = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->near_row[0]]), o), inv);
     tf = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->far_row[0]]), o), inv);
@@ -3218,8 +3215,7 @@ FOGRT__AVX2_FN unsigned fogrt__wbvh_slabs8(const fogrt__wnode *n, const fogrt__w
     tf = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->far_row[2]]), o), inv);
     t0 = _mm256_max_ps(tn, t0); t1 = _mm256_min_ps(tf, t1);
     _mm256_storeu_ps(t, t0);
-    return (unsigned)(_mm256_movemask_ps(_mm256_cmp_ps(t0, _mm256_mul_ps(t1, _mm256_set1_ps(1.00000024f)), _CMP_LE_OS)) &
-                      ~_mm256_movemask_ps(_mm256_castsi256_ps(empty)));
+    return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(t0, _mm256_mul_ps(t1, _mm256_set1_ps(1.00000024f)), _CMP_LE_OS));
 }
 #endif
 /* The box test of the chosen path. */
@@ -3374,8 +3370,12 @@ FOGRT__HOT bool fogrt__wbvh_leaf(const fogrt_scene *s, const fogrt__wbvh *w, uin
         __builtin_prefetch(p_); __builtin_prefetch(p_ + 64); __builtin_prefetch(p_ + 128); \
         if (!(count) && sizeof(fogrt__wnode) > 192) __builtin_prefetch(p_ + 192); \
     } while (0)
+/* A node's child[] and count[] (its last 64 bytes), fetched together with its boxes: they
+   are read only after the box test, and asked for then they would miss the cache on their own. */
+#define FOGRT__WBVH_PREFETCH_LINKS(n) __builtin_prefetch((n)->child)
 #else
 #define FOGRT__WBVH_PREFETCH(w, child, count) ((void)0)
+#define FOGRT__WBVH_PREFETCH_LINKS(n) ((void)0)
 #endif
 
 /* The traversal: fogrt__traverse's contract (closest hit in (tmin, tmax), or with any_hit
@@ -3392,6 +3392,18 @@ FOGRT__HOT fogrt__wentry fogrt__wbvh_push(const fogrt__wbvh *w, const fogrt__wno
                                           bool any_hit, fogrt__wentry *stack, uint32_t *sp)
 {
     uint32_t base = *sp, i = base;
+    unsigned rest = m & (m - 1);
+    if (!any_hit && !(rest & (rest - 1))) {    /* exactly two lanes, the common case: no sort */
+        unsigned a = fogrt__wbvh_ctz(m), b = fogrt__wbvh_ctz(rest);
+        unsigned nr = t[b] < t[a] ? b : a, fr = a + b - nr;   /* equal: the left lane first */
+        fogrt__wentry e;
+        e.t = t[fr]; e.ref = n->child[fr]; e.cnt = n->count[fr];
+        FOGRT__WBVH_PREFETCH(w, e.ref, e.cnt);
+        stack[(*sp)++] = e;
+        e.t = t[nr]; e.ref = n->child[nr]; e.cnt = n->count[nr];
+        FOGRT__WBVH_PREFETCH(w, e.ref, e.cnt);
+        return e;
+    }
     for (; m; m &= m - 1) {
         unsigned l = fogrt__wbvh_ctz(m);
         fogrt__wentry e;
@@ -3416,22 +3428,23 @@ FOGRT__HOT bool fogrt__wbvh_walk(const fogrt_scene *s, const fogrt__wbvh *w, fog
     bool found = false;
     fogrt__wray_setup(&r, o, d);
     for (;;) {
-        if (cnt == 0) {                                  /* a wide node: test its W boxes */
+        while (cnt == 0) {             /* down through wide nodes, testing each one's W boxes */
             const fogrt__wnode *n = &w->nodes[ref];
             float t[FOGRT__WBVH_W];
             FOGRT__WBVH_STAT(node);
+            FOGRT__WBVH_PREFETCH_LINKS(n);
             unsigned m = fogrt__wbvh_test(n, &r, tmin, tcull, t, avx2);
             if (m & (m - 1)) {
                 fogrt__wentry e = fogrt__wbvh_push(w, n, t, m, any_hit, stack, &sp);
                 ref = e.ref; cnt = e.cnt;
-                continue;
-            }
-            if (m) {                                     /* one child hit: the common case */
+            } else if (m) {                              /* one child hit: the common case */
                 unsigned first = fogrt__wbvh_ctz(m);
                 ref = n->child[first]; cnt = n->count[first];
-                continue;
+            } else {
+                break;                                   /* none: cnt is still 0 */
             }
-        } else if (fogrt__wbvh_leaf(s, w, ref, cnt, o, d, tmin, &tmax, hit, any_hit)) {
+        }
+        if (cnt > 0 && fogrt__wbvh_leaf(s, w, ref, cnt, o, d, tmin, &tmax, hit, any_hit)) {
             found = true;
             if (any_hit) return true;
             tcull = fogrt__cull(tmax);
