@@ -3401,8 +3401,7 @@ FOGRT__HOT fogrt__wentry fogrt__wbvh_push(const fogrt__wbvh *w, const fogrt__wno
         FOGRT__WBVH_PREFETCH(w, e.ref, e.cnt);
         stack[(*sp)++] = e;
         e.t = t[nr]; e.ref = n->child[nr]; e.cnt = n->count[nr];
-        FOGRT__WBVH_PREFETCH(w, e.ref, e.cnt);
-        return e;
+        return e;                             /* read next: a hint would come too late */
     }
     for (; m; m &= m - 1) {
         unsigned l = fogrt__wbvh_ctz(m);
