@@ -10,7 +10,10 @@
 # without it the script falls back to the scalar_rgb variant and says so.
 #   make bench-mitsuba                the same run, read as issue 16's benchmark: it ends with
 #                                     relMSE x CPU seconds of both renderers and their ratio
-.PHONY: crosscheck crosscheck-deps bench-mitsuba
+#   make chi2-mitsuba                 fogrt's direction samplers in Mitsuba's own chi-square
+#                                     harness, Mitsuba's samplers beside them (docs/distributions.md;
+#                                     about 15 s; writes $(BUILD)/chi2-mitsuba/results.md)
+.PHONY: crosscheck crosscheck-deps bench-mitsuba chi2-mitsuba
 CROSSCHECK_ARGS ?=
 CROSSCHECK_FOGRT ?= $(BUILD)/fogrt
 CROSSCHECK_LLVM := /usr/lib/x86_64-linux-gnu/libLLVM.so.19.1
@@ -24,3 +27,6 @@ crosscheck: $(CROSSCHECK_FOGRT) crosscheck-deps
 	  --venv $(BUILD)/crosscheck-venv $(CROSSCHECK_ARGS)
 
 bench-mitsuba: crosscheck
+
+chi2-mitsuba: crosscheck-deps
+	python3 tests/crosscheck/chi2_mitsuba.py --out $(BUILD)/chi2-mitsuba --venv $(BUILD)/crosscheck-venv --cc $(CC)

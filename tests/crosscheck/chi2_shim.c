@@ -1,0 +1,40 @@
+/* tests/crosscheck/chi2_shim.c - fogrt's samplers as a shared library for chi2_mitsuba.py.
+   Each function works on n directions at once (arrays of floats, xyz interleaved), so the
+   Python side hands Mitsuba's chi-square harness whole batches. */
+#define FOGRT_IMPLEMENTATION
+#include "fogrt.h"
+
+static fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
+static void put(float *out, int i, fogrt_vec3 w) { out[3 * i] = w.x; out[3 * i + 1] = w.y; out[3 * i + 2] = w.z; }
+static fogrt_vec3 get(const float *in, int i) { return v3(in[3 * i], in[3 * i + 1], in[3 * i + 2]); }
+
+/* kind 0: Henyey-Greenstein (param g, around wo); 1: the glow around a lamp in direction
+   wo (chapter 6); 2: the cosine hemisphere around +z; 3: the uniform sphere; 4: the
+   negative control, HG sampled at g but its pdf given at 0.95 g (must be rejected). */
+void chi2_sample(int kind, float param, float wx, float wy, float wz, const float *u1, const float *u2, float *out, int n)
+{
+    fogrt_vec3 wo = v3(wx, wy, wz);
+    float pdf;
+    int i;
+    for (i = 0; i < n; ++i) {
+        fogrt_vec3 w;
+        if (kind == 0 || kind == 4) w = fogrt_sample_hg(param, wo, u1[i], u2[i], &pdf);
+        else if (kind == 1) w = fogrt_sample_glow(wo, u1[i], u2[i], &pdf);
+        else if (kind == 2) w = fogrt_sample_cosine_hemisphere(u1[i], u2[i]);
+        else w = fogrt_sample_uniform_sphere(u1[i], u2[i]);
+        put(out, i, w);
+    }
+}
+void chi2_pdf(int kind, float param, float wx, float wy, float wz, const float *wi, float *out, int n)
+{
+    fogrt_vec3 wo = v3(wx, wy, wz);
+    int i;
+    for (i = 0; i < n; ++i) {
+        fogrt_vec3 w = get(wi, i);
+        if (kind == 0) out[i] = fogrt_hg_pdf(param, wo, w);
+        else if (kind == 4) out[i] = fogrt_hg_pdf(0.95f * param, wo, w);
+        else if (kind == 1) out[i] = fogrt_glow_pdf(wo, w);
+        else if (kind == 2) out[i] = w.z > 0.0f ? fogrt_cosine_hemisphere_pdf(w.z) : 0.0f;
+        else out[i] = fogrt_uniform_sphere_pdf();
+    }
+}
