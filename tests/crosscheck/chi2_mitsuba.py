@@ -32,6 +32,8 @@ sys.path.insert(0, HERE)
 import crosscheck  # noqa: E402  (the virtual environment and the LLVM search)
 
 GENERIC_WO = (0.3, -0.5, 0.812)
+# the samplers of chi2_shim.c, by its kind argument
+HG, GLOW, COSINE, SPHERE, HG_WRONG_PDF = range(5)
 
 
 def unit(v):
@@ -43,13 +45,13 @@ def cases():
     """(name, kind, param, wo, mitsuba control or None)."""
     out = []
     for g in (0.0, 0.5, -0.5, 0.9, -0.9, 0.99, -0.99):
-        out.append(("HG g = %+.2f, generic wo" % g, 0, g, unit(GENERIC_WO), ("hg", g)))
+        out.append(("HG g = %+.2f, generic wo" % g, HG, g, unit(GENERIC_WO), ("hg", g)))
     for g in (0.99, -0.99):
-        out.append(("HG g = %+.2f, wo on the grid's pole" % g, 0, g, (0.0, 0.0, 1.0), ("hg", g)))
-    out.append(("glow around a lamp, generic direction", 1, 0.0, unit(GENERIC_WO), None))
-    out.append(("cosine hemisphere", 2, 0.0, (0.0, 0.0, 1.0), ("cosine", 0.0)))
-    out.append(("uniform sphere", 3, 0.0, (0.0, 0.0, 1.0), ("sphere", 0.0)))
-    out.append(("negative control: HG g = 0.6, pdf at g = 0.57", 4, 0.6, unit(GENERIC_WO), None))
+        out.append(("HG g = %+.2f, wo on the grid's pole" % g, HG, g, (0.0, 0.0, 1.0), ("hg", g)))
+    out.append(("glow around a lamp, generic direction", GLOW, 0.0, unit(GENERIC_WO), None))
+    out.append(("cosine hemisphere", COSINE, 0.0, (0.0, 0.0, 1.0), ("cosine", 0.0)))
+    out.append(("uniform sphere", SPHERE, 0.0, (0.0, 0.0, 1.0), ("sphere", 0.0)))
+    out.append(("negative control: HG g = 0.6, pdf at g = 0.57", HG_WRONG_PDF, 0.6, unit(GENERIC_WO), None))
     return out
 
 
@@ -137,7 +139,7 @@ def main():
             f = run(fogrt_funcs(kind, param, wo), ires)
             m = run(mitsuba_funcs(control, wo), ires) if control else None
             line += [cell(f), cell(m) if m else "-"]
-            if kind == 4:
+            if kind == HG_WRONG_PDF:
                 if f[0]:
                     bad.append("%s accepted at ires %d (the harness cannot tell a wrong pdf)" % (name, ires))
             elif not f[0] and (m[0] if m else ires == 16):

@@ -34,7 +34,7 @@ void chi2_pdf(int kind, float param, float wx, float wy, float wz, const float *
         if (kind == 0) out[i] = fogrt_hg_pdf(param, wo, w);
         else if (kind == 4) out[i] = fogrt_hg_pdf(0.95f * param, wo, w);
         else if (kind == 1) out[i] = fogrt_glow_pdf(wo, w);
-        else if (kind == 2) out[i] = w.z > 0.0f ? fogrt_cosine_hemisphere_pdf(w.z) : 0.0f;
+        else if (kind == 2) out[i] = fogrt_cosine_hemisphere_pdf(w.z);   /* 0 below the horizon */
         else out[i] = fogrt_uniform_sphere_pdf();
     }
 }
