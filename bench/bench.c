@@ -854,7 +854,7 @@ int main(int argc, char **argv)
 #ifdef HAVE_EMBREE
     printf(", Embree %s", bench_embree_version());
 #else
-    printf(", no Embree (apt-get install libembree-dev to compare)");
+    printf(", without Embree (make bench BENCH_EMBREE=0: no ratios)");
 #endif
     printf("\n");
     print_load_average("at the start");

@@ -4,29 +4,39 @@
 #                    BENCH_ARGS=--quick for a short, noisy run
 #   make callgrind   instruction cost of the fog code in a fog-free render (fails above +3%)
 #
-# Optional parts, switched on by what exists (nothing is installed by `make bench`):
+# What it compares against and reads:
+#   - Embree 3 (rtcIntersect1, rtcOccluded1, its memory monitor), the yardstick of issue 16:
+#     Debian's libembree-dev, installed by `make bench` with apt-get when root; otherwise it
+#     stops with one line naming the package. `make bench BENCH_EMBREE=0` runs without it
+#     (fogrt's figures alone, no ratios).
 #   - the CS184 bunny: when fogrt_load.h declares fogrt_load_dae and $(SHARED) has CBbunny.dae
-#     (otherwise bench.c uses a synthetic mesh of the same size);
-#   - Embree 3 for comparison (rtcIntersect1, rtcOccluded1, its memory monitor): when
-#     /usr/include/embree3/rtcore.h exists (Debian/Ubuntu: apt-get install libembree-dev).
-.PHONY: bench callgrind bench-levers
+#     (otherwise bench.c uses a synthetic mesh of the same size).
+.PHONY: bench callgrind bench-levers deps-embree
 
+BENCH_EMBREE        ?= 1
 BENCH_EMBREE_HEADER := /usr/include/embree3/rtcore.h
-BENCH_HAVE_EMBREE   := $(wildcard $(BENCH_EMBREE_HEADER))
 BENCH_HAVE_LOAD     := $(and $(shell grep -l 'fogrt_load_dae' fogrt_load.h 2>/dev/null),$(wildcard $(SHARED)/scenes/cs184/CBbunny.dae))
 
 BENCH_DEFS := -DFOGRT_SHARED_DIR='"$(SHARED)"' -DBENCH_CFLAGS='"$(strip $(CFLAGS) $(OMPFLAGS))"' \
-              $(if $(BENCH_HAVE_LOAD),-DHAVE_FOGRT_LOAD) $(if $(BENCH_HAVE_EMBREE),-DHAVE_EMBREE)
-BENCH_SRCS := bench/bench.c $(if $(BENCH_HAVE_EMBREE),bench/bench_embree.c)
-BENCH_LIBS := $(if $(BENCH_HAVE_EMBREE),-lembree3)
+              $(if $(BENCH_HAVE_LOAD),-DHAVE_FOGRT_LOAD)
 BENCH_ARGS ?=
+# Two programs, with and without Embree, so that switching BENCH_EMBREE rebuilds nothing stale.
+BENCH_BIN := $(BUILD)/bench/$(if $(filter 1,$(BENCH_EMBREE)),fogrt_bench,fogrt_bench_alone)
 
-$(BUILD)/bench/fogrt_bench: $(BENCH_SRCS) fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | $(BUILD)
+deps-embree:
+	@[ "$(BENCH_EMBREE)" != 1 ] || sh tools/need-package.sh libembree-dev $(BENCH_EMBREE_HEADER) 2>/dev/null || \
+	  { echo "fogrt: missing package libembree-dev (Embree 3, make bench's yardstick): install it with 'sudo apt-get install libembree-dev', or run 'make bench BENCH_EMBREE=0' for fogrt's figures alone" >&2; exit 1; }
+
+$(BUILD)/bench/fogrt_bench: bench/bench.c bench/bench_embree.c fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | deps-embree $(BUILD)
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) $(BENCH_DEFS) -o $@ $(BENCH_SRCS) $(BENCH_LIBS) $(LDLIBS)
+	$(CC) $(ALL_CFLAGS) $(BENCH_DEFS) -DHAVE_EMBREE -o $@ bench/bench.c bench/bench_embree.c -lembree3 $(LDLIBS)
 
-bench: $(BUILD)/bench/fogrt_bench
-	./$(BUILD)/bench/fogrt_bench $(BENCH_ARGS)
+$(BUILD)/bench/fogrt_bench_alone: bench/bench.c fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | $(BUILD)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(BENCH_DEFS) -o $@ bench/bench.c $(LDLIBS)
+
+bench: $(BENCH_BIN)
+	./$(BENCH_BIN) $(BENCH_ARGS)
 
 # No OpenMP here on purpose: one thread, a deterministic instruction count.
 callgrind:
