@@ -2,6 +2,7 @@
 #   make bench       BVH build time, bytes per triangle, closest-hit and shadow (any-hit)
 #                    Mrays/s (1 and 2 threads), render samples/s and its 2T/1T;
 #                    BENCH_ARGS=--quick for a short, noisy run
+#   make bench-spot  the spot-lit goal of issue 16, against session 2's header in the same run
 #   make callgrind   instruction cost of the fog code in a fog-free render (fails above +3%)
 #
 # What it compares against and reads:
@@ -11,7 +12,7 @@
 #     (fogrt's figures alone, no ratios).
 #   - the CS184 bunny: when fogrt_load.h declares fogrt_load_dae and $(SHARED) has CBbunny.dae
 #     (otherwise bench.c uses a synthetic mesh of the same size).
-.PHONY: bench callgrind bench-levers deps-embree
+.PHONY: bench callgrind bench-levers deps-embree bench-spot
 
 BENCH_EMBREE        ?= 1
 BENCH_EMBREE_HEADER := /usr/include/embree3/rtcore.h
@@ -37,6 +38,12 @@ $(BUILD)/bench/fogrt_bench_alone: bench/bench.c fogrt.h $(wildcard fogrt_load.h)
 
 bench: $(BENCH_BIN)
 	./$(BENCH_BIN) $(BENCH_ARGS)
+
+# Issue 16's spot-lit goal in the same run as the header the issue measured (session 2's,
+# rebuilt from git history into build/spot-baseline): about a minute per run, SPOT_RUNS runs.
+SPOT_RUNS ?= 2
+bench-spot: $(BUILD)/fogrt
+	sh bench/spot_goal.sh $(BUILD)/fogrt $(SHARED) $(SPOT_RUNS)
 
 # No OpenMP here on purpose: one thread, a deterministic instruction count.
 callgrind:
