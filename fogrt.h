@@ -2762,7 +2762,14 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
         node is full becomes a leaf of two packets when it holds at most 8 primitives,
         rather than a wide node of two leaf lanes (which half the wide nodes were: on the
         1M mesh this halves the wide nodes, 98,700 to 48,800). The tree gets about three
-        times shallower (W = 8).
+        times shallower (W = 8). Merging pays where the primitives are small next to the
+        scene: four neighbouring triangles of a mesh have about the box one of them has. In
+        a scene of a few big primitives (a Cornell box: walls and spheres) the merged box of
+        two walls holds most of the room, and most rays would test the packet. So a scene of
+        at most FOGRT_WBVH_SMALL_SCENE (64) primitives merges nothing: its binary tree is the
+        SAH's alone and each binary leaf is one lane (the cross-check's 14-primitive box
+        with glass and a mirror renders 8-15% faster; the bunny scene, 28,588 primitives,
+        keeps the merges, which it needs: 9% slower rays without them).
      2. Structure of arrays. A node stores all W minimum x, then all W minimum y, and so on,
         so its W slab tests are the same instructions on W lanes: SSE does four at once,
         AVX2 all eight.
@@ -2836,6 +2843,11 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
    half the wide nodes would choose between two packets). */
 #ifndef FOGRT__WBVH_LEAF2
 #define FOGRT__WBVH_LEAF2 (FOGRT__WBVH_LEAF > 0 ? 8 : 0)
+#endif
+/* A scene of at most this many primitives gets neither kind of merged leaf: its tree is
+   the SAH's alone (see step 1 above). */
+#ifndef FOGRT_WBVH_SMALL_SCENE
+#define FOGRT_WBVH_SMALL_SCENE 64
 #endif
 #ifndef FOGRT__WBVH_STAT
 #define FOGRT__WBVH_STAT(what) ((void)0)   /* a counting hook for bench/wide_dev.c */
@@ -2965,12 +2977,13 @@ FOGRT__PRIVATE uint32_t fogrt__wbvh_first(const fogrt_bvh_node *bn, uint32_t b)
 typedef struct fogrt__wlanes {
     uint32_t lane[FOGRT__WBVH_W], small[FOGRT__WBVH_W], count;
     float area[FOGRT__WBVH_W];
+    uint32_t leaf, leaf2;      /* the merge limits: FOGRT__WBVH_LEAF and _LEAF2, or 0 in a small scene */
 } fogrt__wlanes;
 FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, const uint32_t *size, fogrt__wlanes *L, uint32_t j,
                                      uint32_t node)
 {
     L->lane[j] = node;
-    L->small[j] = fogrt__wbvh_small(bn, size, node, FOGRT__WBVH_LEAF);
+    L->small[j] = fogrt__wbvh_small(bn, size, node, L->leaf);
     L->area[j] = L->small[j] ? 0.0f : fogrt__wbvh_node_area(&bn[node]);
 }
 /* Step 1 for binary node b: start with its two children (a small root is one leaf), then
@@ -2980,7 +2993,7 @@ FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, const uint32_t *s
 FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, const uint32_t *size, uint32_t b, fogrt__wlanes *L)
 {
     uint32_t j;
-    if (fogrt__wbvh_small(bn, size, b, FOGRT__WBVH_LEAF)) {
+    if (fogrt__wbvh_small(bn, size, b, L->leaf)) {
         fogrt__wbvh_lane(bn, size, L, 0, b); L->count = 1;   /* only a small root gets here */
         return;
     }
@@ -3003,7 +3016,7 @@ FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, const uint32_t
         L->count++;
     }
     for (j = 0; j < L->count; ++j)          /* a lane left with two packets' worth: a leaf */
-        if (!L->small[j]) L->small[j] = fogrt__wbvh_small(bn, size, L->lane[j], FOGRT__WBVH_LEAF2);
+        if (!L->small[j]) L->small[j] = fogrt__wbvh_small(bn, size, L->lane[j], L->leaf2);
 }
 /* The number of primitives below every binary node (one pass from the last node back:
    children come after their parent; node 1 is unused). NULL when out of memory. */
@@ -3024,17 +3037,23 @@ FOGRT__PRIVATE uint32_t *fogrt__wbvh_sizes(const fogrt_scene *s, const fogrt_all
    and for binary subtrees of more than FOGRT__WBVH_LEAF2 primitives only. The nodes and
    packets then get blocks of exactly the size counted. */
 typedef struct fogrt__wrec { uint32_t lane[FOGRT__WBVH_W], child[FOGRT__WBVH_W], count[FOGRT__WBVH_W]; } fogrt__wrec;
-FOGRT__PRIVATE uint32_t fogrt__wbvh_bound(const fogrt_scene *s, const uint32_t *size)
+FOGRT__PRIVATE uint32_t fogrt__wbvh_bound(const fogrt_scene *s, const uint32_t *size, uint32_t leaf2)
 {
     uint32_t i, big = 1;
-    for (i = 2; i < s->node_count; ++i) big += s->nodes[i].prim_count == 0 && size[i] > FOGRT__WBVH_LEAF2;
+    for (i = 2; i < s->node_count; ++i) big += s->nodes[i].prim_count == 0 && size[i] > leaf2;
     return big;
+}
+/* Whether the scene is small enough to build without merged leaves (FOGRT_WBVH_SMALL_SCENE). */
+FOGRT__PRIVATE bool fogrt__wbvh_small_scene(uint32_t prims)
+{
+    return prims <= FOGRT_WBVH_SMALL_SCENE;
 }
 /* Step 1 for every wide node, from a stack: the records rec[0 .. *nodes) in the order the
    nodes will be stored, and the number of packets. */
 FOGRT__PRIVATE void fogrt__wbvh_layout(const fogrt_scene *s, const uint32_t *size, fogrt__wrec *rec, uint32_t cap,
                                        uint32_t *nodes, uint32_t *packets)
 {
+    const bool small = fogrt__wbvh_small_scene(s->tri_count + s->sph_count);
     uint32_t stack_b[FOGRT__BVH_MAX_DEPTH * FOGRT__WBVH_W + 2], stack_w[FOGRT__BVH_MAX_DEPTH * FOGRT__WBVH_W + 2];
     uint32_t sp = 0, j;
     *nodes = 1; *packets = 0;
@@ -3044,6 +3063,7 @@ FOGRT__PRIVATE void fogrt__wbvh_layout(const fogrt_scene *s, const uint32_t *siz
         fogrt__wrec *r;
         --sp;
         r = &rec[stack_w[sp]];
+        L.leaf = small ? 0u : (uint32_t)FOGRT__WBVH_LEAF; L.leaf2 = small ? 0u : (uint32_t)FOGRT__WBVH_LEAF2;
         fogrt__wbvh_collect(s->nodes, size, stack_b[sp], &L);
         for (j = 0; j < FOGRT__WBVH_W; ++j) {
             r->lane[j] = L.lane[j < L.count ? j : 0];
@@ -3085,7 +3105,7 @@ FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, cons
     w->avx2 = fogrt__wbvh_avx2_usable();
     if (!s->nodes || !s->prim_index || s->tri_count + s->sph_count == 0) return true;   /* nothing to trace */
     if (!(size = fogrt__wbvh_sizes(s, a))) return false;
-    cap = fogrt__wbvh_bound(s, size);
+    cap = fogrt__wbvh_bound(s, size, fogrt__wbvh_small_scene(s->tri_count + s->sph_count) ? 0u : (uint32_t)FOGRT__WBVH_LEAF2);
     if ((rec = (fogrt__wrec *)fogrt__alloc(a, sizeof(fogrt__wrec) * cap)) != NULL) {
         fogrt__wbvh_layout(s, size, rec, cap, &w->node_count, &w->tri_packets);
         w->nodes = (fogrt__wnode *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wnode) * w->node_count, &w->nodes_mem);
@@ -3800,7 +3820,7 @@ FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d,
         fogrt__bounds(s, &b, n);
         b.nodes = s->nodes;
         b.idx = s->prim_index;
-        b.leaf_keep = wide ? FOGRT__MIN((uint32_t)d->max_leaf_size, (uint32_t)FOGRT__WBVH_LEAF) : 0;
+        b.leaf_keep = wide && !fogrt__wbvh_small_scene(n) ? FOGRT__MIN((uint32_t)d->max_leaf_size, (uint32_t)FOGRT__WBVH_LEAF) : 0;
         if (n > 0) fogrt__bvh_build(&b, n);
         else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
         s->node_count = b.node_count;
