@@ -56,6 +56,7 @@
     FOGRT_BVH_BINS         compile-time default for fogrt_build_desc.bins (8)
     FOGRT_WBVH_WIDTH       children per node of the wide BVH, 4 or 8 (8)
     FOGRT_WBVH_LEAF        largest binary subtree the wide BVH makes one leaf, 0..8 (4)
+    FOGRT_WBVH_SMALL_SCENE a scene of at most this many primitives merges no leaves (64)
     FOGRT_WBVH_NO_SIMD     plain C99 loops for the wide BVH instead of SSE2 (same results)
     FOGRT_WBVH_NO_AVX2     no AVX2 path for the wide BVH (by default used when the processor
                            has it: chosen at fogrt_scene_build on GCC/Clang x86-64; same results)
