@@ -3050,11 +3050,11 @@ FOGRT__PRIVATE bool fogrt__wbvh_small_scene(uint32_t prims)
     return prims <= FOGRT_WBVH_SMALL_SCENE;
 }
 /* Step 1 for every wide node, from a stack: the records rec[0 .. *nodes) in the order the
-   nodes will be stored, and the number of packets. */
-FOGRT__PRIVATE void fogrt__wbvh_layout(const fogrt_scene *s, const uint32_t *size, fogrt__wrec *rec, uint32_t cap,
-                                       uint32_t *nodes, uint32_t *packets)
+   nodes will be stored, and the number of packets; leaf and leaf2 are the merge limits
+   (FOGRT__WBVH_LEAF and FOGRT__WBVH_LEAF2, or 0 in a small scene). */
+FOGRT__PRIVATE void fogrt__wbvh_layout(const fogrt_scene *s, const uint32_t *size, uint32_t leaf, uint32_t leaf2,
+                                       fogrt__wrec *rec, uint32_t cap, uint32_t *nodes, uint32_t *packets)
 {
-    const bool small = fogrt__wbvh_small_scene(s->tri_count + s->sph_count);
     uint32_t stack_b[FOGRT__BVH_MAX_DEPTH * FOGRT__WBVH_W + 2], stack_w[FOGRT__BVH_MAX_DEPTH * FOGRT__WBVH_W + 2];
     uint32_t sp = 0, j;
     *nodes = 1; *packets = 0;
@@ -3064,7 +3064,7 @@ FOGRT__PRIVATE void fogrt__wbvh_layout(const fogrt_scene *s, const uint32_t *siz
         fogrt__wrec *r;
         --sp;
         r = &rec[stack_w[sp]];
-        L.leaf = small ? 0u : (uint32_t)FOGRT__WBVH_LEAF; L.leaf2 = small ? 0u : (uint32_t)FOGRT__WBVH_LEAF2;
+        L.leaf = leaf; L.leaf2 = leaf2;
         fogrt__wbvh_collect(s->nodes, size, stack_b[sp], &L);
         for (j = 0; j < FOGRT__WBVH_W; ++j) {
             r->lane[j] = L.lane[j < L.count ? j : 0];
@@ -3100,15 +3100,19 @@ FOGRT__PRIVATE bool fogrt__wbvh_avx2_usable(void)
    when out of memory (w is then empty). */
 FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
 {
-    uint32_t *size, i, j, cap;
+    uint32_t *size, i, j, cap, leaf, leaf2;
+    bool small;
     fogrt__wrec *rec = NULL;
     memset(w, 0, sizeof *w);
     w->avx2 = fogrt__wbvh_avx2_usable();
     if (!s->nodes || !s->prim_index || s->tri_count + s->sph_count == 0) return true;   /* nothing to trace */
     if (!(size = fogrt__wbvh_sizes(s, a))) return false;
-    cap = fogrt__wbvh_bound(s, size, fogrt__wbvh_small_scene(s->tri_count + s->sph_count) ? 0u : (uint32_t)FOGRT__WBVH_LEAF2);
+    small = fogrt__wbvh_small_scene(s->tri_count + s->sph_count);
+    leaf = small ? 0u : (uint32_t)FOGRT__WBVH_LEAF;
+    leaf2 = small ? 0u : (uint32_t)FOGRT__WBVH_LEAF2;
+    cap = fogrt__wbvh_bound(s, size, leaf2);
     if ((rec = (fogrt__wrec *)fogrt__alloc(a, sizeof(fogrt__wrec) * cap)) != NULL) {
-        fogrt__wbvh_layout(s, size, rec, cap, &w->node_count, &w->tri_packets);
+        fogrt__wbvh_layout(s, size, leaf, leaf2, rec, cap, &w->node_count, &w->tri_packets);
         w->nodes = (fogrt__wnode *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wnode) * w->node_count, &w->nodes_mem);
         w->tris = (fogrt__wtri *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wtri) * (w->tri_packets ? w->tri_packets : 1u), &w->tris_mem);
     }
