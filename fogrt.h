@@ -643,6 +643,11 @@ typedef struct fogrt_progress {
      light_samples     1 (>= 1): samples per area light at each next-event estimate (CS184 -l)
      seed              0: base seed of every random stream
      threads           0 = all OpenMP threads; ignored without OpenMP
+     sample_rate       NULL: every pixel gets the call's spp samples. Else width x height
+                       rates (rows from the top, each finite, 0 to FOGRT_MAX_SAMPLE_RATE):
+                       pixel p gets spp x rate[p] samples on average, the fraction decided
+                       by a coin of its own (adaptive sampling, unbiased when the rates
+                       come from fogrt_image_sample_rates as chapter 15 says)
      progress          optional; called between row blocks; return false to cancel
      resolved          set by fogrt_render_defaults(): the fields hold their real values   */
 typedef struct fogrt_render_desc {
@@ -662,6 +667,7 @@ typedef struct fogrt_render_desc {
     int light_samples;
     uint64_t seed;
     int threads;
+    const float *sample_rate;
     bool (*progress)(const fogrt_progress *progress, void *user_data);
     void *user_data;
     bool resolved;
@@ -711,6 +717,14 @@ FOGRT_API void fogrt_image_error(const fogrt_image *img, fogrt_error_estimate *o
 /* The estimated variance of pixel `pixel`'s mean luminance (index y * width + x): from the
    spread of its stream means, unbiased for stratified samples too; 0 below 2 samples. */
 FOGRT_API double fogrt_image_pixel_variance(const fogrt_image *img, size_t pixel);
+/* Adaptive sampling: per-pixel sample rates (mean 1) for fogrt_render_desc.sample_rate, from
+   the noise of the samples img holds so far, each pixel's rate from its neighbours' noise
+   alone (never its own). Call it once, after samples taken with every pixel alike (say 8
+   spp), and keep the rates for the rest of the render: the image then stays unbiased
+   (chapter 15 says why). rates: width x height floats. OUT_OF_MEMORY, or INVALID_ARGUMENT
+   for an image without samples; an image without noise gets rates of 1. */
+#define FOGRT_MAX_SAMPLE_RATE 64.0f
+FOGRT_API fogrt_result fogrt_image_sample_rates(const fogrt_image *img, float *rates);
 
 typedef struct fogrt_render_stats {
     uint64_t camera_rays;    /* samples taken */
@@ -5151,6 +5165,7 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void)
         64, 0, 3,                                       /* max_depth, min_depth, rr_depth */
         true, true, true, true, false, true,            /* nee, mis, equiangular, glow, light_by_power, expected_emission */
         1, 0, 0,                                        /* light_samples, seed, threads */
+        NULL,                                           /* sample_rate: every pixel alike */
         NULL, NULL,                                     /* progress, user_data */
         true                                            /* resolved */
     };
@@ -5448,6 +5463,121 @@ FOGRT__PUBLIC void fogrt_image_error(const fogrt_image *img, fogrt_error_estimat
     out->rejected = img->rejected;
 }
 
+/* Adaptive sampling (not in the paper). The error above is a sum over pixels, and pixels
+   are not equally noisy: in the paper's spot-lit box the lit cone, the floor it lights
+   and the bunny's edges are noisier than the dim fog around them. With the same cost per
+   sample, spending n_p samples on pixel p with n_p proportional to its standard deviation
+   sigma_p (per sample) makes sum_p sigma_p^2 / n_p, the error's numerator, least for a
+   given total: the gain over equal n_p is mean(sigma^2) / mean(sigma)^2.
+   The catch is bias. A pixel whose count follows its own samples (stop once it looks
+   converged) is biased: a pixel that has not yet met its rare bright path looks quiet,
+   stops, and stays dark. The count is harmless only when it is independent of the
+   samples it divides, and the rates here keep it so:
+     - the pixels are split like a chessboard, (x + y) even and odd, and a pixel's rate
+       reads only the other colour's noise: the noise around it (a box of pixels holding
+       about 8192 samples, at least 3 x 3) and that colour's means for the normalisation;
+     - the rates are made once, from samples taken with every pixel alike, and then kept
+       (made again later, they would read samples whose counts read this pixel's).
+   So a pixel's count depends on samples of other pixels only, which are independent of
+   its own (each pixel, each sample, has its own random stream): its mean stays an
+   average of samples whose number was fixed without looking at them. The rounding of
+   spp x rate to a count is a coin of its own (fogrt__render_row).
+   The noise is sigma^2 = Var[mean] x n from the streams (so stratification counts). One
+   rare path can make one pixel's estimate thousands of times its neighbours'; capped at
+   16 times the colour's mean before the boxes sum them, such a pixel no longer drags its
+   box along. rate = max(sigma_box, 0.3 x mean) / mean, so no pixel falls below about a
+   third of the even rate, in case the box saw none of its rare light yet. Measured
+   (docs/benchmarks.md): rates after 8 spp in the paper's spot-lit fog, 1.2x less
+   variance at equal time. */
+FOGRT__PRIVATE void fogrt__sat_build(double *sat, const double *v, int W, int H)
+{
+    int x, y;
+    memset(sat, 0, sizeof(double) * (size_t)(W + 1));
+    for (y = 0; y < H; ++y) {
+        double row = 0.0;
+        double *o = sat + (size_t)(y + 1) * (size_t)(W + 1), *up = o - (W + 1);
+        o[0] = 0.0;
+        for (x = 0; x < W; ++x) { row += v[(size_t)y * (size_t)W + (size_t)x]; o[x + 1] = up[x + 1] + row; }
+    }
+}
+FOGRT__PRIVATE double fogrt__sat_box(const double *sat, int W, int x0, int y0, int x1, int y1)
+{
+    size_t w = (size_t)W + 1;
+    return sat[(size_t)(y1 + 1) * w + (size_t)(x1 + 1)] - sat[(size_t)y0 * w + (size_t)(x1 + 1)]
+         - sat[(size_t)(y1 + 1) * w + (size_t)x0] + sat[(size_t)y0 * w + (size_t)x0];
+}
+FOGRT__PUBLIC fogrt_result fogrt_image_sample_rates(const fogrt_image *img, float *rates)
+{
+    int W, H, x, y, r, c;
+    size_t n, i, cells;
+    double samples = 0.0, vmean[2] = {0.0, 0.0}, count[2] = {0.0, 0.0}, amean[2] = {0.0, 0.0}, norm[2];
+    double *v, *sat_v, *sat_n, side;
+    FOGRT_ASSERT(img && rates);
+    W = img->width; H = img->height;
+    n = (size_t)W * (size_t)H;
+    cells = (size_t)(W + 1) * (size_t)(H + 1);
+    for (i = 0; i < n; ++i) samples += img->count[i];
+    if (samples <= 0.0) return FOGRT_RESULT_INVALID_ARGUMENT;
+    v = (double *)fogrt__alloc(&img->allocator, sizeof(double) * n * 2);
+    sat_v = (double *)fogrt__alloc(&img->allocator, sizeof(double) * cells * 2);
+    sat_n = (double *)fogrt__alloc(&img->allocator, sizeof(double) * cells * 2);
+    if (!v || !sat_v || !sat_n) {
+        fogrt__free(&img->allocator, v); fogrt__free(&img->allocator, sat_v); fogrt__free(&img->allocator, sat_n);
+        return FOGRT_RESULT_OUT_OF_MEMORY;
+    }
+    /* each colour's noise per sample, its mean, then capped; v + n holds the colour masks */
+    for (y = 0; y < H; ++y)
+        for (x = 0; x < W; ++x) {
+            i = (size_t)y * (size_t)W + (size_t)x; c = (x + y) & 1;
+            v[i] = fogrt_image_pixel_variance(img, i) * (double)img->count[i];
+            if (!(v[i] < DBL_MAX)) v[i] = DBL_MAX / 4.0;
+            vmean[c] += v[i]; count[c] += 1.0;
+        }
+    for (c = 0; c < 2; ++c) vmean[c] = count[c] > 0.0 ? vmean[c] / count[c] : 0.0;
+    for (c = 0; c < 2; ++c) {       /* colour c's capped noise (other pixels 0), and its mask */
+        for (y = 0; y < H; ++y)
+            for (x = 0; x < W; ++x) {
+                i = (size_t)y * (size_t)W + (size_t)x;
+                v[n + i] = ((x + y) & 1) == c ? FOGRT__MIN(v[i], 16.0 * vmean[c]) : 0.0;
+            }
+        fogrt__sat_build(sat_v + (size_t)c * cells, v + n, W, H);
+        for (i = 0; i < n; ++i) v[n + i] = (((i % (size_t)W) + i / (size_t)W) & 1) == (size_t)c ? 1.0 : 0.0;
+        fogrt__sat_build(sat_n + (size_t)c * cells, v + n, W, H);
+    }
+    /* the box: about 8192 samples at this image's mean count */
+    side = sqrt(8192.0 / (samples / (double)n));
+    r = side > 3.0 ? (int)ceil((side - 1.0) / 2.0) : 1;
+    if (r > W + H) r = W + H;
+    for (y = 0; y < H; ++y)
+        for (x = 0; x < W; ++x) {
+            int o = 1 - ((x + y) & 1);          /* the other colour */
+            int x0 = FOGRT__MAX(x - r, 0), x1 = FOGRT__MIN(x + r, W - 1);
+            int y0 = FOGRT__MAX(y - r, 0), y1 = FOGRT__MIN(y + r, H - 1);
+            double k = fogrt__sat_box(sat_n + (size_t)o * cells, W, x0, y0, x1, y1);
+            double sum = fogrt__sat_box(sat_v + (size_t)o * cells, W, x0, y0, x1, y1);
+            i = (size_t)y * (size_t)W + (size_t)x;
+            v[i] = k > 0.0 ? sqrt(FOGRT__MAX(sum, 0.0) / k) : 0.0;
+            amean[(x + y) & 1] += v[i];
+        }
+    for (c = 0; c < 2; ++c) amean[c] = count[c] > 0.0 ? amean[c] / count[c] : 0.0;
+    /* a pixel of colour c is normalised by what the other colour's noise gave colour c */
+    for (c = 0; c < 2; ++c) norm[c] = 0.0;
+    for (y = 0; y < H; ++y)
+        for (x = 0; x < W; ++x) {
+            c = (x + y) & 1; i = (size_t)y * (size_t)W + (size_t)x;
+            norm[c] += FOGRT__MAX(v[i], 0.3 * amean[c]);
+        }
+    for (y = 0; y < H; ++y)
+        for (x = 0; x < W; ++x) {
+            double a;
+            c = (x + y) & 1; i = (size_t)y * (size_t)W + (size_t)x;
+            a = norm[c] > 0.0 && amean[c] > 0.0 ? FOGRT__MAX(v[i], 0.3 * amean[c]) * count[c] / norm[c] : 1.0;
+            rates[i] = (float)FOGRT__MIN(a, (double)FOGRT_MAX_SAMPLE_RATE);
+        }
+    fogrt__free(&img->allocator, v); fogrt__free(&img->allocator, sat_v); fogrt__free(&img->allocator, sat_n);
+    return FOGRT_RESULT_OK;
+}
+
 /* What one fogrt_render call needs on every thread. */
 typedef struct fogrt__job {
     const fogrt_scene *s;
@@ -5456,6 +5586,8 @@ typedef struct fogrt__job {
     fogrt_image *img;
     uint64_t base;
     int spp;
+    const float *rate;       /* NULL: spp samples in every pixel */
+    uint64_t coin;           /* with rates: a key that changes from call to call */
 } fogrt__job;
 
 /* The stratified pixel positions. Sobol's first two dimensions form a (0,2)-sequence: for
@@ -5542,18 +5674,41 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_pixel(const fogrt__job *job, int width, i
 #endif
     return fogrt__radiance(job->s, &job->st, o, d, &rng, rays);
 }
-/* One row of pixels, spp samples each. The NaN firewall: a non-finite sample is counted,
-   never added (a zero in the mean, in its stream's mean too). Sample `index` adds its
-   luminance to stream index mod FOGRT_IMAGE_STREAMS, the stream its position came from. */
-FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *rays, uint64_t *rejected)
+/* How many samples pixel pix takes in this call: spp, or with sample rates spp x rate
+   rounded up or down by a coin drawn from (seed, pixel, its samples so far, the image's
+   samples so far), never from the pixel's radiance; so the mean count is spp x rate
+   exactly. (Without the image's total, a pixel whose coin said "down" to a rate below 1
+   would draw the same coin at the next call, and the next: it would never get another
+   sample.) */
+FOGRT__PRIVATE uint32_t fogrt__pixel_spp(const fogrt__job *job, size_t pix)
+{
+    double want, whole;
+    uint32_t n, room = 0xFFFFFFFFu - job->img->count[pix];
+    if (!job->rate) return (uint32_t)job->spp;
+    want = (double)job->spp * (double)job->rate[pix];
+    whole = floor(want);
+    if (whole >= (double)room) return room;
+    n = (uint32_t)whole;
+    if ((double)(fogrt__hash64(job->coin ^ fogrt__hash64(0x52415445ULL ^ (((uint64_t)pix << 32) | job->img->count[pix]))) >> 11)
+        * (1.0 / 9007199254740992.0) < want - whole && n < room) ++n;
+    return n;
+}
+/* One row of pixels, spp samples each (or as many as their rates say). The NaN firewall:
+   a non-finite sample is counted, never added (a zero in the mean, in its stream's mean
+   too). Sample `index` adds its luminance to stream index mod FOGRT_IMAGE_STREAMS, the
+   stream its position came from. */
+FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *rays, uint64_t *rejected,
+                                      uint64_t *samples)
 {
     fogrt_image *img = job->img;
-    int x, k, width = img->width, height = img->height;
+    int x, width = img->width, height = img->height;
     bool streams = img->stream_sum && img->stream_count;
     for (x = 0; x < width; ++x) {
         size_t pix = (size_t)y * (size_t)width + (size_t)x;
-        for (k = 0; k < job->spp; ++k) {
-            uint32_t index = img->count[pix] + (uint32_t)k;
+        uint32_t k, spp = fogrt__pixel_spp(job, pix);
+        *samples += spp;
+        for (k = 0; k < spp; ++k) {
+            uint32_t index = img->count[pix] + k;
             size_t slot = (size_t)FOGRT_IMAGE_STREAMS * pix + index % FOGRT_IMAGE_STREAMS;
             fogrt__v3 Lr = fogrt__sample_pixel(job, width, height, x, y, index, rays);
             double lum;
@@ -5566,7 +5721,7 @@ FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *ra
             img->sum_sq[pix] += lum * lum;
             if (streams) img->stream_sum[slot] += lum;
         }
-        img->count[pix] += (uint32_t)job->spp;
+        img->count[pix] += spp;
     }
 }
 FOGRT__PRIVATE bool fogrt__report(const fogrt_render_desc *d, int rows_done, int rows_total, int spp)
@@ -5582,6 +5737,12 @@ FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt
         (d->width && d->width != img->width) || (d->height && d->height != img->height))
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: image size does not match render desc width/height");
     if (spp < 0) return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: samples_per_pixel < 0");
+    if (d->sample_rate) {
+        size_t i, n = (size_t)img->width * (size_t)img->height;
+        for (i = 0; i < n; ++i)
+            if (!(d->sample_rate[i] >= 0.0f && d->sample_rate[i] <= FOGRT_MAX_SAMPLE_RATE))
+                return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: a sample_rate is NaN, negative or above FOGRT_MAX_SAMPLE_RATE (64)");
+    }
     return FOGRT_RESULT_OK;
 }
 
@@ -5590,14 +5751,14 @@ FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt
    rows is done; if it asks to stop, the rows not yet started are skipped. Returns false
    when cancelled. */
 FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render_desc *d, uint64_t *rays_out,
-                                       uint64_t *rejected_out)
+                                       uint64_t *rejected_out, uint64_t *samples_out)
 {
-    uint64_t rays = 0, rejected = 0;
+    uint64_t rays = 0, rejected = 0, samples = 0;
     int y, height = job->img->height, block = height >= 32 ? height / 32 : 1;
     int rows_done = 0, cancelled = 0, last_report = 0;
 #ifdef _OPENMP
     int nthreads = d->threads > 0 ? d->threads : omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) reduction(+ : rays, rejected)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) reduction(+ : rays, rejected, samples)
 #endif
     for (y = 0; y < height; ++y) {
         int stop, done;
@@ -5606,7 +5767,7 @@ FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render
 #endif
         stop = cancelled;
         if (stop) continue;
-        fogrt__render_row(job, y, &rays, &rejected);
+        fogrt__render_row(job, y, &rays, &rejected, &samples);
 #ifdef _OPENMP
 #pragma omp atomic capture
 #endif
@@ -5623,7 +5784,7 @@ FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render
             cancelled = stop;
         }
     }
-    *rays_out = rays; *rejected_out = rejected;
+    *rays_out = rays; *rejected_out = rejected; *samples_out = samples;
     if (cancelled) return false;
     return !(d->progress && last_report != height && !fogrt__report(d, height, height, job->spp));   /* the final report */
 }
@@ -5634,18 +5795,24 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
     fogrt__job job;
     fogrt_render_desc d;
     fogrt_result result;
-    uint64_t rays = 0, rejected = 0;
+    uint64_t rays = 0, rejected = 0, samples = 0;
     FOGRT_ASSERT(s && img);
     if (stats) memset(stats, 0, sizeof *stats);
     if ((result = fogrt__resolve_render(s, desc, &job.st, &d)) != FOGRT_RESULT_OK) return result;
     if ((result = fogrt__check_image(s, &d, img, spp)) != FOGRT_RESULT_OK) return result;
-    job.s = s; job.img = img; job.spp = spp;
+    job.s = s; job.img = img; job.spp = spp; job.rate = d.sample_rate; job.coin = 0;
     job.cam = fogrt__camera_setup(s, img->width, img->height);
     job.base = fogrt__hash64(d.seed);
-    if (spp > 0 && !fogrt__render_rows(&job, &d, &rays, &rejected)) result = FOGRT_RESULT_CANCELLED;
+    if (job.rate) {
+        size_t i, n = (size_t)img->width * (size_t)img->height;
+        uint64_t total = 0;
+        for (i = 0; i < n; ++i) total += img->count[i];
+        job.coin = fogrt__hash64(job.base ^ fogrt__hash64(total));
+    }
+    if (spp > 0 && !fogrt__render_rows(&job, &d, &rays, &rejected, &samples)) result = FOGRT_RESULT_CANCELLED;
     img->rejected += rejected;
     if (stats) {
-        stats->camera_rays = (uint64_t)img->width * (uint64_t)img->height * (uint64_t)spp;
+        stats->camera_rays = samples;
         stats->rays = rays;
         stats->rejected = rejected;
     }

@@ -33,7 +33,7 @@ if [ ! -x "$OUT/build/fogrt" ]; then
     make -s -C "$OUT" build/fogrt >/dev/null
 fi
 err() { sed -n 's/.*rel\. error \([0-9.]*\)%.*/\1/p' | tail -1; }
-spp() { sed -n 's/.*: \([0-9]*\)\/[0-9]* spp in \([0-9.]*\) s.*/\1 \2/p' | tail -1; }
+spp() { sed -n 's/.*: \([0-9.]*\)\/[0-9]* spp in \([0-9.]*\) s.*/\1 \2/p' | tail -1; }
 ok=1
 i=1
 printf '%-4s | %-28s | %-28s\n' run "$BASE, -s 128" "this tree, --time T"

@@ -57,12 +57,14 @@ int cli_trace_path(const fogrt_scene *scene, const fogrt_render_desc *rd, int wi
 /* Image memory limit, checked before anything is allocated: the accumulation buffer (84
    bytes per pixel: double RGB sum, double sum of squares, 32-bit count, and per each of the
    4 sample streams a double luminance sum and a 32-bit count), the resolved float image
-   (12), the 8-bit image (3), the encoded output (up to 13) and the reference (12): 124,
-   rounded up. */
+   (12), the 8-bit image (3), the encoded output (up to 13), the reference (12) and the
+   --pixel-rates (4): 128. (Making the rates borrows 48 more for a moment; when that fails
+   the render goes on with every pixel alike.) */
 #define CLI_BYTES_PER_PIXEL 128.0
 #define CLI_MAX_IMAGE_BYTES (2.0 * 1024.0 * 1024.0 * 1024.0)
 /* Ceilings of an open-ended render (--target-error without -s). */
 #define CLI_CEILING_SPP 65536
+#define CLI_RATES_PILOT 8         /* --pixel-rates: spp taken alike before the rates are made */
 #define CLI_CEILING_SECONDS 3600.0
 /* Threads: at most 4 per processor, and never more than this. */
 #define CLI_MAX_THREADS 256
@@ -94,6 +96,7 @@ typedef struct cli_options {
     const char *log_path;               /* --log */
     const char *reference;              /* --reference */
     bool equiangular, mis, glow, expected; /* --equiangular, --mis, --glow, --expected-emission */
+    bool pixel_rates;                      /* --pixel-rates */
     bool by_power;                      /* --lights power */
     float lens_radius; bool lens_set;   /* -b */
     float focal; bool focal_set;        /* -d */
@@ -191,6 +194,11 @@ static void usage(FILE *f)
         "                   paper's way, that light only when the ray gets there (default on)\n"
         "  --mis on|off     multiple importance sampling of light and BSDF/phase samples; off:\n"
         "                   light sampling alone (default on)\n"
+        "  --pixel-rates on|off  adaptive sampling: after the first %d spp, taken alike in every\n"
+        "                   pixel, each pixel gets samples in proportion to the noise around\n"
+        "                   it (fogrt_image_sample_rates: its neighbours', never its own, so\n"
+        "                   the image stays unbiased); -s and the spp shown are then the mean\n"
+        "                   over the pixels (default on)\n"
         "  --fresnel F      schlick or exact (default schlick)\n"
         "  --bvh H          sah or volume (the paper's volume heuristic) (default sah)\n"
         "  --seed N         random seed (default 0); the image is the same on any thread count\n"
@@ -200,7 +208,7 @@ static void usage(FILE *f)
         "                   without -s the render also stops at %d spp or after %.0f s,\n"
         "                   whichever comes first, even if the estimate never gets there\n"
         "  --quiet          no progress line and no summary (errors and warnings still shown)\n"
-        "\n", CLI_CEILING_SPP, CLI_CEILING_SECONDS);
+        "\n", CLI_RATES_PILOT, CLI_CEILING_SPP, CLI_CEILING_SECONDS);
     fprintf(f,
         "Error against time (the progress line and the summary show the same numbers):\n"
         "  --log FILE.csv   append one row per progressive batch (default none); the header\n"
@@ -335,7 +343,7 @@ static int parse_args(int argc, char **argv, cli_options *o)
     memset(o, 0, sizeof *o);
     o->spp = 64; o->light_samples = 1; o->threads = 0; o->max_depth = 64; o->accumulate = 1;
     o->width = 800; o->height = 600; o->output = "out.png";
-    o->equiangular = true; o->mis = true; o->glow = true; o->expected = true;
+    o->equiangular = true; o->mis = true; o->glow = true; o->expected = true; o->pixel_rates = true;
     o->integrator = FOGRT_INTEGRATOR_PATH; o->fresnel = FOGRT_FRESNEL_SCHLICK; o->bvh = FOGRT_BVH_SAH;
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i];
@@ -384,6 +392,7 @@ static int parse_args(int argc, char **argv, cli_options *o)
             else if (strcmp(argv[i], "power") == 0) o->by_power = true;
             else return bad_flag(a, "must be all or power, got '%s'", argv[i]);
         }
+        else if (strcmp(a, "--pixel-rates") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->pixel_rates)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--glow") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->glow)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--expected-emission") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->expected)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--equiangular") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->equiangular)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
@@ -1054,6 +1063,7 @@ typedef struct render_state {
     bool tty, printed;
     FILE *log; const char *log_path; bool log_failed;
     const float *ref; float *rgb; /* reference and scratch (resolved image) */
+    float *rates;                 /* --pixel-rates: width x height, made once after the pilot */
     measured m;
     uint64_t rays;
 } render_state;
@@ -1197,6 +1207,7 @@ static fogrt_result render_progressive(const fogrt_scene *scene, fogrt_render_de
         if (p->seconds_limit > 0 && elapsed >= p->seconds_limit && done > 0) { *stopped_by = "time"; break; }
         b = rate > 0 ? (uint64_t)(rate * CLI_BATCH_SECONDS) : 1;
         if (b > done) b = done > 0 ? done : 1;      /* doubling at first: early error points */
+        if (p->rates && !rd->sample_rate && b > CLI_RATES_PILOT - done) b = CLI_RATES_PILOT - done;
         if (b > ((uint64_t)1 << 20)) b = (uint64_t)1 << 20;
         if (b < 1) b = 1;
         if (p->spp_target && b > p->spp_target - done) b = p->spp_target - done;
@@ -1210,6 +1221,11 @@ static fogrt_result render_progressive(const fogrt_scene *scene, fogrt_render_de
         if (r) return r;
         done += b;
         p->spp_done = done; p->spp_batch = 0;
+        /* --pixel-rates: once, after the pilot's spp taken alike; kept to the end (unbiased) */
+        if (p->rates && !rd->sample_rate && done >= CLI_RATES_PILOT) {
+            if (fogrt_image_sample_rates(img, p->rates) == FOGRT_RESULT_OK) rd->sample_rate = p->rates;
+            else p->rates = NULL;    /* out of memory: every pixel alike, as without the flag */
+        }
         rate = (double)done / fmax(now_seconds() - p->t0, 1e-6);
         take_measurement(p, img, "batch");
         print_progress(p, (double)done, false);
@@ -1317,7 +1333,7 @@ int main(int argc, char **argv)
     membuf enc;
     char rate_name[4096], where[4200], err_a[64], err_b[64], reason[256], target[32];
     const char *why, *stopped_by = NULL, *cam_where;
-    float *rgb = NULL, *ref = NULL;
+    float *rgb = NULL, *ref = NULL, *rates = NULL;
     unsigned char *rgb8 = NULL;
     bool is_dae = false, warned_black = false;
     fogrt_result r;
@@ -1469,7 +1485,8 @@ int main(int argc, char **argv)
     if (!r) {
         rgb = (float *)malloc(sizeof(float) * 3 * (size_t)o.width * (size_t)o.height);
         rgb8 = (unsigned char *)malloc(3 * (size_t)o.width * (size_t)o.height);
-        if (!rgb || !rgb8) r = FOGRT_RESULT_OUT_OF_MEMORY;
+        if (o.pixel_rates && !o.adaptive) rates = (float *)malloc(sizeof(float) * (size_t)o.width * (size_t)o.height);
+        if (!rgb || !rgb8 || (o.pixel_rates && !o.adaptive && !rates)) r = FOGRT_RESULT_OUT_OF_MEMORY;
     }
     if (r) {
         fprintf(stderr, "fogrt: -r %d %d: image too large to allocate (%s)\n", o.width, o.height, fogrt_result_string(r));
@@ -1499,6 +1516,7 @@ int main(int argc, char **argv)
     ps.pixels = (double)o.width * (double)o.height;
     ps.ref = ref;
     ps.rgb = rgb;
+    ps.rates = rates;
     ps.show_target = o.spp_set || (o.time_budget <= 0 && o.target_error <= 0);
     if (ps.show_target) ps.spp_target = (uint64_t)o.spp;
     else if (o.target_error > 0) ps.spp_target = CLI_CEILING_SPP;
@@ -1568,7 +1586,7 @@ done:
         status = 1;
     }
     free(enc.data);
-    free(rgb); free(rgb8); free(ref);
+    free(rgb); free(rgb8); free(ref); free(rates);
     release_image(&img);
     fogrt_scene_destroy(scene);
     return status;

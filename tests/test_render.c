@@ -990,6 +990,182 @@ static void test_write_files(void)
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_IO_ERROR, fogrt_write_pfm(out_dir, W, H, rgb));
 }
 
+/* ------------------------------------------------------------------------------------------
+   Adaptive sampling: fogrt_image_sample_rates and render desc sample_rate (chapter 15)
+   ------------------------------------------------------------------------------------------ */
+
+/* The rates' shape: finite, mean 1 over each colour of the chessboard, none below the floor
+   (0.3 of the mean before normalising) nor above FOGRT_MAX_SAMPLE_RATE, uneven where the
+   noise is; 1 everywhere in an image without noise; an image without samples is refused.
+   And the property that keeps the image unbiased: a pixel's rate does not move when its own
+   samples, or any pixel's of its colour, change; it does move when a neighbour of the other
+   colour changes (so the first check is not vacuous). */
+static void test_sample_rates_shape(void)
+{
+    fogrt_scene *scene = spot_box();
+    fogrt_render_desc rd = render_desc(40, 30, 5);
+    fogrt_image img, empty;
+    size_t i, n, p, q;
+    float *r0, *r1;
+    double mean[2] = {0, 0}, lo = 1e9, hi = 0;
+    char msg[200];
+    render_new(scene, &rd, 8, &img, NULL);
+    n = pixels(&img);
+    r0 = (float *)malloc(sizeof(float) * n);
+    r1 = (float *)malloc(sizeof(float) * n);
+    TEST_ASSERT_TRUE(r0 && r1);
+    CHECK_OK(fogrt_image_sample_rates(&img, r0));
+    for (i = 0; i < n; ++i) {
+        TEST_ASSERT_TRUE(r0[i] > 0.0f && r0[i] <= FOGRT_MAX_SAMPLE_RATE);
+        mean[((i % 40) + i / 40) & 1] += r0[i];
+        lo = fmin(lo, r0[i]); hi = fmax(hi, r0[i]);
+    }
+    snprintf(msg, sizeof msg, "rates: mean %.6f / %.6f, min %.3f, max %.3f", mean[0] / (n / 2), mean[1] / (n / 2), lo, hi);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-4, 1.0, mean[0] / (double)(n / 2), msg);
+    TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-4, 1.0, mean[1] / (double)(n / 2), msg);
+    TEST_ASSERT_TRUE_MESSAGE(hi > 1.5 * lo, msg);          /* the spot's cone is noisier than the dark */
+
+    /* pixel p = (20, 15): its own samples and a same-coloured pixel's made wildly noisy */
+    p = 15 * 40 + 20; q = 15 * 40 + 22;
+    img.stream_sum[FOGRT_IMAGE_STREAMS * p] += 1000.0;
+    img.stream_sum[FOGRT_IMAGE_STREAMS * q + 1] += 1000.0;
+    CHECK_OK(fogrt_image_sample_rates(&img, r1));
+    TEST_ASSERT_TRUE_MESSAGE(r1[p] == r0[p], "a pixel's rate read its own samples");
+    TEST_ASSERT_TRUE_MESSAGE(r1[q] == r0[q], "a pixel's rate read its own samples");
+    for (i = 0; i < n; ++i)
+        if ((((i % 40) + i / 40) & 1) == 1) TEST_ASSERT_TRUE_MESSAGE(r1[i] == r0[i], "a rate read a pixel of its own colour");
+    TEST_ASSERT_TRUE_MESSAGE(r1[p + 1] != r0[p + 1], "the other colour's rate next to it did not move");
+
+    /* no noise: every rate 1 */
+    for (i = 0; i < FOGRT_IMAGE_STREAMS * n; ++i) img.stream_sum[i] = (double)img.stream_count[i] * 0.25;
+    CHECK_OK(fogrt_image_sample_rates(&img, r1));
+    for (i = 0; i < n; ++i) TEST_ASSERT_EQUAL_FLOAT(1.0f, r1[i]);
+    /* no samples: refused */
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_image_alloc(&empty, 40, 30, NULL));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_ARGUMENT, fogrt_image_sample_rates(&empty, r1));
+    fogrt_image_free(&empty);
+    free(r0); free(r1);
+    fogrt_image_free(&img);
+    fogrt_scene_destroy(scene);
+}
+
+/* fogrt_render with sample_rate: a pixel of rate 0 gets no sample, one of rate 2.5 gets 2 or
+   3 per sample asked (5 after two calls of 1 each on average: the coin must not stick), the
+   stats count the samples taken, the image is the same on 1 and 2 threads; rates that are
+   NaN, negative or above FOGRT_MAX_SAMPLE_RATE are refused with the image untouched. */
+static void test_sample_rates_render(void)
+{
+    fogrt_scene *scene = default_scene();
+    fogrt_render_desc rd = render_desc(16, 12, 3);
+    fogrt_image a, b;
+    fogrt_render_stats st;
+    float rates[16 * 12];
+    size_t i;
+    uint64_t total = 0, twice = 0;
+    int k;
+    for (i = 0; i < 16 * 12; ++i) rates[i] = i % 3 == 0 ? 0.0f : i % 3 == 1 ? 1.0f : 2.5f;
+    rd.sample_rate = rates;
+    render_new(scene, &rd, 4, &a, &st);
+    for (i = 0; i < 16 * 12; ++i) {
+        total += a.count[i];
+        if (i % 3 == 0) TEST_ASSERT_EQUAL_UINT32(0, a.count[i]);
+        if (i % 3 == 1) TEST_ASSERT_EQUAL_UINT32(4, a.count[i]);
+        if (i % 3 == 2) TEST_ASSERT_TRUE(a.count[i] == 10);
+    }
+    TEST_ASSERT_EQUAL_UINT64(total, st.camera_rays);
+    rd.threads = 2;
+    render_new(scene, &rd, 4, &b, NULL);
+    assert_same_image(&a, &b, "sample rates: 1 and 2 threads");
+    fogrt_image_free(&b);
+    /* fractional rates over many calls of 1 spp: rate 0.5 gives half a sample a call */
+    for (i = 0; i < 16 * 12; ++i) rates[i] = 0.5f;
+    rd.threads = 1;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_image_alloc(&b, 16, 12, NULL));
+    for (k = 0; k < 40; ++k) CHECK_OK(fogrt_render(scene, &rd, &b, 1, NULL));
+    for (i = 0; i < 16 * 12; ++i) { twice += b.count[i]; TEST_ASSERT_TRUE(b.count[i] >= 6 && b.count[i] <= 34); }
+    TEST_ASSERT_TRUE(twice > 16 * 12 * 18 && twice < 16 * 12 * 22);   /* 20 per pixel on average */
+    fogrt_image_free(&b);
+    /* bad rates */
+    rates[7] = -1.0f;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_ARGUMENT, fogrt_render(scene, &rd, &a, 1, NULL));
+    rates[7] = NAN;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_ARGUMENT, fogrt_render(scene, &rd, &a, 1, NULL));
+    rates[7] = FOGRT_MAX_SAMPLE_RATE * 2.0f;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_ARGUMENT, fogrt_render(scene, &rd, &a, 1, NULL));
+    TEST_ASSERT_EQUAL_UINT64(total, st.camera_rays);
+    for (i = 0, twice = 0; i < 16 * 12; ++i) twice += a.count[i];
+    TEST_ASSERT_EQUAL_UINT64(total, twice);
+    fogrt_image_free(&a);
+    fogrt_scene_destroy(scene);
+}
+
+/* Rendered the way the CLI does (8 spp alike, the rates, then 24 more spp at those rates),
+   the spot-lit box seen through fog has the same image mean as with every pixel alike,
+   over 16 renders each; and the image's own error estimate still matches the error
+   measured between two such renders. Fails on rates that read a pixel's own samples in a
+   way that shifts its mean, on a coin that sticks, or on counts that miss the streams. */
+static void render_adaptive_like_cli(const fogrt_scene *scene, fogrt_render_desc rd, fogrt_image *img, float *rates)
+{
+    render_new(scene, &rd, 8, img, NULL);
+    CHECK_OK(fogrt_image_sample_rates(img, rates));
+    rd.sample_rate = rates;
+    CHECK_OK(fogrt_render(scene, &rd, img, 24, NULL));
+}
+static void test_sample_rates_unbiased(void)
+{
+    fogrt_scene *scene = spot_box();
+    fogrt_render_desc rd = render_desc(32, 24, 0);
+    float *rates = (float *)malloc(sizeof(float) * 32 * 24), *a, *b;
+    double sum = 0, sum_sq = 0, diff_sq = 0, mean_sq = 0, measured, ratio;
+    batch_estimate adaptive, even;
+    fogrt_image img, other;
+    fogrt_error_estimate e;
+    char msg[200];
+    size_t i;
+    int k;
+    TEST_ASSERT_TRUE(rates != NULL);
+    for (k = 0; k < 16; ++k) {
+        double m;
+        rd.seed = 900 + (uint64_t)k;
+        render_adaptive_like_cli(scene, rd, &img, rates);
+        m = image_mean(&img);
+        sum += m; sum_sq += m * m;
+        fogrt_image_free(&img);
+    }
+    adaptive.mean = sum / 16;
+    adaptive.std_error = sqrt(fmax(0.0, (sum_sq / 16 - adaptive.mean * adaptive.mean) * 16 / 15.0) / 16);
+    even = batch_mean(scene, &rd, 32, 16, 950);
+    assert_means_agree(adaptive, even, "sample rates after 8 spp vs every pixel alike");
+
+    rd.seed = 990;
+    render_adaptive_like_cli(scene, rd, &img, rates);
+    rd.seed = 991;
+    render_adaptive_like_cli(scene, rd, &other, rates);
+    fogrt_image_error(&img, &e);
+    a = (float *)malloc(sizeof(float) * 3 * 32 * 24);
+    b = (float *)malloc(sizeof(float) * 3 * 32 * 24);
+    TEST_ASSERT_TRUE(a && b);
+    fogrt_image_resolve(&img, a);
+    fogrt_image_resolve(&other, b);
+    for (i = 0; i < 32 * 24; i++) {
+        double la = luminance(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
+        double lb = luminance(b[3 * i], b[3 * i + 1], b[3 * i + 2]);
+        diff_sq += (la - lb) * (la - lb);
+        mean_sq += 0.5 * (la * la + lb * lb);
+    }
+    measured = sqrt(diff_sq / mean_sq) / sqrt(2.0);
+    ratio = measured / e.relative_error;
+    snprintf(msg, sizeof msg, "with sample rates: measured relative error %.4f, estimated %.4f, ratio %.3f (ideal 1)",
+             measured, e.relative_error, ratio);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(ratio >= 0.7 && ratio <= 1.4, msg);
+    free(a); free(b); free(rates);
+    fogrt_image_free(&img);
+    fogrt_image_free(&other);
+    fogrt_scene_destroy(scene);
+}
+
 int main(int argc, char **argv)
 {
     /* Output files go next to the test binary, i.e. into the build directory. */
@@ -1018,5 +1194,8 @@ int main(int argc, char **argv)
     RUN_TEST(test_tonemap);
     RUN_TEST(test_write_files);
     RUN_TEST(test_roulette_pilot);
+    RUN_TEST(test_sample_rates_shape);
+    RUN_TEST(test_sample_rates_render);
+    RUN_TEST(test_sample_rates_unbiased);
     return UNITY_END();
 }
