@@ -102,13 +102,16 @@ static int file_exists(const char *path) { struct stat st; return stat(path, &st
 typedef struct config {
     const char *name;         /* legend and CSV */
     fogrt_render_desc rd;
+    int rates_after;          /* > 0: adaptive sampling, the rates made after this many spp */
 } config;
 
 static int make_configs(config *c)
 {
     int n = 0;
     fogrt_render_desc d = fogrt_render_defaults();
+    memset(c, 0, sizeof(config) * 6);
     c[n].name = "path NEE+MIS";          c[n].rd = d; ++n;
+    c[n].name = "path NEE+MIS, pixel rates"; c[n].rd = d; c[n].rates_after = 8; ++n;   /* the CLI's default */
     c[n].name = "path NEE, no MIS";      c[n].rd = d; c[n].rd.mis = false; ++n;
     c[n].name = "path, no NEE (paper: no IS)"; c[n].rd = d; c[n].rd.nee = false; ++n;
     c[n].name = "path, equiangular off"; c[n].rd = d; c[n].rd.equiangular = false; ++n;
@@ -159,19 +162,26 @@ static int run_ladder(const fogrt_scene *scene, const config *c, int w, int h, d
     fogrt_image img;
     fogrt_error_estimate e;
     fogrt_result r;
+    fogrt_render_desc rd = c->rd;
+    float *rates = NULL;
     double c0, w0;
     int done = 0, target = 1;
     memset(L, 0, sizeof *L);
-    if ((r = fogrt_image_alloc(&img, w, h, NULL)) != FOGRT_RESULT_OK) {
-        fprintf(stderr, "convergence: %s\n", fogrt_result_string(r)); return -1;
+    if ((r = fogrt_image_alloc(&img, w, h, NULL)) != FOGRT_RESULT_OK ||
+        (c->rates_after > 0 && !(rates = (float *)malloc(sizeof(float) * (size_t)w * (size_t)h)))) {
+        fprintf(stderr, "convergence: %s\n", fogrt_result_string(r ? r : FOGRT_RESULT_OUT_OF_MEMORY));
+        fogrt_image_free(&img); return -1;
     }
     c0 = cpu_seconds(); w0 = wall_seconds();
     while (L->n < MAX_POINTS) {
-        if ((r = fogrt_render(scene, &c->rd, &img, target - done, NULL)) != FOGRT_RESULT_OK) {
+        if ((r = fogrt_render(scene, &rd, &img, target - done, NULL)) != FOGRT_RESULT_OK) {
             fprintf(stderr, "convergence: %s: %s\n", c->name, fogrt_result_string(r));
-            fogrt_image_free(&img); return -1;
+            fogrt_image_free(&img); free(rates); return -1;
         }
         done = target;
+        /* adaptive sampling: the rates once, from the samples taken alike (chapter 15) */
+        if (rates && !rd.sample_rate && done >= c->rates_after &&
+            fogrt_image_sample_rates(&img, rates) == FOGRT_RESULT_OK) rd.sample_rate = rates;
         L->spp[L->n] = done;
         L->cpu[L->n] = cpu_seconds() - c0;
         L->wall[L->n] = wall_seconds() - w0;
@@ -188,6 +198,7 @@ static int run_ladder(const fogrt_scene *scene, const config *c, int w, int h, d
     L->slope = fit_slope(L);
     L->efficiency = L->meas[L->n - 1] > 0.0 ? 1.0 / (L->meas[L->n - 1] * L->cpu[L->n - 1]) : (double)NAN;
     fogrt_image_free(&img);
+    free(rates);
     return 0;
 }
 

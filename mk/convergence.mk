@@ -1,5 +1,5 @@
 # mk/convergence.mk - error against render time for several estimators (issue 11, point 3).
-#   make convergence     renders the default scene with 5 estimator configurations on a spp
+#   make convergence     renders the default scene with 6 estimator configurations on a spp
 #                        ladder, measures each against one reference, and writes
 #                        $(BUILD)/convergence/default.csv and default.svg (about 2 CPU minutes: 1 to 4 minutes, by load)
 #   make convergence CONVERGENCE_ARGS="--scene $(SHARED)/scenes/cs184/CBbunny_upSpot.dae"
