@@ -493,15 +493,46 @@ static void test_progress_and_cancel(void)
    at 4 spp (accepted: 0.35 .. 0.65). And the estimate is calibrated: the RMS difference of two
    independent 16 spp renders is sqrt(2) times the error of one, so measured / predicted must
    be near 1 (accepted: 0.7 .. 1.4). */
+/* The relative error of one image measured against an independent render of the same
+   spp, in luminance (Rec. 709 weights): their difference has twice each one's variance. */
+static double measured_relative_error(const fogrt_image *x, const fogrt_image *y)
+{
+    size_t i, n = pixels(x);
+    float *a = (float *)malloc(sizeof(float) * 3 * n), *b = (float *)malloc(sizeof(float) * 3 * n);
+    double diff_sq = 0, mean_sq = 0;
+    TEST_ASSERT_TRUE(a && b);
+    fogrt_image_resolve(x, a);
+    fogrt_image_resolve(y, b);
+    for (i = 0; i < n; i++) {
+        double la = luminance(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
+        double lb = luminance(b[3 * i], b[3 * i + 1], b[3 * i + 2]);
+        diff_sq += (la - lb) * (la - lb);
+        mean_sq += 0.5 * (la * la + lb * lb);
+    }
+    free(a); free(b);
+    return sqrt(diff_sq / mean_sq) / sqrt(2.0);
+}
+/* x's own error estimate against the error measured between x and y: within 0.7 to 1.4. */
+static void assert_estimate_calibrated(const fogrt_image *x, const fogrt_image *y, const char *what)
+{
+    fogrt_error_estimate e;
+    double measured = measured_relative_error(x, y), ratio;
+    char msg[200];
+    fogrt_image_error(x, &e);
+    ratio = measured / e.relative_error;
+    snprintf(msg, sizeof msg, "%s: measured relative error %.4f, estimated %.4f, ratio %.3f (ideal 1)",
+             what, measured, e.relative_error, ratio);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(ratio >= 0.7 && ratio <= 1.4, msg);
+}
+
 static void test_error_estimate(void)
 {
     fogrt_scene *scene = default_scene();
     fogrt_render_desc rd = render_desc(64, 48, 21);
     fogrt_image i4, i16, j16;
     fogrt_error_estimate e4, e16;
-    float *a, *b;
-    double diff_sq = 0, mean_sq = 0, measured, ratio;
-    size_t i, n;
+    double ratio;
     char msg[200];
     render_new(scene, &rd, 4, &i4, NULL);
     rd.seed = 22;
@@ -517,26 +548,7 @@ static void test_error_estimate(void)
     TEST_ASSERT_TRUE_MESSAGE(ratio >= 0.35 && ratio <= 0.65, msg);
     TEST_ASSERT_EQUAL_UINT64(64 * 48 * 16, e16.samples);
 
-    /* Calibration against two independent renders, in luminance (Rec. 709 weights). */
-    n = pixels(&i16);
-    a = (float *)malloc(sizeof(float) * 3 * n);
-    b = (float *)malloc(sizeof(float) * 3 * n);
-    TEST_ASSERT_TRUE(a && b);
-    fogrt_image_resolve(&i16, a);
-    fogrt_image_resolve(&j16, b);
-    for (i = 0; i < n; i++) {
-        double la = luminance(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
-        double lb = luminance(b[3 * i], b[3 * i + 1], b[3 * i + 2]);
-        diff_sq += (la - lb) * (la - lb);
-        mean_sq += 0.5 * (la * la + lb * lb);
-    }
-    measured = sqrt(diff_sq / mean_sq) / sqrt(2.0);
-    ratio = measured / e16.relative_error;
-    snprintf(msg, sizeof msg, "16 spp: measured relative error %.4f, estimated %.4f, ratio %.3f (ideal 1)",
-             measured, e16.relative_error, ratio);
-    TEST_MESSAGE(msg);
-    TEST_ASSERT_TRUE_MESSAGE(ratio >= 0.7 && ratio <= 1.4, msg);
-    free(a); free(b);
+    assert_estimate_calibrated(&i16, &j16, "16 spp");   /* against an independent render */
     fogrt_image_free(&i4);
     fogrt_image_free(&i16);
     fogrt_image_free(&j16);
@@ -1116,13 +1128,10 @@ static void test_sample_rates_unbiased(void)
 {
     fogrt_scene *scene = spot_box();
     fogrt_render_desc rd = render_desc(32, 24, 0);
-    float *rates = (float *)malloc(sizeof(float) * 32 * 24), *a, *b;
-    double sum = 0, sum_sq = 0, diff_sq = 0, mean_sq = 0, measured, ratio;
+    float *rates = (float *)malloc(sizeof(float) * 32 * 24);
+    double sum = 0, sum_sq = 0;
     batch_estimate adaptive, even;
     fogrt_image img, other;
-    fogrt_error_estimate e;
-    char msg[200];
-    size_t i;
     int k;
     TEST_ASSERT_TRUE(rates != NULL);
     for (k = 0; k < 16; ++k) {
@@ -1142,25 +1151,8 @@ static void test_sample_rates_unbiased(void)
     render_adaptive_like_cli(scene, rd, &img, rates);
     rd.seed = 991;
     render_adaptive_like_cli(scene, rd, &other, rates);
-    fogrt_image_error(&img, &e);
-    a = (float *)malloc(sizeof(float) * 3 * 32 * 24);
-    b = (float *)malloc(sizeof(float) * 3 * 32 * 24);
-    TEST_ASSERT_TRUE(a && b);
-    fogrt_image_resolve(&img, a);
-    fogrt_image_resolve(&other, b);
-    for (i = 0; i < 32 * 24; i++) {
-        double la = luminance(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
-        double lb = luminance(b[3 * i], b[3 * i + 1], b[3 * i + 2]);
-        diff_sq += (la - lb) * (la - lb);
-        mean_sq += 0.5 * (la * la + lb * lb);
-    }
-    measured = sqrt(diff_sq / mean_sq) / sqrt(2.0);
-    ratio = measured / e.relative_error;
-    snprintf(msg, sizeof msg, "with sample rates: measured relative error %.4f, estimated %.4f, ratio %.3f (ideal 1)",
-             measured, e.relative_error, ratio);
-    TEST_MESSAGE(msg);
-    TEST_ASSERT_TRUE_MESSAGE(ratio >= 0.7 && ratio <= 1.4, msg);
-    free(a); free(b); free(rates);
+    assert_estimate_calibrated(&img, &other, "with sample rates");
+    free(rates);
     fogrt_image_free(&img);
     fogrt_image_free(&other);
     fogrt_scene_destroy(scene);
