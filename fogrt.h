@@ -5481,7 +5481,7 @@ FOGRT__PUBLIC void fogrt_image_error(const fogrt_image *img, fogrt_error_estimat
    So a pixel's count depends on samples of other pixels only, which are independent of
    its own (each pixel, each sample, has its own random stream): its mean stays an
    average of samples whose number was fixed without looking at them. The rounding of
-   spp x rate to a count is a coin of its own (fogrt__render_row).
+   spp x rate to a count is a coin of its own (fogrt__pixel_spp).
    The noise is sigma^2 = Var[mean] x n from the streams (so stratification counts). One
    rare path can make one pixel's estimate thousands of times its neighbours'; capped at
    16 times the colour's mean before the boxes sum them, such a pixel no longer drags its
