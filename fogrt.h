@@ -5506,6 +5506,16 @@ FOGRT__PRIVATE double fogrt__sat_box(const double *sat, int W, int x0, int y0, i
     return sat[(size_t)(y1 + 1) * w + (size_t)(x1 + 1)] - sat[(size_t)y0 * w + (size_t)(x1 + 1)]
          - sat[(size_t)(y1 + 1) * w + (size_t)x0] + sat[(size_t)y0 * w + (size_t)x0];
 }
+/* out: on the pixels of colour c, v capped at cap (v NULL: 1, to count them); 0 elsewhere. */
+FOGRT__PRIVATE void fogrt__colour_layer(double *out, const double *v, int W, int H, int c, double cap)
+{
+    int x, y;
+    for (y = 0; y < H; ++y)
+        for (x = 0; x < W; ++x) {
+            size_t i = (size_t)y * (size_t)W + (size_t)x;
+            out[i] = ((x + y) & 1) != c ? 0.0 : v ? FOGRT__MIN(v[i], cap) : 1.0;
+        }
+}
 FOGRT__PUBLIC fogrt_result fogrt_image_sample_rates(const fogrt_image *img, float *rates)
 {
     int W, H, x, y, r, c;
@@ -5534,14 +5544,10 @@ FOGRT__PUBLIC fogrt_result fogrt_image_sample_rates(const fogrt_image *img, floa
             vmean[c] += v[i]; count[c] += 1.0;
         }
     for (c = 0; c < 2; ++c) vmean[c] = count[c] > 0.0 ? vmean[c] / count[c] : 0.0;
-    for (c = 0; c < 2; ++c) {       /* colour c's capped noise (other pixels 0), and its mask */
-        for (y = 0; y < H; ++y)
-            for (x = 0; x < W; ++x) {
-                i = (size_t)y * (size_t)W + (size_t)x;
-                v[n + i] = ((x + y) & 1) == c ? FOGRT__MIN(v[i], 16.0 * vmean[c]) : 0.0;
-            }
+    for (c = 0; c < 2; ++c) {       /* colour c's capped noise, and how many of its pixels */
+        fogrt__colour_layer(v + n, v, W, H, c, 16.0 * vmean[c]);
         fogrt__sat_build(sat_v + (size_t)c * cells, v + n, W, H);
-        for (i = 0; i < n; ++i) v[n + i] = (((i % (size_t)W) + i / (size_t)W) & 1) == (size_t)c ? 1.0 : 0.0;
+        fogrt__colour_layer(v + n, NULL, W, H, c, 0.0);
         fogrt__sat_build(sat_n + (size_t)c * cells, v + n, W, H);
     }
     /* the box: about 8192 samples at this image's mean count */
