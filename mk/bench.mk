@@ -4,6 +4,7 @@
 #                    BENCH_ARGS=--quick for a short, noisy run
 #   make bench-spot  the spot-lit goal of issue 16, against session 2's header in the same run
 #   make callgrind   instruction cost of the fog code in a fog-free render (fails above +3%)
+#   make variance-sources  which samples carry an image's noise (VS_ARGS: scene and flags)
 #
 # What it compares against and reads:
 #   - Embree 3 (rtcIntersect1, rtcOccluded1, its memory monitor), the yardstick of issue 16:
@@ -12,7 +13,7 @@
 #     (fogrt's figures alone, no ratios).
 #   - the CS184 bunny: when fogrt_load.h declares fogrt_load_dae and $(SHARED) has CBbunny.dae
 #     (otherwise bench.c uses a synthetic mesh of the same size).
-.PHONY: bench callgrind bench-levers deps-embree bench-spot
+.PHONY: bench callgrind bench-levers deps-embree bench-spot variance-sources
 
 BENCH_EMBREE        ?= 1
 BENCH_EMBREE_HEADER := /usr/include/embree3/rtcore.h
@@ -58,3 +59,15 @@ $(BUILD)/bench/levers: bench/levers.c fogrt.h $(wildcard fogrt_load.h) mk/bench.
 
 bench-levers: $(BUILD)/bench/levers
 	./$(BUILD)/bench/levers $(LEVERS_ARGS)
+
+# Which samples carry the noise: every sample of a small render through fogrt_trace_path,
+# the noise split by brightness, source, bounce and throughput (bench/variance_sources.c).
+# VS_ARGS: e.g. '$(SHARED)/scenes/cs184/CBbunny_upSpot.dae --density 0.5 --g 0.6';
+# default: the embedded default scene, 120 x 90, 64 spp (seconds on two cores).
+VS_ARGS ?=
+$(BUILD)/bench/variance_sources: bench/variance_sources.c fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | $(BUILD)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(BENCH_DEFS) -o $@ bench/variance_sources.c $(LDLIBS)
+
+variance-sources: $(BUILD)/bench/variance_sources
+	./$(BUILD)/bench/variance_sources $(VS_ARGS)
