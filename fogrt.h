@@ -789,7 +789,8 @@ typedef struct fogrt_trace_event {
     fogrt_bsdf_type bsdf;
     fogrt_trace_lobe lobe;
     bool flag;
-    const char *source;        /* contribution: "emission", "environment", "light sample", "equiangular" */
+    const char *source;        /* contribution: "emission", "environment", "light sample", "light behind"
+                                  (14 b': the surface behind a fog collision), "equiangular" */
 } fogrt_trace_event;
 
 typedef void (*fogrt_trace_fn)(const fogrt_trace_event *event, void *user_data);
@@ -4884,7 +4885,7 @@ FOGRT__PRIVATE void fogrt__light_behind(const fogrt_scene *s, const fogrt__setti
     if (fogrt__surface_vertex(P, m, limit, p, ng, ns) && fogrt__is_scattering(P)) {
         fogrt__glow_setup(s, st, &P->v, P->type == FOGRT_BSDF_DIFFUSE);
         fogrt__gather(P, st, P->bounces + 1, fogrt__mul(beta, fogrt__sample_lights(s, st, P, FOGRT__MAX(P->seg_tr, FOGRT__BEHIND_MIN), true)),
-                      "light sample");
+                      "light behind");
     }
     P->v = keep; P->type = type; P->entering = entering;
 }

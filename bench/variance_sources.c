@@ -9,8 +9,9 @@
    pixel's sample variance. The program then prints the shares of the noise (and of the
    image) by:
      - how bright the sample is against its pixel's mean (are a few rare samples the noise?);
-     - the source of its largest contribution (emission, environment, light sample,
-       equiangular): which estimator finds the light the noise comes from;
+     - the source of its largest contribution (emission, environment, light sample at the
+       vertex, light sampled behind a fog collision (14 b'), equiangular): which estimator
+       finds the light the noise comes from;
      - the bounce of that contribution (where along the path);
      - the largest throughput along the path (do weights grow where they should not?);
    and the brightest samples, each as the `fogrt --trace X,Y,SAMPLE -r W H` command that
@@ -35,8 +36,9 @@
 #include <string.h>
 #include <math.h>
 
-enum { SRC_NONE, SRC_EMISSION, SRC_ENVIRONMENT, SRC_LIGHT, SRC_EQUIANGULAR, SRC_NUM };
-static const char *const src_names[SRC_NUM] = { "nothing gathered", "emission", "environment", "light sample",
+enum { SRC_NONE, SRC_EMISSION, SRC_ENVIRONMENT, SRC_LIGHT, SRC_BEHIND, SRC_EQUIANGULAR, SRC_NUM };
+static const char *const src_names[SRC_NUM] = { "nothing gathered", "emission", "environment",
+                                                 "light sample at the vertex", "light behind a collision (b')",
                                                  "equiangular" };
 #define MAX_BOUNCE 12                   /* the last row holds this bounce and all later ones */
 
@@ -55,6 +57,7 @@ static int source_of(const char *s)
     if (strcmp(s, "emission") == 0) return SRC_EMISSION;
     if (strcmp(s, "environment") == 0) return SRC_ENVIRONMENT;
     if (strcmp(s, "equiangular") == 0) return SRC_EQUIANGULAR;
+    if (strcmp(s, "light behind") == 0) return SRC_BEHIND;
     return SRC_LIGHT;                   /* "light sample" */
 }
 
