@@ -53,9 +53,10 @@ callgrind:
 # The estimator levers of docs/benchmarks.md in work, not wall time (one thread; the
 # spot-lit part needs $(SHARED)/scenes; a few minutes): lights by power, the glow.
 LEVERS_ARGS ?=
-$(BUILD)/bench/levers: bench/levers.c fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | $(BUILD)
+# (one rule for the single-file bench programs that read scenes: levers, variance_sources)
+$(BUILD)/bench/levers $(BUILD)/bench/variance_sources: $(BUILD)/bench/%: bench/%.c fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | $(BUILD)
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) $(BENCH_DEFS) -o $@ bench/levers.c $(LDLIBS)
+	$(CC) $(ALL_CFLAGS) $(BENCH_DEFS) -o $@ $< $(LDLIBS)
 
 bench-levers: $(BUILD)/bench/levers
 	./$(BUILD)/bench/levers $(LEVERS_ARGS)
@@ -65,9 +66,6 @@ bench-levers: $(BUILD)/bench/levers
 # VS_ARGS: e.g. '$(SHARED)/scenes/cs184/CBbunny_upSpot.dae --density 0.5 --g 0.6';
 # default: the embedded default scene, 120 x 90, 64 spp (seconds on two cores).
 VS_ARGS ?=
-$(BUILD)/bench/variance_sources: bench/variance_sources.c fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | $(BUILD)
-	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) $(BENCH_DEFS) -o $@ bench/variance_sources.c $(LDLIBS)
 
 variance-sources: $(BUILD)/bench/variance_sources
 	./$(BUILD)/bench/variance_sources $(VS_ARGS)
