@@ -49,8 +49,6 @@ typedef struct sample_rec {
     unsigned char source, bounce;       /* of the largest contribution */
 } sample_rec;
 
-static float luminance(fogrt_vec3 v) { return 0.2126f * v.x + 0.7152f * v.y + 0.0722f * v.z; }
-
 static int source_of(const char *s)
 {
     if (!s) return SRC_NONE;
@@ -64,10 +62,10 @@ static int source_of(const char *s)
 static void on_event(const fogrt_trace_event *e, void *user)
 {
     sample_rec *r = (sample_rec *)user;
-    float b = fmaxf(e->beta.x, fmaxf(e->beta.y, e->beta.z));
+    float b = fogrt__max3(e->beta);     /* the header's own helpers (this file includes its implementation) */
     if (e->kind != FOGRT_TRACE_CAMERA && e->kind != FOGRT_TRACE_END && b > r->max_beta) r->max_beta = b;
     if (e->kind == FOGRT_TRACE_CONTRIBUTION && e->flag) {
-        float l = luminance(e->value);
+        float l = fogrt__luminance(e->value);
         if (l > r->largest) {
             r->largest = l;
             r->source = (unsigned char)source_of(e->source);
@@ -157,7 +155,7 @@ int main(int argc, char **argv)
             for (s = 0; s < S; ++s) {
                 sample_rec *q = &rec[((size_t)y * (size_t)W + (size_t)x) * (size_t)S + (size_t)s];
                 fogrt_vec3 L = fogrt_trace_path(scene, &rd, W, H, x, y, (uint32_t)s, on_event, q);
-                q->L = luminance(L);
+                q->L = fogrt__luminance(L);
             }
     }
     {
