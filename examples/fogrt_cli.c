@@ -96,6 +96,7 @@ typedef struct cli_options {
     const char *log_path;               /* --log */
     const char *reference;              /* --reference */
     bool equiangular, mis, glow, expected; /* --equiangular, --mis, --glow, --expected-emission */
+    bool footprint;                        /* --footprint */
     bool pixel_rates;                      /* --pixel-rates */
     bool by_power;                      /* --lights power */
     float lens_radius; bool lens_set;   /* -b */
@@ -189,6 +190,8 @@ static void usage(FILE *f)
         "                   one light per vertex, chosen in proportion to its power (default all)\n"
         "  --glow on|off    in fog, some scattered directions (up to half) aim at the glow around\n"
         "                   point and spot lights (needs --equiangular on) (default on)\n"
+        "  --footprint on|off  a fifth of those aimed at a spot light aim at the plane it\n"
+        "                   lights most (the lit floor under it; needs --glow on) (default on)\n"
         "  --expected-emission on|off  in fog, a ray adds the light of the lamp it reaches, and\n"
         "                   of the point and spot lights at the surface it reaches, times the\n"
         "                   fog's transmittance, whether or not it scatters first; off: the\n"
@@ -344,7 +347,7 @@ static int parse_args(int argc, char **argv, cli_options *o)
     memset(o, 0, sizeof *o);
     o->spp = 64; o->light_samples = 1; o->threads = 0; o->max_depth = 64; o->accumulate = 1;
     o->width = 800; o->height = 600; o->output = "out.png";
-    o->equiangular = true; o->mis = true; o->glow = true; o->expected = true; o->pixel_rates = true;
+    o->equiangular = true; o->mis = true; o->glow = true; o->footprint = true; o->expected = true; o->pixel_rates = true;
     o->integrator = FOGRT_INTEGRATOR_PATH; o->fresnel = FOGRT_FRESNEL_SCHLICK; o->bvh = FOGRT_BVH_SAH;
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i];
@@ -395,6 +398,7 @@ static int parse_args(int argc, char **argv, cli_options *o)
         }
         else if (strcmp(a, "--pixel-rates") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->pixel_rates)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--glow") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->glow)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
+        else if (strcmp(a, "--footprint") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->footprint)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--expected-emission") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->expected)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--equiangular") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->equiangular)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
         else if (strcmp(a, "--mis") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->mis)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
@@ -513,6 +517,7 @@ static void fill_render_desc(const cli_options *o, int threads, fogrt_render_des
     rd->mis = o->mis;
     rd->equiangular = o->equiangular;
     rd->glow = o->glow;
+    rd->footprint = o->footprint;
     rd->expected_emission = o->expected;
     rd->light_by_power = o->by_power;
     rd->seed = o->seed;

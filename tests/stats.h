@@ -47,7 +47,7 @@
    Each program checks at its end that it ran exactly its share, so these numbers stay right
    when someone adds or removes a test.                                                      */
 #define STATS_ALPHA 0.01
-#define STATS_TESTS_SAMPLING   88   /* tests/test_sampling.c: 72 chi-square + 16 KS */
+#define STATS_TESTS_SAMPLING   90   /* tests/test_sampling.c: 74 chi-square + 16 KS */
 #define STATS_TESTS_BSDF_STATS 17   /* tests/test_bsdf_stats.c: 5 chi-square + 12 binomial */
 #define STATS_SUITE_TESTS (STATS_TESTS_SAMPLING + STATS_TESTS_BSDF_STATS)
 

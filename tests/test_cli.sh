@@ -103,7 +103,7 @@ expect 2 "short.cam:2:" "malformed -c file"       -- -f "$out" -c "$tmp/short.ca
 # ---- help ----
 expect 0 "" "help" -- -h
 for flag in -s -l -t -m -o -r -f -b -d -a -H -c -g -h --density --albedo --g --integrator --fresnel --bvh --seed --time --target-error --quiet \
-            --camera-pos --look-at --up --fov --cs184-framing --print-camera --exposure --log --reference --equiangular --mis --glow --expected-emission --lights; do
+            --camera-pos --look-at --up --fov --cs184-framing --print-camera --exposure --log --reference --equiangular --mis --glow --footprint --expected-emission --lights; do
     check "grep -qF -- ' $flag ' '$tmp/out'" "-h does not document $flag"
 done
 defaults=$(grep -c 'default' "$tmp/out")
@@ -331,6 +331,9 @@ expect 2 "--mis" "estimator_switches: bad value" -- --mis 1 -f "$out"
 "$fogrt" --quiet -s 2 -r 32 24 --seed 4 --glow off -f "$tmp/glow0.pfm"
 check "! cmp -s '$tmp/eq1.pfm' '$tmp/glow0.pfm'" "estimator_switches: --glow off changed nothing on the spot light in fog"
 expect 2 "--glow" "estimator_switches: bad value" -- --glow maybe -f "$out"
+"$fogrt" --quiet -s 2 -r 32 24 --seed 4 --footprint off -f "$tmp/fp0.pfm"
+check "! cmp -s '$tmp/eq1.pfm' '$tmp/fp0.pfm'" "estimator_switches: --footprint off changed nothing on the spot light over the floor"
+expect 2 "--footprint" "estimator_switches: bad value" -- --footprint maybe -f "$out"
 "$fogrt" --quiet -s 2 -r 32 24 --seed 4 --expected-emission off -f "$tmp/expect0.pfm"
 check "! cmp -s '$tmp/eq1.pfm' '$tmp/expect0.pfm'" "estimator_switches: --expected-emission off changed nothing on the area lamp seen through fog"
 expect 2 "--expected-emission" "estimator_switches: bad value" -- --expected-emission sometimes -f "$out"

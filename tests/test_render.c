@@ -604,7 +604,8 @@ static void test_nee_unbiased_in_fog(void)
    and a small area lamp (so the MIS weights at the same vertices use the mixture's pdf), the
    image mean with the glow agrees with the mean without it, and with the estimator that
    finds point and spot lights only at fog collisions (equiangular off, which turns the glow
-   off too). Fails on a mixture pdf that does not match the directions drawn, on a light
+   off too), and with the glow that leaves out the spot's footprint on the floor. Fails on a
+   mixture pdf that does not match the directions drawn, on a light
    sample whose MIS weight uses the phase pdf alone, or on roulette that forgets the
    mixture's weight. */
 static void test_glow_unbiased(void)
@@ -612,7 +613,7 @@ static void test_glow_unbiased(void)
     fogrt_scene *scene = NULL;
     fogrt_light_desc spot, point;
     fogrt_render_desc rd = render_desc(24, 18, 0);
-    batch_estimate glow, no_glow, collisions;
+    batch_estimate glow, no_glow, no_footprint, collisions;
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &scene));
     add_closed_box(scene, 0.15f, 6.0f);
     memset(&spot, 0, sizeof spot);
@@ -626,13 +627,21 @@ static void test_glow_unbiased(void)
     set_camera(scene, v3(0, 1, 0.95f), v3(0, 0.8f, 0), 75.0f);
     set_medium(scene, 0.8f, v3(0.9f, 0.9f, 0.9f), 0.6f);
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
+    /* the spot lights the floor: its footprint is aimed at too; the point light has none */
+    TEST_ASSERT_TRUE_MESSAGE(scene->footprints && scene->footprints[0].on && !scene->footprints[1].on,
+                             "the build found no footprint for the spot over the floor (or one for the point light)");
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, scene->footprints[0].n.y);
     glow = batch_mean(scene, &rd, 8, 12, 600);
+    rd.footprint = false;
+    no_footprint = batch_mean(scene, &rd, 8, 12, 900);
+    rd.footprint = true;
     rd.glow = false;
     no_glow = batch_mean(scene, &rd, 8, 12, 700);
     rd.glow = true;
     rd.equiangular = false;
     collisions = batch_mean(scene, &rd, 32, 12, 800);
     assert_means_agree(glow, no_glow, "glow on vs off");
+    assert_means_agree(glow, no_footprint, "glow with the spot's footprint vs without it");
     assert_means_agree(glow, collisions, "glow on vs lights found at fog collisions only");
     fogrt_scene_destroy(scene);
 }

@@ -628,6 +628,122 @@ static void test_glow_hg_sampling(void)
 }
 
 /* ==========================================================================================
+   The footprint of a spot light on a plane (chapter 6, aimed at by 14 d')
+   ========================================================================================== */
+/* A lamp 1.5 above the floor y = 0, its 30-degree cone tilted; every cone direction meets
+   the floor. */
+static fogrt__footprint footprint_case(void)
+{
+    fogrt__footprint F;
+    memset(&F, 0, sizeof F);
+    F.light = v3(0.0f, 1.5f, 0.0f);
+    F.cone = fogrt__frame_from_z(fogrt__normalize(v3(0.3f, -1.0f, 0.1f)));
+    F.one_minus_cos = 1.0f - cosf(30.0f * (FOGRT__PI / 180.0f));
+    F.p = v3(0.5f, 0.0f, -0.5f); F.n = v3(0.0f, 1.0f, 0.0f);
+    F.on = true;
+    return F;
+}
+/* The sampler's map (u1, u2) -> wi, in double for the finite differences below (central,
+   step h): the density it gives per steradian is 1 / |dwi/du1 x dwi/du2|. */
+static double footprint_jacobian_pdf(const fogrt__footprint *F, fogrt_vec3 x, float u1, float u2, double h)
+{
+    double d[2][3];
+    int a;
+    for (a = 0; a < 2; ++a) {
+        fogrt_vec3 lo, hi;
+        float du = (float)h;
+        bool ok = a == 0 ? fogrt__sample_footprint(F, x, u1 - du, u2, &lo) && fogrt__sample_footprint(F, x, u1 + du, u2, &hi)
+                         : fogrt__sample_footprint(F, x, u1, u2 - du, &lo) && fogrt__sample_footprint(F, x, u1, u2 + du, &hi);
+        if (!ok) return -1.0;
+        d[a][0] = ((double)hi.x - lo.x) / (2.0 * du); d[a][1] = ((double)hi.y - lo.y) / (2.0 * du); d[a][2] = ((double)hi.z - lo.z) / (2.0 * du);
+    }
+    {
+        double cx = d[0][1] * d[1][2] - d[0][2] * d[1][1], cy = d[0][2] * d[1][0] - d[0][0] * d[1][2], cz = d[0][0] * d[1][1] - d[0][1] * d[1][0];
+        return 1.0 / sqrt(cx * cx + cy * cy + cz * cz);
+    }
+}
+/* fogrt__sample_footprint and fogrt__footprint_pdf (chapter 6) for that lamp, seen from a
+   point in the fog above the floor and from one below it:
+   - the cone direction behind each direction drawn (from the point where it meets the
+     floor back to the lamp) is uniform in the cone: chi-square on 10 x 20 cells of
+     (cos theta, phi) around the axis, whose expected counts are exact; negative control: a
+     cone uniform in theta instead of cos theta, which must be rejected;
+   - fogrt__footprint_pdf at 2000 directions drawn is the density of the sampler's map,
+     1 / |dwi/du1 x dwi/du2| by finite differences, to 1%; negative control: the same
+     without the turn from area on the floor to solid angle at x (|y - x|^2 / cos_x), off
+     by more than 10% at most of them. The cone's edge, where the density jumps, never
+     enters a cell's expected count (a sphere grid's quadrature would miss its slivers). */
+static void test_footprint_sampling(void)
+{
+    enum { ROWS = 10, COLS = 20 };
+    static const float xs[2][3] = {{0.3f, 0.5f, 0.2f}, {-0.4f, -0.3f, 0.1f}};
+    const fogrt__footprint F = footprint_case();
+    const double cos_c = 1.0 - (double)F.one_minus_cos;
+    stats_tally t = {0, 0, ""};
+    double row_edge[ROWS + 1], col_edge[COLS + 1], observed[ROWS * COLS], expected[ROWS * COLS], wrong[ROWS * COLS];
+    int k, i, j;
+    for (i = 0; i <= ROWS; ++i) row_edge[i] = cos_c + (1.0 - cos_c) * i / ROWS;
+    for (j = 0; j <= COLS; ++j) col_edge[j] = -STATS_PI + 2.0 * STATS_PI * j / COLS;
+    for (i = 0; i < ROWS; ++i) {
+        double th0 = acos(row_edge[i + 1]), th1 = acos(row_edge[i]), thc = acos(cos_c);
+        for (j = 0; j < COLS; ++j) wrong[i * COLS + j] = (th1 - th0) / thc / COLS;
+    }
+    for (k = 0; k < 2; ++k) {
+        const fogrt_vec3 x = v3(xs[k][0], xs[k][1], xs[k][2]);
+        const long n = 200000;
+        long invalid = 0, bad_pdf = 0, wrong_ok = 0, checked = 0;
+        double worst = 0.0;
+        char param[96], msg[256];
+        fogrt_rng rng;
+        fogrt_rng_seed(&rng, 9100 + (uint64_t)k, 3);
+        memset(observed, 0, sizeof observed);
+        for (long m = 0; m < n; ++m) {
+            float u1 = fogrt_rng_float(&rng), u2 = fogrt_rng_float(&rng);
+            fogrt_vec3 wi, y, ly;
+            double dn, tt, len, ct, phi;
+            int r, c;
+            if (!fogrt__sample_footprint(&F, x, u1, u2, &wi)) { invalid++; continue; }
+            dn = fogrt__dot(wi, F.n);
+            tt = (double)fogrt__dot(fogrt__sub(F.p, x), F.n) / dn;
+            y = fogrt__madd(x, wi, (float)tt);
+            ly = fogrt__sub(y, F.light);
+            len = sqrt((double)fogrt__dot(ly, ly));
+            ct = fogrt__dot(ly, F.cone.n) / len;
+            phi = atan2((double)fogrt__dot(ly, F.cone.t), (double)fogrt__dot(ly, F.cone.s));
+            r = (int)floor((ct - cos_c) / (1.0 - cos_c) * ROWS); c = (int)floor((phi + STATS_PI) / (2.0 * STATS_PI) * COLS);
+            if (!(tt > 0.0) || r < -1 || r > ROWS || c < 0 || c > COLS) { invalid++; continue; }
+            r = r < 0 ? 0 : (r >= ROWS ? ROWS - 1 : r); c = c >= COLS ? COLS - 1 : c;   /* float rounding at the edges */
+            observed[r * COLS + c] += 1.0;
+            if (m % 100 == 0 && u1 > 0.01f && u1 < 0.99f) {       /* the pdf against the map's density */
+                double want = footprint_jacobian_pdf(&F, x, u1, u2, 1e-3), got = fogrt__footprint_pdf(&F, x, wi);
+                double area = got * fabs(dn) / (tt * tt);          /* the model without the turn */
+                if (want > 0.0) {
+                    double e = fabs(got / want - 1.0);
+                    checked++;
+                    if (e > worst) worst = e;
+                    if (e > 0.01) bad_pdf++;
+                    if (fabs(area / want - 1.0) <= 0.1) wrong_ok++;
+                }
+            }
+        }
+        for (i = 0; i < ROWS * COLS; ++i) expected[i] = (double)n / (ROWS * COLS);
+        snprintf(param, sizeof param, "30-degree spot over a floor, x = (%g, %g, %g)", (double)xs[k][0], (double)xs[k][1], (double)xs[k][2]);
+        REPORT(t, stats_chi2_verdict("footprint", "cone direction behind fogrt__sample_footprint", param, ROWS, COLS, row_edge,
+                                     "cos theta", col_edge, "phi", observed, expected, invalid, false));
+        for (i = 0; i < ROWS * COLS; ++i) expected[i] = (double)n * wrong[i];
+        REPORT(t, stats_chi2_verdict("footprint", "cone direction behind fogrt__sample_footprint", "model uniform in theta",
+                                     ROWS, COLS, row_edge, "cos theta", col_edge, "phi", observed, expected, invalid, true));
+        snprintf(msg, sizeof msg, "footprint x = (%g, %g, %g): fogrt__footprint_pdf against the map's density at %ld directions: "
+                 "%ld off by 1%% or more (worst %.2e); the area model within 10%% at %ld", (double)xs[k][0], (double)xs[k][1],
+                 (double)xs[k][2], checked, bad_pdf, worst, wrong_ok);
+        TEST_MESSAGE(msg);
+        TEST_ASSERT_TRUE_MESSAGE(checked >= 1500 && bad_pdf == 0, msg);
+        TEST_ASSERT_TRUE_MESSAGE(wrong_ok < checked / 2, msg);
+    }
+    TALLY_ASSERT(t);
+}
+
+/* ==========================================================================================
    The environment map: sampled directions follow the map's pdf
    ========================================================================================== */
 static double env_pdf_callback(const double w[3], void *user)
@@ -2111,6 +2227,7 @@ int main(void)
     RUN_TEST(test_glow_sampling);
     RUN_TEST(test_equiangular_hg_ks);
     RUN_TEST(test_glow_hg_sampling);
+    RUN_TEST(test_footprint_sampling);
     RUN_TEST(test_triangle_chi2);
     RUN_TEST(test_point_light_radius_directions_chi2);
     RUN_TEST(test_point_light_radius_irradiance);
