@@ -1336,6 +1336,14 @@ FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 c, float r, fogrt
     cos_max = sqrtf(FOGRT__MAX(0.0f, 1.0f - sin2_max));
     return sin2_max / (1.0f + cos_max);
 }
+/* The direction whose angle theta from the frame's axis has 1 - cos theta = omc, at azimuth
+   2 pi u: sin theta from omc (2 - omc), which stays accurate next to the axis. Drawing omc
+   uniformly in [0, 1 - cos theta_max) samples a cone uniformly (spheres here, spot lights'
+   footprints below). */
+FOGRT__PRIVATE fogrt__v3 fogrt__in_cone(const fogrt__frame *f, float omc, float u)
+{
+    return fogrt__around(f, 1.0f - omc, sqrtf(FOGRT__MAX(0.0f, omc * (2.0f - omc))), u);
+}
 FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 center, float radius, fogrt_vec3 p,
                                                          float u1, float u2, float *pdf)
 {
@@ -1348,7 +1356,7 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 center, floa
     one_minus_cos = u1 * omc;
     f = fogrt__frame_from_z(fogrt__scale(fogrt__sub(center, p), 1.0f / dist));
     if (pdf) *pdf = 1.0f / (2.0f * FOGRT__PI * omc);
-    return fogrt__around(&f, 1.0f - one_minus_cos, sqrtf(FOGRT__MAX(0.0f, one_minus_cos * (2.0f - one_minus_cos))), u2);
+    return fogrt__in_cone(&f, one_minus_cos, u2);
 }
 FOGRT__PUBLIC float fogrt_sphere_solid_angle_pdf(fogrt_vec3 center, float radius, fogrt_vec3 p)
 {
@@ -1536,8 +1544,8 @@ typedef struct fogrt__footprint {
 } fogrt__footprint;
 FOGRT__PRIVATE bool fogrt__sample_footprint(const fogrt__footprint *F, fogrt__v3 x, float u1, float u2, fogrt__v3 *wi)
 {
-    float omc = u1 * F->one_minus_cos, dn, t, len2;
-    fogrt__v3 w = fogrt__around(&F->cone, 1.0f - omc, sqrtf(FOGRT__MAX(0.0f, omc * (2.0f - omc))), u2), xy;
+    float dn, t, len2;
+    fogrt__v3 w = fogrt__in_cone(&F->cone, u1 * F->one_minus_cos, u2), xy;
     dn = fogrt__dot(w, F->n);
     if (!(dn < 0.0f)) return false;                      /* parallel to the plane or away from it */
     t = fogrt__dot(fogrt__sub(F->p, F->light), F->n) / dn;
@@ -4416,7 +4424,7 @@ FOGRT__PRIVATE bool fogrt__find_footprints(fogrt_scene *s)
         for (j = 0; j < RAYS; ++j) {
             float omc = ((float)(j / FOGRT__FOOTPRINT_GRID) + 0.5f) / (float)FOGRT__FOOTPRINT_GRID * F->one_minus_cos;
             float u2 = ((float)(j % FOGRT__FOOTPRINT_GRID) + 0.5f) / (float)FOGRT__FOOTPRINT_GRID;
-            fogrt__v3 w = fogrt__around(&F->cone, 1.0f - omc, sqrtf(FOGRT__MAX(0.0f, omc * (2.0f - omc))), u2), nn;
+            fogrt__v3 w = fogrt__in_cone(&F->cone, omc, u2), nn;
             const fogrt__v3 *v;
             fogrt_hit h;
             if (!fogrt__traverse(s, l->position, w, 0.0f, INFINITY, &h, false) || h.prim >= s->tri_count) continue;
