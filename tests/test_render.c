@@ -631,6 +631,7 @@ static void test_glow_unbiased(void)
     TEST_ASSERT_TRUE_MESSAGE(scene->footprints && scene->footprints[0].on && !scene->footprints[1].on,
                              "the build found no footprint for the spot over the floor (or one for the point light)");
     TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, scene->footprints[0].n.y);
+    TEST_ASSERT_TRUE_MESSAGE(scene->footprints[0].radius > 0.0f, "no sphere around the spot's lit patch on the floor");
     glow = batch_mean(scene, &rd, 8, 12, 600);
     rd.footprint = false;
     no_footprint = batch_mean(scene, &rd, 8, 12, 900);

@@ -652,8 +652,8 @@ static double footprint_jacobian_pdf(const fogrt__footprint *F, fogrt_vec3 x, fl
     for (a = 0; a < 2; ++a) {
         fogrt_vec3 lo, hi;
         float du = (float)h;
-        bool ok = a == 0 ? fogrt__sample_footprint(F, x, u1 - du, u2, &lo) && fogrt__sample_footprint(F, x, u1 + du, u2, &hi)
-                         : fogrt__sample_footprint(F, x, u1, u2 - du, &lo) && fogrt__sample_footprint(F, x, u1, u2 + du, &hi);
+        bool ok = a == 0 ? fogrt__sample_footprint_cone(F, x, u1 - du, u2, &lo) && fogrt__sample_footprint_cone(F, x, u1 + du, u2, &hi)
+                         : fogrt__sample_footprint_cone(F, x, u1, u2 - du, &lo) && fogrt__sample_footprint_cone(F, x, u1, u2 + du, &hi);
         if (!ok) return -1.0;
         d[a][0] = ((double)hi.x - lo.x) / (2.0 * du); d[a][1] = ((double)hi.y - lo.y) / (2.0 * du); d[a][2] = ((double)hi.z - lo.z) / (2.0 * du);
     }
@@ -662,13 +662,13 @@ static double footprint_jacobian_pdf(const fogrt__footprint *F, fogrt_vec3 x, fl
         return 1.0 / sqrt(cx * cx + cy * cy + cz * cz);
     }
 }
-/* fogrt__sample_footprint and fogrt__footprint_pdf (chapter 6) for that lamp, seen from a
+/* fogrt__sample_footprint_cone and fogrt__footprint_cone_pdf (chapter 6: the footprint through the lamp's cone) for that lamp, seen from a
    point in the fog above the floor and from one below it:
    - the cone direction behind each direction drawn (from the point where it meets the
      floor back to the lamp) is uniform in the cone: chi-square on 10 x 20 cells of
      (cos theta, phi) around the axis, whose expected counts are exact; negative control: a
      cone uniform in theta instead of cos theta, which must be rejected;
-   - fogrt__footprint_pdf at 2000 directions drawn is the density of the sampler's map,
+   - fogrt__footprint_cone_pdf at 2000 directions drawn is the density of the sampler's map,
      1 / |dwi/du1 x dwi/du2| by finite differences, to 1%; negative control: the same
      without the turn from area on the floor to solid angle at x (|y - x|^2 / cos_x), off
      by more than 10% at most of them. The cone's edge, where the density jumps, never
@@ -702,7 +702,7 @@ static void test_footprint_sampling(void)
             fogrt_vec3 wi, y, ly;
             double dn, tt, len, ct, phi;
             int r, c;
-            if (!fogrt__sample_footprint(&F, x, u1, u2, &wi)) { invalid++; continue; }
+            if (!fogrt__sample_footprint_cone(&F, x, u1, u2, &wi)) { invalid++; continue; }
             dn = fogrt__dot(wi, F.n);
             tt = (double)fogrt__dot(fogrt__sub(F.p, x), F.n) / dn;
             y = fogrt__madd(x, wi, (float)tt);
@@ -715,7 +715,7 @@ static void test_footprint_sampling(void)
             r = r < 0 ? 0 : (r >= ROWS ? ROWS - 1 : r); c = c >= COLS ? COLS - 1 : c;   /* float rounding at the edges */
             observed[r * COLS + c] += 1.0;
             if (m % 100 == 0 && u1 > 0.01f && u1 < 0.99f) {       /* the pdf against the map's density */
-                double want = footprint_jacobian_pdf(&F, x, u1, u2, 1e-3), got = fogrt__footprint_pdf(&F, x, wi);
+                double want = footprint_jacobian_pdf(&F, x, u1, u2, 1e-3), got = fogrt__footprint_cone_pdf(&F, x, wi);
                 double area = got * fabs(dn) / (tt * tt);          /* the model without the turn */
                 if (want > 0.0) {
                     double e = fabs(got / want - 1.0);
@@ -728,12 +728,12 @@ static void test_footprint_sampling(void)
         }
         for (i = 0; i < ROWS * COLS; ++i) expected[i] = (double)n / (ROWS * COLS);
         snprintf(param, sizeof param, "30-degree spot over a floor, x = (%g, %g, %g)", (double)xs[k][0], (double)xs[k][1], (double)xs[k][2]);
-        REPORT(t, stats_chi2_verdict("footprint", "cone direction behind fogrt__sample_footprint", param, ROWS, COLS, row_edge,
+        REPORT(t, stats_chi2_verdict("footprint", "cone direction behind fogrt__sample_footprint_cone", param, ROWS, COLS, row_edge,
                                      "cos theta", col_edge, "phi", observed, expected, invalid, false));
         for (i = 0; i < ROWS * COLS; ++i) expected[i] = (double)n * wrong[i];
-        REPORT(t, stats_chi2_verdict("footprint", "cone direction behind fogrt__sample_footprint", "model uniform in theta",
+        REPORT(t, stats_chi2_verdict("footprint", "cone direction behind fogrt__sample_footprint_cone", "model uniform in theta",
                                      ROWS, COLS, row_edge, "cos theta", col_edge, "phi", observed, expected, invalid, true));
-        snprintf(msg, sizeof msg, "footprint x = (%g, %g, %g): fogrt__footprint_pdf against the map's density at %ld directions: "
+        snprintf(msg, sizeof msg, "footprint x = (%g, %g, %g): fogrt__footprint_cone_pdf against the map's density at %ld directions: "
                  "%ld off by 1%% or more (worst %.2e); the area model within 10%% at %ld", (double)xs[k][0], (double)xs[k][1],
                  (double)xs[k][2], checked, bad_pdf, worst, wrong_ok);
         TEST_MESSAGE(msg);
@@ -741,6 +741,78 @@ static void test_footprint_sampling(void)
         TEST_ASSERT_TRUE_MESSAGE(wrong_ok < checked / 2, msg);
     }
     TALLY_ASSERT(t);
+}
+
+/* The footprint's second way (chapter 6): from a point outside the sphere around the lit
+   patch, half the directions are uniform in the cone the sphere subtends, half go through
+   the lamp's cone as above, and fogrt__footprint_pdf is that mixture's density. If it is,
+   then over the directions drawn (a failed draw counts as 0), h(wi) / pdf(wi) has the mean
+   of the integral of h over the directions it can draw; for h = 1 and h = cos to the axis,
+   both inside the sphere's cone, that is 2 pi omc and pi omc (2 - omc). Checked to 4.5
+   standard errors at 400000 draws from two points; negative controls: the density
+   without the lamp's-cone part (a mixture that forgets a component) and with the two
+   shares swapped the other way (0.3 / 0.7) must both miss. The build's bound holds every
+   rim point. */
+static void footprint_mixture_means(const fogrt__footprint *F, fogrt_vec3 x, int which, double *mean, double *se,
+                                    double *target, uint64_t seed)
+{
+    /* which: 0 the header's density, 1 without the cone part, 2 shares 0.3 / 0.7 */
+    const long n = 400000;
+    fogrt_vec3 axis;
+    float omc;
+    double s1 = 0.0, s2 = 0.0, c1 = 0.0, c2 = 0.0;
+    fogrt_rng rng;
+    long m;
+    TEST_ASSERT_TRUE(fogrt__footprint_sphere(F, x, &axis, &omc));
+    fogrt_rng_seed(&rng, seed, 5);
+    for (m = 0; m < n; ++m) {
+        float u1 = fogrt_rng_float(&rng), u2 = fogrt_rng_float(&rng), pdf;
+        fogrt_vec3 wi, chord;
+        double h, hc;
+        if (!fogrt__sample_footprint(F, x, u1, u2, &wi)) continue;
+        chord = fogrt__sub(wi, axis);
+        if (!(0.5f * fogrt__dot(chord, chord) <= omc)) continue;      /* h = 0 outside the sphere's cone */
+        pdf = fogrt__footprint_pdf(F, x, wi);
+        if (which == 1) pdf = FOGRT__FOOTPRINT_CAP / (2.0f * FOGRT__PI * omc);
+        if (which == 2) pdf = 0.3f / (2.0f * FOGRT__PI * omc) + 0.7f * fogrt__footprint_cone_pdf(F, x, wi);
+        TEST_ASSERT_TRUE(pdf > 0.0f);
+        h = 1.0 / pdf; hc = (double)fogrt__dot(axis, wi) / pdf;
+        s1 += h; s2 += h * h; c1 += hc; c2 += hc * hc;
+    }
+    mean[0] = s1 / n; se[0] = sqrt(fmax(s2 / n - mean[0] * mean[0], 0.0) / n);   /* 0: 1/pdf constant (a control) */
+    mean[1] = c1 / n; se[1] = sqrt(fmax(c2 / n - mean[1] * mean[1], 0.0) / n);
+    target[0] = 2.0 * STATS_PI * omc;
+    target[1] = STATS_PI * omc * (2.0 - (double)omc);
+}
+static void test_footprint_mixture(void)
+{
+    static const float xs[2][3] = {{-1.2f, 1.1f, 1.0f}, {1.6f, 0.4f, -0.3f}};
+    fogrt__footprint F = footprint_case();
+    int k, j, which;
+    char msg[256];
+    fogrt__footprint_bound(&F);
+    TEST_ASSERT_TRUE_MESSAGE(F.radius > 0.0f, "the build found no sphere around a patch the whole cone lights");
+    for (j = 0; j < 64; ++j) {                            /* every rim point inside the sphere */
+        fogrt_vec3 w = fogrt__in_cone(&F.cone, F.one_minus_cos, (float)j / 64.0f);
+        float t = fogrt__dot(fogrt__sub(F.p, F.light), F.n) / fogrt__dot(w, F.n);
+        TEST_ASSERT_TRUE(fogrt__length(fogrt__sub(fogrt__madd(F.light, w, t), F.center)) <= F.radius);
+    }
+    for (k = 0; k < 2; ++k) {
+        const fogrt_vec3 x = v3(xs[k][0], xs[k][1], xs[k][2]);
+        for (which = 0; which < 3; ++which) {
+            double mean[2], se[2], target[2], z0, z1;
+            footprint_mixture_means(&F, x, which, mean, se, target, 9300 + (uint64_t)k);
+            z0 = se[0] > 0.0 ? fabs(mean[0] - target[0]) / se[0] : (mean[0] == target[0] ? 0.0 : HUGE_VAL);
+            z1 = se[1] > 0.0 ? fabs(mean[1] - target[1]) / se[1] : (mean[1] == target[1] ? 0.0 : HUGE_VAL);
+            snprintf(msg, sizeof msg, "footprint mixture, x = (%g, %g, %g), %s: mean of 1/pdf %.5f (want %.5f, %.1f se), "
+                     "of cos/pdf %.5f (want %.5f, %.1f se)", (double)xs[k][0], (double)xs[k][1], (double)xs[k][2],
+                     which == 0 ? "fogrt__footprint_pdf" : which == 1 ? "control: without the cone part" : "control: shares 0.3 / 0.7",
+                     mean[0], target[0], z0, mean[1], target[1], z1);
+            TEST_MESSAGE(msg);
+            if (which == 0) TEST_ASSERT_TRUE_MESSAGE(z0 < 4.5 && z1 < 4.5, msg);
+            else TEST_ASSERT_TRUE_MESSAGE(z0 > 8.0 || z1 > 8.0, msg);
+        }
+    }
 }
 
 /* ==========================================================================================
@@ -2228,6 +2300,7 @@ int main(void)
     RUN_TEST(test_equiangular_hg_ks);
     RUN_TEST(test_glow_hg_sampling);
     RUN_TEST(test_footprint_sampling);
+    RUN_TEST(test_footprint_mixture);
     RUN_TEST(test_triangle_chi2);
     RUN_TEST(test_point_light_radius_directions_chi2);
     RUN_TEST(test_point_light_radius_irradiance);
