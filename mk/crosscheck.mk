@@ -12,7 +12,7 @@
 #                                     relMSE x CPU seconds of both renderers and their ratio
 #   make chi2-mitsuba                 fogrt's direction samplers in Mitsuba's own chi-square
 #                                     harness, Mitsuba's samplers beside them (docs/testing.md;
-#                                     about 15 s; writes $(BUILD)/chi2-mitsuba/results.md)
+#                                     about 30 s; writes $(BUILD)/chi2-mitsuba/results.md)
 .PHONY: crosscheck crosscheck-deps bench-mitsuba chi2-mitsuba
 CROSSCHECK_ARGS ?=
 CROSSCHECK_FOGRT ?= $(BUILD)/fogrt

@@ -10,11 +10,14 @@ SphericalDomain, with Mitsuba's own sampler of the same density beside each one 
 control. Mitsuba's harness finds the expected count of a cell by integrating the pdf over
 it with a few quadrature points per cell (ires, 4 by default): a density that peaks inside
 one cell, as Henyey-Greenstein does at |g| = 0.99, is integrated wrongly there and the test
-rejects any sampler, Mitsuba's own included. So every case runs twice: with the harness's
-defaults and with ires = 16. A case fails only when fogrt is rejected where the control,
-under the same settings, is accepted (or, for a sampler Mitsuba does not have, when fogrt
-is rejected at ires = 16), or when the negative control (HG sampled at g = 0.6, its pdf
-given at 0.57) is accepted. The table goes to OUT/results.md.
+rejects any sampler, Mitsuba's own included; so does a density with a jump (the footprint
+of a spot light ends at the rim of its lit patch), whose edge cells a few points per cell
+integrate wrongly: Mitsuba's own uniform cone (square_to_uniform_cone, cos 0.5 or 0.2) is
+rejected at ires 16 and 64 alike. So every case runs three times: with the harness's
+defaults, with ires = 16 and with ires = 64. A case fails only when fogrt is rejected where
+the control, under the same settings, is accepted (or, for a sampler Mitsuba does not
+have, when fogrt is rejected at ires = 64), or when a negative control (HG sampled at
+g = 0.6, its pdf given at 0.57; the footprint's pdf without its sphere's part) is accepted. The table goes to OUT/results.md.
 
 fogrt's samplers are compiled from fogrt.h into a shared library (chi2_shim.c) and called
 through ctypes on whole batches. The harness needs Mitsuba's llvm_ad_rgb variant (Debian's
@@ -33,7 +36,9 @@ import crosscheck  # noqa: E402  (the virtual environment and the LLVM search)
 
 GENERIC_WO = (0.3, -0.5, 0.812)
 # the samplers of chi2_shim.c, by its kind argument
-HG, GLOW, COSINE, SPHERE, HG_WRONG_PDF = range(5)
+HG, GLOW, COSINE, SPHERE, HG_WRONG_PDF, FOOTPRINT, FOOTPRINT_WRONG_PDF = range(7)
+NEGATIVE = (HG_WRONG_PDF, FOOTPRINT_WRONG_PDF)   # the negative controls: must be rejected
+IRES = (4, 16, 64)   # quadrature points per cell side: the harness's default, then finer
 
 
 def unit(v):
@@ -49,9 +54,14 @@ def cases():
     for g in (0.99, -0.99):
         out.append(("HG g = %+.2f, wo on the grid's pole" % g, HG, g, (0.0, 0.0, 1.0), ("hg", g)))
     out.append(("glow around a lamp, generic direction", GLOW, 0.0, unit(GENERIC_WO), None))
+    # the footprint of a spot on a floor (chi2_shim.c), seen from a fog point: outside the
+    # sphere around the lit patch (both ways mixed) and inside it (the lamp's cone alone)
+    out.append(("spot's footprint, from outside its sphere", FOOTPRINT, 0.0, (-1.2, 1.1, 1.0), None))
+    out.append(("spot's footprint, from inside its sphere", FOOTPRINT, 0.0, (0.3, 0.5, 0.2), None))
     out.append(("cosine hemisphere", COSINE, 0.0, (0.0, 0.0, 1.0), ("cosine", 0.0)))
     out.append(("uniform sphere", SPHERE, 0.0, (0.0, 0.0, 1.0), ("sphere", 0.0)))
     out.append(("negative control: HG g = 0.6, pdf at g = 0.57", HG_WRONG_PDF, 0.6, unit(GENERIC_WO), None))
+    out.append(("negative control: the footprint, pdf of the lamp's cone alone", FOOTPRINT_WRONG_PDF, 0.0, (-1.2, 1.1, 1.0), None))
     return out
 
 
@@ -135,14 +145,14 @@ def main():
     rows, bad = [], []
     for name, kind, param, wo, control in cases():
         line = [name]
-        for ires in (4, 16):
+        for ires in IRES:
             f = run(fogrt_funcs(kind, param, wo), ires)
             m = run(mitsuba_funcs(control, wo), ires) if control else None
             line += [cell(f), cell(m) if m else "-"]
-            if kind == HG_WRONG_PDF:
+            if kind in NEGATIVE:
                 if f[0]:
                     bad.append("%s accepted at ires %d (the harness cannot tell a wrong pdf)" % (name, ires))
-            elif not f[0] and (m[0] if m else ires == 16):
+            elif not f[0] and (m[0] if m else ires == IRES[-1]):
                 bad.append("%s, ires %d" % (name, ires))
             print("chi2-mitsuba: %-40s ires %2d  fogrt %-9s  Mitsuba %s" %
                   (name, ires, "accepted" if f[0] else "REJECTED",
@@ -152,15 +162,15 @@ def main():
     with open(os.path.join(args.out, "results.md"), "w") as md:
         md.write("Mitsuba 3's chi-square harness (%s, SphericalDomain, res 101, 10^6 samples, "
                  "significance 0.01) on fogrt's samplers, Mitsuba's own beside them.\n\n" % variant)
-        md.write("| sampler | fogrt, ires 4 | Mitsuba, ires 4 | fogrt, ires 16 | Mitsuba, ires 16 |\n")
-        md.write("| --- | --- | --- | --- | --- |\n")
+        md.write("| sampler |" + "".join(" fogrt, ires %d | Mitsuba, ires %d |" % (r, r) for r in IRES) + "\n")
+        md.write("| --- |" + " --- | --- |" * len(IRES) + "\n")
         for line in rows:
             md.write("| " + " | ".join(line) + " |\n")
     print("chi2-mitsuba: wrote %s" % os.path.join(args.out, "results.md"))
     if bad:
         print("chi2-mitsuba: FAILED: " + "; ".join(bad))
         return 1
-    print("chi2-mitsuba: every fogrt sampler accepted wherever Mitsuba's own is; the negative control rejected")
+    print("chi2-mitsuba: every fogrt sampler accepted wherever Mitsuba's own is; the negative controls rejected")
     return 0
 
 

@@ -8,17 +8,38 @@ static fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y
 static void put(float *out, int i, fogrt_vec3 w) { out[3 * i] = w.x; out[3 * i + 1] = w.y; out[3 * i + 2] = w.z; }
 static fogrt_vec3 get(const float *in, int i) { return v3(in[3 * i], in[3 * i + 1], in[3 * i + 2]); }
 
+/* The footprint of kind 5 (chapter 6): a lamp 1.5 above the floor y = 0, its 30-degree cone
+   tilted, every cone direction meeting the floor (so no draw fails), with the sphere the
+   build puts around the lit patch (fogrt__footprint_bound). */
+static fogrt__footprint shim_footprint(void)
+{
+    fogrt__footprint F;
+    memset(&F, 0, sizeof F);
+    F.light = v3(0.0f, 1.5f, 0.0f);
+    F.cone = fogrt__frame_from_z(fogrt__normalize(v3(0.3f, -1.0f, 0.1f)));
+    F.one_minus_cos = 1.0f - cosf(30.0f * (FOGRT__PI / 180.0f));
+    F.p = v3(0.5f, 0.0f, -0.5f); F.n = v3(0.0f, 1.0f, 0.0f);
+    F.on = true;
+    fogrt__footprint_bound(&F);
+    return F;
+}
+
 /* kind 0: Henyey-Greenstein (param g, around wo); 1: the glow around a lamp in direction
    wo (chapter 6); 2: the cosine hemisphere around +z; 3: the uniform sphere; 4: the
-   negative control, HG sampled at g but its pdf given at 0.95 g (must be rejected). */
+   negative control, HG sampled at g but its pdf given at 0.95 g (must be rejected); 5: the
+   footprint above, seen from the point wo (both ways mixed outside its sphere, the lamp's
+   cone alone inside it); 6: the negative control, that footprint sampled the same way but
+   its pdf given as the lamp's cone's alone (must be rejected). */
 void chi2_sample(int kind, float param, float wx, float wy, float wz, const float *u1, const float *u2, float *out, int n)
 {
     fogrt_vec3 wo = v3(wx, wy, wz);
+    fogrt__footprint F = shim_footprint();
     float pdf;
     int i;
     for (i = 0; i < n; ++i) {
         fogrt_vec3 w;
-        if (kind == 0 || kind == 4) w = fogrt_sample_hg(param, wo, u1[i], u2[i], &pdf);
+        if (kind == 5 || kind == 6) { if (!fogrt__sample_footprint(&F, wo, u1[i], u2[i], &w)) w = v3(0.0f, 0.0f, 0.0f); }   /* never here */
+        else if (kind == 0 || kind == 4) w = fogrt_sample_hg(param, wo, u1[i], u2[i], &pdf);
         else if (kind == 1) w = fogrt_sample_glow(wo, u1[i], u2[i], &pdf);
         else if (kind == 2) w = fogrt_sample_cosine_hemisphere(u1[i], u2[i]);
         else w = fogrt_sample_uniform_sphere(u1[i], u2[i]);
@@ -28,10 +49,13 @@ void chi2_sample(int kind, float param, float wx, float wy, float wz, const floa
 void chi2_pdf(int kind, float param, float wx, float wy, float wz, const float *wi, float *out, int n)
 {
     fogrt_vec3 wo = v3(wx, wy, wz);
+    fogrt__footprint F = shim_footprint();
     int i;
     for (i = 0; i < n; ++i) {
         fogrt_vec3 w = get(wi, i);
-        if (kind == 0) out[i] = fogrt_hg_pdf(param, wo, w);
+        if (kind == 5) out[i] = fogrt__footprint_pdf(&F, wo, w);
+        else if (kind == 6) out[i] = fogrt__footprint_cone_pdf(&F, wo, w);
+        else if (kind == 0) out[i] = fogrt_hg_pdf(param, wo, w);
         else if (kind == 4) out[i] = fogrt_hg_pdf(0.95f * param, wo, w);
         else if (kind == 1) out[i] = fogrt_glow_pdf(wo, w);
         else if (kind == 2) out[i] = fogrt_cosine_hemisphere_pdf(w.z);   /* 0 below the horizon */
