@@ -1557,15 +1557,23 @@ typedef struct fogrt__footprint {
     float near_plane;          /* a vertex closer than this to the plane does not aim at it */
     bool on;                   /* a plane was found (fogrt__find_footprints, chapter 12) */
 } fogrt__footprint;
-FOGRT__PRIVATE bool fogrt__sample_footprint_cone(const fogrt__footprint *F, fogrt__v3 x, float u1, float u2, fogrt__v3 *wi)
+/* Where the lamp's direction w meets the plane (also the rim points of chapter 12's
+   bound); false when w runs parallel to the plane or away from it. */
+FOGRT__PRIVATE bool fogrt__footprint_hit(const fogrt__footprint *F, fogrt__v3 w, fogrt__v3 *y)
 {
-    float dn, t, len2;
-    fogrt__v3 w = fogrt__in_cone(&F->cone, u1 * F->one_minus_cos, u2), xy;
-    dn = fogrt__dot(w, F->n);
-    if (!(dn < 0.0f)) return false;                      /* parallel to the plane or away from it */
+    float dn = fogrt__dot(w, F->n), t;
+    if (!(dn < 0.0f)) return false;
     t = fogrt__dot(fogrt__sub(F->p, F->light), F->n) / dn;
     if (!(t > 0.0f) || !fogrt__finite(t)) return false;
-    xy = fogrt__sub(fogrt__madd(F->light, w, t), x);    /* y - x */
+    *y = fogrt__madd(F->light, w, t);
+    return true;
+}
+FOGRT__PRIVATE bool fogrt__sample_footprint_cone(const fogrt__footprint *F, fogrt__v3 x, float u1, float u2, fogrt__v3 *wi)
+{
+    float len2;
+    fogrt__v3 y, xy;
+    if (!fogrt__footprint_hit(F, fogrt__in_cone(&F->cone, u1 * F->one_minus_cos, u2), &y)) return false;
+    xy = fogrt__sub(y, x);
     len2 = fogrt__dot(xy, xy);
     if (!(len2 > 0.0f) || !fogrt__finite(len2)) return false;
     *wi = fogrt__scale(xy, 1.0f / sqrtf(len2));
@@ -1612,9 +1620,8 @@ FOGRT__PRIVATE bool fogrt__sample_footprint(const fogrt__footprint *F, fogrt__v3
     fogrt__v3 axis;
     float omc;
     if (!fogrt__footprint_sphere(F, x, &axis, &omc)) return fogrt__sample_footprint_cone(F, x, u1, u2, wi);
-    if (u1 < FOGRT__FOOTPRINT_CAP) {
-        fogrt__frame f = fogrt__frame_from_z(axis);
-        *wi = fogrt__in_cone(&f, u1 / FOGRT__FOOTPRINT_CAP * omc, u2);
+    if (u1 < FOGRT__FOOTPRINT_CAP) {                     /* the sphere light's sampler */
+        *wi = fogrt_sample_sphere_solid_angle(F->center, F->radius, x, u1 / FOGRT__FOOTPRINT_CAP, u2, NULL);
         return true;
     }
     return fogrt__sample_footprint_cone(F, x, (u1 - FOGRT__FOOTPRINT_CAP) / (1.0f - FOGRT__FOOTPRINT_CAP), u2, wi);
@@ -4468,11 +4475,7 @@ FOGRT__PRIVATE void fogrt__footprint_bound(fogrt__footprint *F)
     F->radius = 0.0f;
     for (j = 0; j < FOGRT__FOOTPRINT_RIM; ++j) {
         fogrt__v3 w = fogrt__in_cone(&F->cone, F->one_minus_cos, ((float)j + 0.5f) / (float)FOGRT__FOOTPRINT_RIM);
-        float dn = fogrt__dot(w, F->n), t;
-        if (!(dn < 0.0f)) return;
-        t = fogrt__dot(fogrt__sub(F->p, F->light), F->n) / dn;
-        if (!(t > 0.0f) || !fogrt__finite(t)) return;
-        rim[j] = fogrt__madd(F->light, w, t);
+        if (!fogrt__footprint_hit(F, w, &rim[j])) return;
         c = fogrt__add(c, rim[j]);
     }
     c = fogrt__scale(c, 1.0f / (float)FOGRT__FOOTPRINT_RIM);

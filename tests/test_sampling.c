@@ -13,6 +13,7 @@
 #include "fogrt.h"
 #include "unity.h"
 #include "stats.h"
+#include "footprint_case.h"
 
 /* The private light samplers of fogrt.h (chapter 12) with their uniforms drawn here and the
    sample unpacked: the value (radiance / pdf for a point light, Le for an area light), the
@@ -630,19 +631,7 @@ static void test_glow_hg_sampling(void)
 /* ==========================================================================================
    The footprint of a spot light on a plane (chapter 6, aimed at by 14 d')
    ========================================================================================== */
-/* A lamp 1.5 above the floor y = 0, its 30-degree cone tilted; every cone direction meets
-   the floor. */
-static fogrt__footprint footprint_case(void)
-{
-    fogrt__footprint F;
-    memset(&F, 0, sizeof F);
-    F.light = v3(0.0f, 1.5f, 0.0f);
-    F.cone = fogrt__frame_from_z(fogrt__normalize(v3(0.3f, -1.0f, 0.1f)));
-    F.one_minus_cos = 1.0f - cosf(30.0f * (FOGRT__PI / 180.0f));
-    F.p = v3(0.5f, 0.0f, -0.5f); F.n = v3(0.0f, 1.0f, 0.0f);
-    F.on = true;
-    return F;
-}
+/* footprint_case(): tests/footprint_case.h, shared with the Mitsuba harness's shim */
 /* The sampler's map (u1, u2) -> wi, in double for the finite differences below (central,
    step h): the density it gives per steradian is 1 / |dwi/du1 x dwi/du2|. */
 static double footprint_jacobian_pdf(const fogrt__footprint *F, fogrt_vec3 x, float u1, float u2, double h)

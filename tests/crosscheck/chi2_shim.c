@@ -8,18 +8,12 @@ static fogrt_vec3 v3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y
 static void put(float *out, int i, fogrt_vec3 w) { out[3 * i] = w.x; out[3 * i + 1] = w.y; out[3 * i + 2] = w.z; }
 static fogrt_vec3 get(const float *in, int i) { return v3(in[3 * i], in[3 * i + 1], in[3 * i + 2]); }
 
-/* The footprint of kind 5 (chapter 6): a lamp 1.5 above the floor y = 0, its 30-degree cone
-   tilted, every cone direction meeting the floor (so no draw fails), with the sphere the
-   build puts around the lit patch (fogrt__footprint_bound). */
+/* The footprint of kind 5: tests/footprint_case.h's spot over a floor, with the sphere the
+   build puts around its lit patch (fogrt__footprint_bound). */
+#include "../footprint_case.h"
 static fogrt__footprint shim_footprint(void)
 {
-    fogrt__footprint F;
-    memset(&F, 0, sizeof F);
-    F.light = v3(0.0f, 1.5f, 0.0f);
-    F.cone = fogrt__frame_from_z(fogrt__normalize(v3(0.3f, -1.0f, 0.1f)));
-    F.one_minus_cos = 1.0f - cosf(30.0f * (FOGRT__PI / 180.0f));
-    F.p = v3(0.5f, 0.0f, -0.5f); F.n = v3(0.0f, 1.0f, 0.0f);
-    F.on = true;
+    fogrt__footprint F = footprint_case();
     fogrt__footprint_bound(&F);
     return F;
 }
