@@ -112,6 +112,9 @@
     MIT, see the end of the file.
 */
 #ifndef FOGRT_H_INCLUDED
+#if defined(FOGRT_MINIMAL) && !defined(FOGRT_NO_EXACT_FRESNEL)
+#define FOGRT_NO_EXACT_FRESNEL   /* the exact Fresnel is Part II's (C) */
+#endif
 #define FOGRT_H_INCLUDED
 
 #include <stddef.h>
@@ -507,7 +510,8 @@ FOGRT_API float fogrt_sample_hg_mu(float g, float u);
 FOGRT_API fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf);
 /* Phase function / pdf for outward wo and wi: uses mu = -dot(wo, wi). */
 FOGRT_API float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi);
-/* Equiangular distance sampling along a ray toward a point light (Kulla and Fajardo 2012):
+#ifndef FOGRT_MINIMAL
+/* Part II, B. Equiangular distance sampling along a ray toward a point light (Kulla and Fajardo 2012):
    the light at distance h from the ray's line, its closest approach at t = delta; samples
    t in [a, b] (b may be +infinity) with pdf proportional to 1 / (h^2 + (t - delta)^2), which
    cancels the light's 1/r^2. h must be > 0. Computed in double: t and the pdf are exact to
@@ -523,6 +527,7 @@ FOGRT_API float fogrt_equiangular_pdf(float delta, float h, float a, float b, fl
    finite number there).                                                                    */
 FOGRT_API fogrt_vec3 fogrt_sample_glow(fogrt_vec3 to_light, float u1, float u2, float *pdf);
 FOGRT_API float fogrt_glow_pdf(fogrt_vec3 to_light, fogrt_vec3 wi);
+#endif
 #endif
 
 /* Cosine-weighted hemisphere around +z (concentric disk map, then lift). pdf = cos/pi. */
@@ -681,6 +686,10 @@ typedef struct fogrt_render_desc {
 
 /* The defaults, resolved: read them back, change what you need, pass the desc on. */
 FOGRT_API fogrt_render_desc fogrt_render_defaults(void);
+/* The paper's method alone: Part I's Algorithm 1 with light sampling and MIS (equiangular,
+   glow, footprint, light_by_power and expected_emission off). Under FOGRT_MINIMAL the
+   defaults above are these. */
+FOGRT_API fogrt_render_desc fogrt_render_paper_defaults(void);
 
 /* Accumulation buffer owned by the caller: per pixel the sum of sample radiance (RGB), the
    sum of squared sample luminance (both in double: no finite sample can overflow them), and
@@ -730,7 +739,9 @@ FOGRT_API double fogrt_image_pixel_variance(const fogrt_image *img, size_t pixel
    (chapter 15 says why). rates: width x height floats. OUT_OF_MEMORY, or INVALID_ARGUMENT
    for an image without samples; an image without noise gets rates of 1. */
 #define FOGRT_MAX_SAMPLE_RATE 64.0f
-FOGRT_API fogrt_result fogrt_image_sample_rates(const fogrt_image *img, float *rates);
+#ifndef FOGRT_MINIMAL
+FOGRT_API fogrt_result fogrt_image_sample_rates(const fogrt_image *img, float *rates);   /* Part II, C */
+#endif
 
 typedef struct fogrt_render_stats {
     uint64_t camera_rays;    /* samples taken */
@@ -803,9 +814,10 @@ typedef struct fogrt_trace_event {
 
 typedef void (*fogrt_trace_fn)(const fogrt_trace_event *event, void *user_data);
 
-#ifdef FOGRT_TRACE
-/* Renders sample number sample_index of pixel (x, y) of a width x height image (the same
-   sample fogrt_render adds there) and calls fn at each event. Returns its radiance. */
+#if defined(FOGRT_TRACE) && !defined(FOGRT_MINIMAL)
+/* Part II, D. Renders sample number sample_index of pixel (x, y) of a width x height image
+   (the same sample fogrt_render adds there, with the full integrator) and calls fn at each
+   event. Returns its radiance. */
 FOGRT_API fogrt_vec3 fogrt_trace_path(const fogrt_scene *scene, const fogrt_render_desc *desc, int width,
                                       int height, int x, int y, uint32_t sample_index, fogrt_trace_fn fn,
                                       void *user_data);
@@ -842,13 +854,11 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 
 /* ==========================================================================================
 
-      IMPLEMENTATION
+      IMPLEMENTATION, PART I: THE PAPER
 
-   The implementation has two parts.
-
-   PART I: THE PAPER is the renderer that "Volumetric Ray Tracer in Homogeneous Media"
-   describes, in the paper's order and with its numbering (docs/paper-map.md maps every
-   equation and every line of Algorithm 1 to a function and to the test that checks it):
+   The renderer that "Volumetric Ray Tracer in Homogeneous Media" describes, in the paper's
+   order and with its numbering (docs/paper-map.md maps every equation and every line of
+   Algorithm 1 to a function here and to the test that checks it):
      I.1  Configuration, vectors, random numbers      (what everything else needs)
      I.2  The scene: storage and validation
      2.1  The BVH: binned build with the SAH or the paper's volume heuristic (eq. 1-2), traversal
@@ -861,21 +871,20 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
      I.3  The camera, the scene build, rendering with its error estimate, output, the default scene
    Read Part I alone and you have the whole method; fogrt_render_paper_defaults() runs it.
 
-   PART II: BEYOND THE PAPER is an appendix of speed and variance reduction, each chapter one
-   idea (A: the wide BVH; B: lamps in fog; C: sampling and estimation; D: the path trace;
-   E: the full integrator, Algorithm 1 with all of them). fogrt_render_defaults() uses it.
-   FOGRT_MINIMAL compiles Part I alone; FOGRT_NO_WIDE_BVH, FOGRT_NO_LAMPS_IN_FOG and
-   FOGRT_NO_SAMPLING remove appendix A, B or C (FOGRT_TRACE adds D).
+   Part II, after it, is an appendix of speed and variance reduction, one idea a chapter
+   (A: the wide BVH; B: lamps in fog; C: sampling and estimation; D: the path trace; E: the
+   full integrator, Algorithm 1 with all of them), which fogrt_render_defaults() uses.
+   FOGRT_MINIMAL compiles Part I alone.
 
-   Part I reaches Part II only at these seams, each one line marked "SEAM" where it stands:
+   Part I reaches Part II only at these seams, each marked "SEAM n" where it stands:
      1. fogrt__traverse            the wide tree, when the build made one (A)
-     2. fogrt__build_tree          how small a binary node may stay, for the wide tree (A)
-     3. fogrt_scene_build          Part II's tables: wide tree, HG table, lamps, maps, pilot
-     4. fogrt__free_built          and their release
+     2. fogrt_scene_build          how small a binary node may stay, for the wide tree (A)
+     3. fogrt_scene_build          Part II's tables: wide tree, HG table, footprints, pilot
+     4. fogrt__free_built          their release (and fogrt_scene_get_memory, their size)
      5. fogrt__fresnel             the exact dielectric Fresnel (C)
      6. fogrt__fog_transmittance   fog bounded by a box (C)
      7. fogrt__radiance            the full integrator, for every setting beyond the paper (E)
-     8. fogrt__pixel_ray           stratified pixel positions and per-pixel rates (C)
+     8. fogrt__pixel_ray           stratified pixel positions, and per-pixel rates (C)
    ========================================================================================== */
 #ifdef FOGRT_IMPLEMENTATION
 #ifndef FOGRT_IMPLEMENTATION_INCLUDED
@@ -1548,33 +1557,22 @@ FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
 
 
 /* ------------------------------------------------------------------------------------------
-   9. The BVH: binned build with the surface area heuristic (or the paper's volume heuristic)
-   Each node splits its primitives by a plane through one of `bins` equal slices of the
-   centroid bounds. For every candidate plane the heuristic weighs both sides:
-     SAH:     cost = c_trav + c_int (A_l N_l + A_r N_r) / A   (A = surface area)
-     paper:   H    = N_l V_l + N_r V_r                          (V = volume)
-   The SAH also compares with the cost of a leaf (c_int N) and stops when splitting does not
-   pay; the volume heuristic has no such criterion, so it splits down to max_leaf_size.
-
-   The build works on a compact array of primitive records (each primitive's box, 2 x 4
-   floats, so one SSE instruction takes the minimum of a whole corner), reordered in place
-   together with the index array, and reads a node's records twice:
-     1. one binning pass for all three axes at once: the centroid of a box is (lo + hi) / 2,
-        its three bin numbers come from one multiply, and each of the three bins it falls in
-        grows by a minimum and a maximum. The cheapest plane is then found from the bins by
-        sweeping each axis from both ends, and the two child boxes are the unions of the bins
-        on each side (exact: a bin's box holds its primitives' boxes);
-     2. one partition pass that swaps records by their bin on the chosen axis (the same bin
-        computation as step 1, so each side gets exactly the primitives its cost was
-        computed for), and grows the centroid bounds each child needs for its own binning.
-   Past FOGRT__BVH_SAH_DEPTH levels (only reached by adversarial inputs) nodes are halved
-   without the heuristic, so the tree depth stays below FOGRT__BVH_MAX_DEPTH, the size of the
-   traversal stack. The 4-float vector below is SSE, or four plain floats with the same
-   results (FOGRT_WBVH_NO_SIMD).
+   2.1 Bounding Volume Hierarchy (paper eq. 1-2)
+   The tree is built top down. Each node splits its primitives by a plane through one of
+   `bins` equal slices of their centroids' bounds, on the axis and at the plane whose
+   heuristic is least. The paper's heuristic (eq. 1) weighs both sides by their volumes,
+     H_i = N_l V_l + N_r V_r,  i in {x, y, z}  (eq. 2: the axis split along),
+   and splits until a node holds at most max_leaf_size primitives; the default, the surface
+   area heuristic, weighs them by their surface areas and also stops where splitting costs
+   more than a leaf:  c_trav + c_int (A_l N_l + A_r N_r) / A  against  c_int N.
+   Each node is binned in one pass over its primitives for all three axes (a bin keeps the
+   box and the count of the primitives whose centroid falls in it); the planes are priced
+   by sweeping the bins from both ends, and one more pass moves the primitives of the left
+   side to the front. Past FOGRT__BVH_SAH_DEPTH levels (only reached by adversarial inputs)
+   nodes are halved without the heuristic, so the depth stays below FOGRT__BVH_MAX_DEPTH,
+   the size of the traversal stack. Node 0 is the root, node 1 is unused (so that the two
+   children of a node are neighbours), and a split appends its two children.
    ------------------------------------------------------------------------------------------ */
-#define FOGRT__BVH_SAH_DEPTH 56
-#define FOGRT__BVH_MAX_DEPTH 96   /* 56 + 32 halvings of at most 2^32 primitives, and margin */
-#define FOGRT__BVH_MAX_BINS 64    /* fogrt_build_desc.bins is at most this */
 typedef struct fogrt__aabb { fogrt__v3 lo, hi; } fogrt__aabb;
 FOGRT__PRIVATE fogrt__aabb fogrt__aabb_empty(void)
 {
@@ -1605,163 +1603,91 @@ FOGRT__PRIVATE float fogrt__aabb_volume(const fogrt__aabb *b)
     if (e.x < 0.0f) return 0.0f;
     return e.x * e.y * e.z;
 }
-typedef struct fogrt__f4 { float v[4]; } fogrt__f4;
-FOGRT__HOT fogrt__f4 fogrt__f4_load(const float *p) { fogrt__f4 r; memcpy(r.v, p, sizeof r.v); return r; }
-FOGRT__HOT void fogrt__f4_store(float *p, fogrt__f4 a) { memcpy(p, a.v, sizeof a.v); }
-FOGRT__HOT fogrt__f4 fogrt__f4_set1(float x) { fogrt__f4 r; r.v[0] = r.v[1] = r.v[2] = r.v[3] = x; return r; }
-#define FOGRT__F4_OP(name, expr) \
-    FOGRT__HOT fogrt__f4 name(fogrt__f4 a, fogrt__f4 b) \
-    { fogrt__f4 r; int i_; for (i_ = 0; i_ < 4; ++i_) { float x = a.v[i_], y = b.v[i_]; r.v[i_] = (expr); } return r; }
-FOGRT__F4_OP(fogrt__f4_min, x < y ? x : y)
-FOGRT__F4_OP(fogrt__f4_max, x > y ? x : y)
-FOGRT__F4_OP(fogrt__f4_add, x + y)
-FOGRT__F4_OP(fogrt__f4_sub, x - y)
-FOGRT__F4_OP(fogrt__f4_mul, x * y)
-#undef FOGRT__F4_OP
-FOGRT__HOT void fogrt__f4_trunc(fogrt__f4 a, int32_t *out)   /* inputs already in [0, nb - 1] */
-{
-    int i;
-    for (i = 0; i < 4; ++i) out[i] = (int32_t)a.v[i];
-}
-#define FOGRT__F4_EMPTY_LO fogrt__f4_set1(FLT_MAX)       /* the corners of an empty box */
-#define FOGRT__F4_EMPTY_HI fogrt__f4_set1(-FLT_MAX)
+FOGRT__HOT fogrt__v3 fogrt__aabb_centre(const fogrt__aabb *b) { return fogrt__scale(fogrt__add(b->lo, b->hi), 0.5f); }
 
-/* A primitive's box as the build reads it (lane 3 unused, always 0). */
-typedef struct fogrt__brec { float lo[4], hi[4]; } fogrt__brec;
-/* A node waiting on the build's stack, with the bounds of its primitives' centroids. */
-typedef struct fogrt__bjob { uint32_t node, depth; float clo[4], chi[4]; } fogrt__bjob;
+#define FOGRT__BVH_SAH_DEPTH 56
+#define FOGRT__BVH_MAX_DEPTH 96   /* 56 + 32 halvings of at most 2^32 primitives, and margin */
+#define FOGRT__BVH_MAX_BINS 64    /* fogrt_build_desc.bins is at most this */
 
 typedef struct fogrt__build {
     fogrt_build_desc desc;
-    fogrt__brec *rec;      /* per primitive, in the order of idx (reordered with it) */
+    fogrt__aabb *box;      /* per primitive, in the order of idx (reordered with it) */
     fogrt_bvh_node *nodes;
     uint32_t *idx;
     uint32_t node_count;
     uint32_t leaf_keep;    /* nodes of at most this many primitives stay leaves, unpriced */
 } fogrt__build;
+/* A node waiting on the build's stack, with the bounds of its primitives' centroids. */
+typedef struct fogrt__bjob { uint32_t node, depth; fogrt__aabb cb; } fogrt__bjob;
 
-/* The heuristic's measure of one side: N A (SAH) or N V (the paper). */
+/* The heuristic's measure of one side: N A (SAH) or N V (the paper's eq. 1). */
 FOGRT__PRIVATE float fogrt__side_cost(const fogrt_build_desc *d, uint32_t n, const fogrt__aabb *box)
 {
     return (float)n * (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(box) : fogrt__aabb_area(box));
 }
-FOGRT__HOT fogrt__f4 fogrt__brec_centroid(const fogrt__brec *r)
+FOGRT__PRIVATE void fogrt__node_set_box(fogrt_bvh_node *node, const fogrt__aabb *b)
 {
-    return fogrt__f4_mul(fogrt__f4_add(fogrt__f4_load(r->lo), fogrt__f4_load(r->hi)), fogrt__f4_set1(0.5f));
+    node->bmin[0] = b->lo.x; node->bmin[1] = b->lo.y; node->bmin[2] = b->lo.z;
+    node->bmax[0] = b->hi.x; node->bmax[1] = b->hi.y; node->bmax[2] = b->hi.z;
 }
-FOGRT__PRIVATE void fogrt__node_set_box(fogrt_bvh_node *node, fogrt__f4 lo, fogrt__f4 hi)
+/* Box and centroid bounds of count primitives (the root, and the halved nodes). */
+FOGRT__PRIVATE void fogrt__boxes_bounds(const fogrt__aabb *box, uint32_t count, fogrt_bvh_node *node, fogrt__aabb *cb)
 {
-    float l[4], h[4];
-    int k;
-    fogrt__f4_store(l, lo); fogrt__f4_store(h, hi);
-    for (k = 0; k < 3; ++k) { node->bmin[k] = l[k]; node->bmax[k] = h[k]; }
-}
-/* Box and centroid bounds of count records (the root, and the halved nodes). */
-FOGRT__PRIVATE void fogrt__brec_bounds(const fogrt__brec *r, uint32_t count, fogrt_bvh_node *node, float *clo, float *chi)
-{
-    fogrt__f4 lo = FOGRT__F4_EMPTY_LO, hi = FOGRT__F4_EMPTY_HI, cl = lo, ch = hi;
+    fogrt__aabb b = fogrt__aabb_empty();
     uint32_t i;
+    *cb = fogrt__aabb_empty();
     for (i = 0; i < count; ++i) {
-        fogrt__f4 c = fogrt__brec_centroid(&r[i]);
-        lo = fogrt__f4_min(lo, fogrt__f4_load(r[i].lo)); hi = fogrt__f4_max(hi, fogrt__f4_load(r[i].hi));
-        cl = fogrt__f4_min(cl, c); ch = fogrt__f4_max(ch, c);
+        fogrt__aabb_union(&b, &box[i]);
+        fogrt__aabb_grow(cb, fogrt__aabb_centre(&box[i]));
     }
-    fogrt__node_set_box(node, lo, hi);
-    fogrt__f4_store(clo, cl); fogrt__f4_store(chi, ch);
+    fogrt__node_set_box(node, &b);
 }
 
 /* The bins of one node: on axis a, bin k holds the primitives whose centroid falls in the
-   k-th of nb equal slices of the centroid bounds; lo/hi is the box of those primitives. */
+   k-th of nb equal slices of the centroid bounds; box is the box of those primitives. */
 typedef struct fogrt__bins {
-    float lo[3][FOGRT__BVH_MAX_BINS][4], hi[3][FOGRT__BVH_MAX_BINS][4];
+    fogrt__aabb box[3][FOGRT__BVH_MAX_BINS];
     uint32_t n[3][FOGRT__BVH_MAX_BINS];
-    fogrt__f4 origin, scale, top;
+    fogrt__v3 origin, scale;
     int nb;
-    bool ok[3];      /* false: every centroid at the same coordinate (no plane to try) */
 } fogrt__bins;
-/* Bin numbers of a record's centroid on the three axes: clamp((c - origin) scale, 0, nb - 1),
-   truncated; a NaN (from a flat axis) lands in bin 0 (max returns its second operand). */
-FOGRT__HOT void fogrt__bin_of(const fogrt__bins *bins, fogrt__f4 c, int32_t *bin)
+/* The bin of a centroid on axis ax: (c - origin) scale, clamped to [0, nb - 1] and
+   truncated; a NaN (a flat axis: 0 x infinity) lands in bin 0. */
+FOGRT__HOT int fogrt__bin_of(const fogrt__bins *bins, fogrt__v3 c, int ax)
 {
-    fogrt__f4 f = fogrt__f4_mul(fogrt__f4_sub(c, bins->origin), bins->scale);
-    f = fogrt__f4_min(fogrt__f4_max(f, fogrt__f4_set1(0.0f)), bins->top);
-    fogrt__f4_trunc(f, bin);
+    float f = (fogrt__comp(c, ax) - fogrt__comp(bins->origin, ax)) * fogrt__comp(bins->scale, ax);
+    f = f > 0.0f ? f : 0.0f;
+    f = f < (float)(bins->nb - 1) ? f : (float)(bins->nb - 1);
+    return (int)f;
 }
-FOGRT__PRIVATE void fogrt__bins_clear(fogrt__bins *bins)
+/* Empty bins over the centroid bounds cb: no more bins than primitives (at least 2, so
+   bins = 1 prices the single plane through the middle). An axis on which every centroid
+   has the same coordinate gets scale 0 (no plane to try there). Then every primitive goes
+   into its bin on each axis. */
+FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt_build_desc *d, const fogrt__aabb *cb,
+                                     const fogrt__aabb *box, uint32_t count)
 {
-    int ax, k;
-    for (ax = 0; ax < 3; ++ax)
-        for (k = 0; k < bins->nb; ++k) {
-            fogrt__f4_store(bins->lo[ax][k], FOGRT__F4_EMPTY_LO);
-            fogrt__f4_store(bins->hi[ax][k], FOGRT__F4_EMPTY_HI);
-            bins->n[ax][k] = 0;
-        }
-}
-/* Empty bins over the centroid bounds of job: no more bins than primitives (at least 2, so
-   bins = 1 prices the single plane through the middle). */
-FOGRT__PRIVATE void fogrt__bins_init(fogrt__bins *bins, const fogrt_build_desc *d, const fogrt__bjob *job, uint32_t count)
-{
-    float scale[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
-    int nb = count < (uint32_t)d->bins ? (int)count : d->bins, ax;
+    float sc[3];
+    uint32_t i;
+    int ax, k, nb = count < (uint32_t)d->bins ? (int)count : d->bins;
     if (nb == 1) nb = 2;
     for (ax = 0; ax < 3; ++ax) {
-        scale[ax] = (float)nb / (job->chi[ax] - job->clo[ax]);
-        bins->ok[ax] = job->chi[ax] > job->clo[ax] && scale[ax] > 0.0f && scale[ax] < FLT_MAX;
-        if (!bins->ok[ax]) scale[ax] = 0.0f;             /* every centroid in bin 0 */
+        float lo = fogrt__comp(cb->lo, ax), hi = fogrt__comp(cb->hi, ax);
+        sc[ax] = (float)nb / (hi - lo);
+        if (!(hi > lo && sc[ax] > 0.0f && sc[ax] < FLT_MAX)) sc[ax] = 0.0f;
+        for (k = 0; k < nb; ++k) { bins->box[ax][k] = fogrt__aabb_empty(); bins->n[ax][k] = 0; }
     }
     bins->nb = nb;
-    fogrt__bins_clear(bins);
-    bins->origin = fogrt__f4_load(job->clo);
-    bins->scale = fogrt__f4_load(scale);
-    bins->top = fogrt__f4_set1((float)(nb - 1));
-}
-/* Step 1: every record into its bin on each of the three axes. */
-FOGRT__HOT void fogrt__bin_add(fogrt__bins *bins, int ax, int32_t k, fogrt__f4 lo, fogrt__f4 hi)
-{
-    float *bl = bins->lo[ax][k], *bh = bins->hi[ax][k];
-    bins->n[ax][k]++;
-    fogrt__f4_store(bl, fogrt__f4_min(fogrt__f4_load(bl), lo));
-    fogrt__f4_store(bh, fogrt__f4_max(fogrt__f4_load(bh), hi));
-}
-FOGRT__HOT void fogrt__bin_record(fogrt__bins *bins, const fogrt__brec *r)
-{
-    fogrt__f4 lo = fogrt__f4_load(r->lo), hi = fogrt__f4_load(r->hi);
-    int32_t bin[4];
-    fogrt__bin_of(bins, fogrt__brec_centroid(r), bin);
-    fogrt__bin_add(bins, 0, bin[0], lo, hi);
-    fogrt__bin_add(bins, 1, bin[1], lo, hi);
-    fogrt__bin_add(bins, 2, bin[2], lo, hi);
-}
-/* Neighbouring records mostly fall in the same bins, and then each update waits for the
-   one before; so a big node bins its odd records into a second set, merged at the end,
-   and two chains of updates run side by side (the same bins: min, max and sums are exact). */
-#define FOGRT__BVH_TWO_SETS 64
-FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt__brec *r, uint32_t count)
-{
-    fogrt__bins odd;
-    uint32_t i = 0;
-    int ax, k;
-    if (count >= FOGRT__BVH_TWO_SETS) {
-        odd.nb = bins->nb; odd.origin = bins->origin; odd.scale = bins->scale; odd.top = bins->top;
-        fogrt__bins_clear(&odd);
-        for (; i + 1 < count; i += 2) { fogrt__bin_record(bins, &r[i]); fogrt__bin_record(&odd, &r[i + 1]); }
-        for (ax = 0; ax < 3; ++ax)
-            for (k = 0; k < bins->nb; ++k) {
-                fogrt__f4_store(bins->lo[ax][k], fogrt__f4_min(fogrt__f4_load(bins->lo[ax][k]), fogrt__f4_load(odd.lo[ax][k])));
-                fogrt__f4_store(bins->hi[ax][k], fogrt__f4_max(fogrt__f4_load(bins->hi[ax][k]), fogrt__f4_load(odd.hi[ax][k])));
-                bins->n[ax][k] += odd.n[ax][k];
-            }
+    bins->origin = cb->lo;
+    bins->scale = fogrt__v(sc[0], sc[1], sc[2]);
+    for (i = 0; i < count; ++i) {
+        fogrt__v3 c = fogrt__aabb_centre(&box[i]);
+        for (ax = 0; ax < 3; ++ax) {
+            k = fogrt__bin_of(bins, c, ax);
+            fogrt__aabb_union(&bins->box[ax][k], &box[i]);
+            bins->n[ax][k]++;
+        }
     }
-    for (; i < count; ++i) fogrt__bin_record(bins, &r[i]);
-}
-/* The heuristic's measure (fogrt__side_cost) of n primitives in the box [lo, hi]. */
-FOGRT__HOT float fogrt__f4_side_cost(const fogrt_build_desc *d, uint32_t n, fogrt__f4 lo, fogrt__f4 hi)
-{
-    float e[4];
-    fogrt__f4_store(e, fogrt__f4_sub(hi, lo));
-    if (e[0] < 0.0f) return 0.0f;                         /* empty, as fogrt__aabb_area */
-    return (float)n * (d->heuristic == FOGRT_BVH_VOLUME ? e[0] * e[1] * e[2]
-                                                        : 2.0f * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]));
 }
 /* The cheapest plane of one axis: sweep from the left and from the right to price the
    nb - 1 planes between the bins (plane k: bins 0..k-1 on the left). Improves *best, and
@@ -1769,23 +1695,23 @@ FOGRT__HOT float fogrt__f4_side_cost(const fogrt_build_desc *d, uint32_t n, fogr
 FOGRT__PRIVATE bool fogrt__bins_sweep(const fogrt_build_desc *d, const fogrt__bins *bins, int ax, uint32_t count,
                                       float *best, int *best_k)
 {
-    fogrt__f4 lo = FOGRT__F4_EMPTY_LO, hi = FOGRT__F4_EMPTY_HI;
+    fogrt__aabb b = fogrt__aabb_empty();
     uint32_t left_n = 0, right_n = 0;
     float left_cost[FOGRT__BVH_MAX_BINS];
     bool improved = false;
     int k;
     for (k = 0; k < bins->nb - 1; ++k) {
         left_n += bins->n[ax][k];
-        lo = fogrt__f4_min(lo, fogrt__f4_load(bins->lo[ax][k])); hi = fogrt__f4_max(hi, fogrt__f4_load(bins->hi[ax][k]));
-        left_cost[k] = fogrt__f4_side_cost(d, left_n, lo, hi);
+        fogrt__aabb_union(&b, &bins->box[ax][k]);
+        left_cost[k] = fogrt__side_cost(d, left_n, &b);
     }
-    lo = FOGRT__F4_EMPTY_LO; hi = FOGRT__F4_EMPTY_HI;
+    b = fogrt__aabb_empty();
     for (k = bins->nb - 1; k > 0; --k) {
         float cost;
         right_n += bins->n[ax][k];
-        lo = fogrt__f4_min(lo, fogrt__f4_load(bins->lo[ax][k])); hi = fogrt__f4_max(hi, fogrt__f4_load(bins->hi[ax][k]));
+        fogrt__aabb_union(&b, &bins->box[ax][k]);
         if (right_n == 0 || right_n == count) continue;
-        cost = left_cost[k - 1] + fogrt__f4_side_cost(d, right_n, lo, hi);
+        cost = left_cost[k - 1] + fogrt__side_cost(d, right_n, &b);
         if (cost < *best) { *best = cost; *best_k = k; improved = true; }
     }
     return improved;
@@ -1801,67 +1727,55 @@ FOGRT__PRIVATE bool fogrt__split_pays(const fogrt_build_desc *d, const fogrt_bvh
     box.hi = fogrt__v(node->bmax[0], node->bmax[1], node->bmax[2]);
     return d->c_trav + d->c_int * best / FOGRT__MAX(fogrt__aabb_area(&box), FLT_MIN) < d->c_int * (float)count;
 }
-/* Step 2: records whose bin on axis ax is below k to the front (with their indices),
-   growing both sides' centroid bounds. Returns the number on the left. */
-FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__brec *r, uint32_t *id, uint32_t count,
-                                              int ax, int k, fogrt__bjob *left, fogrt__bjob *right)
+/* The primitives whose bin on axis ax is below k to the front (with their indices), growing
+   both sides' centroid bounds; the children's boxes are the unions of their bins. Returns
+   the number on the left. */
+FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__aabb *box, uint32_t *id, uint32_t count,
+                                              int ax, int k, fogrt_bvh_node *child, fogrt__bjob *left, fogrt__bjob *right)
 {
-    fogrt__f4 lcl = FOGRT__F4_EMPTY_LO, lch = FOGRT__F4_EMPTY_HI, rcl = lcl, rch = lch;
+    fogrt__aabb side[2];
     uint32_t lo = 0, hi = count;
+    int j;
+    side[0] = side[1] = left->cb = right->cb = fogrt__aabb_empty();
+    for (j = 0; j < bins->nb; ++j) fogrt__aabb_union(&side[j >= k], &bins->box[ax][j]);
+    fogrt__node_set_box(&child[0], &side[0]);
+    fogrt__node_set_box(&child[1], &side[1]);
     while (lo < hi) {
-        fogrt__f4 c = fogrt__brec_centroid(&r[lo]);
-        int32_t bin[4];
-        fogrt__bin_of(bins, c, bin);
-        if (bin[ax] < k) {
-            lcl = fogrt__f4_min(lcl, c); lch = fogrt__f4_max(lch, c);
+        fogrt__v3 c = fogrt__aabb_centre(&box[lo]);
+        if (fogrt__bin_of(bins, c, ax) < k) {
+            fogrt__aabb_grow(&left->cb, c);
             ++lo;
         } else {
-            fogrt__brec t = r[lo];
+            fogrt__aabb t = box[lo];
             uint32_t tid = id[lo];
-            rcl = fogrt__f4_min(rcl, c); rch = fogrt__f4_max(rch, c);
+            fogrt__aabb_grow(&right->cb, c);
             --hi;
-            r[lo] = r[hi]; r[hi] = t;
+            box[lo] = box[hi]; box[hi] = t;
             id[lo] = id[hi]; id[hi] = tid;
         }
     }
-    fogrt__f4_store(left->clo, lcl); fogrt__f4_store(left->chi, lch);
-    fogrt__f4_store(right->clo, rcl); fogrt__f4_store(right->chi, rch);
     return lo;
 }
-/* The two children's boxes: the unions of the bins on either side of plane k. */
-FOGRT__PRIVATE void fogrt__bins_child_boxes(const fogrt__bins *bins, int ax, int k, fogrt_bvh_node *child)
-{
-    fogrt__f4 lo = FOGRT__F4_EMPTY_LO, hi = FOGRT__F4_EMPTY_HI;
-    int j;
-    for (j = 0; j < bins->nb; ++j) {
-        if (j == k) { fogrt__node_set_box(&child[0], lo, hi); lo = FOGRT__F4_EMPTY_LO; hi = FOGRT__F4_EMPTY_HI; }
-        lo = fogrt__f4_min(lo, fogrt__f4_load(bins->lo[ax][j]));
-        hi = fogrt__f4_max(hi, fogrt__f4_load(bins->hi[ax][j]));
-    }
-    fogrt__node_set_box(&child[1], lo, hi);
-}
-/* The binned split of job's node into child[0] and child[1] (their boxes, and the two jobs'
-   centroid bounds). Returns the number of primitives on the left, or 0 when the node stays
-   a leaf, or must be halved instead (*halve: its centroids coincide but it is too big). */
-FOGRT__PRIVATE uint32_t fogrt__bvh_split_sah(fogrt__build *b, const fogrt__bjob *job, fogrt_bvh_node *child,
-                                             fogrt__bjob *left, fogrt__bjob *right, bool *halve)
+/* The binned split of job's node into child[0] and child[1]. Returns the number of
+   primitives on the left, or 0 when the node stays a leaf, or must be halved instead
+   (*halve: its centroids coincide but it is too big). */
+FOGRT__PRIVATE uint32_t fogrt__bvh_split_binned(fogrt__build *b, const fogrt__bjob *job, fogrt_bvh_node *child,
+                                                fogrt__bjob *left, fogrt__bjob *right, bool *halve)
 {
     const fogrt_bvh_node *node = &b->nodes[job->node];
     uint32_t first = node->left_first, count = node->prim_count;
     fogrt__bins bins;
     float best = FLT_MAX;
     int ax, best_ax = -1, best_k = 0;
-    fogrt__bins_init(&bins, &b->desc, job, count);
-    fogrt__bins_fill(&bins, b->rec + first, count);
+    fogrt__bins_fill(&bins, &b->desc, &job->cb, b->box + first, count);
     for (ax = 0; ax < 3; ++ax)
-        if (bins.ok[ax] && fogrt__bins_sweep(&b->desc, &bins, ax, count, &best, &best_k)) best_ax = ax;
+        if (fogrt__comp(bins.scale, ax) > 0.0f && fogrt__bins_sweep(&b->desc, &bins, ax, count, &best, &best_k)) best_ax = ax;
     if (best_ax < 0) {                                   /* all centroids coincide */
         *halve = count > (uint32_t)b->desc.max_leaf_size;
         return 0;
     }
     if (!fogrt__split_pays(&b->desc, node, count, best)) return 0;
-    fogrt__bins_child_boxes(&bins, best_ax, best_k, child);
-    return fogrt__bins_partition(&bins, b->rec + first, b->idx + first, count, best_ax, best_k, left, right);
+    return fogrt__bins_partition(&bins, b->box + first, b->idx + first, count, best_ax, best_k, child, left, right);
 }
 /* Split job's node into the next two nodes, or leave it a leaf (returns false). */
 FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fogrt__bjob *left, fogrt__bjob *right)
@@ -1870,11 +1784,11 @@ FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fo
     uint32_t first = node->left_first, count = node->prim_count, left_count = 0;
     bool halve = job->depth >= FOGRT__BVH_SAH_DEPTH;
     if (count <= 1 || count <= b->leaf_keep) return false;
-    if (!halve) left_count = fogrt__bvh_split_sah(b, job, child, left, right, &halve);
+    if (!halve) left_count = fogrt__bvh_split_binned(b, job, child, left, right, &halve);
     if (halve) {                                         /* balanced, the bounds by a pass */
         left_count = count / 2;
-        fogrt__brec_bounds(b->rec + first, left_count, &child[0], left->clo, left->chi);
-        fogrt__brec_bounds(b->rec + first + left_count, count - left_count, &child[1], right->clo, right->chi);
+        fogrt__boxes_bounds(b->box + first, left_count, &child[0], &left->cb);
+        fogrt__boxes_bounds(b->box + first + left_count, count - left_count, &child[1], &right->cb);
     }
     if (left_count == 0) return false;
     FOGRT_ASSERT(left_count < count);
@@ -1887,9 +1801,8 @@ FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fo
     b->node_count += 2;
     return true;
 }
-/* The tree over b->rec[0 .. prim_count) (b->idx their primitive ids), depth first with an
-   explicit stack: the root is node 0, node 1 is unused (so that sibling pairs align), and
-   every split appends its two children. */
+/* The tree over b->box[0 .. prim_count) (b->idx their primitive ids), depth first with an
+   explicit stack. */
 FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count)
 {
     fogrt__bjob stack[FOGRT__BVH_MAX_DEPTH + 2];
@@ -1899,7 +1812,7 @@ FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count)
     root->left_first = 0;
     root->prim_count = prim_count;
     stack[0].node = 0; stack[0].depth = 0;
-    fogrt__brec_bounds(b->rec, prim_count, root, stack[0].clo, stack[0].chi);
+    fogrt__boxes_bounds(b->box, prim_count, root, &stack[0].cb);
     b->node_count = 2;
     while (sp > 0) {
         fogrt__bjob job = stack[--sp];
@@ -1938,7 +1851,7 @@ FOGRT__PUBLIC float fogrt_bvh_sah_cost(const fogrt_scene *s)
 }
 
 /* ------------------------------------------------------------------------------------------
-   10. Ray queries: primitives and BVH traversal
+   2.1 (continued) Ray queries: primitives and BVH traversal
    ------------------------------------------------------------------------------------------ */
 /* Moller-Trumbore with the edges precomputed. Every test is written so that a NaN (from a
    degenerate, zero-area triangle) fails it: degenerate triangles are never hit. A ray
@@ -2214,7 +2127,7 @@ FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 n, float eta, fogrt_vec3 wo, fogrt_v
 FOGRT__PRIVATE float fogrt__fresnel(fogrt_fresnel mode, float eta, float cos_i)
 {
 #ifndef FOGRT_NO_EXACT_FRESNEL
-    if (mode == FOGRT_FRESNEL_EXACT) return fogrt_fresnel_dielectric(eta, cos_i);
+    if (mode == FOGRT_FRESNEL_EXACT) return fogrt_fresnel_dielectric(eta, cos_i);   /* SEAM 5 (C) */
 #else
     (void)mode;   /* fogrt_render refuses FOGRT_FRESNEL_EXACT in this build */
 #endif
@@ -2624,6 +2537,8 @@ FOGRT__PRIVATE float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o,
     float a, b;
     if (s->x && !fogrt__x_fog_span(s, o, d, dist, &a, &b)) return 1.0f;    /* SEAM 6: fog in a box */
     if (s->x) dist = b - a;
+#else
+    (void)o; (void)d;
 #endif
     return fogrt_transmittance(s->medium.sigma_t, dist);
 }
@@ -2911,7 +2826,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__se
                                            fogrt_rng *rng, uint64_t *rays, bool one_bounce)
 {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f), beta = fogrt__v(1.0f, 1.0f, 1.0f), prev_p = o;
-    float prev_pdf = 1.0f, sigma_t = s->medium.sigma_t;
+    float prev_pdf = 1.0f;
     bool prev_delta = true, in_fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0, last = false;
     int depth = 0, limit = st->max_depth;
     uint32_t vertex;
@@ -2924,7 +2839,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__se
         ++*rays;                                                             /* 3 */
         found = fogrt__traverse(s, o, d, 0.0f, INFINITY, &hit, false);
 #ifndef FOGRT_NO_MEDIUM
-        if (in_fog) t_fog = fogrt_sample_exponential(sigma_t, fogrt_rng_float(rng));   /* 4 */
+        if (in_fog) t_fog = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(rng));   /* 4 */
 #endif
         if (t_fog < (found ? hit.t : INFINITY)) {                            /* 5, 14: a fog particle */
             beta = fogrt__mul(beta, s->medium.albedo);
@@ -3097,9 +3012,7 @@ FOGRT__PRIVATE void fogrt__bounds(fogrt_scene *s, fogrt__build *b, uint32_t n)
     float diag;
     for (i = 0; i < n; ++i) {
         fogrt__aabb box = fogrt__prim_box(s, i);
-        fogrt__brec *r = &b->rec[i];
-        r->lo[0] = box.lo.x; r->lo[1] = box.lo.y; r->lo[2] = box.lo.z; r->lo[3] = 0.0f;
-        r->hi[0] = box.hi.x; r->hi[1] = box.hi.y; r->hi[2] = box.hi.z; r->hi[3] = 0.0f;
+        b->box[i] = box;
         fogrt__aabb_union(&sb, &box);
         s->prim_index[i] = i;
     }
@@ -3182,11 +3095,11 @@ FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d,
     bool ok;
     memset(&b, 0, sizeof b);
     b.desc = *d;
-    b.rec = (fogrt__brec *)fogrt__alloc(&s->allocator, sizeof(fogrt__brec) * (n + 1));
+    b.box = (fogrt__aabb *)fogrt__alloc(&s->allocator, sizeof(fogrt__aabb) * (n + 1));
     s->nodes = (fogrt_bvh_node *)fogrt__alloc(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
     s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
     s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
-    ok = b.rec && s->nodes && s->prim_index && s->prims;
+    ok = b.box && s->nodes && s->prim_index && s->prims;
     if (ok) {
         fogrt__bounds(s, &b, n);
         b.nodes = s->nodes;
@@ -3197,7 +3110,7 @@ FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d,
         s->node_count = b.node_count;
         fogrt__pack_prims(s, n);
     }
-    fogrt__free(&s->allocator, b.rec);
+    fogrt__free(&s->allocator, b.box);
     return ok;
 }
 /* The spot cones' cosines, once. */
@@ -3515,6 +3428,8 @@ FOGRT__PRIVATE uint32_t fogrt__pixel_spp(const fogrt__job *job, size_t pix)
 {
 #ifndef FOGRT_MINIMAL
     if (job->rate) return fogrt__x_pixel_spp(job, pix);                      /* SEAM 8 */
+#else
+    (void)pix;
 #endif
     return (uint32_t)job->spp;
 }
@@ -5864,7 +5779,7 @@ FOGRT__PRIVATE float fogrt__glow_mix_known(const fogrt_scene *s, const fogrt__ve
         sum += pg;
     }
 #else
-    (void)s; (void)wi; (void)k; (void)known; (void)pdf_known;
+    (void)s; (void)v; (void)wi; (void)k; (void)known; (void)pdf_known;
 #endif
     return (1.0f - s->x->glow_share) * pdf_b + s->x->glow_share * sum / (float)FOGRT__MAX(g->n, 1);
 }

@@ -584,7 +584,7 @@ static void print_memory(const fogrt_scene *scene, size_t geometry_bytes, size_t
     double tris = (double)(scene->tri_count + scene->sph_count), total = (double)fogrt_scene_get_memory(scene);
     double binary = (double)scene->node_count * sizeof(fogrt_bvh_node) + tris * (double)sizeof(uint32_t)
                   + (scene->prims ? tris * (double)sizeof(fogrt__prim) : 0.0);   /* the binary layout only */
-    double wide = scene->wide ? (double)fogrt__wbvh_bytes(scene->wide) : 0.0;
+    double wide = scene->x->wide ? (double)fogrt__wbvh_bytes(scene->x->wide) : 0.0;
     double geometry = (double)geometry_bytes;
     if (tris < 1.0) tris = 1.0;
     printf("memory    fogrt  %8.1f B/tri  (fogrt_scene_get_memory: geometry %.1f + binary BVH %.1f + wide BVH %.1f"

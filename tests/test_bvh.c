@@ -843,7 +843,7 @@ static void test_layouts_agree(void)
         ref = (answer *)malloc(sizeof(answer) * (size_t)ray_count);
         TEST_ASSERT_NOT_NULL(ref);
         reference_answers(scene, &s, rays, ref, ray_count, &hits);
-        TEST_ASSERT_EQUAL_INT((tris[k] + spheres[k]) >= FOGRT_WBVH_MIN_PRIMS, scene->wide != NULL);
+        TEST_ASSERT_EQUAL_INT((tris[k] + spheres[k]) >= FOGRT_WBVH_MIN_PRIMS, scene->x->wide != NULL);
         fogrt_scene_destroy(scene);
         for (l = 0; l < 3; l++) {
             fogrt_build_desc bd = fogrt_build_defaults();
@@ -852,7 +852,7 @@ static void test_layouts_agree(void)
             scene = soup_scene(&s, &bd);
             snprintf(what, sizeof what, "soup of %u triangles and %u spheres, layout %d", tris[k], spheres[k], (int)layouts[l]);
             TEST_ASSERT_EQUAL_INT_MESSAGE(layouts[l] == FOGRT_BVH_LAYOUT_BINARY ? 0 : (layouts[l] == FOGRT_BVH_LAYOUT_WIDE ? 1 : (tris[k] + spheres[k] >= FOGRT_WBVH_MIN_PRIMS)),
-                                          scene->wide != NULL, what);
+                                          scene->x->wide != NULL, what);
             check_rays(scene, &s, rays, ref, ray_count, what);
             fogrt_scene_destroy(scene);
         }

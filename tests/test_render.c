@@ -206,32 +206,32 @@ static void test_roulette_pilot(void)
     fogrt_scene *glass = area_light_box(0.0f, true, 0.15f), *open = lit_floor(), *def = default_scene();
     fogrt_render_desc rd = render_desc(32, 24, 0);
     batch_estimate with_k, with_1;
-    float k = spot->rr_k;
+    float k = spot->x->rr_k;
     char msg[240];
     snprintf(msg, sizeof msg, "pilot k: spot-lit box seen through fog %.2f (built twice: %.2f), closed diffuse box %.2f, "
              "with glass and a mirror %.2f, lit floor %.2f, default scene %.2f",
-             (double)k, (double)again->rr_k, (double)box->rr_k, (double)glass->rr_k, (double)open->rr_k, (double)def->rr_k);
+             (double)k, (double)again->x->rr_k, (double)box->x->rr_k, (double)glass->x->rr_k, (double)open->x->rr_k, (double)def->x->rr_k);
     TEST_MESSAGE(msg);
-    TEST_ASSERT_TRUE_MESSAGE(memcmp(&k, &again->rr_k, sizeof k) == 0, msg);
+    TEST_ASSERT_TRUE_MESSAGE(memcmp(&k, &again->x->rr_k, sizeof k) == 0, msg);
     TEST_ASSERT_TRUE_MESSAGE(k > 1.2f && k <= 4.0f, msg);
-    TEST_ASSERT_TRUE_MESSAGE(box->rr_k > 1.2f && box->rr_k <= 4.0f, msg);
-    TEST_ASSERT_TRUE_MESSAGE(glass->rr_k > 1.2f && glass->rr_k <= 4.0f, msg);
-    TEST_ASSERT_TRUE_MESSAGE(open->rr_k == 1.0f, msg);
-    TEST_ASSERT_TRUE_MESSAGE(def->rr_k >= 1.0f && def->rr_k <= 4.0f, msg);
+    TEST_ASSERT_TRUE_MESSAGE(box->x->rr_k > 1.2f && box->x->rr_k <= 4.0f, msg);
+    TEST_ASSERT_TRUE_MESSAGE(glass->x->rr_k > 1.2f && glass->x->rr_k <= 4.0f, msg);
+    TEST_ASSERT_TRUE_MESSAGE(open->x->rr_k == 1.0f, msg);
+    TEST_ASSERT_TRUE_MESSAGE(def->x->rr_k >= 1.0f && def->x->rr_k <= 4.0f, msg);
     {   /* roulette_pilot = false: the same scene rebuilt keeps k = 1 */
         fogrt_build_desc bd = fogrt_build_defaults();
         bd.roulette_pilot = false;
         TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(again, &bd));
-        TEST_ASSERT_EQUAL_FLOAT(1.0f, again->rr_k);
+        TEST_ASSERT_EQUAL_FLOAT(1.0f, again->x->rr_k);
         TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(again, NULL));
-        TEST_ASSERT_TRUE_MESSAGE(memcmp(&k, &again->rr_k, sizeof k) == 0, msg);
+        TEST_ASSERT_TRUE_MESSAGE(memcmp(&k, &again->x->rr_k, sizeof k) == 0, msg);
     }
     with_k = batch_mean(spot, &rd, 16, 20, 500);
-    spot->rr_k = 1.0f;                                   /* the plain roulette, same scene */
+    spot->x->rr_k = 1.0f;                                   /* the plain roulette, same scene */
     with_1 = batch_mean(spot, &rd, 16, 20, 600);
     assert_means_agree(with_k, with_1, "spot-lit fog, roulette with the pilot's k vs k = 1");
     with_k = batch_mean(glass, &rd, 16, 20, 700);
-    glass->rr_k = 1.0f;
+    glass->x->rr_k = 1.0f;
     with_1 = batch_mean(glass, &rd, 16, 20, 800);
     assert_means_agree(with_k, with_1, "fog-free box with glass, roulette with the pilot's k vs k = 1");
     fogrt_scene_destroy(spot); fogrt_scene_destroy(again); fogrt_scene_destroy(box); fogrt_scene_destroy(glass);
@@ -352,7 +352,7 @@ static int count_net_failures(uint64_t base, uint64_t pix, int stream, int first
         for (i = 0; i < n; ++i) {
             float jx, jy;
             int cx, cy;
-            fogrt__pixel_position(base, pix, (uint32_t)(FOGRT_IMAGE_STREAMS * (first + i) + stream), &jx, &jy);
+            fogrt__x_pixel_position(base, pix, (uint32_t)(FOGRT_IMAGE_STREAMS * (first + i) + stream), &jx, &jy);
             TEST_ASSERT_TRUE(jx >= 0.0f && jx < 1.0f && jy >= 0.0f && jy < 1.0f);
             cx = (int)(jx * (float)(1 << a)); cy = (int)(jy * (float)(1 << b));
             cells[(cy << a) + cx]++;
@@ -367,7 +367,7 @@ static double chi2_8x8(uint64_t base, int point)
     int i;
     for (i = 0; i < 4096; ++i) {
         float jx, jy;
-        fogrt__pixel_position(base, (uint64_t)(i / 4), (uint32_t)(FOGRT_IMAGE_STREAMS * point + i % 4), &jx, &jy);
+        fogrt__x_pixel_position(base, (uint64_t)(i / 4), (uint32_t)(FOGRT_IMAGE_STREAMS * point + i % 4), &jx, &jy);
         cells[(int)(jy * 8.0f) * 8 + (int)(jx * 8.0f)] += 1.0;
     }
     for (i = 0; i < 64; ++i) chi2 += (cells[i] - expected) * (cells[i] - expected) / expected;
@@ -396,7 +396,7 @@ static void test_pixel_positions_stratified(void)
     for (p = 0; p < 4096; ++p) {
         for (r = 0; r < FOGRT_IMAGE_STREAMS; ++r) {
             float jx, jy;
-            fogrt__pixel_position(base, (uint64_t)p, (uint32_t)r, &jx, &jy);
+            fogrt__x_pixel_position(base, (uint64_t)p, (uint32_t)r, &jx, &jy);
             sxy[r][0] = jx - 0.5; sxy[r][1] = jy - 0.5;
         }
         for (r = 1; r < FOGRT_IMAGE_STREAMS; ++r) {
@@ -628,10 +628,10 @@ static void test_glow_unbiased(void)
     set_medium(scene, 0.8f, v3(0.9f, 0.9f, 0.9f), 0.6f);
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
     /* the spot lights the floor: its footprint is aimed at too; the point light has none */
-    TEST_ASSERT_TRUE_MESSAGE(scene->footprints && scene->footprints[0].on && !scene->footprints[1].on,
+    TEST_ASSERT_TRUE_MESSAGE(scene->x->footprints && scene->x->footprints[0].on && !scene->x->footprints[1].on,
                              "the build found no footprint for the spot over the floor (or one for the point light)");
-    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, scene->footprints[0].n.y);
-    TEST_ASSERT_TRUE_MESSAGE(scene->footprints[0].radius > 0.0f, "no sphere around the spot's lit patch on the floor");
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, scene->x->footprints[0].n.y);
+    TEST_ASSERT_TRUE_MESSAGE(scene->x->footprints[0].radius > 0.0f, "no sphere around the spot's lit patch on the floor");
     glow = batch_mean(scene, &rd, 8, 12, 600);
     rd.footprint = false;
     no_footprint = batch_mean(scene, &rd, 8, 12, 900);

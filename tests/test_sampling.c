@@ -1715,9 +1715,7 @@ static void test_area_light_mesh_chi2(void)
             /* the solid-angle pdf, in double */
             double cos_l = -(wi.x * g->n[0] + wi.y * g->n[1] + wi.z * g->n[2]);
             double want = (double)dist * dist / (cos_l * total_area), tol = (1e-5 + 4e-7 / cos_l) * want;
-            fogrt__settings all_lights;                   /* every light sampled: no pick factor */
-            memset(&all_lights, 0, sizeof all_lights);
-            float mis = fogrt__area_light_pdf(scene, &all_lights, (uint32_t)k, p, v3((float)y[0], (float)y[1], (float)y[2]),
+            float mis = fogrt__area_light_pdf(scene, (uint32_t)k, p, v3((float)y[0], (float)y[1], (float)y[2]),
                                               v3((float)g->n[0], (float)g->n[1], (float)g->n[2]));
             if (!(fabs(pdf - want) <= tol) && bad_pdf++ == 0)
                 snprintf(first_bad, sizeof first_bad, "triangle %d: pdf %.9g, dist^2/(cos_l A) = %.9g (cos_l %.6f)", k,
