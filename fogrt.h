@@ -379,7 +379,7 @@ typedef enum fogrt_bvh_heuristic {
                      binary tree collapsed to 8 children per node for tracing; binary:
                      traced as built. fogrt_scene_get_bvh and
                      fogrt_bvh_sah_cost describe the binary tree.
-     roulette_pilot  true: the build ends with the roulette's pilot (chapter 15: one or two
+     roulette_pilot  true: the build ends with the roulette's pilot (Part II, C: one or two
                      passes of 12288 camera paths in a scene with a light, tens of
                      milliseconds), which sets the roulette's k for the scene's renders;
                      false: k = 1 (q = throughput), for a build timed alone or a scene
@@ -387,8 +387,8 @@ typedef enum fogrt_bvh_heuristic {
      resolved        set by fogrt_build_defaults(): the fields hold their real values      */
 typedef enum fogrt_bvh_layout {
     FOGRT_BVH_LAYOUT_DEFAULT = 0,   /* wide from FOGRT_WBVH_MIN_PRIMS (1) primitives, else binary */
-    FOGRT_BVH_LAYOUT_BINARY,        /* trace the binary tree of the build (chapter 10) */
-    FOGRT_BVH_LAYOUT_WIDE,          /* collapse it to 8 children per node (chapter 10b): faster */
+    FOGRT_BVH_LAYOUT_BINARY,        /* trace the binary tree of the build (2.1) */
+    FOGRT_BVH_LAYOUT_WIDE,          /* collapse it to 8 children per node (Part II, A): faster */
     FOGRT_BVH_LAYOUT_NUM,
     FOGRT_BVH_LAYOUT_FORCE_U32 = 0x7FFFFFFF
 } fogrt_bvh_layout;
@@ -637,14 +637,14 @@ typedef struct fogrt_progress {
                        segment by equiangular sampling (not in the paper); false: found only
                        by next-event estimation at fog collisions, as the paper does
      glow              true: at scattering points in fog, some of the new directions aim
-                       at the glow around point and spot lights (chapter 14, d': half when
+                       at the glow around point and spot lights (Part II, E d': half when
                        they are all the light, less as area lights add theirs), which keeps
                        paths that pass next to a lamp from being rare, huge samples; needs
                        nee and equiangular (not in the paper)
      footprint         true: a fifth of the directions aimed at a spot light's glow aim at
                        the plane its cone lights most instead (the lit floor under it, found
                        when the scene is built; half through the lamp's cone, half at the
-                       lit patch as the vertex sees it; chapter 6, 14 d'); needs glow (not
+                       lit patch as the vertex sees it; Part II, B and E d'); needs glow (not
                        in the paper)
      light_by_power    false (CS184): every light is sampled at every vertex; true: one
                        light per vertex, chosen in proportion to its power (radiant flux),
@@ -657,7 +657,7 @@ typedef struct fogrt_progress {
                        rates (rows from the top, each finite, 0 to FOGRT_MAX_SAMPLE_RATE):
                        pixel p gets spp x rate[p] samples on average, the fraction decided
                        by a coin of its own (adaptive sampling, unbiased when the rates
-                       come from fogrt_image_sample_rates as chapter 15 says)
+                       come from fogrt_image_sample_rates as Part II, C says)
      progress          optional; called between row blocks; return false to cancel
      resolved          set by fogrt_render_defaults(): the fields hold their real values   */
 typedef struct fogrt_render_desc {
@@ -674,7 +674,7 @@ typedef struct fogrt_render_desc {
     bool footprint;
     bool light_by_power;
     bool expected_emission;    /* fog: a ray adds T Le of the emitter it reaches, and T times the point
-                                  and spot lights' light at the surface it reaches, collided or not (14 b, b') */
+                                  and spot lights' light at the surface it reaches, collided or not (Part II, E b and b') */
     int light_samples;
     uint64_t seed;
     int threads;
@@ -736,7 +736,7 @@ FOGRT_API double fogrt_image_pixel_variance(const fogrt_image *img, size_t pixel
    the noise of the samples img holds so far, each pixel's rate from its neighbours' noise
    alone (never its own). Call it once, after samples taken with every pixel alike (say 8
    spp), and keep the rates for the rest of the render: the image then stays unbiased
-   (chapter 15 says why). rates: width x height floats. OUT_OF_MEMORY, or INVALID_ARGUMENT
+   (Part II, C says why). rates: width x height floats. OUT_OF_MEMORY, or INVALID_ARGUMENT
    for an image without samples; an image without noise gets rates of 1. */
 #define FOGRT_MAX_SAMPLE_RATE 64.0f
 #ifndef FOGRT_MINIMAL
@@ -808,7 +808,7 @@ typedef struct fogrt_trace_event {
     fogrt_trace_lobe lobe;
     bool flag;
     const char *source;        /* contribution: "emission", "environment", "light sample", "light behind"
-                                  (14 b': the surface behind a fog collision), "equiangular";
+                                  (E b': the surface behind a fog collision), "equiangular";
                                   glow sample: "footprint" or NULL */
 } fogrt_trace_event;
 
@@ -880,7 +880,7 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
      1. fogrt__traverse            the wide tree, when the build made one (A)
      2. fogrt_scene_build          how small a binary node may stay, for the wide tree (A)
      3. fogrt_scene_build          Part II's tables: wide tree, HG table, footprints, pilot
-     4. fogrt__free_built          their release (and fogrt_scene_get_memory, their size)
+     4. fogrt__free_built          their release
      5. fogrt__fresnel             the exact dielectric Fresnel (C)
      6. fogrt__fog_transmittance   fog bounded by a box (C)
      7. fogrt__radiance            the full integrator, for every setting beyond the paper (E)
@@ -928,8 +928,8 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #endif
 /* The few small functions in the BVH's inner loops are forced inline: at -O2 gcc otherwise
    keeps them as calls, which costs about a quarter of the traversal time. So are a few of
-   the integrator's steps (chapters 12 and 14): as calls, with the fog code in their callers,
-   they made a fog-free render pay 2-4% for that code (make callgrind, docs/benchmarks.md). */
+   the integrators' steps (2.3, 3.4, Part II E): as calls, with the fog code in their callers,
+   they made a fog-free render pay for that code (docs/benchmarks.md, "Forced inlining"). */
 #if defined(__GNUC__) || defined(__clang__)
 #define FOGRT__HOT static inline __attribute__((always_inline, unused))
 #else
@@ -1483,6 +1483,14 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_me
     return FOGRT_RESULT_OK;
 }
 
+FOGRT__PUBLIC uint32_t fogrt_scene_get_prim_material(const fogrt_scene *s, uint32_t prim)
+{
+    FOGRT_ASSERT(s);
+    if (prim < s->tri_count) return s->tri_material[prim];
+    if (prim - s->tri_count < s->sph_count) return s->sph_material[prim - s->tri_count];
+    return UINT32_MAX;
+}
+FOGRT__PUBLIC uint32_t fogrt_scene_get_features(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->features; }
 FOGRT__PUBLIC void fogrt_scene_get_info(const fogrt_scene *s, fogrt_scene_info *info)
 {
     FOGRT_ASSERT(s && info);
@@ -1520,39 +1528,6 @@ FOGRT__PUBLIC void fogrt_scene_get_medium(const fogrt_scene *s, fogrt_medium_des
 {
     FOGRT_ASSERT(s && out);
     *out = s->medium;
-}
-FOGRT__PUBLIC uint32_t fogrt_scene_get_prim_material(const fogrt_scene *s, uint32_t prim)
-{
-    FOGRT_ASSERT(s);
-    if (prim < s->tri_count) return s->tri_material[prim];
-    if (prim - s->tri_count < s->sph_count) return s->sph_material[prim - s->tri_count];
-    return UINT32_MAX;
-}
-FOGRT__PUBLIC uint32_t fogrt_scene_get_features(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->features; }
-#ifndef FOGRT_MINIMAL
-FOGRT__PRIVATE size_t fogrt__x_bytes(const fogrt_scene *s);   /* Part II */
-#endif
-FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
-{
-    size_t t, p, b = sizeof *s, lit = 0;
-    uint32_t i;
-    FOGRT_ASSERT(s);
-    t = s->tri_count;
-    p = t + s->sph_count;
-    b += sizeof(fogrt_material_desc) * s->material_count + sizeof(fogrt_light_desc) * s->light_count;
-    b += t * (6 * sizeof(fogrt__v3) + 1 + 2 * sizeof(uint32_t));   /* vertices, normals, flag, ids */
-    b += (size_t)s->sph_count * (sizeof(fogrt__v3) + sizeof(float) + sizeof(uint32_t));
-    if (s->env_map) b += sizeof(float) * 3 * (size_t)s->env_w * (size_t)s->env_h;
-    if (s->nodes) b += sizeof(fogrt_bvh_node) * s->node_count + p * sizeof(uint32_t);
-    if (s->prims) b += p * sizeof(fogrt__prim);         /* chapter 10's primitives: the binary layout only */
-    if (s->spot_cos) b += sizeof(float) * 2 * s->light_count;
-    for (i = 0; s->area_lights && i < s->area_light_count; ++i) lit += s->area_lights[i].count;
-    if (s->area_lights) b += sizeof(fogrt__area_light) * s->area_light_count + lit * (sizeof(uint32_t) + sizeof(float));
-    if (s->prim_light) b += sizeof(uint32_t) * p;
-#ifndef FOGRT_MINIMAL
-    b += fogrt__x_bytes(s);                              /* Part II's tables */
-#endif
-    return b;
 }
 
 
@@ -1821,34 +1796,6 @@ FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count)
     }
 }
 
-FOGRT__PUBLIC void fogrt_scene_get_bvh(const fogrt_scene *s, const fogrt_bvh_node **nodes, uint32_t *node_count,
-                                       const uint32_t **prim_index)
-{
-    FOGRT_ASSERT(s);
-    if (nodes) *nodes = s->nodes;
-    if (node_count) *node_count = s->node_count;
-    if (prim_index) *prim_index = s->prim_index;
-}
-FOGRT__PUBLIC float fogrt_bvh_sah_cost(const fogrt_scene *s)
-{
-    double cost = 0.0, root_area;
-    uint32_t i;
-    fogrt__aabb rb;
-    FOGRT_ASSERT(s);
-    if (!s->nodes || s->node_count == 0) return 0.0f;
-    rb.lo = fogrt__v(s->nodes[0].bmin[0], s->nodes[0].bmin[1], s->nodes[0].bmin[2]);
-    rb.hi = fogrt__v(s->nodes[0].bmax[0], s->nodes[0].bmax[1], s->nodes[0].bmax[2]);
-    root_area = (double)FOGRT__MAX(fogrt__aabb_area(&rb), FLT_MIN);
-    for (i = 0; i < s->node_count; ++i) {
-        const fogrt_bvh_node *n = &s->nodes[i];
-        fogrt__aabb nb;
-        if (i == 1) continue;
-        nb.lo = fogrt__v(n->bmin[0], n->bmin[1], n->bmin[2]);
-        nb.hi = fogrt__v(n->bmax[0], n->bmax[1], n->bmax[2]);
-        cost += (double)fogrt__aabb_area(&nb) / root_area * (n->prim_count > 0 ? 1.0 * n->prim_count : 1.0);
-    }
-    return (float)cost;
-}
 
 /* ------------------------------------------------------------------------------------------
    2.1 (continued) Ray queries: primitives and BVH traversal
@@ -2039,27 +1986,6 @@ FOGRT__PUBLIC bool fogrt_scene_occluded(const fogrt_scene *s, fogrt_vec3 o, fogr
     fogrt_hit tmp;
     FOGRT_ASSERT(s);
     return fogrt__traverse(s, o, d, tmin, tmax, &tmp, true);
-}
-FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax, fogrt_hit *hit)
-{
-    uint32_t i;
-    bool found = false;
-    FOGRT_ASSERT(s);
-    for (i = 0; i < s->tri_count + s->sph_count; ++i) {
-        float t, u = 0.0f, v = 0.0f;
-        bool h;
-        if (i < s->tri_count) {
-            const fogrt__v3 *tv = &s->tri_v[3 * i];
-            h = fogrt__hit_triangle(o, d, tv[0], fogrt__sub(tv[1], tv[0]), fogrt__sub(tv[2], tv[0]), tmin, tmax, &t, &u, &v);
-        } else {
-            h = fogrt__hit_sphere(o, d, s->sph_c[i - s->tri_count], s->sph_r[i - s->tri_count], tmin, tmax, &t);
-        }
-        if (h) {
-            found = true; tmax = t;
-            if (hit) { hit->t = t; hit->prim = i; hit->u = u; hit->v = v; }
-        }
-    }
-    return found;
 }
 
 /* ------------------------------------------------------------------------------------------
@@ -2360,7 +2286,7 @@ FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *
    direction to it. A light with a radius is a sphere of radiance I(theta)/(pi R^2), sampled
    uniformly in the cone it subtends (inside it: every direction). The spot profile is
    evaluated from the light's centre. Returns false when x gets nothing. (Forced inline:
-   as calls, with Part II's second caller, they cost a fog-free render 1%.) */
+   as calls, with Part II's second caller, they cost a fog-free render time.) */
 FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l, fogrt__v3 x,
                                           const float *u, fogrt__light_sample *ls)
 {
@@ -2485,14 +2411,14 @@ FOGRT__PRIVATE fogrt__v3 fogrt__env_radiance(const fogrt_scene *s, fogrt__v3 d)
 
 /* ------------------------------------------------------------------------------------------
    3.1 Exponential fog particle sampling: free flight (paper eq. 4-6)
-   In a homogeneous medium the distance to the next collision is exponential with rate
-   sigma_t: pdf(t) = sigma_t exp(-sigma_t t). Inverting its CDF 1 - exp(-sigma_t t) = u gives
-   t = -ln(1 - u) / sigma_t; log1p keeps it accurate for small u. u < 1 always (the RNG never
-   returns 1), so t is finite; the tail beyond 16.6 mean free paths is cut (bias ~ 6e-8).
-   From u = 2^-8 on, logf(1 - u) is used instead: it costs a third of log1pf (which took 8%
-   of a fog render's time), and 1 - u is exact for the renderer's uniforms (multiples of
-   2^-24) and for every u >= 1/2; for other u below 1/2 its rounding moves t by at most
-   2^-17 relative.
+   Fog particles are spread uniformly, so collisions along a ray are a Poisson process with
+   rate lambda = sigma_t: no collision within t has probability exp(-sigma_t t) (eq. 4), a
+   collision has 1 - exp(-sigma_t t) (eq. 5), the CDF of the exponential distribution (eq.
+   6), whose density is sigma_t exp(-sigma_t t). Inverting the CDF at a uniform u gives the
+   paper's t = -ln(1 - u) / sigma_t. u < 1 always (the RNG never returns 1), so t is finite;
+   the tail beyond 16.6 mean free paths is cut (bias ~ 6e-8). Below u = 2^-8, log1p(-u)
+   keeps the digits that ln(1 - u) would lose; above it 1 - u is exact for the renderer's
+   uniforms (multiples of 2^-24), and logf is cheaper.
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_NO_MEDIUM
 FOGRT__PUBLIC float fogrt_sample_exponential(float sigma_t, float u)
@@ -2589,9 +2515,19 @@ FOGRT__PUBLIC float fogrt_hg_phase(float g, float mu)
     mu = FOGRT__CLAMP(mu, -1.0f, 1.0f);
     return fogrt__hg_phase_pm(fogrt__clamp_g(g), 1.0f - mu, 1.0f + mu);
 }
-/* Inverse CDF (eq. 11). The textbook form mu = (1 + g^2 - s^2) / (2g), s = (1 - g^2)/(1 - g
-   + 2gu), divides by g and cancels badly for small |g| (error ~ 1e-7/|g|). Expanding it
-   gives the same mu with no division by g:
+/* Eq. 10-11: the inverse of HG's CDF, as the paper writes it:
+     mu = (1 + g^2 - ((1 - g^2) / (1 - g + 2 g u))^2) / (2 g).
+   At g = 0 it divides 0 by 0 (the limit is isotropic, 2u - 1), and for small |g| it
+   subtracts nearly equal numbers and divides the rounding by 2g: its error grows like
+   1e-7 / |g|. test_hg_eq11_matches_stable_form shows where it agrees with the form below. */
+FOGRT__PRIVATE float fogrt__sample_hg_mu_eq11(float g, float u)
+{
+    float s;
+    if (g == 0.0f) return 2.0f * u - 1.0f;
+    s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
+    return FOGRT__CLAMP((1.0f + g * g - s * s) / (2.0f * g), -1.0f, 1.0f);
+}
+/* The same inverse, expanded so that nothing divides by g:
      D = (1 - g) + 2 g u,  mu = (2u - (1 - g)) / D + 2 g (1 - g)(1 + g) u (1 - u) / D^2.
    g = 0 gives mu = 2u - 1 (isotropic) with no special branch; u = 0 gives -1, u -> 1 gives 1. */
 /* D = (1 - g) + 2 g u, as a sum of two non-negative terms: for g < 0 and u -> 1 the direct
@@ -2819,84 +2755,122 @@ FOGRT__PRIVATE float fogrt__emission_weight(const fogrt_scene *s, const fogrt__s
     if (!st->mis) return 0.0f;
     return fogrt__power_heuristic(prev_pdf, (float)st->light_samples * fogrt__area_light_pdf(s, hit->prim, prev_p, p, ng));
 }
+/* Algorithm 1's state between two vertices: the ray, the throughput beta, the light
+   gathered, and what MIS needs of the vertex the ray left. */
+typedef struct fogrt__walk {
+    fogrt__v3 o, d, beta, L, prev_p;
+    float prev_pdf;            /* the density with which the ray's direction was chosen */
+    bool prev_delta;           /* camera ray or specular bounce: emission counts in full */
+    bool in_fog;               /* the ray travels in fog */
+    int depth;                 /* scattering events so far */
+} fogrt__walk;
+
+/* Lines 3-4, 5 and 14 (a fog particle), 8 and 18 (an object): the next vertex along the
+   ray, with the emission the ray reaches on the way. Returns false when the path ends
+   there (it left the scene, or hit a black diffuse surface). */
+FOGRT__PRIVATE bool fogrt__a1_vertex(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w, fogrt__vertex *v,
+                                     fogrt_rng *rng, uint64_t *rays)
+{
+    fogrt_hit hit;
+    float t_fog = INFINITY;
+    bool found;
+    ++*rays;
+    found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, &hit, false);                 /* 3: t_i */
+#ifndef FOGRT_NO_MEDIUM
+    if (w->in_fog) t_fog = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(rng));   /* 4: t_fog */
+#else
+    (void)rng;
+#endif
+    if (t_fog < (found ? hit.t : INFINITY)) {                                          /* 5, 14 */
+        w->beta = fogrt__mul(w->beta, s->medium.albedo);
+        v->p = fogrt__madd(w->o, w->d, t_fog); v->wo = fogrt__neg(w->d);
+        v->is_medium = true; v->in_medium = true; v->m = NULL;
+        v->ng = fogrt__v(0.0f, 0.0f, 0.0f);
+        return true;
+    }
+    if (!found) {                                                                       /* the sky */
+        if (s->has_env && w->depth >= st->min_depth) w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__env_radiance(s, w->d)));
+        return false;
+    } else {                                                                            /* 8, 18 */
+        const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit.prim)];
+        fogrt__v3 p, ng, ns;
+        fogrt__surface_frame(s, w->o, w->d, &hit, &p, &ng, &ns);
+        if (!fogrt__is_black(m->emission) && fogrt__dot(w->d, ng) < 0.0f && w->depth >= st->min_depth)
+            w->L = fogrt__add(w->L, fogrt__scale(fogrt__mul(w->beta, m->emission),
+                                                 fogrt__emission_weight(s, st, w->prev_delta, w->prev_pdf, w->prev_p, &hit, p, ng)));
+        if (fogrt__bsdf_type(m) == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance)) return false;
+        (void)fogrt__surface_vertex_set(v, m, fogrt__neg(w->d), p, ng, ns, w->in_fog);
+        return true;
+    }
+}
+/* Lines 11-22: the new direction, inverse HG in fog (15-17, eq. 11-12: weight p / pdf = 1),
+   the BSDF on an object (19-21, weight f cos / pdf: eq. 13, line 22). Returns false when
+   no direction could be drawn. */
+FOGRT__PRIVATE bool fogrt__a1_scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w,
+                                      const fogrt__vertex *v, fogrt_rng *rng)
+{
+    fogrt_bsdf_sample bs;
+    fogrt__v3 wi;
+    float u[3], cos_o;
+    u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng); u[2] = fogrt_rng_float(rng);
+#ifndef FOGRT_NO_MEDIUM
+    if (v->is_medium) {
+        w->d = fogrt__sample_hg_unit(s->medium.g, v->wo, u[1], u[2], &w->prev_pdf);
+        w->prev_delta = false;
+        w->o = w->prev_p = v->p;
+        return true;
+    }
+#endif
+    if (!fogrt__sample_surface(st, v, u, &bs, &wi, &cos_o)) return false;
+    w->beta = fogrt__mul(w->beta, bs.weight);
+    w->prev_pdf = bs.pdf; w->prev_delta = bs.is_delta;
+    if (bs.is_transmission)                             /* into or out of a refractive object */
+        w->in_fog = !(fogrt__dot(v->wo, v->ng) > 0.0f) && (s->features & FOGRT_FEATURE_MEDIUM);
+    w->d = wi;
+    w->o = fogrt__offset(s, v->p, v->ng, wi);
+    w->prev_p = v->p;
+    return true;
+}
+
 /* Algorithm 1. one_bounce: the paper's baseline instead (section 4.3): the camera ray is
    followed through mirrors and glass to the first scattering vertex, which samples the
    lights and takes one more step that only adds the emission it finds (its MIS half). */
 FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
                                            fogrt_rng *rng, uint64_t *rays, bool one_bounce)
 {
-    fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f), beta = fogrt__v(1.0f, 1.0f, 1.0f), prev_p = o;
-    float prev_pdf = 1.0f;
-    bool prev_delta = true, in_fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0, last = false;
-    int depth = 0, limit = st->max_depth;
+    fogrt__walk w;
+    bool last = false;
     uint32_t vertex;
+    w.o = o; w.d = d; w.prev_p = o;
+    w.beta = fogrt__v(1.0f, 1.0f, 1.0f); w.L = fogrt__v(0.0f, 0.0f, 0.0f);
+    w.prev_pdf = 1.0f; w.prev_delta = true;
+    w.in_fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0;                 /* the camera is in the fog */
+    w.depth = 0;
     for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
         fogrt__vertex v;
-        fogrt_hit hit;
-        fogrt__v3 wi;
-        float t_fog = INFINITY, u[3], q;
-        bool found, scattering;
-        ++*rays;                                                             /* 3 */
-        found = fogrt__traverse(s, o, d, 0.0f, INFINITY, &hit, false);
-#ifndef FOGRT_NO_MEDIUM
-        if (in_fog) t_fog = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(rng));   /* 4 */
-#endif
-        if (t_fog < (found ? hit.t : INFINITY)) {                            /* 5, 14: a fog particle */
-            beta = fogrt__mul(beta, s->medium.albedo);
-            v.p = fogrt__madd(o, d, t_fog); v.wo = fogrt__neg(d);
-            v.is_medium = true; v.in_medium = true; v.m = NULL;
-            v.ng = fogrt__v(0.0f, 0.0f, 0.0f);
-        } else if (!found) {                                                 /* the ray leaves the scene */
-            if (s->has_env && depth >= st->min_depth) L = fogrt__add(L, fogrt__mul(beta, fogrt__env_radiance(s, d)));
-            break;
-        } else {                                                             /* 8, 18: an object */
-            const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit.prim)];
-            fogrt__v3 p, ng, ns;
-            fogrt__surface_frame(s, o, d, &hit, &p, &ng, &ns);
-            if (!fogrt__is_black(m->emission) && fogrt__dot(d, ng) < 0.0f && depth >= st->min_depth)
-                L = fogrt__add(L, fogrt__scale(fogrt__mul(beta, m->emission),
-                                               fogrt__emission_weight(s, st, prev_delta, prev_pdf, prev_p, &hit, p, ng)));
-            if (fogrt__bsdf_type(m) == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance)) break;
-            (void)fogrt__surface_vertex_set(&v, m, fogrt__neg(d), p, ng, ns, in_fog);
-        }
-        if (last || depth >= limit) break;                                   /* 2: ray depth > 0 */
+        bool scattering;
+        if (!fogrt__a1_vertex(s, st, &w, &v, rng, rays)) break;           /* 3-5, 8, 14, 18 */
+        if (last || w.depth >= st->max_depth) break;                       /* 2: ray depth > 0 */
         scattering = v.is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v.m));
-        if (st->nee && scattering && depth + 1 >= st->min_depth)            /* 5-10 */
-            L = fogrt__add(L, fogrt__mul(beta, fogrt__nee(s, st, &v, rng, rays)));
-        if (one_bounce && scattering) last = true;                           /* the baseline: one step more */
-        u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng); u[2] = fogrt_rng_float(rng);
-#ifndef FOGRT_NO_MEDIUM
-        if (v.is_medium) {                                                   /* 15-17: inverse HG, eq. 11-12 */
-            wi = fogrt__sample_hg_unit(s->medium.g, v.wo, u[1], u[2], &prev_pdf);
-            prev_delta = false;                                              /* 13: weight p / pdf = 1 */
-            o = v.p;
-        } else
-#endif
-        {                                                             /* 19-21 */
-            fogrt_bsdf_sample bs;
-            float cos_o;
-            if (!fogrt__sample_surface(st, &v, u, &bs, &wi, &cos_o)) break;
-            beta = fogrt__mul(beta, bs.weight);                              /* 22: f cos / pdf */
-            prev_pdf = bs.pdf; prev_delta = bs.is_delta;
-            if (bs.is_transmission) in_fog = !(fogrt__dot(v.wo, v.ng) > 0.0f) && (s->features & FOGRT_FEATURE_MEDIUM);
-            o = fogrt__offset(s, v.p, v.ng, wi);
-        }
-        d = wi; prev_p = v.p;
-        ++depth;                                                             /* 12, 23 */
-        if (depth > st->rr_depth) {                                          /* 2: coin flip(p) */
-            q = FOGRT__MIN(0.95f, fogrt__max3(beta));
+        if (st->nee && scattering && w.depth + 1 >= st->min_depth)         /* 6, 9 */
+            w.L = fogrt__add(w.L, fogrt__mul(w.beta, fogrt__nee(s, st, &v, rng, rays)));
+        if (one_bounce && scattering) last = true;                         /* the baseline: one step more */
+        if (!fogrt__a1_scatter(s, st, &w, &v, rng)) break;                 /* 11-22 */
+        ++w.depth;                                                         /* 12, 23 */
+        if (w.depth > st->rr_depth) {                                      /* 2: coin flip(p) */
+            float q = FOGRT__MIN(0.95f, fogrt__max3(w.beta));
             if (!(fogrt_rng_float(rng) < q)) break;
-            beta = fogrt__scale(beta, 1.0f / q);
+            w.beta = fogrt__scale(w.beta, 1.0f / q);
         }
     }
-    return L;
+    return w.L;
 }
 
 /* ------------------------------------------------------------------------------------------
    I.3 The scene build: bounds, the tree, the light tables and the feature analysis
-   fogrt_scene_build turns what was added into what the renderer reads: the BVH (chapter 9)
+   fogrt_scene_build turns what was added into what the renderer reads: the BVH (2.1)
    over every primitive, the primitives in BVH order in the form the traversal wants, one
-   table per area light (chapter 12), the ray offset scale, and the feature bits.
+   table per area light (2.3), the ray offset scale, and the feature bits.
    ------------------------------------------------------------------------------------------ */
 /* Whether a primitive uses a material of this type: the materials are looked at first, so
    that a scene without one does not scan its million triangles. */
@@ -3004,7 +2978,7 @@ FOGRT__PRIVATE fogrt__aabb fogrt__prim_box(const fogrt_scene *s, uint32_t i)
     return bb;
 }
 /* The build's record of every primitive (its box), the scene's bounds, and the sizes
-   derived from them: the ray offset floor and the point-light distance clamp (chapter 12). */
+   derived from them: the ray offset floor and the point-light distance clamp (2.3). */
 FOGRT__PRIVATE void fogrt__bounds(fogrt_scene *s, fogrt__build *b, uint32_t n)
 {
     fogrt__aabb sb = fogrt__aabb_empty();
@@ -3558,8 +3532,6 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
     return result;
 }
 
-
-
 /* Output helpers. The sRGB curve: 12.92 x below 0.0031308, else 1.055 x^(1/2.4) - 0.055. */
 FOGRT__PUBLIC void fogrt_tonemap_rgb8(const float *rgb, int width, int height, float exposure,
                                       fogrt_tonemap mode, unsigned char *out)
@@ -3736,7 +3708,7 @@ struct fogrt__x {
    Its gain: docs/benchmarks.md, table "Wide BVH".
 
 
-   The binary tree of chapter 9 is good (few boxes and few triangles per ray), but each step
+   The binary tree of 2.1 is good (few boxes and few triangles per ray), but each step
    of its traversal tests two boxes, one after the other, and branches on the outcome; an
    incoherent ray mispredicts many of those branches, and on a big mesh every step is also a
    cache miss. A wide BVH keeps the same boxes and removes levels:
@@ -3753,19 +3725,16 @@ struct fogrt__x {
         a scene of a few big primitives (a Cornell box: walls and spheres) the merged box of
         two walls holds most of the room, and most rays would test the packet. So a scene of
         at most FOGRT_WBVH_SMALL_SCENE (64) primitives merges nothing: its binary tree is the
-        SAH's alone and each binary leaf is one lane (the cross-check's 14-primitive box
-        with glass and a mirror renders 8-15% faster; the bunny scene, 28,588 primitives,
-        keeps the merges, which it needs: 9% slower rays without them).
+        SAH's alone and each binary leaf is one lane (docs/benchmarks.md, "Wide BVH").
      2. Structure of arrays. A node stores all W minimum x, then all W minimum y, and so on,
         so its W slab tests are the same instructions on W lanes: SSE does four at once,
         AVX2 all eight.
      3. Leaf packets. A leaf's primitives are copied into a packet of four, again structure
         of arrays (four v0.x, then four v0.y, ...), and one packet is tested with the
-        Moller-Trumbore test of chapter 10 on four lanes at once. The test first compares
+        Moller-Trumbore test of 2.1 on four lanes at once. The test first compares
         u, v and t times det (no division yet) with bounds times |det|, loosened by 2^-20
         so that it never rejects a lane the exact test takes; only a packet with a lane
-        left then pays the division and the exact tests (1M-triangle mesh, one thread:
-        bounce rays 7% and shadow rays 9% faster; bench/ab, session 8).
+        left then pays the division and the exact tests (docs/benchmarks.md, "Wide BVH").
      4. Traversal: test the W boxes of the current node, go on with the nearest child hit,
         push the others, farthest first, with their entry distances (sorted where they are
         pushed, on the stack); any-hit rays push them unsorted. Closest and any hit are
@@ -3778,7 +3747,7 @@ struct fogrt__x {
    The wide tree tests a subset of the binary tree's boxes (a collapsed node's own box
    contains its children's, so leaving it out loses no ray), and a popped box is skipped only
    when it starts more than 1e-5 (relative) beyond the closest hit so far (see
-   fogrt__cull in chapter 10). What can differ:
+   fogrt__cull in 2.1). What can differ:
      - two hits at exactly the same t (a ray through a shared edge) may be found in another
        order, so another primitive is named at the same t;
      - with FOGRT_WBVH_LEAF > 0 a merged leaf's box is larger than its parts, so a ray that
@@ -3790,10 +3759,10 @@ struct fogrt__x {
    about one per 20 triangles; a packet of 4 primitives is 176 bytes (1M mesh: 12.5 and 54
    bytes per triangle). The collapse first lays the nodes out as small records, then gives
    nodes and packets blocks of exactly the size used. Both arrays start on a cache line and
-   ask for huge pages (chapter 9); the binary tree's packed primitives of chapter 10 are not
+   ask for huge pages (below); the binary tree's packed primitives of 2.1 are not
    made for the wide layout.
 
-   SIMD: FOGRT_WBVH_SSE (set in chapter 9: on by default where the compiler targets SSE2,
+   SIMD: FOGRT_WBVH_SSE (set below: on by default where the compiler targets SSE2,
    that is every x86-64) selects the SSE intrinsics; FOGRT_WBVH_NO_SIMD forces the plain C99
    loops, which compute exactly the same values lane by lane. On top of SSE, the AVX2 path
    (FOGRT_WBVH_AVX2, W = 8) tests a node's 8 boxes in one pass of 8-lane instructions instead
@@ -3834,7 +3803,7 @@ FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size)
 }
 
 /* SIMD: FOGRT_WBVH_SSE (on by default where the compiler targets SSE2, that is every x86-64)
-   selects SSE intrinsics here and in chapter 10b; FOGRT_WBVH_NO_SIMD forces plain C99 loops
+   selects SSE intrinsics in this chapter; FOGRT_WBVH_NO_SIMD forces plain C99 loops
    that compute exactly the same values lane by lane. */
 #if !defined(FOGRT_WBVH_SSE) && !defined(FOGRT_WBVH_NO_SIMD) && \
     (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
@@ -3843,7 +3812,7 @@ FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size)
 #ifdef FOGRT_WBVH_NO_SIMD
 #undef FOGRT_WBVH_SSE
 #endif
-/* AVX2 (chapter 10b's 8-lane box and triangle tests, on top of SSE): FOGRT_WBVH_AVX2 is 1
+/* AVX2 (this chapter's 8-lane box and triangle tests, on top of SSE): FOGRT_WBVH_AVX2 is 1
    where the compiler targets AVX2 anyway (-mavx2, -march=native on a recent x86), 2 where
    GCC or Clang compile for x86-64 without it: the AVX2 functions then get
    __attribute__((target("avx2"))) and the scene build asks the processor once
@@ -3895,7 +3864,7 @@ FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size)
 #define FOGRT__WBVH_EMPTY 0xFFFFFFFFu             /* count[] of a lane with no child */
 /* Each wide level pushes at most W - 1 children and uses up at least one binary level. */
 #define FOGRT__WBVH_STACK ((FOGRT__BVH_MAX_DEPTH + 2) * (FOGRT__WBVH_W - 1) + 2)
-/* The AVX2 path (FOGRT_WBVH_AVX2, chapter 9) takes the 8 lanes of a node at once, so it
+/* The AVX2 path (FOGRT_WBVH_AVX2, above) takes the 8 lanes of a node at once, so it
    exists for W = 8 only. FOGRT__AVX2_FN marks its functions: compiled for AVX2 with
    target("avx2") when the rest of the file is not (they are then never forced inline: a
    function for AVX2 cannot be inlined into one that is not, only the reverse). */
@@ -4177,8 +4146,8 @@ FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, cons
     fogrt__free(a, rec);
     return true;
 }
-/* The scene's wide tree: built by fogrt_scene_build (chapter 11), released with the rest of
-   the built data (chapter 8). */
+/* The scene's wide tree: built by fogrt_scene_build (seam 3), released with the rest of
+   the built data (seam 4). */
 FOGRT__PRIVATE bool fogrt__wide_build(fogrt_scene *s)
 {
     s->x->wide = (fogrt__wbvh *)fogrt__alloc(&s->allocator, sizeof *s->x->wide);
@@ -4521,29 +4490,18 @@ FOGRT__HOT bool fogrt__wbvh_walk(const fogrt_scene *s, const fogrt__wbvh *w, fog
         ref = stack[sp].ref; cnt = stack[sp].cnt;
     }
 }
-/* The four traversals: closest or any hit, SSE (or plain C) or AVX2 boxes. */
-FOGRT__PRIVATE bool fogrt__wbvh_closest(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
-                                        float tmin, float tmax, fogrt_hit *hit)
-{
-    return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, false, false);
-}
-FOGRT__PRIVATE bool fogrt__wbvh_any(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
-                                    float tmin, float tmax, fogrt_hit *hit)
-{
-    return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, true, false);
-}
+/* The four traversals: closest or any hit, SSE (or plain C) or AVX2 boxes; each its own
+   function, so that the AVX2 ones can carry the target attribute. */
+#define FOGRT__WBVH_ENTRY(qual, name, any, avx2) \
+    qual bool name(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax, \
+                   fogrt_hit *hit) { return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, any, avx2); }
+FOGRT__WBVH_ENTRY(FOGRT__PRIVATE, fogrt__wbvh_closest, false, false)
+FOGRT__WBVH_ENTRY(FOGRT__PRIVATE, fogrt__wbvh_any, true, false)
 #ifdef FOGRT__WBVH_HAS_AVX2
-FOGRT__AVX2_FN bool fogrt__wbvh_closest_avx2(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
-                                             float tmin, float tmax, fogrt_hit *hit)
-{
-    return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, false, true);
-}
-FOGRT__AVX2_FN bool fogrt__wbvh_any_avx2(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
-                                         float tmin, float tmax, fogrt_hit *hit)
-{
-    return fogrt__wbvh_walk(s, w, o, d, tmin, tmax, hit, true, true);
-}
+FOGRT__WBVH_ENTRY(FOGRT__AVX2_FN, fogrt__wbvh_closest_avx2, false, true)
+FOGRT__WBVH_ENTRY(FOGRT__AVX2_FN, fogrt__wbvh_any_avx2, true, true)
 #endif
+#undef FOGRT__WBVH_ENTRY
 FOGRT__HOT bool fogrt__wbvh_traverse(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
                                      float tmin, float tmax, fogrt_hit *hit, bool any_hit)
 {
@@ -4579,6 +4537,7 @@ FOGRT__PRIVATE bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__
     return *done && fogrt__wbvh_traverse(s, s->x->wide, o, d, tmin, tmax, hit, any_hit);
 }
 
+
 /* ------------------------------------------------------------------------------------------
    B. Lamps in fog
    What it adds: point and spot lights in fog, the lamps of the paper's own scenes, found
@@ -4593,7 +4552,7 @@ FOGRT__PRIVATE bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__
 #ifndef FOGRT_NO_MEDIUM
 /* HG per unit angle. Seen along a ray, light from a point lamp scatters toward the ray's
    origin at every point of it, each with its own scattering angle psi; in the equiangular
-   angle (chapter 6) psi grows linearly along the ray, so the phase function to integrate is
+   angle (below) psi grows linearly along the ray, so the phase function to integrate is
    HG(cos psi) per unit psi, not per steradian. That density has no closed-form inverse, so
    each scene keeps a table of it for its g: N bins in psi, spaced geometrically away from
    HG's peak (psi = 0 for g >= 0, pi for g < 0) from x0 = 1e-3 (1 - |g|) on, where HG falls
@@ -4604,7 +4563,7 @@ FOGRT__PRIVATE bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__
    bins hold HG's exact mass (Simpson's rule in double). Sampling from the table is exact for
    that density, so estimators that use it stay unbiased whatever the table's resolution;
    the resolution only decides how close to HG the density is. The same edges carry a second
-   cumulative, K, for the glow of chapter 6: the light along a direction at angle alpha from
+   cumulative, K, for the glow (below): the light along a direction at angle alpha from
    the lamp is proportional to G(alpha) / sin(alpha) with G(alpha) = C(pi) - C(alpha) (the
    scattering angles from alpha to pi), so the glow's density per unit alpha is G, averaged
    per bin. Inverting a cumulative starts from a second index, the bin where each of N even
@@ -4617,7 +4576,7 @@ typedef struct fogrt__hg_table {
     double c[FOGRT__HGT_N + 1];         /* C at the edges: HG(cos psi) per unit psi */
     double k[FOGRT__HGT_N + 1];         /* K at the edges: G(alpha) per unit alpha */
     uint16_t c_start[FOGRT__HGT_N + 1], k_start[FOGRT__HGT_N + 1];   /* the inverse's index */
-    float k_norm;                       /* 1 / (2 pi K(pi)): the glow's density per steradian (chapter 6) */
+    float k_norm;                       /* 1 / (2 pi K(pi)): the glow's density per steradian (below) */
     float inv_x0, sn;                   /* 1 / x0 and s N: the bin guess of fogrt__hgt_bin */
 } fogrt__hg_table;
 FOGRT__PRIVATE double fogrt__hg_angle(double g, double psi)   /* HG(cos psi), base formed without cancellation */
@@ -4774,7 +4733,7 @@ FOGRT__PUBLIC float fogrt_glow_pdf(fogrt_vec3 to_light, fogrt_vec3 wi)
     return fogrt__glow_density(2.0f * atan2f(la, lb), 2.0f * atan2f(lb, la));
 }
 /* The two samplers above with the phase function in them, as the renderer uses them (the
-   table of chapter 5 for the scene's g; at g = 0 they are the closed forms, to the table's
+   table above for the scene's g; at g = 0 they are the closed forms, to the table's
    resolution).
    Equiangular with HG: the scattering angle at x(t) is psi = theta + pi/2 (theta the
    equiangular angle: mu = -sin(theta) between the light's travel and the way back along
@@ -4856,7 +4815,7 @@ FOGRT__PRIVATE float fogrt__glow_hg_pdf(const fogrt__hg_table *T, fogrt__v3 to_l
     (void)fogrt__hgt_at(T, T->k, alpha, &dens);
     return fogrt__glow_hg_density(T, 0.5 * (double)la * (double)lb, dens);
 }
-/* The footprint of a spot light on a plane (chapter 14 d' aims at it), sampled two ways.
+/* The footprint of a spot light on a plane (E d' aims at it), sampled two ways.
    Through the lamp's cone: a direction drawn
    uniformly in the lamp's cone meets the plane at y; seen from x, the direction is y - x.
    Its density per steradian at x is the cone's, 1 / (2 pi (1 - cos cutoff)), turned into
@@ -4873,9 +4832,8 @@ FOGRT__PRIVATE float fogrt__glow_hg_pdf(const fogrt__hg_table *T, fogrt__v3 to_l
    sphere around the lit patch subtends from x (the sphere sampler's cone, above), for
    half the footprint's samples where x lies outside that sphere (inside it, all go
    through the lamp's cone). The sphere need not hold the patch exactly (it is found from
-   16 points of its rim): the density below is exact for any sphere. Measured in the
-   paper's spot-lit box (docs/benchmarks.md, session 17): 15% less variance per sample
-   than the first way alone, 3-4% more time. */
+   16 points of its rim): the density below is exact for any sphere. Its gain:
+   docs/benchmarks.md, table "Footprint". */
 #define FOGRT__FOOTPRINT_CAP 0.5f       /* the share of the footprint's samples aimed through the sphere */
 typedef struct fogrt__footprint {
     fogrt__v3 light;           /* the lamp's position */
@@ -4885,9 +4843,9 @@ typedef struct fogrt__footprint {
     fogrt__v3 center;          /* a sphere around the lit patch (radius 0: none, the cone's rim */
     float radius;              /*   does not meet the plane all round) */
     float near_plane;          /* a vertex closer than this to the plane does not aim at it */
-    bool on;                   /* a plane was found (fogrt__find_footprints, chapter 12) */
+    bool on;                   /* a plane was found (fogrt__find_footprints, below) */
 } fogrt__footprint;
-/* Where the lamp's direction w meets the plane (also the rim points of chapter 12's
+/* Where the lamp's direction w meets the plane (also the rim points of fogrt__footprint_bound's
    bound); false when w runs parallel to the plane or away from it. */
 FOGRT__PRIVATE bool fogrt__footprint_hit(const fogrt__footprint *F, fogrt__v3 w, fogrt__v3 *y)
 {
@@ -4967,7 +4925,7 @@ FOGRT__PRIVATE float fogrt__footprint_pdf(const fogrt__footprint *F, fogrt__v3 x
 }
 #endif
 #ifndef FOGRT_NO_MEDIUM
-/* The footprints of 14 d' (chapter 6), found once per build of a scene with lamps in fog.
+/* The footprints of E d' (above), found once per build of a scene with lamps in fog.
    For each spot light, 64 rays stratified over its cone (8 x 8 cells in cos theta and
    azimuth, one ray at each centre) find what it lights. The plane that most of them meet
    (triangles with normals within 0.8 degrees of each other and offsets within 1e-4 of the
@@ -4979,7 +4937,7 @@ FOGRT__PRIVATE float fogrt__footprint_pdf(const fogrt__footprint *F, fogrt__v3 x
 #define FOGRT__FOOTPRINT_GRID 8        /* the rays: a grid of 8 x 8 over the cone */
 #define FOGRT__FOOTPRINT_SHARE 0.2f    /* the share of a lamp's glow samples aimed at its footprint */
 #define FOGRT__FOOTPRINT_RIM 16        /* points of the cone's rim on the plane that the sphere holds */
-/* The sphere around the lit patch (chapter 6): the centroid of 16 points where the cone's
+/* The sphere around the lit patch (above): the centroid of 16 points where the cone's
    rim meets the plane, and their largest distance from it, 2% more (the rim between them
    bulges a little past the points when the cone meets the plane at a slant). No sphere
    when part of the rim misses the plane: the patch is then unbounded. */
@@ -5054,7 +5012,7 @@ FOGRT__PRIVATE bool fogrt__find_footprints(fogrt_scene *s)
    it in one interval. Its ends are among the roots of the quadratic "on the cone surface"
    and the plane through the apex; the inside test at the midpoints picks the interval.
    The two common cases need no sorting (fogrt__clip_to_cone_quadratic, first).
-   cos_c is the cosine of the cutoff (s->spot_cos, chapter 12). Returns false when the ray
+   cos_c is the cosine of the cutoff (s->spot_cos, 2.3). Returns false when the ray
    misses the cone. */
 /* The common cases, from the quadratic A t^2 + 2 B t + C >= 0 of the double cone (da and wa
    the direction's and the origin's components along the axis): a line steeper than the
@@ -5227,7 +5185,7 @@ FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s)
 
 #ifndef FOGRT_NO_MEDIUM
 /* The part [*a, *b] of the ray segment o + t d, t in [0, tmax], that lies in the fog: all of
-   it, or with bounded fog its part inside the box (a slab test like chapter 10's, NaN-safe
+   it, or with bounded fog its part inside the box (a slab test like 2.1's, NaN-safe
    for axis-parallel rays on a face). False when the segment misses the fog. */
 FOGRT__PRIVATE bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax, float *a, float *b)
 {
@@ -5352,9 +5310,8 @@ FOGRT__PRIVATE float fogrt__pick_prob(const fogrt_scene *s, bool by_power, uint3
    rare path can make one pixel's estimate thousands of times its neighbours'; capped at
    16 times the colour's mean before the boxes sum them, such a pixel no longer drags its
    box along. rate = max(sigma_box, 0.3 x mean) / mean, so no pixel falls below about a
-   third of the even rate, in case the box saw none of its rare light yet. Measured
-   (docs/benchmarks.md): rates after 8 spp in the paper's spot-lit fog, 1.2x less
-   variance at equal time. */
+   third of the even rate, in case the box saw none of its rare light yet. Its gain:
+   docs/benchmarks.md, table "Pixel rates". */
 FOGRT__PRIVATE void fogrt__sat_build(double *sat, const double *v, int W, int H)
 {
     int x, y;
@@ -5382,26 +5339,13 @@ FOGRT__PRIVATE void fogrt__colour_layer(double *out, const double *v, int W, int
             out[i] = ((x + y) & 1) != c ? 0.0 : v ? FOGRT__MIN(v[i], cap) : 1.0;
         }
 }
-FOGRT__PUBLIC fogrt_result fogrt_image_sample_rates(const fogrt_image *img, float *rates)
+/* Step 1: each colour's noise per sample, its mean, then capped at 16 times it, in two
+   summed-area tables per colour (the noise, and how many of its pixels); v + n is scratch. */
+FOGRT__PRIVATE void fogrt__rate_tables(const fogrt_image *img, double *v, double *sat_v, double *sat_n, double *count)
 {
-    int W, H, x, y, r, c;
-    size_t n, i, cells;
-    double samples = 0.0, vmean[2] = {0.0, 0.0}, count[2] = {0.0, 0.0}, amean[2] = {0.0, 0.0}, norm[2];
-    double *v, *sat_v, *sat_n, side;
-    FOGRT_ASSERT(img && rates);
-    W = img->width; H = img->height;
-    n = (size_t)W * (size_t)H;
-    cells = (size_t)(W + 1) * (size_t)(H + 1);
-    for (i = 0; i < n; ++i) samples += img->count[i];
-    if (samples <= 0.0) return FOGRT_RESULT_INVALID_ARGUMENT;
-    v = (double *)fogrt__alloc(&img->allocator, sizeof(double) * n * 2);
-    sat_v = (double *)fogrt__alloc(&img->allocator, sizeof(double) * cells * 2);
-    sat_n = (double *)fogrt__alloc(&img->allocator, sizeof(double) * cells * 2);
-    if (!v || !sat_v || !sat_n) {
-        fogrt__free(&img->allocator, v); fogrt__free(&img->allocator, sat_v); fogrt__free(&img->allocator, sat_n);
-        return FOGRT_RESULT_OUT_OF_MEMORY;
-    }
-    /* each colour's noise per sample, its mean, then capped; v + n holds the colour masks */
+    int W = img->width, H = img->height, x, y, c;
+    size_t i, n = (size_t)W * (size_t)H, cells = (size_t)(W + 1) * (size_t)(H + 1);
+    double vmean[2] = {0.0, 0.0};
     for (y = 0; y < H; ++y)
         for (x = 0; x < W; ++x) {
             i = (size_t)y * (size_t)W + (size_t)x; c = (x + y) & 1;
@@ -5410,16 +5354,19 @@ FOGRT__PUBLIC fogrt_result fogrt_image_sample_rates(const fogrt_image *img, floa
             vmean[c] += v[i]; count[c] += 1.0;
         }
     for (c = 0; c < 2; ++c) vmean[c] = count[c] > 0.0 ? vmean[c] / count[c] : 0.0;
-    for (c = 0; c < 2; ++c) {       /* colour c's capped noise, and how many of its pixels */
+    for (c = 0; c < 2; ++c) {
         fogrt__colour_layer(v + n, v, W, H, c, 16.0 * vmean[c]);
         fogrt__sat_build(sat_v + (size_t)c * cells, v + n, W, H);
         fogrt__colour_layer(v + n, NULL, W, H, c, 0.0);
         fogrt__sat_build(sat_n + (size_t)c * cells, v + n, W, H);
     }
-    /* the box: about 8192 samples at this image's mean count */
-    side = sqrt(8192.0 / (samples / (double)n));
-    r = side > 3.0 ? (int)ceil((side - 1.0) / 2.0) : 1;
-    if (r > W + H) r = W + H;
+}
+/* Step 2: each pixel's noise from the other colour's pixels in the box of radius r around
+   it; amean[c] sums colour c's. */
+FOGRT__PRIVATE void fogrt__rate_boxes(int W, int H, int r, double *v, const double *sat_v, const double *sat_n, double *amean)
+{
+    size_t cells = (size_t)(W + 1) * (size_t)(H + 1);
+    int x, y;
     for (y = 0; y < H; ++y)
         for (x = 0; x < W; ++x) {
             int o = 1 - ((x + y) & 1);          /* the other colour */
@@ -5427,13 +5374,18 @@ FOGRT__PUBLIC fogrt_result fogrt_image_sample_rates(const fogrt_image *img, floa
             int y0 = FOGRT__MAX(y - r, 0), y1 = FOGRT__MIN(y + r, H - 1);
             double k = fogrt__sat_box(sat_n + (size_t)o * cells, W, x0, y0, x1, y1);
             double sum = fogrt__sat_box(sat_v + (size_t)o * cells, W, x0, y0, x1, y1);
-            i = (size_t)y * (size_t)W + (size_t)x;
+            size_t i = (size_t)y * (size_t)W + (size_t)x;
             v[i] = k > 0.0 ? sqrt(FOGRT__MAX(sum, 0.0) / k) : 0.0;
             amean[(x + y) & 1] += v[i];
         }
+}
+/* Step 3: a pixel of colour c is normalised by what the other colour's noise gave colour c. */
+FOGRT__PRIVATE void fogrt__rate_normalise(int W, int H, const double *v, const double *count, double *amean, float *rates)
+{
+    double norm[2] = {0.0, 0.0};
+    int x, y, c;
+    size_t i;
     for (c = 0; c < 2; ++c) amean[c] = count[c] > 0.0 ? amean[c] / count[c] : 0.0;
-    /* a pixel of colour c is normalised by what the other colour's noise gave colour c */
-    for (c = 0; c < 2; ++c) norm[c] = 0.0;
     for (y = 0; y < H; ++y)
         for (x = 0; x < W; ++x) {
             c = (x + y) & 1; i = (size_t)y * (size_t)W + (size_t)x;
@@ -5446,8 +5398,32 @@ FOGRT__PUBLIC fogrt_result fogrt_image_sample_rates(const fogrt_image *img, floa
             a = norm[c] > 0.0 && amean[c] > 0.0 ? FOGRT__MAX(v[i], 0.3 * amean[c]) * count[c] / norm[c] : 1.0;
             rates[i] = (float)FOGRT__MIN(a, (double)FOGRT_MAX_SAMPLE_RATE);
         }
+}
+FOGRT__PUBLIC fogrt_result fogrt_image_sample_rates(const fogrt_image *img, float *rates)
+{
+    int W, H, r;
+    size_t n, i, cells;
+    double samples = 0.0, count[2] = {0.0, 0.0}, amean[2] = {0.0, 0.0};
+    double *v, *sat_v, *sat_n, side;
+    FOGRT_ASSERT(img && rates);
+    W = img->width; H = img->height;
+    n = (size_t)W * (size_t)H;
+    cells = (size_t)(W + 1) * (size_t)(H + 1);
+    for (i = 0; i < n; ++i) samples += img->count[i];
+    if (samples <= 0.0) return FOGRT_RESULT_INVALID_ARGUMENT;
+    v = (double *)fogrt__alloc(&img->allocator, sizeof(double) * n * 2);
+    sat_v = (double *)fogrt__alloc(&img->allocator, sizeof(double) * cells * 2);
+    sat_n = (double *)fogrt__alloc(&img->allocator, sizeof(double) * cells * 2);
+    if (v && sat_v && sat_n) {
+        fogrt__rate_tables(img, v, sat_v, sat_n, count);
+        side = sqrt(8192.0 / (samples / (double)n));   /* the box: about 8192 samples at this image's mean count */
+        r = side > 3.0 ? (int)ceil((side - 1.0) / 2.0) : 1;
+        if (r > W + H) r = W + H;
+        fogrt__rate_boxes(W, H, r, v, sat_v, sat_n, amean);
+        fogrt__rate_normalise(W, H, v, count, amean, rates);
+    }
     fogrt__free(&img->allocator, v); fogrt__free(&img->allocator, sat_v); fogrt__free(&img->allocator, sat_n);
-    return FOGRT_RESULT_OK;
+    return v && sat_v && sat_n ? FOGRT_RESULT_OK : FOGRT_RESULT_OUT_OF_MEMORY;
 }
 
 /* The stratified pixel positions. Sobol's first two dimensions form a (0,2)-sequence: for
@@ -5735,8 +5711,8 @@ FOGRT__PRIVATE bool fogrt__is_scattering(const fogrt__path *P)
 {
     return P->v.is_medium || !fogrt__bsdf_is_delta(P->type);
 }
-/* The lamps whose glow (chapter 6) a scattering vertex in fog may aim its next direction
-   at (chapter 14, d'): every point and spot light. At most FOGRT__GLOW_MAX, the first
+/* The lamps whose glow (B) a scattering vertex in fog may aim its next direction
+   at (d'): every point and spot light. At most FOGRT__GLOW_MAX, the first
    ones; none on a mirror or glass surface, outside the fog, or with the glow switched off.
    A lamp with a footprint is also aimed at through it, unless the vertex lies on its plane
    (directions from there only graze it). */
@@ -5760,8 +5736,8 @@ FOGRT__PRIVATE void fogrt__glow_setup(const fogrt_scene *s, const fogrt__path *P
         g->lamp[g->n++] = i;
     }
 }
-/* The density of the mixed direction sampling of 14 d' at wi: with c = glow_share (half the
-   point and spot lights' share of the scene's light power, chapter 12: 1/2 when they are
+/* The density of the mixed direction sampling of d' at wi: with c = glow_share (half the
+   point and spot lights' share of the scene's light power, C: 1/2 when they are
    all the light), 1 - c the phase function or BSDF (pdf_b), c the glows of the vertex's
    lamps, each chosen with equal probability; a lamp with a footprint gives
    FOGRT__FOOTPRINT_SHARE of its part to it. */
@@ -5815,9 +5791,9 @@ FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt
 /* Next-event estimation at vertex v (CS184 style: every light is sampled, area lights with
    light_samples samples each; or, with light_by_power, one light picked by power and its
    samples divided by the probability of the pick). At a fog vertex the point and spot lights
-   are left out when the equiangular estimator (chapter 14) gathers them along the ray
+   are left out when the equiangular estimator (a) gathers them along the ray
    instead: the two never count the same light twice (a pick of one of them adds nothing
-   there). The point and spot lights' share is scaled by lamp_scale (the T of chapter 14
+   there). The point and spot lights' share is scaled by lamp_scale (the T of
    b'), and with lamps_only the other lights are left out. Returns the reflected radiance,
    before the path weight. */
 FOGRT__PRIVATE fogrt__v3 fogrt__sample_light_n(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
@@ -5862,8 +5838,8 @@ FOGRT__PRIVATE void fogrt__fog_vertex(fogrt__vertex *v, fogrt__v3 p, fogrt__v3 w
 }
 /* Single scattering from point and spot lights along one fog segment [0, t_max] of the
    ray, by equiangular sampling with the phase function: per light, a distance t with pdf ~
-   HG(mu(t)) / r^2 (fogrt__sample_equiangular_hg, chapter 6; plain equiangular when g = 0), then
-   the light seen from the fog point x(t) as at any fog vertex (chapter 12), weighted by
+   HG(mu(t)) / r^2 (fogrt__sample_equiangular_hg, B; plain equiangular when g = 0), then
+   the light seen from the fog point x(t) as at any fog vertex (2.3), weighted by
    sigma_s T(t) / pdf(t). A spot light only lights its cone: only the part of the ray inside
    it is sampled. With light_by_power, one point or spot light per segment, by power. */
 /* The point and spot lights a segment gathers, [*first, *last): all of them, or with
@@ -6040,7 +6016,7 @@ FOGRT__PRIVATE void fogrt__escape(const fogrt_scene *s, const fogrt__settings *s
 }
 #ifndef FOGRT_NO_MEDIUM
 /* A ray that collided in the fog before its end (hit, or NULL: it escapes): what the end
-   still adds, tr Le (14 b), and the lights behind the surface (b'). The path goes on at
+   still adds, tr Le (b), and the lights behind the surface (b'). The path goes on at
    the collision. */
 FOGRT__PRIVATE bool fogrt__collided(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                     const fogrt_hit *hit, fogrt__v3 beta, float tr, int limit)
@@ -6059,7 +6035,7 @@ FOGRT__PRIVATE bool fogrt__collided(const fogrt_scene *s, const fogrt__settings 
     return true;
 }
 #endif
-/* Where a ray that did not collide ends: an emitting surface's tr Le (14 b), then the
+/* Where a ray that did not collide ends: an emitting surface's tr Le (b), then the
    surface event; or the environment. Inlined twice in fogrt__next_event: in the fog (tr
    the transmittance) and in clear air (tr = 1, so that code is a fog-free build's). */
 FOGRT__HOT bool fogrt__ray_end(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, bool found,
@@ -6099,7 +6075,7 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
     return fogrt__ray_end(s, st, P, found, &hit, beta, 1.0f, limit);
 }
 
-/* c. Light sampling at the scattering vertex (next-event estimation, chapter 12); a mirror
+/* c. Light sampling at the scattering vertex (next-event estimation, 2.3); a mirror
    or glass vertex cannot be reached by a light sample and is skipped. */
 FOGRT__HOT void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
 {
@@ -6134,10 +6110,10 @@ FOGRT__PRIVATE void fogrt__trace_glow(const fogrt__path *P, const float *u, bool
    along the way (equiangular sampling, step a, finds it exactly). Phase or BSDF sampling
    finds those directions by chance, and then with a huge weight: in a spot-lit fog, the
    pixels whose paths pass next to the lamp come out 1000 times the median. So at a vertex
-   that has lamps to aim at (fogrt__glow_setup, chapter 12) the direction is drawn from a
+   that has lamps to aim at (fogrt__glow_setup, above) the direction is drawn from a
    mixture: with probability 1 - c the phase function or BSDF as usual, else the glow of one
-   of the lamps (chapter 6), whose density G(alpha) / sin(alpha) follows the 1/h (G holds the
-   fog's phase function, chapter 5; in isotropic fog G is pi - alpha). c is half the lamps'
+   of the lamps (B), whose density G(alpha) / sin(alpha) follows the 1/h (G holds the
+   fog's phase function, B; in isotropic fog G is pi - alpha). c is half the lamps'
    share of the scene's light power (1/2 when they are all the light): where an area lamp
    gives most of the light, aiming half the paths at a weak spot would cost more than it
    gains (the default scene: 23% more error at equal time with c = 1/2). The
@@ -6147,15 +6123,12 @@ FOGRT__PRIVATE void fogrt__trace_glow(const fogrt__path *P, const float *u, bool
    A spot light also lights a patch of floor, which then lights the rest of the room: in the
    paper's spot-lit box half the image's noise comes from the few paths that happen to reach
    that patch and take the spot's light sample there. So FOGRT__FOOTPRINT_SHARE (a fifth) of
-   the samples aimed at a spot's glow aim at its footprint instead (chapter 6: the plane its
-   cone lights most, found at build, chapter 12; half of them through the lamp's cone, half
+   the samples aimed at a spot's glow aim at its footprint instead (B: the plane its
+   cone lights most, found at build; half of them through the lamp's cone, half
    at a sphere around the lit patch as the vertex sees it); where that sampler fails (its
    cone direction misses the plane) the path ends, which its density, part of the
-   mixture's, has accounted for. Measured in that box (docs/benchmarks.md): through the
-   lamp's cone alone (session 16) 20% less variance per sample, 10-20% more time per
-   sample (the paths that reach the lit floor go on from there), about 1.09x at equal time;
-   with the sphere's half (session 17) another 15% less variance per sample at 3-4% more
-   time, about 1.2x at equal time over session 15's header. */
+   mixture's, has accounted for. Its gain: docs/benchmarks.md, tables "Lamps in fog" and
+   "Footprint". */
 FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
 {
     fogrt__v3 f, wi, wo_l;
@@ -6243,7 +6216,7 @@ FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__path *P)
 }
 
 /* Algorithm 1: global illumination with Russian roulette and next-event estimation.
-   probe (the roulette's pilot, chapter 15, with P->xs->rr_probe; else NULL): the luminance
+   probe (the roulette's pilot, C, with P->xs->rr_probe; else NULL): the luminance
    gathered and the rays traced after the path's first roulette (both 0 when it never got
    there). */
 typedef struct fogrt__probe { float after, b; uint64_t rays_after; } fogrt__probe;
@@ -6294,7 +6267,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance_direct(const fogrt_scene *s, const fogr
         (void)fogrt__next_event(s, st, &P, P.bounces);
     return P.L;
 }
-/* Point or spot lights in fog: what the glow of 14 d' needs (without them the glow's checks
+/* Point or spot lights in fog: what the glow of d' needs (without them the glow's checks
    are skipped at every vertex). */
 FOGRT__PRIVATE bool fogrt__lamps_in_fog(const fogrt_scene *s)
 {
@@ -6329,10 +6302,7 @@ FOGRT__PRIVATE bool fogrt__lamps_in_fog(const fogrt_scene *s)
    pixels x 16 paths with the default settings, run by fogrt_scene_build in every scene
    with a light, with a fixed seed, its rows in parallel, each summed alone and then all in
    row order: the same k on every run, thread count and split of the samples. Cost: 12288
-   paths a pass; the spot-lit box's two passes take 0.12 s on one thread. Measured
-   (relMSE x CPU at equal spp, against k = 1; docs/benchmarks.md, sessions 7 and 8):
-   spot-lit box 0.55 -> 0.49 (the pilot's own time left out), the cross-check's fog-free
-   box with glass 7.2e-4 -> 6.1e-4, a closed diffuse box 23% lower, the default scene 3%. */
+   paths a pass. Its gain: docs/benchmarks.md, table "Roulette pilot". */
 #define FOGRT__PILOT_W 64
 #define FOGRT__PILOT_H 48
 #define FOGRT__PILOT_SPP 16
@@ -6494,20 +6464,6 @@ FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s)
     fogrt__free(&s->allocator, s->x);
     s->x = NULL;
 }
-FOGRT__PRIVATE size_t fogrt__x_bytes(const fogrt_scene *s)
-{
-    size_t b;
-    if (!s->x) return 0;
-    b = sizeof *s->x;
-    if (s->x->env_cdf) b += sizeof(float) * ((size_t)s->env_w + 1) * (size_t)s->env_h;
-    if (s->x->light_pick) b += sizeof(float) * fogrt__light_total(s);
-#ifndef FOGRT_NO_MEDIUM
-    if (s->x->footprints) b += sizeof(fogrt__footprint) * s->light_count;
-    if (s->x->hg) b += sizeof *s->x->hg;
-#endif
-    if (s->x->wide) b += fogrt__wbvh_bytes(s->x->wide);
-    return b;
-}
 
 /* fogrt_trace_path (D): one pixel sample as fogrt_render takes it with the full integrator,
    every step reported. */
@@ -6555,20 +6511,11 @@ FOGRT__PRIVATE const char *fogrt__bsdf_name(fogrt_bsdf_type t)
     return (unsigned)t < (unsigned)FOGRT_BSDF_NUM ? names[t] : "?";
 }
 #define FOGRT__V3F(v) (double)(v).x, (double)(v).y, (double)(v).z
-FOGRT__PUBLIC void fogrt_trace_describe(const fogrt_trace_event *e, char *buf, size_t size)
+/* The events that draw a sample: what was drawn, its pdf and its weight. */
+FOGRT__PRIVATE void fogrt__describe_sample(const fogrt_trace_event *e, char *buf, size_t size)
 {
     static const char *lobes[3] = { "diffuse", "reflect", "refract" };
     switch (e->kind) {
-    case FOGRT_TRACE_CAMERA:
-        snprintf(buf, size, "camera ray: pixel offset (%.3f, %.3f), o = (%.4g, %.4g, %.4g), d = (%.4f, %.4f, %.4f)",
-                 (double)e->u[0], (double)e->u[1], FOGRT__V3F(e->p), FOGRT__V3F(e->d)); break;
-    case FOGRT_TRACE_FREE_FLIGHT:
-        snprintf(buf, size, "free flight (eq. 6): u = %.6f -> t = -ln(1 - u) / sigma_t = %.5g; surface at %.5g -> %s",
-                 (double)e->u[0], (double)e->t, (double)e->t_max, e->flag ? "FOG COLLISION (weight x albedo)" : "reaches the surface (weight T/T = 1)"); break;
-    case FOGRT_TRACE_SURFACE:
-        snprintf(buf, size, "surface: primitive %u (%s) at (%.4g, %.4g, %.4g)", (unsigned)e->prim, fogrt__bsdf_name(e->bsdf), FOGRT__V3F(e->p)); break;
-    case FOGRT_TRACE_ESCAPE:
-        snprintf(buf, size, "escape: the ray leaves the scene along (%.4f, %.4f, %.4f)", FOGRT__V3F(e->d)); break;
     case FOGRT_TRACE_LIGHT_SAMPLE:
         snprintf(buf, size, "light sample (eq. 3/13) toward light %u: wi = (%.4f, %.4f, %.4f), r = %.4g, Le = (%.4g, %.4g, %.4g), "
                  "pdf %.4g; f = %.4g (bsdf/phase pdf %.4g); T*V (eq. 8) = %.4g; MIS w = %.4f -> (%.4g, %.4g, %.4g)",
@@ -6589,6 +6536,23 @@ FOGRT__PUBLIC void fogrt_trace_describe(const fogrt_trace_event *e, char *buf, s
                  fogrt__bsdf_name(e->bsdf), (double)e->u[0], (double)e->u[1], (double)e->u[2], lobes[e->lobe],
                  e->bsdf == FOGRT_BSDF_GLASS ? ", Fresnel F = " : "", e->bsdf == FOGRT_BSDF_GLASS ? (double)e->fresnel : 0.0,
                  (double)e->pdf, FOGRT__V3F(e->value), FOGRT__V3F(e->d)); break;
+    default:
+        snprintf(buf, size, "unknown event %d", (int)e->kind); break;
+    }
+}
+FOGRT__PUBLIC void fogrt_trace_describe(const fogrt_trace_event *e, char *buf, size_t size)
+{
+    switch (e->kind) {
+    case FOGRT_TRACE_CAMERA:
+        snprintf(buf, size, "camera ray: pixel offset (%.3f, %.3f), o = (%.4g, %.4g, %.4g), d = (%.4f, %.4f, %.4f)",
+                 (double)e->u[0], (double)e->u[1], FOGRT__V3F(e->p), FOGRT__V3F(e->d)); break;
+    case FOGRT_TRACE_FREE_FLIGHT:
+        snprintf(buf, size, "free flight (eq. 6): u = %.6f -> t = -ln(1 - u) / sigma_t = %.5g; surface at %.5g -> %s",
+                 (double)e->u[0], (double)e->t, (double)e->t_max, e->flag ? "FOG COLLISION (weight x albedo)" : "reaches the surface (weight T/T = 1)"); break;
+    case FOGRT_TRACE_SURFACE:
+        snprintf(buf, size, "surface: primitive %u (%s) at (%.4g, %.4g, %.4g)", (unsigned)e->prim, fogrt__bsdf_name(e->bsdf), FOGRT__V3F(e->p)); break;
+    case FOGRT_TRACE_ESCAPE:
+        snprintf(buf, size, "escape: the ray leaves the scene along (%.4f, %.4f, %.4f)", FOGRT__V3F(e->d)); break;
     case FOGRT_TRACE_ROULETTE:
         snprintf(buf, size, "Russian roulette: continue with q = %.4f; u = %.4f -> %s", (double)e->q, (double)e->u[0],
                  e->flag ? "survives (weight / q)" : "path ends"); break;
@@ -6598,12 +6562,94 @@ FOGRT__PUBLIC void fogrt_trace_describe(const fogrt_trace_event *e, char *buf, s
     case FOGRT_TRACE_END:
         snprintf(buf, size, "= sample radiance (%.5g, %.5g, %.5g)", FOGRT__V3F(e->value)); break;
     default:
-        snprintf(buf, size, "unknown event %d", (int)e->kind); break;
+        fogrt__describe_sample(e, buf, size); break;
     }
 }
 #undef FOGRT__V3F
 #endif
 #endif
+/* Inspecting the tree and the scene's memory (benchmarks and tests): the BVH as built, its
+   SAH cost (the expected number of node visits and primitive tests of a random ray,
+   relative to the root's area), a brute-force ray query to check the tree against, and the
+   bytes the scene holds, Part II's tables included. */
+FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
+{
+    size_t t, p, b = sizeof *s, lit = 0;
+    uint32_t i;
+    FOGRT_ASSERT(s);
+    t = s->tri_count;
+    p = t + s->sph_count;
+    b += sizeof(fogrt_material_desc) * s->material_count + sizeof(fogrt_light_desc) * s->light_count;
+    b += t * (6 * sizeof(fogrt__v3) + 1 + 2 * sizeof(uint32_t));   /* vertices, normals, flag, ids */
+    b += (size_t)s->sph_count * (sizeof(fogrt__v3) + sizeof(float) + sizeof(uint32_t));
+    if (s->env_map) b += sizeof(float) * 3 * (size_t)s->env_w * (size_t)s->env_h;
+    if (s->nodes) b += sizeof(fogrt_bvh_node) * s->node_count + p * sizeof(uint32_t);
+    if (s->prims) b += p * sizeof(fogrt__prim);         /* 2.1's primitives: the binary layout only */
+    if (s->spot_cos) b += sizeof(float) * 2 * s->light_count;
+    for (i = 0; s->area_lights && i < s->area_light_count; ++i) lit += s->area_lights[i].count;
+    if (s->area_lights) b += sizeof(fogrt__area_light) * s->area_light_count + lit * (sizeof(uint32_t) + sizeof(float));
+    if (s->prim_light) b += sizeof(uint32_t) * p;
+    if (!s->x) return b;                                /* Part II's tables */
+    b += sizeof *s->x;
+    if (s->x->env_cdf) b += sizeof(float) * ((size_t)s->env_w + 1) * (size_t)s->env_h;
+    if (s->x->light_pick) b += sizeof(float) * fogrt__light_total(s);
+#ifndef FOGRT_NO_MEDIUM
+    if (s->x->footprints) b += sizeof(fogrt__footprint) * s->light_count;
+    if (s->x->hg) b += sizeof *s->x->hg;
+#endif
+    if (s->x->wide) b += fogrt__wbvh_bytes(s->x->wide);
+    return b;
+}
+FOGRT__PUBLIC void fogrt_scene_get_bvh(const fogrt_scene *s, const fogrt_bvh_node **nodes, uint32_t *node_count,
+                                       const uint32_t **prim_index)
+{
+    FOGRT_ASSERT(s);
+    if (nodes) *nodes = s->nodes;
+    if (node_count) *node_count = s->node_count;
+    if (prim_index) *prim_index = s->prim_index;
+}
+FOGRT__PUBLIC float fogrt_bvh_sah_cost(const fogrt_scene *s)
+{
+    double cost = 0.0, root_area;
+    uint32_t i;
+    fogrt__aabb rb;
+    FOGRT_ASSERT(s);
+    if (!s->nodes || s->node_count == 0) return 0.0f;
+    rb.lo = fogrt__v(s->nodes[0].bmin[0], s->nodes[0].bmin[1], s->nodes[0].bmin[2]);
+    rb.hi = fogrt__v(s->nodes[0].bmax[0], s->nodes[0].bmax[1], s->nodes[0].bmax[2]);
+    root_area = (double)FOGRT__MAX(fogrt__aabb_area(&rb), FLT_MIN);
+    for (i = 0; i < s->node_count; ++i) {
+        const fogrt_bvh_node *n = &s->nodes[i];
+        fogrt__aabb nb;
+        if (i == 1) continue;
+        nb.lo = fogrt__v(n->bmin[0], n->bmin[1], n->bmin[2]);
+        nb.hi = fogrt__v(n->bmax[0], n->bmax[1], n->bmax[2]);
+        cost += (double)fogrt__aabb_area(&nb) / root_area * (n->prim_count > 0 ? 1.0 * n->prim_count : 1.0);
+    }
+    return (float)cost;
+}
+FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax, fogrt_hit *hit)
+{
+    uint32_t i;
+    bool found = false;
+    FOGRT_ASSERT(s);
+    for (i = 0; i < s->tri_count + s->sph_count; ++i) {
+        float t, u = 0.0f, v = 0.0f;
+        bool h;
+        if (i < s->tri_count) {
+            const fogrt__v3 *tv = &s->tri_v[3 * i];
+            h = fogrt__hit_triangle(o, d, tv[0], fogrt__sub(tv[1], tv[0]), fogrt__sub(tv[2], tv[0]), tmin, tmax, &t, &u, &v);
+        } else {
+            h = fogrt__hit_sphere(o, d, s->sph_c[i - s->tri_count], s->sph_r[i - s->tri_count], tmin, tmax, &t);
+        }
+        if (h) {
+            found = true; tmax = t;
+            if (hit) { hit->t = t; hit->prim = i; hit->u = u; hit->v = v; }
+        }
+    }
+    return found;
+}
+
 #endif /* FOGRT_MINIMAL */
 
 #endif /* FOGRT_IMPLEMENTATION_INCLUDED */
