@@ -8,7 +8,7 @@
 #   make variance-sources  which samples carry an image's noise (VS_ARGS: scene and flags)
 #
 # What it compares against and reads:
-#   - Embree 3 (rtcIntersect1, rtcOccluded1, its memory monitor), the yardstick of issue 16:
+#   - Embree 3 (rtcIntersect1, rtcOccluded1, its memory monitor), the yardstick of every ratio:
 #     Debian's libembree-dev, installed by `make bench` with apt-get when root; otherwise it
 #     stops with one line naming the package. `make bench BENCH_EMBREE=0` runs without it
 #     (fogrt's figures alone, no ratios).
