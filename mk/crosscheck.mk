@@ -1,5 +1,5 @@
 # mk/crosscheck.mk - fogrt against Mitsuba 3 on the same scenes (docs/validation.md).
-#   make crosscheck                   all scenes, about 24 s per renderer per scene (~10 min)
+#   make crosscheck                   all scenes, about 24 s per renderer per scene (about 6 min)
 #   make crosscheck CROSSCHECK_ARGS=--quick                 a 1-minute smoke run (no measurement)
 #   make crosscheck CROSSCHECK_ARGS="--scenes fog_iso,spot_fog"
 #   make crosscheck CROSSCHECK_FOGRT=path/to/fogrt          another fogrt build
