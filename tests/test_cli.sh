@@ -1,7 +1,7 @@
 #!/bin/sh
 # test_cli.sh - the `fogrt` command line: bad input gives exit status 2 and one message naming
 # the flag or file:line, without writing an image; good input renders and writes the image;
-# then one block per point of issues 15, 11 (point 1) and 17: Ctrl-C/SIGTERM, atomic and
+# then one block per feature: Ctrl-C/SIGTERM, atomic and
 # checked writes, the free camera, exposure and JPG, CS184 framing, -m 0 / -o 0, the -a rate
 # image, the progress line and --log/--reference, black scenes, ceilings and limits.
 # Takes about 30 s (a 2-second interrupt, a 6-second progress log).
@@ -132,7 +132,7 @@ done
 "$fogrt" --quiet -s 2 -r 20 16 --seed 3 -t 2 -f "$tmp/t2.pfm" tests/data/dae_mirror_node.dae
 check "cmp -s '$tmp/t1.pfm' '$tmp/t2.pfm'" "the image depends on the thread count"
 
-# ==== the fogrt command in real use (issues 15, 11 point 1, 17): one block per point ====
+# ==== the fogrt command in real use: one block per feature ====
 # pfm_stats FILE: "W H pixels_nonzero sum_r sum_g sum_b floats" of a PFM (od reads the floats).
 pfm_stats() {
     hdr=$(head -n 3 "$1" | wc -c)
@@ -383,7 +383,7 @@ else
 fi
 # ==== end of the fogrt command in real use ====
 
-# ==== loader refusals (fogrt_load.h, issue 17): exit 2, exactly one stderr line naming the file ====
+# ==== loader refusals (fogrt_load.h): exit 2, exactly one stderr line naming the file ====
 # refused NAME WORD DESCRIPTION -- ARGS...: like expect 2, and stderr is one line naming NAME
 refused() {
     name=$1 word=$2 what=$3
@@ -422,7 +422,7 @@ else
 fi
 # ==== end of the loader refusals ====
 
-# ==== fog bounds, environment maps, the path trace (issues 15 and 14) ====
+# ==== fog bounds, environment maps, the path trace ====
 # --fog-bounds: refused unless six numbers with min < max; a box of fog around the default
 # scene's middle renders, and is darker than no fog where it stands
 expect 2 "--fog-bounds" "fog bounds with min > max" -- --fog-bounds 1,0,0,0,1,1 -f "$out"; one_line_no_image "fog bounds with min > max"
