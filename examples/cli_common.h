@@ -60,7 +60,8 @@ static const char *cli_prog = "fogrt";
    ------------------------------------------------------------------------------------------ */
 /* A closed 0, 1 or 2 would be handed out by the next open(): the output image would become
    "stderr", and messages would land in it. Reopened on /dev/null first thing in main. A
-   reader of stderr that goes away must not kill the run (SIGPIPE): writes to it just fail. */
+   reader of stderr that goes away must not kill the run (SIGPIPE): writes to it just fail;
+   nor must a file-size limit (SIGXFSZ): the write fails and is reported. */
 CLI_FN void cli_std_streams(void)
 {
     int fd;
@@ -71,6 +72,7 @@ CLI_FN void cli_std_streams(void)
         }
     }
     signal(SIGPIPE, SIG_IGN);
+    signal(SIGXFSZ, SIG_IGN);    /* a file-size limit makes write() fail (EFBIG), not kill us */
 }
 
 /* ------------------------------------------------------------------------------------------
@@ -726,7 +728,7 @@ CLI_FN void cli_membuf_put(cli_membuf *b, const void *p, size_t n)
     b->size += n;
 }
 /* stb_image_write's callback */
-static void cli_membuf_stb(void *context, void *data, int size)
+CLI_FN void cli_membuf_stb(void *context, void *data, int size)
 {
     if (size > 0) cli_membuf_put((cli_membuf *)context, data, (size_t)size);
 }
