@@ -393,6 +393,23 @@ typedef struct fogrt__ld {
 } fogrt__ld;
 
 /* ---- messages ---- */
+/* A message quotes bytes of the file: control bytes and bytes that are not well-formed UTF-8
+   become '?', so a binary file never writes raw bytes to the user's terminal. */
+FOGRT__LD void fogrt__ld_printable(char *msg)
+{
+    unsigned char *p = (unsigned char *)msg;
+    while (*p) {
+        int len = 0, k;
+        if (*p >= 0x20 && *p < 0x7F) { ++p; continue; }
+        if (*p >= 0xC2 && *p <= 0xDF) len = 2;
+        else if (*p >= 0xE0 && *p <= 0xEF) len = 3;
+        else if (*p >= 0xF0 && *p <= 0xF4) len = 4;
+        for (k = 1; k < len; ++k)
+            if ((p[k] & 0xC0) != 0x80) { len = 0; break; }
+        if (len == 0) { *p++ = '?'; continue; }
+        p += len;
+    }
+}
 /* Records the first error (file:line: message) and returns the result code. */
 FOGRT__LD FOGRT__LD_PRINTF(4, 5) fogrt_result fogrt__ld_fail(fogrt__ld *L, fogrt_result res, int line, const char *fmt, ...)
 {
@@ -402,6 +419,7 @@ FOGRT__LD FOGRT__LD_PRINTF(4, 5) fogrt_result fogrt__ld_fail(fogrt__ld *L, fogrt
         va_start(ap, fmt);
         vsnprintf(L->rep->message, sizeof L->rep->message, fmt, ap);
         va_end(ap);
+        fogrt__ld_printable(L->rep->message);
     }
     return res;
 }
@@ -423,6 +441,7 @@ FOGRT__LD FOGRT__LD_PRINTF(3, 4) void fogrt__ld_warn(fogrt__ld *L, int line, con
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    fogrt__ld_printable(msg);
     if (line > 0) snprintf(full, sizeof full, "%s:%d: warning: %s", L->name, line, msg);
     else snprintf(full, sizeof full, "%s: warning: %s", L->name, msg);
     n = (uint32_t)strlen(full) + 1;

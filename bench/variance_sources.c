@@ -17,8 +17,7 @@
    and the brightest samples, each as the `fogrt --trace X,Y,SAMPLE -r W H` command that
    prints it event by event (the same sample: the camera of a .dae is the file's).
 
-   The session-15 measurements in docs/benchmarks.md ("Which samples carry the variance")
-   were made with a throw-away version of this program.
+   docs/benchmarks.md ("make variance-sources") gives its figures for the paper's spot-lit fog.
 
    Usage: bench/variance_sources [scene.dae|.obj|.ply] [--density S] [--g G] [--albedo A]
                                  [-r W H] [-s SPP] [--top N]

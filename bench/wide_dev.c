@@ -323,8 +323,7 @@ static void add_hard_rays(const fogrt_scene *s, rays *out, size_t n, uint64_t se
 }
 
 /* ---- correctness ---- */
-/* The binary traversal with the culling slack: fogrt.h's own since the wide chapter moved
-   into it (it was this file's patched copy while the chapter was drafted here). */
+/* The binary traversal with the culling slack: fogrt.h's own. */
 #define traverse_slack fogrt__bvh2_traverse
 
 static bool ulp1(float a, float b)

@@ -11,6 +11,8 @@
      --seconds S                CPU seconds per configuration (default 15)
      --ref-seconds S            CPU seconds of the reference render (default 60)
      --only-reference           render (or check) the cached reference and stop
+     --replot DATA.csv          no rendering: draw the plot of a data file this program wrote
+                                again, next to it (make convergence-png)
 
    Every configuration renders progressively to 1, 2, 4, 8, ... samples per pixel while the
    next doubling fits in its time budget; after each step its relative MSE against the
@@ -24,11 +26,17 @@
    Time is the process's CPU time (all threads): on a shared machine it depends much less on
    what else runs than wall time does (both are in the CSV).
 
-   Writes OUT/<scene>.csv (one row per ladder point) and OUT/<scene>.svg (log-log relMSE
-   against seconds, one line per configuration, the fitted slope of each line in the legend
-   and an efficiency table, 1 / (relMSE x seconds)). An unbiased estimator falls with slope
-   -1; a line that flattens has hit its bias (the one-bounce integrator misses the light
-   that bounced more than once). */
+   Writes OUT/<scene>.csv (one row per ladder point, with everything the plot needs) and
+   OUT/<scene>.svg (log-log relMSE against seconds, one line per configuration, the fitted
+   slope of each line in the legend, a dashed reference line of slope -1 and an efficiency
+   table, 1 / (relMSE x seconds)). An unbiased estimator falls with slope -1; a line that
+   flattens has hit its bias (the one-bounce integrator misses the light that bounced more
+   than once). A line that jumps up at one step has met a firefly: one sample of very large
+   weight (a fog collision close to a lamp, where a light sample's 1 / r^2 is huge and,
+   without MIS or equiangular sampling, nothing tempers it) lands at that step and is then
+   averaged down as 1/spp. The CSV's worst_pixel_share (the largest share of the squared
+   error one pixel holds, at worst_x, worst_y) shows it: over half at such a step, a few
+   percent elsewhere; the plot's caption lists those steps. */
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
 #include <stdlib.h>
@@ -42,6 +50,7 @@
 #define FOGRT_LOAD_IMPLEMENTATION
 #include "fogrt_load.h"
 #include "svgplot.h"
+#include "plotfont.h"   /* pf_wrap: the caption's lines */
 
 #define MAX_POINTS 24
 
@@ -124,20 +133,26 @@ typedef struct ladder {
     int spp[MAX_POINTS];
     double cpu[MAX_POINTS], wall[MAX_POINTS];
     double meas[MAX_POINTS], est[MAX_POINTS];
+    double worst[MAX_POINTS];   /* the one pixel's share of the squared error (a firefly: most of it) */
+    int worst_x[MAX_POINTS], worst_y[MAX_POINTS];   /* and where it is */
     double slope, efficiency;
 } ladder;
 
-/* Measured relMSE of img against the reference (ref_var may be NULL: an exact reference). */
-static double measured_rel_mse(const fogrt_image *img, const float *ref, const float *ref_var)
+/* Measured relMSE of img against the reference (ref_var may be NULL: an exact reference);
+   *worst gets the largest share of the squared error that one pixel holds. */
+static double measured_rel_mse(const fogrt_image *img, const float *ref, const float *ref_var, double *worst, size_t *where)
 {
     size_t i, n = (size_t)img->width * (size_t)img->height;
-    double se = 0.0, var = 0.0, norm = 0.0;
+    double se = 0.0, var = 0.0, norm = 0.0, top = 0.0;
+    *where = 0;
     for (i = 0; i < n; ++i) {
         double m = img->count[i] ? lum_d(img->sum + 3 * i) / img->count[i] : 0.0, r = lum(ref + 3 * i);
         se += (m - r) * (m - r);
         norm += r * r;
+        if ((m - r) * (m - r) > top) { top = (m - r) * (m - r); *where = i; }
         if (ref_var) var += (double)ref_var[3 * i];
     }
+    *worst = se > 0.0 ? top / se : 0.0;
     return norm > 0.0 ? (se - var) / norm : 0.0;
 }
 
@@ -165,6 +180,7 @@ static int run_ladder(const fogrt_scene *scene, const config *c, int w, int h, d
     fogrt_render_desc rd = c->rd;
     float *rates = NULL;
     double c0, w0;
+    size_t worst_at;
     int done = 0, target = 1;
     memset(L, 0, sizeof *L);
     if ((r = fogrt_image_alloc(&img, w, h, NULL)) != FOGRT_RESULT_OK ||
@@ -185,11 +201,12 @@ static int run_ladder(const fogrt_scene *scene, const config *c, int w, int h, d
         L->spp[L->n] = done;
         L->cpu[L->n] = cpu_seconds() - c0;
         L->wall[L->n] = wall_seconds() - w0;
-        L->meas[L->n] = measured_rel_mse(&img, ref, ref_var);
+        L->meas[L->n] = measured_rel_mse(&img, ref, ref_var, &L->worst[L->n], &worst_at);
         fogrt_image_error(&img, &e);
         L->est[L->n] = e.relative_error * e.relative_error;
-        printf("  %-28s %5d spp %8.2f s cpu  relMSE measured %.4e estimated %.4e\n", c->name, done,
-               L->cpu[L->n], L->meas[L->n], L->est[L->n]);
+        L->worst_x[L->n] = (int)(worst_at % (size_t)w); L->worst_y[L->n] = (int)(worst_at / (size_t)w);
+        printf("  %-28s %5d spp %8.2f s cpu  relMSE measured %.4e estimated %.4e  worst pixel %4.1f%% (%d, %d)\n", c->name, done,
+               L->cpu[L->n], L->meas[L->n], L->est[L->n], 100.0 * L->worst[L->n], L->worst_x[L->n], L->worst_y[L->n]);
         fflush(stdout);
         L->n++;
         if (2.0 * L->cpu[L->n - 1] > budget) break;   /* the next doubling would not fit */
@@ -247,6 +264,167 @@ static int render_reference(const fogrt_scene *scene, int w, int h, double ref_b
     return 0;
 }
 
+/* ---- the data file and the plot ------------------------------------------------------------ */
+/* The CSV holds everything the plot needs, so `convergence --replot` (make convergence-png)
+   draws it again from the data without rendering. */
+static void names_from_configs(const config *c, int nc, char names[][64])
+{
+    int i;
+    for (i = 0; i < nc; ++i) snprintf(names[i], 64, "%s", c[i].name);
+}
+
+static int write_csv(const char *out, const char *name, int w, int h, const char (*names)[64], const ladder *lad, int nc)
+{
+    char path[1024];
+    FILE *f;
+    int i, k;
+    snprintf(path, sizeof path, "%s/%s.csv", out, name);
+    if (!(f = fopen(path, "w"))) { fprintf(stderr, "convergence: cannot write %s: %s\n", path, strerror(errno)); return -1; }
+    fprintf(f, "scene,width,height,configuration,spp,cpu_seconds,wall_seconds,measured_rel_mse,estimated_rel_mse,efficiency,worst_pixel_share,worst_x,worst_y\n");
+    for (i = 0; i < nc; ++i)
+        for (k = 0; k < lad[i].n; ++k)
+            fprintf(f, "%s,%d,%d,\"%s\",%d,%.4f,%.4f,%.6e,%.6e,%.6e,%.4f,%d,%d\n", name, w, h, names[i], lad[i].spp[k], lad[i].cpu[k],
+                    lad[i].wall[k], lad[i].meas[k], lad[i].est[k],
+                    lad[i].meas[k] > 0.0 ? 1.0 / (lad[i].meas[k] * lad[i].cpu[k]) : (double)NAN, lad[i].worst[k],
+                    lad[i].worst_x[k], lad[i].worst_y[k]);
+    fclose(f);
+    printf("wrote %s\n", path);
+    return 0;
+}
+
+/* Reads a CSV write_csv wrote back into names, lad and nc (the rows of one configuration
+   are consecutive; its name is quoted, as it may hold a comma). Returns 0, or -1 with one line naming the file. */
+static int read_csv(const char *path, char *name, size_t name_size, int *w, int *h, char names[][64], ladder *lad, int *nc)
+{
+    FILE *f = fopen(path, "r");
+    char line[512];
+    int row = 0;
+    *nc = 0;
+    if (!f) { fprintf(stderr, "convergence: %s: %s (run make convergence first)\n", path, strerror(errno)); return -1; }
+    if (!fgets(line, sizeof line, f) || strncmp(line, "scene,width,height,configuration,", 33) != 0) {
+        fprintf(stderr, "convergence: %s: not a convergence data file of this version (run make convergence again)\n", path);
+        fclose(f); return -1;
+    }
+    while (fgets(line, sizeof line, f)) {
+        char sc[128], cf[64];
+        int spp, ww, hh, wx, wy;
+        double cpu, wall, meas, est, eff, worst;
+        ladder *L;
+        ++row;
+        if (sscanf(line, "%127[^,],%d,%d,\"%63[^\"]\",%d,%lf,%lf,%lf,%lf,%lf,%lf,%d,%d", sc, &ww, &hh, cf, &spp, &cpu, &wall, &meas, &est, &eff, &worst, &wx, &wy) != 13) {
+            fprintf(stderr, "convergence: %s: row %d is not scene,width,height,configuration,spp,... \n", path, row);
+            fclose(f); return -1;
+        }
+        if (*nc == 0 || strcmp(names[*nc - 1], cf) != 0) {
+            if (*nc == 8) { fprintf(stderr, "convergence: %s: more than 8 configurations\n", path); fclose(f); return -1; }
+            snprintf(names[*nc], 64, "%s", cf);
+            memset(&lad[*nc], 0, sizeof lad[*nc]);
+            ++*nc;
+        }
+        L = &lad[*nc - 1];
+        if (L->n == MAX_POINTS) continue;
+        snprintf(name, name_size, "%s", sc);
+        *w = ww; *h = hh;
+        L->spp[L->n] = spp; L->cpu[L->n] = cpu; L->wall[L->n] = wall; L->meas[L->n] = meas; L->est[L->n] = est; L->worst[L->n] = worst;
+        L->worst_x[L->n] = wx; L->worst_y[L->n] = wy;
+        L->n++;
+    }
+    fclose(f);
+    if (*nc == 0) { fprintf(stderr, "convergence: %s: no rows\n", path); return -1; }
+    for (row = 0; row < *nc; ++row) {
+        ladder *L = &lad[row];
+        L->slope = fit_slope(L);
+        L->efficiency = L->meas[L->n - 1] > 0.0 ? 1.0 / (L->meas[L->n - 1] * L->cpu[L->n - 1]) : (double)NAN;
+    }
+    return 0;
+}
+
+/* The steps where a firefly came in: the error rose from the step before, and one pixel
+   holds more than half of it. Listed per configuration, for the plot's caption. */
+static void firefly_list(const char (*names)[64], const ladder *lad, int nc, char *buf, size_t size)
+{
+    int i, k;
+    size_t used = 0;
+    buf[0] = '\0';
+    for (i = 0; i < nc; ++i) {
+        int first = 1;
+        for (k = 1; k < lad[i].n && used + 90 < size; ++k) {
+            if (!(lad[i].worst[k] > 0.5 && lad[i].meas[k] > lad[i].meas[k - 1])) continue;
+            if (first) used += (size_t)snprintf(buf + used, size - used, "%s%s: ", used ? "; " : "", names[i]);
+            else used += (size_t)snprintf(buf + used, size - used, ", ");
+            used += (size_t)snprintf(buf + used, size - used, "%d spp (%.0f%% in pixel %d, %d)", lad[i].spp[k],
+                                     100.0 * lad[i].worst[k], lad[i].worst_x[k], lad[i].worst_y[k]);
+            first = 0;
+        }
+    }
+}
+
+static int write_svg(const char *out, const char *name, int w, int h, const char (*names)[64], const ladder *lad, int nc)
+{
+    static char notes[20][200];
+    const char *note_ptr[20];
+    char labels[8][96], title[200], path[1024], spikes[600];
+    svgplot_series s[9];
+    svgplot_desc d;
+    double rx[2], ry[2];
+    int i, nn = 0, k, anchor = -1;
+    FILE *f;
+    memset(s, 0, sizeof s);
+    snprintf(notes[nn++], sizeof notes[0], "%-28s %6s %8s %11s %6s %11s %7s", "configuration", "spp", "CPU s",
+             "relMSE", "slope", "1/(MSE*s)", "vs first");
+    for (i = 0; i < nc; ++i) {
+        const ladder *L = &lad[i];
+        snprintf(notes[nn++], sizeof notes[0], "%-28s %6d %8.2f %11.3e %6.2f %11.3e %7.3f", names[i],
+                 L->spp[L->n - 1], L->cpu[L->n - 1], L->meas[L->n - 1], L->slope, L->efficiency,
+                 L->efficiency / lad[0].efficiency);
+        snprintf(labels[i], sizeof labels[i], "slope %.2f, %d spp in %.1f s", L->slope, L->spp[L->n - 1], L->cpu[L->n - 1]);
+        s[i].label = names[i]; s[i].sublabel = labels[i]; s[i].x = L->cpu; s[i].y = L->meas; s[i].n = L->n;
+    }
+    /* the slope -1 of an unbiased estimator at constant efficiency, through the first
+       configuration's point at 4 spp, across the time range of the plot */
+    for (k = 0; k < lad[0].n; ++k) if (lad[0].spp[k] >= 4 && lad[0].meas[k] > 0.0 && lad[0].cpu[k] > 0.0) { anchor = k; break; }
+    if (anchor >= 0) {
+        double tmin = INFINITY, tmax = 0.0;
+        for (i = 0; i < nc; ++i)
+            for (k = 0; k < lad[i].n; ++k)
+                if (lad[i].cpu[k] > 0.0 && lad[i].meas[k] > 0.0) { tmin = fmin(tmin, lad[i].cpu[k]); tmax = fmax(tmax, lad[i].cpu[k]); }
+        rx[0] = tmin; rx[1] = tmax;
+        ry[0] = lad[0].meas[anchor] * lad[0].cpu[anchor] / tmin; ry[1] = lad[0].meas[anchor] * lad[0].cpu[anchor] / tmax;
+        s[nc].label = "reference slope -1"; s[nc].sublabel = "unbiased: error x time constant";
+        s[nc].x = rx; s[nc].y = ry; s[nc].n = 2; s[nc].dashed = 1; s[nc].colour = "#000000"; s[nc].no_markers = 1;
+    }
+    printf("\nefficiency at the last point (relMSE measured; slope fitted over >= 4 spp):\n");
+    for (i = 0; i < nn; ++i) printf("  %s\n", notes[i]);
+    snprintf(notes[nn++], sizeof notes[0], " ");
+    snprintf(notes[nn++], sizeof notes[0], "Each line is one render made progressive (1, 2, 4, ... spp), measured after every doubling.");
+    snprintf(notes[nn++], sizeof notes[0], "Lines that flatten have hit their bias (without NEE the spot light, a point, is never found;");
+    snprintf(notes[nn++], sizeof notes[0], "one bounce misses the light that bounced more). Upward jumps are fireflies: one sample of very");
+    snprintf(notes[nn++], sizeof notes[0], "large weight lands at that step and is averaged down as 1/spp after it. The render's own error");
+    snprintf(notes[nn++], sizeof notes[0], "estimate jumps with it: it is in the samples, not in the timer or the reference.");
+    firefly_list(names, lad, nc, spikes, sizeof spikes);
+    if (spikes[0]) {
+        char wrapped_lines[6][256];
+        int n = pf_wrap(spikes, 92, wrapped_lines, 6), j;
+        snprintf(notes[nn++], sizeof notes[0], "Jumps here, with the one pixel's share of the squared error:");
+        for (j = 0; j < n && nn < 20; ++j) snprintf(notes[nn++], sizeof notes[0], "  %.150s", wrapped_lines[j]);
+    }
+    for (i = 0; i < nn; ++i) note_ptr[i] = notes[i];
+    memset(&d, 0, sizeof d);
+    snprintf(title, sizeof title, "%s scene, %d x %d: relative MSE against render time", name, w, h);
+    d.title = title;
+    d.x_label = "render time [CPU seconds, all threads]";
+    d.y_label = "relative MSE [dimensionless] (luminance, against the reference)";
+    d.log_x = d.log_y = 1;
+    d.notes = note_ptr; d.note_count = nn;
+    d.height = 560 + 18 * nn;
+    snprintf(path, sizeof path, "%s/%s.svg", out, name);
+    if (!(f = fopen(path, "w"))) { fprintf(stderr, "convergence: cannot write %s: %s\n", path, strerror(errno)); return -1; }
+    svgplot_write(f, &d, s, anchor >= 0 ? nc + 1 : nc);
+    fclose(f);
+    printf("wrote %s\n", path);
+    return 0;
+}
+
 static const char *base_name(const char *path, char *buf, size_t size)
 {
     const char *b = strrchr(path, '/'), *dot;
@@ -262,7 +440,8 @@ static const char *base_name(const char *path, char *buf, size_t size)
 static int usage(const char *msg)
 {
     fprintf(stderr, "convergence: %s\nusage: convergence [--scene default|FILE.dae] [--reference REF.pfm] [--out DIR]\n"
-                    "                   [--size W H] [--seconds S] [--ref-seconds S] [--only-reference]\n", msg);
+                    "                   [--size W H] [--seconds S] [--ref-seconds S] [--only-reference]\n"
+                    "       convergence --replot DATA.csv\n", msg);
     return 2;
 }
 
@@ -271,14 +450,15 @@ int main(int argc, char **argv)
     const char *scene_arg = "default", *ref_arg = NULL, *out = "build/convergence";
     int w = 160, h = 120, only_ref = 0, i, nc, rw = 0, rh = 0;
     double budget = 15.0, ref_budget = 60.0;
-    char name[128], path[1024], ref_path[1024], var_path[1024], line[160];
+    char name[128], ref_path[1024], var_path[1024], line[160];
     config cfg[8];
     ladder lad[8];
+    char names[8][64];
+    const char *replot = NULL;
     fogrt_scene_desc sd;
     fogrt_scene *scene = NULL;
     fogrt_result r;
     float *ref = NULL, *ref_var = NULL;
-    FILE *f;
 
     setvbuf(stdout, NULL, _IOLBF, 0);   /* progress lines appear as they happen, also in a log file */
     for (i = 1; i < argc; ++i) {
@@ -289,10 +469,18 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--seconds") && i + 1 < argc) budget = atof(argv[++i]);
         else if (!strcmp(argv[i], "--ref-seconds") && i + 1 < argc) ref_budget = atof(argv[++i]);
         else if (!strcmp(argv[i], "--only-reference")) only_ref = 1;
+        else if (!strcmp(argv[i], "--replot") && i + 1 < argc) replot = argv[++i];
         else { snprintf(line, sizeof line, "unknown or incomplete option '%s'", argv[i]); return usage(line); }
     }
     if (w <= 0 || h <= 0 || w > 4096 || h > 4096) return usage("--size: W and H must be 1..4096");
     if (!(budget > 0.0) || !(ref_budget > 0.0)) return usage("--seconds and --ref-seconds must be positive");
+    if (replot) {   /* the plot again from the data, in the data file's directory */
+        char dir[1024];
+        const char *slash = strrchr(replot, '/');
+        snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - replot) : 1, slash ? replot : ".");
+        if (read_csv(replot, name, sizeof name, &w, &h, names, lad, &nc) != 0) return 1;
+        return write_svg(dir, name, w, h, (const char(*)[64])names, lad, nc) != 0;
+    }
     if (mkdir(out, 0777) != 0 && errno != EEXIST) { fprintf(stderr, "convergence: cannot create %s: %s\n", out, strerror(errno)); return 1; }
 
     memset(&sd, 0, sizeof sd);
@@ -349,53 +537,9 @@ int main(int argc, char **argv)
         if (run_ladder(scene, &cfg[i], w, h, budget, ref, ref_var, &lad[i]) != 0) { free(ref); free(ref_var); fogrt_scene_destroy(scene); return 1; }
     }
 
-    /* CSV */
-    snprintf(path, sizeof path, "%s/%s.csv", out, name);
-    if (!(f = fopen(path, "w"))) { fprintf(stderr, "convergence: cannot write %s: %s\n", path, strerror(errno)); return 1; }
-    fprintf(f, "configuration,spp,cpu_seconds,wall_seconds,measured_rel_mse,estimated_rel_mse,efficiency\n");
-    for (i = 0; i < nc; ++i) {
-        int k;
-        for (k = 0; k < lad[i].n; ++k)
-            fprintf(f, "%s,%d,%.4f,%.4f,%.6e,%.6e,%.6e\n", cfg[i].name, lad[i].spp[k], lad[i].cpu[k], lad[i].wall[k],
-                    lad[i].meas[k], lad[i].est[k], lad[i].meas[k] > 0.0 ? 1.0 / (lad[i].meas[k] * lad[i].cpu[k]) : (double)NAN);
-    }
-    fclose(f);
-    printf("wrote %s\n", path);
-
-    /* table (stdout and the SVG) and the plot */
-    {
-        static char notes[10][160];
-        const char *note_ptr[10];
-        char labels[8][96];
-        svgplot_series s[8];
-        svgplot_desc d;
-        char title[200];
-        int nn = 0;
-        snprintf(notes[nn++], sizeof notes[0], "%-28s %6s %8s %11s %6s %11s %7s", "configuration", "spp", "CPU s",
-                 "relMSE", "slope", "1/(MSE*s)", "vs NEE+MIS");
-        for (i = 0; i < nc; ++i) {
-            const ladder *L = &lad[i];
-            snprintf(notes[nn++], sizeof notes[0], "%-28s %6d %8.2f %11.3e %6.2f %11.3e %7.3f", cfg[i].name,
-                     L->spp[L->n - 1], L->cpu[L->n - 1], L->meas[L->n - 1], L->slope, L->efficiency,
-                     L->efficiency / lad[0].efficiency);
-            snprintf(labels[i], sizeof labels[i], "slope %.2f, %d spp in %.1f s", L->slope, L->spp[L->n - 1], L->cpu[L->n - 1]);
-            s[i].label = cfg[i].name; s[i].sublabel = labels[i]; s[i].x = L->cpu; s[i].y = L->meas; s[i].n = L->n; s[i].dashed = i == nc - 1;
-        }
-        printf("\nefficiency at the last point (relMSE measured; slope fitted over >= 4 spp):\n");
-        for (i = 0; i < nn; ++i) { note_ptr[i] = notes[i]; printf("  %s\n", notes[i]); }
-        memset(&d, 0, sizeof d);
-        snprintf(title, sizeof title, "%s scene, %d x %d: relative MSE against render time", name, w, h);
-        d.title = title;
-        d.x_label = "render time [CPU seconds, all threads]";
-        d.y_label = "relative MSE [dimensionless] (luminance, against the reference)";
-        d.log_x = d.log_y = 1;
-        d.notes = note_ptr; d.note_count = nn;
-        snprintf(path, sizeof path, "%s/%s.svg", out, name);
-        if (!(f = fopen(path, "w"))) { fprintf(stderr, "convergence: cannot write %s: %s\n", path, strerror(errno)); return 1; }
-        svgplot_write(f, &d, s, nc);
-        fclose(f);
-        printf("wrote %s\n", path);
-    }
+    names_from_configs(cfg, nc, names);
+    if (write_csv(out, name, w, h, (const char(*)[64])names, lad, nc) != 0 ||
+        write_svg(out, name, w, h, (const char(*)[64])names, lad, nc) != 0) { free(ref); free(ref_var); fogrt_scene_destroy(scene); return 1; }
     free(ref); free(ref_var);
     fogrt_scene_destroy(scene);
     return 0;

@@ -1,8 +1,10 @@
 /* figures.c - the paper's experiments (its figures 2, 3 and 4) and three more, with numbers.
 
    Usage: figures [--out DIR] [--doc FILE.md] [--shared DIR] [--size W H] [--quick]
-     --out DIR      where the PNG images and SVG plots go (default docs/figures)
-     --doc FILE     the Markdown report (default docs/experiments.md); image links in it are
+     --out DIR      where the PNG images and SVG plots go (default build/figures; make
+                    figures-docs writes docs/figures)
+     --doc FILE     the Markdown report (default build/figures/experiments.md; make
+                    figures-docs writes docs/experiments.md); image links in it are
                     relative to the report's directory
      --shared DIR   the shared data directory holding scenes/cs184/CBbunny_upSpot.dae
                     (default ../shared); when that scene is missing its panels are skipped
@@ -11,8 +13,9 @@
      --quick        a quarter of the samples everywhere (a smoke run; not for the docs)
      --only NAME    one experiment: fig2, fig3, fig4, equiangular, bvh or fresnel
 
-   Every caption gives the samples per pixel, the CPU seconds (process CPU time, all
-   threads) and a measured error:
+   Every caption in the report gives the samples per pixel, the CPU seconds (process CPU
+   time, all threads) and a measured error; every PNG carries a caption of its own (what it
+   shows, its settings, samples per pixel and error, no times):
      - "relMSE vs reference": (sum_p (L_p - R_p)^2 - sum_p Var[R_p]) / sum_p R_p^2 on
        luminance, R a long path NEE+MIS render with another seed, Var[R_p] its own noise;
        this includes bias (a method that misses light shows it here).
@@ -36,12 +39,13 @@
 #include "fogrt_load.h"
 #include "svgplot.h"
 #include "stb_write.h"           /* stb_image_write, its warnings silenced */
+#include "plotfont.h"            /* the captions drawn into the PNGs */
 
 /* ---- settings ---------------------------------------------------------------------------- */
 static int W = 200, H = 150;
 static int quick = 0;
-static const char *out_dir = "docs/figures";
-static const char *doc_path = "docs/experiments.md";
+static const char *out_dir = "build/figures";
+static const char *doc_path = "build/figures/experiments.md";
 static char figs_rel[512] = "figures";   /* out_dir as seen from the report's directory */
 static char spot_path[1024];
 static int have_spot = 0;
@@ -83,6 +87,13 @@ static const char *scene_title(scene_kind k)
            k == SCENE_POINT ? "point light in fog (the CS184 box, built in code)" :
            k == SCENE_BEAM_TO_CAMERA ? "spot light aimed at the camera (the CS184 box, built in code)" :
            "spot light aimed away from the camera (the CS184 box, built in code)";
+}
+
+/* The scene in a few words, for a picture's caption. */
+static const char *scene_short(scene_kind k)
+{
+    return k == SCENE_SPOT ? "CBbunny_upSpot" : k == SCENE_DEFAULT ? "default scene" : k == SCENE_POINT ? "point light in fog" :
+           k == SCENE_BEAM_TO_CAMERA ? "spot aimed at the camera" : "spot aimed away";
 }
 
 static void add_quad(fogrt_scene *s, const float *p, uint32_t mat)
@@ -285,20 +296,33 @@ static float exposure_for(const fogrt_image *img)
     return p > 0.0 ? (float)(0.9 / p) : 1.0f;
 }
 
-/* Writes OUT/name.png and returns the path relative to the report (static buffer). */
-static const char *save_png(const char *name, const fogrt_image *img, float exposure)
+/* Writes OUT/name.png and returns the path relative to the report (static buffer). The
+   image is drawn at twice its size with a caption under it, what it shows (`what`) and its
+   settings and numbers (`detail`), so that it reads on a projector without the report.
+   Captions hold samples per pixel and errors, never times: with a fixed sample count the
+   picture is the same on every run of one build. */
+static const char *save_png(const char *name, const fogrt_image *img, float exposure, const char *what, const char *detail)
 {
     static char rel[8][600];
     static int slot = 0;
     char path[1024];
+    const char *lines[2];
+    const int zoom = 2;
     float *rgb = (float *)malloc(sizeof(float) * 3 * (size_t)W * H);
-    unsigned char *rgb8 = (unsigned char *)malloc(3 * (size_t)W * H);
-    if (!rgb || !rgb8) { fprintf(stderr, "figures: out of memory\n"); exit(1); }
+    unsigned char *rgb8 = (unsigned char *)malloc(3 * (size_t)W * H), *big = (unsigned char *)malloc(3 * (size_t)W * H * zoom * zoom);
+    pf_canvas c;
+    int x, y;
+    if (!rgb || !rgb8 || !big) { fprintf(stderr, "figures: out of memory\n"); exit(1); }
     fogrt_image_resolve(img, rgb);
     fogrt_tonemap_rgb8(rgb, W, H, exposure, FOGRT_TONEMAP_SRGB, rgb8);
+    for (y = 0; y < H * zoom; ++y)
+        for (x = 0; x < W * zoom; ++x) memcpy(big + 3 * ((size_t)y * W * zoom + x), rgb8 + 3 * ((size_t)(y / zoom) * W + x / zoom), 3);
+    lines[0] = what; lines[1] = detail;
+    c = pf_captioned(big, W * zoom, H * zoom, lines, 2, 2);
     snprintf(path, sizeof path, "%s/%s.png", out_dir, name);
-    if (!stbi_write_png(path, W, H, 3, rgb8, W * 3)) { fprintf(stderr, "figures: cannot write %s\n", path); exit(1); }
-    free(rgb); free(rgb8);
+    if (!stbi_write_png(path, c.w, c.h, 3, c.rgb, c.w * 3)) { fprintf(stderr, "figures: cannot write %s\n", path); exit(1); }
+    pf_canvas_free(&c);
+    free(rgb); free(rgb8); free(big);
     printf("  wrote %s\n", path);
     slot = (slot + 1) % 8;
     snprintf(rel[slot], sizeof rel[slot], "%s/%s.png", figs_rel, name);
@@ -358,11 +382,14 @@ static void figure2_scene(scene_kind kind, const char *tag)
         for (k = 0; k < 2; ++k) {
             const char *png;
             double meas, est, ratio;
+            char what[160], detail[160];
             shot_render(&s, scene, &rd, k ? hi : lo);
             snprintf(name, sizeof name, "fig2_%s_%s%s_%d", tag, c < 2 ? "direct" : "path", rd.nee ? "_nee" : "_nonee", k ? hi : lo);
-            png = save_png(name, &s.img, expo);
             meas = rel_mse_vs(&s.img, &ref.img); est = estimated(&s.img);
             ratio = mean_lum(&s.img) / mean_lum(&ref.img);
+            snprintf(what, sizeof what, "Fig. 2, %s: %s", scene_short(kind), names[c]);
+            snprintf(detail, sizeof detail, "%d spp; relMSE vs reference %.3g; mean / reference %.3f", k ? hi : lo, meas, ratio);
+            png = save_png(name, &s.img, expo, what, detail);
             snprintf(cell[k], sizeof cell[k], "![%s, %d spp](%s)<br>%d spp, %.2f s; relMSE vs ref **%.3g**, estimated %.3g; mean/ref %.3f",
                      names[c], k ? hi : lo, png, k ? hi : lo, s.seconds, meas, est, ratio);
             printf("  %-30s %4d spp %6.2f s  relMSE vs ref %.3e  estimated %.3e  mean/ref %.3f\n", names[c], k ? hi : lo, s.seconds, meas, est, ratio);
@@ -431,9 +458,12 @@ static void figure3(void)
         halves h;
         char name[64];
         const char *png;
+        char what[160], detail[160];
         h = render_halves(scene, rd, spp, &m);
         snprintf(name, sizeof name, "fig3_sigma_%g", (double)sig[i]);
-        png = save_png(name, &m.img, expo);
+        snprintf(what, sizeof what, "Fig. 3, %s: sigma_t %g per scene unit", scene_short(kind), (double)sig[i]);
+        snprintf(detail, sizeof detail, "path NEE+MIS, albedo 0.9, g 0; %d spp; noise relMSE %.3g", spp, h.noise);
+        png = save_png(name, &m.img, expo, what, detail);
         xs[i] = sig[i]; mean[i] = h.mean; noise[i] = h.noise;
         fprintf(md, "| %g | %.2f | ![sigma_t %g](%s) | %.2f | %.3g | %.3g | %.4g |\n", (double)sig[i], exp(-2.0 * (double)sig[i]),
                 (double)sig[i], png, h.seconds, h.noise, h.est, h.mean);
@@ -498,9 +528,13 @@ static void figure4(void)
             const char *png;
             xs[i] = gs[i];
             if (k < 2) rd.integrator = FOGRT_INTEGRATOR_DIRECT;
+            char what[160], detail[160];
             h = render_halves(scene, rd, k < 2 ? spp_single : spp_path, &m);
             snprintf(name, sizeof name, "fig4_%s_g_%g", tags[k], (double)gs[i]);
-            png = save_png(name, &m.img, expo[k]);
+            snprintf(what, sizeof what, "Fig. 4, %s: g = %g", scene_short(rows[k]), (double)gs[i]);
+            snprintf(detail, sizeof detail, "%s, fog sigma_t %g, albedo 0.9; %d spp; noise relMSE %.3g",
+                     k < 2 ? "one bounce" : "path NEE+MIS", rows[k] == SCENE_SPOT ? 0.5 : 0.3, k < 2 ? spp_single : spp_path, h.noise);
+            png = save_png(name, &m.img, expo[k], what, detail);
             if (k < 2) gl[k][i] = glow(scene, &m.img);
             snprintf(cells[k][i], sizeof cells[k][i], "![g %g](%s)<br>%s%d spp, %.2f s, noise %.3g, est. %.3g", (double)gs[i], png,
                      k < 2 ? "GLOW" : "", k < 2 ? spp_single : spp_path, h.seconds, h.noise, h.est);
@@ -606,9 +640,11 @@ static void beyond_equiangular(void)
     ladder_pts L_on, L_off;
     double budget = quick ? 3.0 : 12.0, t_eq, e_on, e_off;
     float expo;
-    svgplot_series s[2];
+    svgplot_series s[3];
     svgplot_desc d;
     char sub[2][80];
+    double rx[2], ry[2];
+    int anchor;
     const char *svg, *png_on, *png_off;
     printf("beyond: equiangular on vs off\n");
     off.equiangular = false;
@@ -618,11 +654,18 @@ static void beyond_equiangular(void)
     ladder_run(scene, &off, &ref, budget, &s_off, &L_off);
     t_eq = L_on.t[L_on.n - 1] < L_off.t[L_off.n - 1] ? L_on.t[L_on.n - 1] : L_off.t[L_off.n - 1];
     e_on = ladder_at(&L_on, t_eq); e_off = ladder_at(&L_off, t_eq);
-    png_on = save_png("beyond_equiangular_on", &s_on.img, expo);
     {
-        char keep[600];
+        char detail[160];
+        snprintf(detail, sizeof detail, "fog sigma_t %g, albedo 0.9, g 0.3; %d spp; relMSE vs reference %.3g", (double)EQ_SIGMA,
+                 L_on.spp[L_on.n - 1], L_on.e[L_on.n - 1]);
+        png_on = save_png("beyond_equiangular_on", &s_on.img, expo, "Point light in fog: equiangular sampling on", detail);
+    }
+    {
+        char keep[600], detail[160];
         snprintf(keep, sizeof keep, "%s", png_on);
-        png_off = save_png("beyond_equiangular_off", &s_off.img, expo);
+        snprintf(detail, sizeof detail, "fog sigma_t %g, albedo 0.9, g 0.3; %d spp; relMSE vs reference %.3g", (double)EQ_SIGMA,
+                 L_off.spp[L_off.n - 1], L_off.e[L_off.n - 1]);
+        png_off = save_png("beyond_equiangular_off", &s_off.img, expo, "Point light in fog: equiangular off (the paper)", detail);
         printf("  equiangular on : %d spp %.2f s relMSE %.3e\n  equiangular off: %d spp %.2f s relMSE %.3e\n  at equal time %.2f s: on %.3e off %.3e ratio %.1f\n",
                L_on.spp[L_on.n - 1], L_on.t[L_on.n - 1], L_on.e[L_on.n - 1], L_off.spp[L_off.n - 1], L_off.t[L_off.n - 1],
                L_off.e[L_off.n - 1], t_eq, e_on, e_off, e_off / e_on);
@@ -652,7 +695,13 @@ static void beyond_equiangular(void)
     snprintf(sub[1], sizeof sub[1], "%d spp in %.1f s", L_off.spp[L_off.n - 1], L_off.t[L_off.n - 1]);
     s[0].label = "equiangular on"; s[0].sublabel = sub[0]; s[0].x = L_on.t; s[0].y = L_on.e; s[0].n = L_on.n;
     s[1].label = "equiangular off (paper)"; s[1].sublabel = sub[1]; s[1].x = L_off.t; s[1].y = L_off.e; s[1].n = L_off.n; s[1].dashed = 1;
-    svg = save_svg("beyond_equiangular", &d, s, 2);
+    /* the slope -1 of an unbiased estimator, through the first ladder's point at 4 spp */
+    for (anchor = 0; anchor < L_on.n - 1 && L_on.spp[anchor] < 4; ++anchor) {}
+    rx[0] = fmin(L_on.t[0], L_off.t[0]); rx[1] = fmax(L_on.t[L_on.n - 1], L_off.t[L_off.n - 1]);
+    ry[0] = L_on.e[anchor] * L_on.t[anchor] / rx[0]; ry[1] = L_on.e[anchor] * L_on.t[anchor] / rx[1];
+    s[2].label = "reference slope -1"; s[2].sublabel = "unbiased: error x time constant"; s[2].x = rx; s[2].y = ry; s[2].n = 2;
+    s[2].dashed = 1; s[2].colour = "#000000"; s[2].no_markers = 1;
+    svg = save_svg("beyond_equiangular", &d, s, 3);
     fprintf(md, "\n![equiangular convergence](%s)\n", svg);
     shot_free(&ref); shot_free(&s_on); shot_free(&s_off);
     fogrt_scene_destroy(scene);
@@ -800,14 +849,23 @@ static void beyond_fresnel(void)
             dimg.count[i] = s[0].img.count[i];
         }
     expo = exposure_for(&s[1].img);
-    png[0] = save_png("beyond_fresnel_schlick", &s[0].img, expo);
+    {
+        char detail[160];
+        snprintf(detail, sizeof detail, "path NEE+MIS, %d spp, seed 5; estimated relMSE %.3g", spp, estimated(&s[0].img));
+        png[0] = save_png("beyond_fresnel_schlick", &s[0].img, expo, "Default scene, glass sphere: Schlick's Fresnel (the paper)", detail);
+    }
     snprintf(keep, sizeof keep, "%s", png[0]);
-    png[1] = save_png("beyond_fresnel_exact", &s[1].img, expo);
+    {
+        char detail[160];
+        snprintf(detail, sizeof detail, "path NEE+MIS, %d spp, seed 5; estimated relMSE %.3g", spp, estimated(&s[1].img));
+        png[1] = save_png("beyond_fresnel_exact", &s[1].img, expo, "Default scene, glass sphere: exact dielectric Fresnel", detail);
+    }
     {
         char keep2[600];
         const char *pd;
         snprintf(keep2, sizeof keep2, "%s", png[1]);
-        pd = save_png("beyond_fresnel_difference_x10", &dimg, expo * 10.0f);
+        pd = save_png("beyond_fresnel_difference_x10", &dimg, expo * 10.0f, "|Schlick - exact|, 10 x brighter",
+                      "the same seed for both: black where the two agree");
         fprintf(md, "\n## Beyond the paper: Schlick versus exact Fresnel on the glass sphere\n\n"
                     "The default scene (glass sphere of ior 1.5 in fog), path NEE+MIS, %d spp, the same seed for both, so "
                     "the two images share their random numbers and differ only where a Fresnel reflect/refract choice "
@@ -848,6 +906,7 @@ static void relative_figs_dir(void)
     const char *slash = strrchr(doc_path, '/');
     size_t dlen = slash ? (size_t)(slash - doc_path) : 0;
     if (dlen == 0 && !slash) snprintf(figs_rel, sizeof figs_rel, "%s", out_dir);
+    else if (strlen(out_dir) == dlen && strncmp(out_dir, doc_path, dlen) == 0) snprintf(figs_rel, sizeof figs_rel, ".");
     else if (strncmp(out_dir, doc_path, dlen) == 0 && out_dir[dlen] == '/') snprintf(figs_rel, sizeof figs_rel, "%s", out_dir + dlen + 1);
     else snprintf(figs_rel, sizeof figs_rel, "%s", out_dir);
 }
@@ -880,7 +939,9 @@ int main(int argc, char **argv)
     if (!have_spot) printf("figures: %s not found: its panels are skipped (the default scene stands in where it can)\n", spot_path);
     if (!(md = fopen(doc_path, "w"))) { fprintf(stderr, "figures: cannot write %s: %s\n", doc_path, strerror(errno)); return 1; }
     fprintf(md, "# Experiments: the paper's figures, with numbers\n\n"
-                "Generated by `make figures` (examples/figures.c) on %d x %d images%s; do not edit by hand. "
+                "Generated by `make figures-docs` (examples/figures.c; `make figures` writes the same into build/figures/) "
+                "on %d x %d images%s; do not edit by hand. Each image carries its caption (what it shows, samples per pixel, "
+                "error) and is drawn at twice its size for a projector. "
                 "Every caption gives samples per pixel (spp), CPU seconds (process CPU time over all threads, on a "
                 "shared 2-core machine: compare times within one table, not across runs) and a measured error:\n\n"
                 "- **relMSE vs ref**: (sum_p (L_p - R_p)^2 - sum_p Var[R_p]) / sum_p R_p^2 on luminance, R a long path "

@@ -4,20 +4,25 @@
    box) or, with no scene argument, the embedded default scene. CS184's flags keep CS184's
    meanings, so `fogrt -t 8 -s 64 -l 16 -m 6 -r 480 360 -f out.png scene.dae` works as the
    students type it; the fog and method flags are fogrt's own. `fogrt -h` lists them all with
-   their defaults.
+   their syntax and defaults. The flags the preview shares (-r -t -l -m -H -g --g --density
+   --albedo --integrator --fresnel --seed --exposure) are parsed by examples/cli_common.h,
+   once for both programs. Long flags also take `--flag=value`.
 
    Exit status: 0 on success, 2 for bad input (an unknown flag, a value out of range, a
-   missing, malformed or non-regular scene, camera or reference file, an image above the
-   memory limit), 1 when rendering or writing an output fails, 130 when interrupted
-   (SIGINT or SIGTERM: the image rendered so far is written first). Every error is one line
-   on stderr naming the flag or the file:line.
+   missing, malformed or non-regular scene, camera, environment or reference file, an output
+   that is an input or another output, an image above the memory limit), 1 when rendering
+   or writing an output fails, 130 when interrupted (SIGINT, SIGTERM or SIGHUP: the image
+   rendered so far is written first). Every error is one line on stderr naming the flag or
+   the file:line.
 
    Outputs are written to a temporary file in the same directory and renamed over the old
    file, so a failed or interrupted write never leaves a truncated image where a good one
-   was; every write, the fsync and the close are checked.
+   was; every write, the fsync and the close are checked. No output may be (or resolve to,
+   through a symlink or a hard link) an input of the run or another output.
 
    Build: make (the rule is in mk/cli.mk; PNG and JPG output use stb_image_write from
-   libstb-dev, through its in-memory callback API). */
+   libstb-dev, through its in-memory callback API; OpenEXR input and output use Debian's
+   libtinyexr-dev when installed). */
 #define _XOPEN_SOURCE 700
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,8 +43,8 @@
 #include "fogrt.h"
 #define FOGRT_LOAD_IMPLEMENTATION
 #include "fogrt_load.h"
+#include "cli_common.h"
 
-#define FOGRT_STB_READ_HDR
 #include "stb_write.h"           /* stb_image_write, its warnings silenced */
 #ifdef FOGRT_CLI_EXR
 #include <tinyexr.h>            /* Debian's libtinyexr-dev (C declarations, -ltinyexr) */
@@ -53,7 +58,6 @@ int cli_trace_path(const fogrt_scene *scene, const fogrt_render_desc *rd, int wi
 /* ------------------------------------------------------------------------------------------
    Options and their defaults (keep in step with usage())
    ------------------------------------------------------------------------------------------ */
-#define CLI_MAX_SIDE 32768
 /* Image memory limit, checked before anything is allocated: the accumulation buffer (84
    bytes per pixel: double RGB sum, double sum of squares, 32-bit count, and per each of the
    4 sample streams a double luminance sum and a 32-bit count), the resolved float image
@@ -62,24 +66,26 @@ int cli_trace_path(const fogrt_scene *scene, const fogrt_render_desc *rd, int wi
    the render goes on with every pixel alike.) */
 #define CLI_BYTES_PER_PIXEL 128.0
 #define CLI_MAX_IMAGE_BYTES (2.0 * 1024.0 * 1024.0 * 1024.0)
+/* An environment map may hold at most this many pixels (its float RGB copy here, the
+   library's copy and its sampling tables take about 40 bytes per pixel: 2.5 GiB). */
+#define CLI_MAX_ENV_PIXELS (64.0 * 1024.0 * 1024.0)
 /* Ceilings of an open-ended render (--target-error without -s). */
 #define CLI_CEILING_SPP 65536
 #define CLI_RATES_PILOT 8         /* --pixel-rates: spp taken alike before the rates are made */
 #define CLI_CEILING_SECONDS 3600.0
-/* Threads: at most 4 per processor, and never more than this. */
-#define CLI_MAX_THREADS 256
 /* Progressive batches are sized to take about this long, so the error estimate updates
-   and an interrupt is answered within a second or two. */
+   and an interrupt is answered within a second. */
 #define CLI_BATCH_SECONDS 0.5
 /* Without a terminal, the progress line is printed every this many seconds. */
 #define CLI_LOG_PROGRESS_SECONDS 5.0
 /* Camera coordinates, lens radius and focal distance beyond this overflow float ray maths. */
 #define CLI_MAX_CAMERA_COORD 1e18f
-/* -m 0 is emission only (fogrt_render_desc.max_depth 0, the core's API of issue 13). */
-#define CLI_MIN_DEPTH 0
 #define CLI_PI 3.14159265358979323846
 
+typedef enum cli_fog_where { CLI_FOG_DEFAULT, CLI_FOG_ALL, CLI_FOG_SCENE, CLI_FOG_BOX } cli_fog_where;
+
 typedef struct cli_options {
+    cli_common c;                       /* the flags shared with the preview */
     int spp; bool spp_set;              /* -s */
     int light_samples;                  /* -l */
     int threads;                        /* -t */
@@ -115,74 +121,78 @@ typedef struct cli_options {
     double target_error;                /* --target-error, 0 = none */
     bool quiet;
     const char *env_map;                /* -e */
-    fogrt_vec3 fog_lo, fog_hi; bool fog_bounds_set;   /* --fog-bounds */
-    int trace_x, trace_y, trace_sample; bool trace;  /* --trace */
+    cli_fog_where fog_where;            /* --fog-bounds */
+    fogrt_vec3 fog_lo, fog_hi;          /* --fog-bounds X0,Y0,Z0,X1,Y1,Z1 */
+    int trace_x, trace_y; uint32_t trace_sample; bool trace;  /* --trace */
     const char *scene;
 } cli_options;
+
+/* Every flag the parser takes, for "did you mean" (tests/test_cli.sh checks that -h and the
+   README's table list the same ones). */
+static const char *const cli_flag_names[] = {
+    "-r", "-t", "-l", "-m", "-H", "-g", "--g", "--density", "--albedo", "--integrator", "--fresnel",
+    "--seed", "--exposure", "-h", "--help",
+    "-s", "-o", "-f", "-b", "-d", "-a", "-c", "-e",
+    "--camera-pos", "--look-at", "--up", "--fov", "--cs184-framing", "--print-camera",
+    "--fog-bounds", "--equiangular", "--lights", "--glow", "--footprint", "--expected-emission", "--mis",
+    "--pixel-rates", "--bvh", "--time", "--target-error", "--quiet", "--log", "--reference", "--trace",
+    NULL
+};
 
 static void usage(FILE *f)
 {
     fprintf(f,
         "usage: fogrt [options] [scene.dae | mesh.obj | mesh.ply]\n"
         "Renders a CS184 COLLADA scene, an OBJ/PLY mesh placed in the default fog-filled Cornell\n"
-        "box, or (no scene) the embedded default scene.\n"
+        "box, or (no scene) the embedded default scene. Long flags also take --flag=value.\n"
+        "\n"
+        "Flags shared with the preview (the same meanings and limits in both):\n");
+    cli_common_usage(f, 800, 600);
+    fprintf(f,
+        "  (-r: the view keeps CS184's 800x600 framing at every size, see --cs184-framing; the\n"
+        "  image buffers, %.0f bytes per pixel, may use at most %.0f MiB)\n"
         "\n"
         "CS184 flags (same meanings as the CS184 pathtracer):\n"
-        "  -s N         samples per pixel (default 64); with --pixel-rates on (the default)\n"
-        "               their mean over the image, more where the noise is\n"
-        "  -l N         samples per area light at each light-sampling step (default 1)\n"
-        "  -t N         threads (default 0 = all cores; capped at 4 per processor, at most %d)\n"
-        "  -m N         maximum ray depth: bounces after the camera ray, N >= 0; 0 = emission\n"
-        "               only (default 64; Russian roulette ends paths earlier)\n"
+        "  -s N         samples per pixel in [1, 16777216] (default 64); with --pixel-rates on\n"
+        "               (the default) their mean over the image, more where the noise is\n"
         "  -o 0|1       CS184's isAccumBounces: 1 counts light of every bounce up to -m, 0 only\n"
         "               light that bounced exactly -m times (default 1)\n"
-        "  -r W H       image size in pixels (default 800 600, CS184's window); the view keeps\n"
-        "               CS184's 800x600 framing at every size (see --cs184-framing); the\n"
-        "               image buffers (%.0f bytes per pixel) may use at most %.0f MiB\n"
         "  -f FILE      output image: .png or .jpg (tone mapped: --exposure, then sRGB), .pfm\n"
-        "               (linear float, never scaled) or .ppm (default out.png, with a note on\n"
-        "               stderr: CS184 opens its viewer here, fogrt's is `make preview`)\n"
-        "  -b R         thin-lens radius (default 0 = pinhole)\n"
-        "  -d D         focal distance (default: the distance to the camera's target)\n"
+        "               or .exr (linear 32-bit float, never scaled) or .ppm (default out.png,\n"
+        "               with a note on stderr: CS184 opens its viewer here, fogrt's is\n"
+        "               `make preview`)\n"
+        "  -b R         thin-lens radius >= 0 (default 0 = pinhole)\n"
+        "  -d D         focal distance > 0 (default: the distance to the camera's target)\n"
         "  -a B T       adaptive sampling: check every B samples, stop a pixel once its 95%%\n"
         "               confidence half-width is <= T x its mean (default off; -s is the cap);\n"
         "               also writes CS184's sampling-rate image <name>_rate.png (samples /\n"
         "               -s per pixel: blue 0, green 0.5, red 1)\n"
-        "  -H           hemisphere sampling: no light sampling, emitters found by hitting them\n"
-        "               (point and spot lights then contribute nothing) (default off)\n"
         "  -c FILE      camera settings file as CS184 writes it (default: the scene's camera)\n"
-        "  -g G         Henyey-Greenstein g in [-1, 1], as in the paper's renderer; like the\n"
-        "               paper it also switches fog on (density 0.2) when the scene has none\n"
-        "               and --density is not given\n"
-        "  -h           this help\n"
-        "\n", CLI_MAX_THREADS, CLI_BYTES_PER_PIXEL, CLI_MAX_IMAGE_BYTES / (1024.0 * 1024.0));
+        "  -e FILE      environment map, latitude-longitude as CS184 maps its -e: .exr, .hdr\n"
+        "               or .pfm (default none); with fog and --fog-bounds all the fog then\n"
+        "               fills the box of the geometry, so the sky shows\n"
+        "\n", CLI_BYTES_PER_PIXEL, CLI_MAX_IMAGE_BYTES / (1024.0 * 1024.0));
     fprintf(f,
-        "Camera and output flags:\n"
+        "Camera flags:\n"
         "  --camera-pos X,Y,Z  eye position (default: the scene's camera)\n"
         "  --look-at X,Y,Z     point looked at (default: the scene's camera)\n"
-        "  --up X,Y,Z          up direction (default: the scene's camera, else +y)\n"
+        "  --up X,Y,Z          up direction, any length but 0 (default: the scene's camera, else +y)\n"
         "  --fov DEG           full horizontal field of view in degrees, (0, 180) (default:\n"
         "                      the scene's); a free camera is a pinhole unless -b is given\n"
         "  --cs184-framing     CS184's view for -r W H: its focal length in pixels (875 for\n"
         "                      the shipped files) is kept, so the field of view changes with\n"
         "                      the size (default off: the 800x600 frame is kept whole)\n"
         "  --print-camera      print the camera that would be used and exit (default off)\n"
-        "  --exposure EV       PNG/JPG brightness: the image is multiplied by 2^EV before the\n"
-        "                      sRGB curve, EV in [-64, 64] (default 0); PFM is never scaled\n"
         "  Pixel filter: each sample lands on a stratified point of its pixel (4 independently\n"
         "  scrambled (0,2)-sequences per pixel; with -a independent uniform points) and is\n"
         "  weighted 1 (a box filter one pixel wide).\n"
         "\n");
     fprintf(f,
         "Fog and method flags:\n"
-        "  --density S      extinction sigma_t >= 0 per scene unit, the paper's lambda (default:\n"
-        "                   the scene's own: 0.3 for the default scene and OBJ/PLY, 0 for .dae)\n"
-        "  --albedo A       single-scattering albedo in [0, 1], a scalar or r,g,b (default: the\n"
-        "                   scene's: 0.9; .dae files 0.9)\n"
-        "  --g G            Henyey-Greenstein g in [-1, 1], > 0 forward (default: the scene's:\n"
-        "                   0.6; .dae files 0)\n"
-        "  --integrator I   path (global illumination, the paper's Algorithm 1) or direct\n"
-        "                   (one bounce, the paper's baseline) (default path)\n"
+        "  --fog-bounds B   where the fog is: all (all space, the paper's; a .dae room is then\n"
+        "                   in fog inside and out), scene (the box of the scene's geometry:\n"
+        "                   the room, not the space around it), or X0,Y0,Z0,X1,Y1,Z1 (a box)\n"
+        "                   (default all); the progress header and the summary say where it is\n"
         "  --equiangular on|off  equiangular distance sampling toward point and spot lights in\n"
         "                   fog; off: they are found only by next-event estimation at fog\n"
         "                   collisions, as in the paper (default on)\n"
@@ -203,20 +213,23 @@ static void usage(FILE *f)
         "                   it (fogrt_image_sample_rates: its neighbours', never its own, so\n"
         "                   the image stays unbiased); -s and the spp shown are then the mean\n"
         "                   over the pixels (default on)\n"
-        "  --fresnel F      schlick or exact (default schlick)\n"
         "  --bvh H          sah or volume (the paper's volume heuristic) (default sah)\n"
-        "  --seed N         random seed (default 0); the image is the same on any thread count\n"
         "  --time SECONDS   stop after about this long (default: no limit; without -s the\n"
         "                   sample count is then unlimited)\n"
         "  --target-error E stop when the estimated relative RMS error is <= E (default: none);\n"
         "                   without -s the render also stops at %d spp or after %.0f s,\n"
         "                   whichever comes first, even if the estimate never gets there\n"
         "  --quiet          no progress line and no summary (errors and warnings still shown)\n"
+        "                   (default off)\n"
+        "  --trace X,Y[,S]  print the events of sample S (default 0) of pixel (X, Y), column and\n"
+        "                   row from the top, in Algorithm 1's order, and exit without an image\n"
+        "                   (default off)\n"
         "\n", CLI_RATES_PILOT, CLI_CEILING_SPP, CLI_CEILING_SECONDS);
     fprintf(f,
         "Error against time (the progress line and the summary show the same numbers):\n"
-        "  --log FILE.csv   append one row per progressive batch (default none); the header\n"
-        "                   row, written when the file is new, names the columns:\n"
+        "  --log FILE.csv   append one row per progressive batch to a fogrt log (default none):\n"
+        "                   a new file is created at the start with the header row; an existing\n"
+        "                   file must be a fogrt log (that header its first line). Columns:\n"
         "                     seconds       render time so far\n"
         "                     spp           mean samples per pixel so far\n"
         "                     samples_per_second\n"
@@ -233,255 +246,187 @@ static void usage(FILE *f)
         "  --reference REF.pfm  measure the error against this image (same size as -r; a\n"
         "                   linear PFM, e.g. a long fogrt render) (default none)\n"
         "\n"
-        "Ctrl-C (or SIGTERM) stops within a second or two, writes the image so far (and the\n"
-        "--log row), prints the summary marked interrupted and exits 130; a second Ctrl-C\n"
-        "quits at once without writing.\n"
-        "Exit status: 0 ok, 2 bad input (flag, value, scene/camera/reference file), 1 render or\n"
-        "write failure (the file is named), 130 interrupted.\n");
+        "Ctrl-C, SIGTERM or SIGHUP stops within a second (a sample that is itself longer, e.g.\n"
+        "-l 65536 over a wide row, finishes its row first), writes the image so far (and the\n"
+        "--log row), prints the summary marked interrupted and exits 130; a second signal quits\n"
+        "at once without writing.\n"
+        "No output (-f, the -a rate image, --log) may be an input (scene, -c, -e, --reference)\n"
+        "or another output, also through a symlink or a hard link: refused before rendering.\n"
+        "Exit status: 0 ok, 2 bad input (flag, value, scene/camera/environment/reference file,\n"
+        "an output that is an input), 1 render or write failure (the file is named), 130\n"
+        "interrupted.\n");
 }
 
-/* One message naming the flag, then exit status 2. */
 static int bad_flag(const char *flag, const char *fmt, ...)
 {
     va_list ap;
-    fprintf(stderr, "fogrt: %s: ", flag);
+    char msg[512];
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    fprintf(stderr, " (fogrt -h lists the flags)\n");
-    return 2;
+    return cli_bad_flag(flag, "%s", msg);
 }
 
-static bool parse_int(const char *s, long lo, long hi, int *out)
+/* "X,Y" or "X,Y,SAMPLE": a pixel inside the image (checked later, with -r) and a sample
+   index below 2^32. */
+static bool parse_trace(const char *s, cli_options *o)
 {
-    char *end;
-    long v;
-    errno = 0;
-    v = strtol(s, &end, 10);
-    if (errno || end == s || *end || v < lo || v > hi) return false;
-    *out = (int)v;
-    return true;
-}
-static bool parse_float(const char *s, float *out)
-{
-    char *end;
-    double v;
-    errno = 0;
-    v = strtod(s, &end);
-    if (errno || end == s || *end || !(v == v) || v > 3.0e38 || v < -3.0e38) return false;
-    *out = (float)v;
-    return true;
-}
-static bool parse_u64(const char *s, uint64_t *out)
-{
-    char *end;
-    unsigned long long v;
-    if (*s == '-' || *s == '+') return false;
-    errno = 0;
-    v = strtoull(s, &end, 10);
-    if (errno || end == s || *end) return false;
-    *out = (uint64_t)v;
-    return true;
-}
-/* "X,Y,Z": three finite numbers */
-static bool parse_vec3(const char *s, fogrt_vec3 *out)
-{
-    char buf[256], *a, *b;
-    float v[3];
+    char buf[128], *p[3], *comma;
+    int n = 0, k;
+    unsigned long long v[3] = {0, 0, 0};
     if (strlen(s) >= sizeof buf) return false;
     strcpy(buf, s);
-    a = strchr(buf, ',');
-    if (!a) return false;
-    *a++ = 0;
-    b = strchr(a, ',');
-    if (!b) return false;
-    *b++ = 0;
-    if (!parse_float(buf, &v[0]) || !parse_float(a, &v[1]) || !parse_float(b, &v[2])) return false;
-    out->x = v[0]; out->y = v[1]; out->z = v[2];
-    return true;
-}
-static bool parse_onoff(const char *s, bool *out)
-{
-    if (strcmp(s, "on") == 0) { *out = true; return true; }
-    if (strcmp(s, "off") == 0) { *out = false; return true; }
-    return false;
-}
-/* "0.9" or "0.9,0.8,0.7" */
-static bool parse_albedo(const char *s, fogrt_vec3 *out)
-{
-    char buf[128], *a, *b;
-    float v[3];
-    if (strlen(s) >= sizeof buf) return false;
-    strcpy(buf, s);
-    a = strchr(buf, ',');
-    if (!a) {
-        if (!parse_float(buf, &v[0])) return false;
-        v[1] = v[2] = v[0];
-    } else {
-        *a++ = 0;
-        b = strchr(a, ',');
-        if (!b) return false;
-        *b++ = 0;
-        if (!parse_float(buf, &v[0]) || !parse_float(a, &v[1]) || !parse_float(b, &v[2])) return false;
+    p[n++] = buf;
+    while ((comma = strchr(p[n - 1], ',')) != NULL) {
+        if (n == 3) return false;
+        *comma = 0;
+        p[n++] = comma + 1;
     }
-    if (v[0] < 0 || v[0] > 1 || v[1] < 0 || v[1] > 1 || v[2] < 0 || v[2] > 1) return false;
-    out->x = v[0]; out->y = v[1]; out->z = v[2];
-    return true;
-}
-static bool ends_with(const char *s, const char *ext)
-{
-    size_t n = strlen(s), m = strlen(ext), i;
-    if (n < m) return false;
-    for (i = 0; i < m; ++i) {
-        char c = s[n - m + i];
-        if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
-        if (c != ext[i]) return false;
+    if (n < 2) return false;
+    for (k = 0; k < n; ++k) {
+        char *end;
+        if (!(p[k][0] >= '0' && p[k][0] <= '9')) return false;
+        errno = 0;
+        v[k] = strtoull(p[k], &end, 10);
+        if (errno || *end) return false;
     }
+    if (v[0] >= CLI_MAX_SIDE || v[1] >= CLI_MAX_SIDE || v[2] > 0xFFFFFFFFull) return false;
+    o->trace_x = (int)v[0]; o->trace_y = (int)v[1]; o->trace_sample = (uint32_t)v[2];
     return true;
 }
 
 /* Parses argv into o. Returns 0, or the exit status (2 bad input, -1 help printed). */
 static int parse_args(int argc, char **argv, cli_options *o)
 {
-    int i;
+    cli_arg A;
+    int i, k;
     memset(o, 0, sizeof *o);
-    o->spp = 64; o->light_samples = 1; o->threads = 0; o->max_depth = 64; o->accumulate = 1;
-    o->width = 800; o->height = 600; o->output = "out.png";
+    cli_common_defaults(&o->c, 800, 600);
+    o->spp = 64; o->accumulate = 1;
+    o->output = "out.png";
     o->equiangular = true; o->mis = true; o->glow = true; o->footprint = true; o->expected = true; o->pixel_rates = true;
-    o->integrator = FOGRT_INTEGRATOR_PATH; o->fresnel = FOGRT_FRESNEL_SCHLICK; o->bvh = FOGRT_BVH_SAH;
-    for (i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-#define NEED(n) do { if (i + (n) >= argc) return bad_flag(a, "needs %d value%s", (n), (n) > 1 ? "s" : ""); } while (0)
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) { usage(stdout); return -1; }
-        else if (strcmp(a, "-s") == 0) { NEED(1); if (!parse_int(argv[++i], 1, 1 << 24, &o->spp)) return bad_flag(a, "samples per pixel must be an integer in [1, 16777216], got '%s'", argv[i]); o->spp_set = true; }
-        else if (strcmp(a, "-l") == 0) { NEED(1); if (!parse_int(argv[++i], 1, 1 << 16, &o->light_samples)) return bad_flag(a, "light samples must be an integer in [1, 65536], got '%s'", argv[i]); }
-        else if (strcmp(a, "-t") == 0) { NEED(1); if (!parse_int(argv[++i], 0, 4096, &o->threads)) return bad_flag(a, "threads must be an integer in [0, 4096], got '%s'", argv[i]); }
-        else if (strcmp(a, "-m") == 0) { NEED(1); if (!parse_int(argv[++i], CLI_MIN_DEPTH, 1 << 20, &o->max_depth)) return bad_flag(a, "maximum ray depth must be an integer in [%d, 1048576], got '%s'", CLI_MIN_DEPTH, argv[i]); }
-        else if (strcmp(a, "-o") == 0) { NEED(1); if (!parse_int(argv[++i], 0, 1, &o->accumulate)) return bad_flag(a, "must be 0 (only light that bounced exactly -m times) or 1 (all bounces), got '%s'", argv[i]); }
-        else if (strcmp(a, "-r") == 0) {
-            NEED(2);
-            if (!parse_int(argv[i + 1], 1, CLI_MAX_SIDE, &o->width) || !parse_int(argv[i + 2], 1, CLI_MAX_SIDE, &o->height))
-                return bad_flag(a, "width and height must be integers in [1, %d], got '%s %s'", CLI_MAX_SIDE, argv[i + 1], argv[i + 2]);
-            i += 2;
-        }
-        else if (strcmp(a, "-f") == 0) {
+    o->bvh = FOGRT_BVH_SAH;
+    A.argc = argc; A.argv = argv;
+    for (i = 1; i < argc; i = A.i + 1) {
+        const char *a, *v;
+        cli_arg_at(&A, i);
+        a = A.name;
+#define NEED(n) do { if (!cli_has(&A, (n))) return bad_flag(a, "needs %d value%s", (n), (n) > 1 ? "s" : ""); } while (0)
+        if (cli_is(&A, "-h") || cli_is(&A, "--help")) { usage(stdout); return -1; }
+        if ((k = cli_common_flag(&A, &o->c)) >= 0) { if (k) return k; }
+        else if (cli_is(&A, "-s")) { NEED(1); v = cli_next(&A); if (!cli_parse_int(v, 1, 1 << 24, &o->spp)) return bad_flag(a, "samples per pixel must be an integer in [1, 16777216], got '%s'", v); o->spp_set = true; }
+        else if (cli_is(&A, "-o")) { NEED(1); v = cli_next(&A); if (!cli_parse_int(v, 0, 1, &o->accumulate)) return bad_flag(a, "must be 0 (only light that bounced exactly -m times) or 1 (all bounces), got '%s'", v); }
+        else if (cli_is(&A, "-f")) {
             NEED(1);
-            o->output = argv[++i];
+            o->output = cli_next(&A);
             o->output_set = true;
-            if (!ends_with(o->output, ".png") && !ends_with(o->output, ".jpg") && !ends_with(o->output, ".jpeg") &&
-                !ends_with(o->output, ".pfm") && !ends_with(o->output, ".ppm"))
-                return bad_flag(a, "output '%s' must end in .png, .jpg, .pfm or .ppm", o->output);
+            if (!cli_ends_with(o->output, ".png") && !cli_ends_with(o->output, ".jpg") && !cli_ends_with(o->output, ".jpeg") &&
+                !cli_ends_with(o->output, ".pfm") && !cli_ends_with(o->output, ".ppm") && !cli_ends_with(o->output, ".exr"))
+                return bad_flag(a, "output '%s' must end in .png, .jpg, .pfm, .exr or .ppm", o->output);
+#ifndef FOGRT_CLI_EXR
+            if (cli_ends_with(o->output, ".exr"))
+                return bad_flag(a, "output '%s': this fogrt was built without OpenEXR support (install libtinyexr-dev and rebuild), or write a .pfm", o->output);
+#endif
         }
-        else if (strcmp(a, "--exposure") == 0) { NEED(1); if (!parse_float(argv[++i], &o->exposure_ev) || o->exposure_ev < -64 || o->exposure_ev > 64) return bad_flag(a, "exposure must be a number of stops in [-64, 64], got '%s'", argv[i]); }
-        else if (strcmp(a, "--camera-pos") == 0) { NEED(1); if (!parse_vec3(argv[++i], &o->cam_pos)) return bad_flag(a, "needs X,Y,Z (three numbers), got '%s'", argv[i]); o->cam_pos_set = true; }
-        else if (strcmp(a, "--look-at") == 0) { NEED(1); if (!parse_vec3(argv[++i], &o->cam_look)) return bad_flag(a, "needs X,Y,Z (three numbers), got '%s'", argv[i]); o->cam_look_set = true; }
-        else if (strcmp(a, "--up") == 0) {
-            NEED(1);
-            if (!parse_vec3(argv[++i], &o->cam_up) || (o->cam_up.x == 0 && o->cam_up.y == 0 && o->cam_up.z == 0))
-                return bad_flag(a, "needs X,Y,Z (three numbers, not all 0), got '%s'", argv[i]);
+        else if (cli_is(&A, "--camera-pos")) { NEED(1); v = cli_next(&A); if (!cli_parse_vec3(v, &o->cam_pos)) return bad_flag(a, "needs X,Y,Z (three numbers), got '%s'", v); o->cam_pos_set = true; }
+        else if (cli_is(&A, "--look-at")) { NEED(1); v = cli_next(&A); if (!cli_parse_vec3(v, &o->cam_look)) return bad_flag(a, "needs X,Y,Z (three numbers), got '%s'", v); o->cam_look_set = true; }
+        else if (cli_is(&A, "--up")) {
+            NEED(1); v = cli_next(&A);
+            if (!cli_parse_direction(v, &o->cam_up)) return bad_flag(a, "needs X,Y,Z (three finite numbers, not all 0), got '%s'", v);
             o->cam_up_set = true;
         }
-        else if (strcmp(a, "--fov") == 0) { NEED(1); if (!parse_float(argv[++i], &o->fov) || !(o->fov > 0 && o->fov < 180)) return bad_flag(a, "field of view must be a number of degrees in (0, 180), got '%s'", argv[i]); o->fov_set = true; }
-        else if (strcmp(a, "--cs184-framing") == 0) o->cs184_framing = true;
-        else if (strcmp(a, "--print-camera") == 0) o->print_camera = true;
-        else if (strcmp(a, "--log") == 0) { NEED(1); o->log_path = argv[++i]; }
-        else if (strcmp(a, "--reference") == 0) {
+        else if (cli_is(&A, "--fov")) { NEED(1); v = cli_next(&A); if (!cli_parse_float(v, &o->fov) || !(o->fov > 0 && o->fov < 180)) return bad_flag(a, "field of view must be a number of degrees in (0, 180), got '%s'", v); o->fov_set = true; }
+        else if (cli_is(&A, "--cs184-framing")) o->cs184_framing = true;
+        else if (cli_is(&A, "--print-camera")) o->print_camera = true;
+        else if (cli_is(&A, "--log")) { NEED(1); o->log_path = cli_next(&A); }
+        else if (cli_is(&A, "--reference")) {
             NEED(1);
-            o->reference = argv[++i];
-            if (!ends_with(o->reference, ".pfm")) return bad_flag(a, "reference '%s' must be a .pfm image", o->reference);
+            o->reference = cli_next(&A);
+            if (!cli_ends_with(o->reference, ".pfm")) return bad_flag(a, "reference '%s' must be a .pfm image", o->reference);
         }
-        else if (strcmp(a, "--lights") == 0) {
-            NEED(1); ++i;
-            if (strcmp(argv[i], "all") == 0) o->by_power = false;
-            else if (strcmp(argv[i], "power") == 0) o->by_power = true;
-            else return bad_flag(a, "must be all or power, got '%s'", argv[i]);
+        else if (cli_is(&A, "--lights")) {
+            NEED(1); v = cli_next(&A);
+            if (strcmp(v, "all") == 0) o->by_power = false;
+            else if (strcmp(v, "power") == 0) o->by_power = true;
+            else return bad_flag(a, "must be all or power, got '%s'", v);
         }
-        else if (strcmp(a, "--pixel-rates") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->pixel_rates)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
-        else if (strcmp(a, "--glow") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->glow)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
-        else if (strcmp(a, "--footprint") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->footprint)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
-        else if (strcmp(a, "--expected-emission") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->expected)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
-        else if (strcmp(a, "--equiangular") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->equiangular)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
-        else if (strcmp(a, "--mis") == 0) { NEED(1); if (!parse_onoff(argv[++i], &o->mis)) return bad_flag(a, "must be on or off, got '%s'", argv[i]); }
-        else if (strcmp(a, "-b") == 0) { NEED(1); if (!parse_float(argv[++i], &o->lens_radius) || o->lens_radius < 0) return bad_flag(a, "lens radius must be a number >= 0, got '%s'", argv[i]); o->lens_set = true; }
-        else if (strcmp(a, "-d") == 0) { NEED(1); if (!parse_float(argv[++i], &o->focal) || !(o->focal > 0)) return bad_flag(a, "focal distance must be a number > 0, got '%s'", argv[i]); o->focal_set = true; }
-        else if (strcmp(a, "-a") == 0) {
+        else if (cli_is(&A, "--pixel-rates")) { NEED(1); v = cli_next(&A); if (!cli_parse_onoff(v, &o->pixel_rates)) return bad_flag(a, "must be on or off, got '%s'", v); }
+        else if (cli_is(&A, "--glow")) { NEED(1); v = cli_next(&A); if (!cli_parse_onoff(v, &o->glow)) return bad_flag(a, "must be on or off, got '%s'", v); }
+        else if (cli_is(&A, "--footprint")) { NEED(1); v = cli_next(&A); if (!cli_parse_onoff(v, &o->footprint)) return bad_flag(a, "must be on or off, got '%s'", v); }
+        else if (cli_is(&A, "--expected-emission")) { NEED(1); v = cli_next(&A); if (!cli_parse_onoff(v, &o->expected)) return bad_flag(a, "must be on or off, got '%s'", v); }
+        else if (cli_is(&A, "--equiangular")) { NEED(1); v = cli_next(&A); if (!cli_parse_onoff(v, &o->equiangular)) return bad_flag(a, "must be on or off, got '%s'", v); }
+        else if (cli_is(&A, "--mis")) { NEED(1); v = cli_next(&A); if (!cli_parse_onoff(v, &o->mis)) return bad_flag(a, "must be on or off, got '%s'", v); }
+        else if (cli_is(&A, "-b")) { NEED(1); v = cli_next(&A); if (!cli_parse_float(v, &o->lens_radius) || o->lens_radius < 0) return bad_flag(a, "lens radius must be a number >= 0, got '%s'", v); o->lens_set = true; }
+        else if (cli_is(&A, "-d")) { NEED(1); v = cli_next(&A); if (!cli_parse_float(v, &o->focal) || !(o->focal > 0)) return bad_flag(a, "focal distance must be a number > 0, got '%s'", v); o->focal_set = true; }
+        else if (cli_is(&A, "-a")) {
+            const char *b, *t;
             NEED(2);
-            if (!parse_int(argv[i + 1], 1, 1 << 20, &o->batch) || !parse_float(argv[i + 2], &o->tolerance) || !(o->tolerance > 0))
-                return bad_flag(a, "needs a batch size >= 1 and a tolerance > 0, got '%s %s'", argv[i + 1], argv[i + 2]);
+            b = cli_next(&A); t = cli_next(&A);
+            if (!cli_parse_int(b, 1, 1 << 20, &o->batch) || !cli_parse_float(t, &o->tolerance) || !(o->tolerance > 0))
+                return bad_flag(a, "needs a batch size >= 1 and a tolerance > 0, got '%s %s'", b, t);
             o->adaptive = true;
-            i += 2;
         }
-        else if (strcmp(a, "-H") == 0) o->hemisphere = true;
-        else if (strcmp(a, "-c") == 0) { NEED(1); o->camera_file = argv[++i]; }
-        else if (strcmp(a, "-g") == 0 || strcmp(a, "--g") == 0) {
-            NEED(1);
-            if (!parse_float(argv[++i], &o->g) || o->g < -1 || o->g > 1) return bad_flag(a, "g must be a number in [-1, 1], got '%s'", argv[i]);
-            o->g_set = true;
-            if (a[1] == 'g') o->paper_g = true;
+        else if (cli_is(&A, "-c")) { NEED(1); o->camera_file = cli_next(&A); }
+        else if (cli_is(&A, "--bvh")) {
+            NEED(1); v = cli_next(&A);
+            if (strcmp(v, "sah") == 0) o->bvh = FOGRT_BVH_SAH;
+            else if (strcmp(v, "volume") == 0) o->bvh = FOGRT_BVH_VOLUME;
+            else return bad_flag(a, "must be sah or volume, got '%s'", v);
         }
-        else if (strcmp(a, "--density") == 0) { NEED(1); if (!parse_float(argv[++i], &o->density) || o->density < 0) return bad_flag(a, "density must be a finite number >= 0 (float: at most 3.4e38), got '%s'", argv[i]); o->density_set = true; }
-        else if (strcmp(a, "--albedo") == 0) { NEED(1); if (!parse_albedo(argv[++i], &o->albedo)) return bad_flag(a, "albedo must be a number in [0, 1] or r,g,b with each in [0, 1], got '%s'", argv[i]); o->albedo_set = true; }
-        else if (strcmp(a, "--integrator") == 0) {
-            NEED(1); ++i;
-            if (strcmp(argv[i], "path") == 0) o->integrator = FOGRT_INTEGRATOR_PATH;
-            else if (strcmp(argv[i], "direct") == 0) o->integrator = FOGRT_INTEGRATOR_DIRECT;
-            else return bad_flag(a, "must be path or direct, got '%s'", argv[i]);
-        }
-        else if (strcmp(a, "--fresnel") == 0) {
-            NEED(1); ++i;
-            if (strcmp(argv[i], "schlick") == 0) o->fresnel = FOGRT_FRESNEL_SCHLICK;
-            else if (strcmp(argv[i], "exact") == 0) o->fresnel = FOGRT_FRESNEL_EXACT;
-            else return bad_flag(a, "must be schlick or exact, got '%s'", argv[i]);
-        }
-        else if (strcmp(a, "--bvh") == 0) {
-            NEED(1); ++i;
-            if (strcmp(argv[i], "sah") == 0) o->bvh = FOGRT_BVH_SAH;
-            else if (strcmp(argv[i], "volume") == 0) o->bvh = FOGRT_BVH_VOLUME;
-            else return bad_flag(a, "must be sah or volume, got '%s'", argv[i]);
-        }
-        else if (strcmp(a, "--seed") == 0) { NEED(1); if (!parse_u64(argv[++i], &o->seed)) return bad_flag(a, "seed must be a non-negative integer, got '%s'", argv[i]); }
-        else if (strcmp(a, "--time") == 0) {
+        else if (cli_is(&A, "--time")) {
             float t;
-            NEED(1);
-            if (!parse_float(argv[++i], &t) || !(t > 0)) return bad_flag(a, "time must be a number of seconds > 0, got '%s'", argv[i]);
+            NEED(1); v = cli_next(&A);
+            if (!cli_parse_float(v, &t) || !(t > 0)) return bad_flag(a, "time must be a number of seconds > 0, got '%s'", v);
             o->time_budget = (double)t;
         }
-        else if (strcmp(a, "--target-error") == 0) {
+        else if (cli_is(&A, "--target-error")) {
             float e;
-            NEED(1);
-            if (!parse_float(argv[++i], &e) || !(e > 0)) return bad_flag(a, "target error must be a number > 0, got '%s'", argv[i]);
+            NEED(1); v = cli_next(&A);
+            if (!cli_parse_float(v, &e) || !(e > 0)) return bad_flag(a, "target error must be a number > 0, got '%s'", v);
             o->target_error = (double)e;
         }
-        else if (strcmp(a, "--quiet") == 0) o->quiet = true;
-        else if (strcmp(a, "-e") == 0) { NEED(1); o->env_map = argv[++i]; }
-        else if (strcmp(a, "--fog-bounds") == 0) {
-            float v[6];
-            char tail;
-            NEED(1); ++i;
-            if (sscanf(argv[i], "%f,%f,%f,%f,%f,%f%c", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &tail) != 6 ||
-                !(v[0] < v[3] && v[1] < v[4] && v[2] < v[5]) || !isfinite(v[0] + v[1] + v[2] + v[3] + v[4] + v[5]))
-                return bad_flag(a, "must be X0,Y0,Z0,X1,Y1,Z1 with X0 < X1, Y0 < Y1, Z0 < Z1, got '%s'", argv[i]);
-            o->fog_lo.x = v[0]; o->fog_lo.y = v[1]; o->fog_lo.z = v[2];
-            o->fog_hi.x = v[3]; o->fog_hi.y = v[4]; o->fog_hi.z = v[5];
-            o->fog_bounds_set = true;
+        else if (cli_is(&A, "--quiet")) o->quiet = true;
+        else if (cli_is(&A, "-e")) { NEED(1); o->env_map = cli_next(&A); }
+        else if (cli_is(&A, "--fog-bounds")) {
+            double b[6];
+            NEED(1); v = cli_next(&A);
+            if (strcmp(v, "all") == 0) o->fog_where = CLI_FOG_ALL;
+            else if (strcmp(v, "scene") == 0) o->fog_where = CLI_FOG_SCENE;
+            else {
+                if (!cli_parse_list(v, b, 6) || !(b[0] < b[3] && b[1] < b[4] && b[2] < b[5]) ||
+                    fabs(b[0]) > 1e30 || fabs(b[1]) > 1e30 || fabs(b[2]) > 1e30 || fabs(b[3]) > 1e30 || fabs(b[4]) > 1e30 || fabs(b[5]) > 1e30)
+                    return bad_flag(a, "must be all, scene, or X0,Y0,Z0,X1,Y1,Z1 with X0 < X1, Y0 < Y1, Z0 < Z1, got '%s'", v);
+                o->fog_lo.x = (float)b[0]; o->fog_lo.y = (float)b[1]; o->fog_lo.z = (float)b[2];
+                o->fog_hi.x = (float)b[3]; o->fog_hi.y = (float)b[4]; o->fog_hi.z = (float)b[5];
+                if (!(o->fog_lo.x < o->fog_hi.x && o->fog_lo.y < o->fog_hi.y && o->fog_lo.z < o->fog_hi.z))
+                    return bad_flag(a, "the box '%s' is thinner than float precision on an axis", v);
+                o->fog_where = CLI_FOG_BOX;
+            }
         }
-        else if (strcmp(a, "--trace") == 0) {
-            char tail;
-            int n;
-            NEED(1); ++i;
-            o->trace_sample = 0;
-            n = sscanf(argv[i], "%d,%d,%d%c", &o->trace_x, &o->trace_y, &o->trace_sample, &tail);
-            if ((n != 2 && n != 3) || o->trace_x < 0 || o->trace_y < 0 || o->trace_sample < 0)
-                return bad_flag(a, "must be X,Y or X,Y,SAMPLE (pixel column, row from the top, sample index >= 0), got '%s'", argv[i]);
+        else if (cli_is(&A, "--trace")) {
+            NEED(1); v = cli_next(&A);
+            if (!parse_trace(v, o))
+                return bad_flag(a, "must be X,Y or X,Y,SAMPLE (pixel column and row from the top, each below %d; sample index in [0, 4294967295]), got '%s'",
+                                CLI_MAX_SIDE, v);
             o->trace = true;
         }
-        else if (a[0] == '-' && a[1] != 0) return bad_flag(a, "unknown flag");
+        else if (a[0] == '-' && a[1] != 0) return cli_unknown_flag(a, cli_flag_names);
         else {
-            if (o->scene) return bad_flag(a, "only one scene file may be given (already have '%s')", o->scene);
-            o->scene = a;
+            if (o->scene) return bad_flag(argv[i], "only one scene file may be given (already have '%s')", o->scene);
+            o->scene = argv[i];
         }
+        if (A.inline_value && !A.inline_used) return bad_flag(a, "takes no value, got '%s'", argv[i]);
 #undef NEED
     }
+    /* the flags shared with the preview, under the names the rest of this file uses */
+    o->width = o->c.width; o->height = o->c.height; o->threads = o->c.threads;
+    o->light_samples = o->c.light_samples; o->max_depth = o->c.max_depth; o->hemisphere = o->c.hemisphere;
+    o->g = o->c.g; o->g_set = o->c.g_set; o->paper_g = o->c.paper_g;
+    o->density = o->c.density; o->density_set = o->c.density_set;
+    o->albedo = o->c.albedo; o->albedo_set = o->c.albedo_set;
+    o->integrator = o->c.integrator; o->fresnel = o->c.fresnel; o->seed = o->c.seed;
+    o->exposure_ev = o->c.exposure_ev;
+
     if (o->adaptive && (o->time_budget > 0 || o->target_error > 0))
         return bad_flag("-a", "cannot be combined with --time or --target-error");
     {   /* the image memory, before anything is allocated */
@@ -529,13 +474,11 @@ static void release_image(fogrt_image *img)
 }
 
 /* ------------------------------------------------------------------------------------------
-   Signals: the first SIGINT/SIGTERM asks the render to stop at the next row block and write
-   what it has; the second quits at once (removing a half-written temporary file).
+   Signals: the first SIGINT/SIGTERM/SIGHUP asks the render to stop at the next row block
+   and write what it has; the second quits at once (removing a half-written temporary file).
    ------------------------------------------------------------------------------------------ */
 static volatile sig_atomic_t cli_interrupted = 0;
-static volatile sig_atomic_t cli_temp_live = 0;
 static volatile sig_atomic_t cli_tty = 0;     /* stderr is a terminal */
-static char cli_temp_path[4096];
 
 static void write_stderr_raw(const char *s, size_t n)
 {
@@ -567,6 +510,7 @@ static void install_signals(void)
     sa.sa_flags = SA_RESTART;
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);   /* a closed terminal: the same as SIGTERM */
     signal(SIGXFSZ, SIG_IGN);    /* a file-size limit makes write() fail (EFBIG), not kill us */
 }
 
@@ -610,15 +554,6 @@ static void fail_load(cli_log *L, const char *prefix, const fogrt_load_report *r
 /* ------------------------------------------------------------------------------------------
    Checks made before anything is loaded or allocated
    ------------------------------------------------------------------------------------------ */
-static const char *file_kind(mode_t m)
-{
-    if (S_ISDIR(m)) return "a directory";
-    if (S_ISFIFO(m)) return "a FIFO";
-    if (S_ISCHR(m)) return "a character device";
-    if (S_ISBLK(m)) return "a block device";
-    if (S_ISSOCK(m)) return "a socket";
-    return "not a regular file";
-}
 /* Scene, -c and --reference files must be regular files: a FIFO would block in open(). */
 static int check_input_file(const char *prefix, const char *path)
 {
@@ -628,29 +563,10 @@ static int check_input_file(const char *prefix, const char *path)
         return 2;
     }
     if (!S_ISREG(st.st_mode)) {
-        fprintf(stderr, "fogrt: %s%s: is %s, not a regular file\n", prefix, path, file_kind(st.st_mode));
+        fprintf(stderr, "fogrt: %s%s: is %s, not a regular file\n", prefix, path, cli_file_kind(st.st_mode));
         return 2;
     }
     return 0;
-}
-
-static int cap_threads(int requested)
-{
-#ifdef _OPENMP
-    int procs = omp_get_num_procs();
-#elif defined(_SC_NPROCESSORS_ONLN)
-    int procs = (int)sysconf(_SC_NPROCESSORS_ONLN);
-#else
-    int procs = 1;
-#endif
-    int cap = 4 * (procs > 0 ? procs : 1);
-    if (cap > CLI_MAX_THREADS) cap = CLI_MAX_THREADS;
-    if (requested > cap) {
-        fprintf(stderr, "fogrt: -t %d: using %d threads (at most 4 per processor, %d processors, and at most %d)\n",
-                requested, cap, procs, CLI_MAX_THREADS);
-        return cap;
-    }
-    return requested;
 }
 
 /* The camera in float range. Returns NULL, or the true reason it cannot be used. */
@@ -720,170 +636,91 @@ static void cs184_reframe(fogrt_camera_desc *cam, int H)
    Output files: encoded in memory, then written to a temporary file in the same directory,
    fsync'ed, closed and renamed over the target; every step checked.
    ------------------------------------------------------------------------------------------ */
-typedef struct membuf { unsigned char *data; size_t size, cap; bool failed; } membuf;
-
-static void membuf_put(membuf *b, const void *p, size_t n)
+/* A library's message as one line: its newlines become "; ", trailing ones go. */
+static const char *one_line(const char *msg, char *buf, size_t n)
 {
-    if (b->failed || n == 0) return;
-    if (b->size + n > b->cap) {
-        size_t cap = b->cap ? b->cap : 4096;
-        unsigned char *q;
-        while (cap < b->size + n) cap *= 2;
-        q = (unsigned char *)realloc(b->data, cap);
-        if (!q) { b->failed = true; return; }
-        b->data = q; b->cap = cap;
+    size_t k = 0;
+    const char *p;
+    if (!msg || n == 0) return "unknown error";
+    for (p = msg; *p && k + 3 < n; ++p) {
+        if (*p == '\n' || *p == '\r') {
+            while (p[1] == '\n' || p[1] == '\r') ++p;
+            if (p[1] == 0) break;
+            buf[k++] = ';'; buf[k++] = ' ';
+        } else {
+            buf[k++] = (unsigned char)*p < 0x20 ? ' ' : *p;
+        }
     }
-    memcpy(b->data + b->size, p, n);
-    b->size += n;
-}
-static void membuf_stb(void *context, void *data, int size)
-{
-    if (size > 0) membuf_put((membuf *)context, data, (size_t)size);
+    buf[k] = 0;
+    return buf;
 }
 
-/* PFM (linear, unscaled, little endian, bottom row first), PPM, PNG or JPG by extension. */
+#ifdef FOGRT_CLI_EXR
+/* OpenEXR, linear 32-bit float RGB (channels B, G, R, as readers expect them sorted), ZIP
+   compressed, rows from the top. */
+static bool encode_exr(int W, int H, const float *rgb, cli_membuf *out)
+{
+    EXRHeader hd;
+    EXRImage im;
+    EXRChannelInfo ch[3];
+    int types[3], req[3], c;
+    float *plane[3];
+    unsigned char *mem = NULL;
+    const char *err = NULL;
+    size_t i, n = (size_t)W * (size_t)H, size;
+    char line[256];
+    InitEXRHeader(&hd);
+    InitEXRImage(&im);
+    for (c = 0; c < 3; ++c) plane[c] = (float *)malloc(sizeof(float) * n);
+    if (!plane[0] || !plane[1] || !plane[2]) { free(plane[0]); free(plane[1]); free(plane[2]); return false; }
+    for (i = 0; i < n; ++i) { plane[0][i] = rgb[3 * i + 2]; plane[1][i] = rgb[3 * i + 1]; plane[2][i] = rgb[3 * i]; }
+    memset(ch, 0, sizeof ch);
+    strcpy(ch[0].name, "B"); strcpy(ch[1].name, "G"); strcpy(ch[2].name, "R");
+    for (c = 0; c < 3; ++c) { types[c] = TINYEXR_PIXELTYPE_FLOAT; req[c] = TINYEXR_PIXELTYPE_FLOAT; ch[c].x_sampling = ch[c].y_sampling = 1; }
+    hd.num_channels = 3;
+    hd.channels = ch;
+    hd.pixel_types = types;
+    hd.requested_pixel_types = req;
+    hd.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+    im.images = (unsigned char **)plane;
+    im.num_channels = 3;
+    im.width = W;
+    im.height = H;
+    size = SaveEXRImageToMemory(&im, &hd, &mem, &err);
+    for (c = 0; c < 3; ++c) free(plane[c]);
+    if (size == 0 || !mem) {
+        fprintf(stderr, "fogrt: -f: the OpenEXR encoder failed: %s\n", one_line(err, line, sizeof line));
+        if (err) FreeEXRErrorMessage(err);
+        free(mem);
+        out->failed = true;
+        return false;
+    }
+    cli_membuf_put(out, mem, size);
+    free(mem);
+    return !out->failed;
+}
+#endif
+
+/* PFM or EXR (linear, unscaled), PPM, PNG or JPG by extension. */
 static bool encode_image(const char *path, int W, int H, const float *rgb, float exposure,
-                         unsigned char *rgb8, membuf *out)
+                         unsigned char *rgb8, cli_membuf *out)
 {
     char header[64];
-    int y, n;
-    if (ends_with(path, ".pfm")) {
-        n = snprintf(header, sizeof header, "PF\n%d %d\n-1.0\n", W, H);
-        membuf_put(out, header, (size_t)n);
-        for (y = H - 1; y >= 0; --y) {
-            const float *row = rgb + (size_t)y * (size_t)W * 3;
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-            size_t i;
-            for (i = 0; i < (size_t)W * 3; ++i) {
-                unsigned char b[4], t;
-                memcpy(b, &row[i], 4);
-                t = b[0]; b[0] = b[3]; b[3] = t; t = b[1]; b[1] = b[2]; b[2] = t;
-                membuf_put(out, b, 4);
-            }
-#else
-            membuf_put(out, row, sizeof(float) * 3 * (size_t)W);
+    int n;
+    if (cli_ends_with(path, ".pfm")) return cli_encode_pfm(W, H, rgb, out);
+#ifdef FOGRT_CLI_EXR
+    if (cli_ends_with(path, ".exr")) return encode_exr(W, H, rgb, out);
 #endif
-        }
-        return !out->failed;
-    }
     if (rgb) fogrt_tonemap_rgb8(rgb, W, H, exposure, FOGRT_TONEMAP_SRGB, rgb8);
-    if (ends_with(path, ".ppm")) {
+    if (cli_ends_with(path, ".ppm")) {
         n = snprintf(header, sizeof header, "P6\n%d %d\n255\n", W, H);
-        membuf_put(out, header, (size_t)n);
-        membuf_put(out, rgb8, 3 * (size_t)W * (size_t)H);
+        cli_membuf_put(out, header, (size_t)n);
+        cli_membuf_put(out, rgb8, 3 * (size_t)W * (size_t)H);
         return !out->failed;
     }
-    if (ends_with(path, ".jpg") || ends_with(path, ".jpeg"))
-        return stbi_write_jpg_to_func(membuf_stb, out, W, H, 3, rgb8, 90) != 0 && !out->failed;
-    return stbi_write_png_to_func(membuf_stb, out, W, H, 3, rgb8, W * 3) != 0 && !out->failed;
-}
-
-/* Where an output goes. A symlink is followed (its target is replaced, not the link); an
-   existing character device (/dev/null, /dev/full) is written in place; a regular file or a
-   new name is written through a temporary file next to it. */
-typedef struct out_target {
-    const char *flag, *name;       /* for messages: "-f", the path as given */
-    char path[4096];               /* the file actually replaced */
-    bool direct;
-} out_target;
-
-static void split_dir(const char *path, char *dir, size_t n, const char **base)
-{
-    const char *slash = strrchr(path, '/');
-    if (!slash) { snprintf(dir, n, "."); *base = path; }
-    else if (slash == path) { snprintf(dir, n, "/"); *base = slash + 1; }
-    else { snprintf(dir, n, "%.*s", (int)(slash - path), path); *base = slash + 1; }
-}
-static int make_temp(const out_target *t)
-{
-    char dir[4096];
-    const char *base;
-    int fd;
-    split_dir(t->path, dir, sizeof dir, &base);
-    if ((size_t)snprintf(cli_temp_path, sizeof cli_temp_path, "%s/.%s.tmp-XXXXXX", dir, base) >= sizeof cli_temp_path) {
-        errno = ENAMETOOLONG;
-        return -1;
-    }
-    fd = mkstemp(cli_temp_path);
-    if (fd >= 0) cli_temp_live = 1;
-    return fd;
-}
-static void drop_temp(void)
-{
-    if (cli_temp_live) { unlink(cli_temp_path); cli_temp_live = 0; }
-}
-static bool out_fail(const out_target *t, const char *what)
-{
-    fprintf(stderr, "fogrt: %s %s: %s: %s\n", t->flag, t->name, what, strerror(errno));
-    return false;
-}
-/* Checks before rendering that the output can be written (so a long render never ends in a
-   lost image): the same steps as the real write, on an empty temporary file. */
-static bool prepare_output(out_target *t, const char *flag, const char *name)
-{
-    struct stat st;
-    int fd;
-    t->flag = flag; t->name = name; t->direct = false;
-    if (strlen(name) >= sizeof t->path) { errno = ENAMETOOLONG; return out_fail(t, "cannot write"); }
-    snprintf(t->path, sizeof t->path, "%s", name);
-    if (stat(name, &st) == 0) {
-        if (S_ISREG(st.st_mode)) {
-            char *real = realpath(name, NULL);
-            if (real) { snprintf(t->path, sizeof t->path, "%s", real); free(real); }
-        } else if (S_ISCHR(st.st_mode)) {
-            t->direct = true;
-            fd = open(name, O_WRONLY | O_NOCTTY);
-            if (fd < 0) return out_fail(t, "cannot write");
-            close(fd);
-            return true;
-        } else {
-            fprintf(stderr, "fogrt: %s %s: is %s, not a regular file\n", flag, name, file_kind(st.st_mode));
-            return false;
-        }
-    } else if (errno != ENOENT) {
-        return out_fail(t, "cannot write");
-    }
-    fd = make_temp(t);
-    if (fd < 0) { cli_temp_live = 0; return out_fail(t, "cannot write"); }
-    close(fd);
-    drop_temp();
-    return true;
-}
-static bool write_all(int fd, const unsigned char *p, size_t n)
-{
-    while (n > 0) {
-        ssize_t k = write(fd, p, n > ((size_t)1 << 30) ? ((size_t)1 << 30) : n);
-        if (k < 0 && errno == EINTR) continue;
-        if (k <= 0) { if (k == 0) errno = EIO; return false; }
-        p += k; n -= (size_t)k;
-    }
-    return true;
-}
-static bool write_output(out_target *t, const membuf *b)
-{
-    struct stat st;
-    mode_t mode, mask;
-    int fd, e;
-    if (t->direct) {
-        fd = open(t->path, O_WRONLY | O_NOCTTY | O_TRUNC);
-        if (fd < 0) return out_fail(t, "cannot write");
-        if (!write_all(fd, b->data, b->size)) { e = errno; close(fd); errno = e; return out_fail(t, "write failed"); }
-        if (close(fd) != 0) return out_fail(t, "write failed");
-        return true;
-    }
-    mask = umask(0); umask(mask);
-    mode = stat(t->path, &st) == 0 ? (st.st_mode & 07777) : (mode_t)(0666 & ~mask);
-    fd = make_temp(t);
-    if (fd < 0) { cli_temp_live = 0; return out_fail(t, "cannot write"); }
-    if (fchmod(fd, mode) != 0 || !write_all(fd, b->data, b->size) ||
-        (fsync(fd) != 0 && errno != EINVAL && errno != EROFS)) {
-        e = errno; close(fd); drop_temp(); errno = e;
-        return out_fail(t, "write failed");
-    }
-    if (close(fd) != 0) { e = errno; drop_temp(); errno = e; return out_fail(t, "write failed"); }
-    if (rename(cli_temp_path, t->path) != 0) { e = errno; drop_temp(); errno = e; return out_fail(t, "could not replace the file"); }
-    cli_temp_live = 0;
-    return true;
+    if (cli_ends_with(path, ".jpg") || cli_ends_with(path, ".jpeg"))
+        return stbi_write_jpg_to_func(cli_membuf_stb, out, W, H, 3, rgb8, 90) != 0 && !out->failed;
+    return stbi_write_png_to_func(cli_membuf_stb, out, W, H, 3, rgb8, W * 3) != 0 && !out->failed;
 }
 
 /* <name>_rate.png beside the output: CS184's sampling-rate image, samples / max per pixel,
@@ -946,6 +783,16 @@ static float *read_pfm_for(const char *flag, const char *path, int want_w, int w
         return NULL;
     }
     n = (size_t)w * (size_t)h * 3;
+    {   /* the declared size against the file's, before allocating for it */
+        struct stat st;
+        long at = ftell(f);
+        if (fstat(fileno(f), &st) == 0 && at >= 0 && (double)st.st_size - (double)at < (double)n * 4.0) {
+            fprintf(stderr, "fogrt: %s %s: the file is too short for its width x height (%dx%d needs %.0f bytes of pixels, it has %.0f)\n",
+                    flag, path, w, h, (double)n * 4.0, fmax(0.0, (double)st.st_size - (double)at));
+            fclose(f);
+            return NULL;
+        }
+    }
     px = (float *)malloc(sizeof(float) * n);
     tmp = (float *)malloc(sizeof(float) * 3 * (size_t)w);
     if (!px || !tmp) { free(tmp); err = "out of memory"; goto fail; }
@@ -983,33 +830,190 @@ static float *read_reference(const char *path, int want_w, int want_h)
     return read_pfm_for("--reference", path, want_w, want_h, NULL, NULL);
 }
 
-/* -e: an environment map, .pfm (read here), .hdr (stb_image) or .exr (tinyexr, when the CLI
-   was built with libtinyexr-dev), as linear RGB; NULL with one message on failure. */
+/* A Radiance .hdr (RGBE, flat or run-length encoded scanlines, the standard -Y H +X W
+   orientation), read here so that its declared size is checked against the file before
+   anything is allocated and a truncated file is refused, never padded with black. */
+static float *read_hdr(const char *path, int *out_w, int *out_h)
+{
+    FILE *f;
+    struct stat st;
+    unsigned char *buf = NULL, *p, *end, *row = NULL;
+    float *px = NULL;
+    const char *err = NULL;
+    char errbuf[160];
+    long w = 0, h = 0;
+    int y, c, x;
+    double min_row, min_bytes;
+    f = fopen(path, "rb");
+    if (!f) { fprintf(stderr, "fogrt: -e %s: cannot open: %s\n", path, strerror(errno)); return NULL; }
+    if (fstat(fileno(f), &st) != 0 || st.st_size < 0 || (double)st.st_size > 4.0 * 1024 * 1024 * 1024) {
+        fprintf(stderr, "fogrt: -e %s: cannot read: %s\n", path, fstat(fileno(f), &st) != 0 ? strerror(errno) : "larger than 4 GiB");
+        fclose(f);
+        return NULL;
+    }
+    buf = (unsigned char *)malloc((size_t)st.st_size + 1);
+    if (!buf) { fclose(f); fprintf(stderr, "fogrt: -e %s: out of memory\n", path); return NULL; }
+    if (fread(buf, 1, (size_t)st.st_size, f) != (size_t)st.st_size) { err = "read error"; goto fail; }
+    fclose(f); f = NULL;
+    buf[st.st_size] = 0;
+    p = buf; end = buf + st.st_size;
+    if (st.st_size < 2 || p[0] != '#' || p[1] != '?') { err = "not a Radiance HDR image (it must start with \"#?\")"; goto fail; }
+    for (;;) {                                  /* header lines up to the empty one */
+        unsigned char *nl = (unsigned char *)memchr(p, '\n', (size_t)(end - p));
+        if (!nl) { err = "the header ends early (no empty line before the size)"; goto fail; }
+        if (nl == p) { p = nl + 1; break; }
+        if ((size_t)(nl - p) >= 7 && memcmp(p, "FORMAT=", 7) == 0 &&
+            !((size_t)(nl - p) >= 22 && memcmp(p + 7, "32-bit_rle_rgbe", 15) == 0 && (nl - p == 22 || p[22] == '\r'))) { err = "only FORMAT=32-bit_rle_rgbe is supported"; goto fail; }
+        p = nl + 1;
+    }
+    {
+        char line[96], ys[4], xs[4];
+        unsigned char *nl = (unsigned char *)memchr(p, '\n', (size_t)(end - p));
+        int k = 0;
+        if (!nl || nl - p >= (long)sizeof line) { err = "no size line after the header"; goto fail; }
+        memcpy(line, p, (size_t)(nl - p)); line[nl - p] = 0;
+        if (sscanf(line, "%3s %ld %3s %ld%n", ys, &h, xs, &w, &k) != 4 || line[k] != 0) { err = "bad size line (expected \"-Y H +X W\")"; goto fail; }
+        if (strcmp(ys, "-Y") != 0 || strcmp(xs, "+X") != 0) { err = "only the standard orientation \"-Y H +X W\" is supported"; goto fail; }
+        if (w < 1 || h < 1 || w > CLI_MAX_SIDE || h > CLI_MAX_SIDE) { snprintf(errbuf, sizeof errbuf, "bad size %ldx%ld (each side in [1, %d])", w, h, CLI_MAX_SIDE); err = errbuf; goto fail; }
+        if ((double)w * (double)h > CLI_MAX_ENV_PIXELS) {
+            snprintf(errbuf, sizeof errbuf, "%ldx%ld pixels, more than the limit of %.0f M pixels", w, h, CLI_MAX_ENV_PIXELS / (1024.0 * 1024.0));
+            err = errbuf; goto fail;
+        }
+        p = nl + 1;
+    }
+    /* The fewest bytes a scanline can take: run-length encoded, 4 channels of runs of 127
+       (2 bytes each) after its 4-byte header; flat, 4 bytes a pixel. */
+    min_row = (w >= 8 && w < 32768) ? 4.0 + 8.0 * (double)((w + 126) / 127) : 4.0 * (double)w;
+    min_bytes = min_row * (double)h;
+    if ((double)(end - p) < min_bytes) {
+        snprintf(errbuf, sizeof errbuf, "the file is too short for its %ldx%ld pixels (at least %.0f bytes of scanlines, it has %ld)",
+                 w, h, min_bytes, (long)(end - p));
+        err = errbuf; goto fail;
+    }
+    px = (float *)malloc(sizeof(float) * 3 * (size_t)w * (size_t)h);
+    row = (unsigned char *)malloc(4 * (size_t)w);
+    if (!px || !row) { err = "out of memory"; goto fail; }
+    for (y = 0; y < h; ++y) {
+        if (w >= 8 && w < 32768 && end - p >= 4 && p[0] == 2 && p[1] == 2 && !(p[2] & 0x80)) {
+            if (((long)p[2] << 8 | p[3]) != w) { snprintf(errbuf, sizeof errbuf, "scanline %d says it is %d pixels wide, not %ld", y, (int)p[2] << 8 | p[3], w); err = errbuf; goto fail; }
+            p += 4;
+            for (c = 0; c < 4; ++c) {                 /* each channel as runs and literals */
+                x = 0;
+                while (x < w) {
+                    int count;
+                    if (p >= end) goto truncated;
+                    count = *p++;
+                    if (count > 128) {
+                        count -= 128;
+                        if (count > w - x) { snprintf(errbuf, sizeof errbuf, "scanline %d: a run passes the end of the line", y); err = errbuf; goto fail; }
+                        if (p >= end) goto truncated;
+                        for (; count > 0; --count, ++x) row[4 * x + c] = *p;
+                        ++p;
+                    } else {
+                        if (count == 0 || count > w - x) { snprintf(errbuf, sizeof errbuf, "scanline %d: a bad run length", y); err = errbuf; goto fail; }
+                        if (end - p < count) goto truncated;
+                        for (; count > 0; --count, ++x) row[4 * x + c] = *p++;
+                    }
+                }
+            }
+        } else {
+            if (end - p < 4 * w) goto truncated;
+            memcpy(row, p, 4 * (size_t)w);
+            p += 4 * w;
+        }
+        for (x = 0; x < w; ++x) {
+            const unsigned char *q = row + 4 * x;
+            float *o = px + 3 * ((size_t)y * (size_t)w + (size_t)x);
+            if (q[3] == 0) { o[0] = o[1] = o[2] = 0.0f; }
+            else {
+                float s = (float)ldexp(1.0, (int)q[3] - 136);     /* mantissa / 256 x 2^(e - 128) */
+                o[0] = (float)q[0] * s; o[1] = (float)q[1] * s; o[2] = (float)q[2] * s;
+            }
+        }
+    }
+    free(row); free(buf);
+    *out_w = (int)w; *out_h = (int)h;
+    return px;
+truncated:
+    snprintf(errbuf, sizeof errbuf, "the file is truncated: it ends in scanline %d of %ld", y + 1, h);
+    err = errbuf;
+fail:
+    fprintf(stderr, "fogrt: -e %s: %s\n", path, err);
+    if (f) fclose(f);
+    free(buf); free(row); free(px);
+    return NULL;
+}
+
+#ifdef FOGRT_CLI_EXR
+/* An OpenEXR map through tinyexr, its header read first: the size it declares must fit the
+   pixel limit and the file (every scanline block has an 8-byte offset and an 8-byte block
+   header; uncompressed blocks hold all their pixels) before tinyexr allocates for it. */
+static float *read_exr(const char *path, int *w, int *h)
+{
+    EXRVersion ver;
+    EXRHeader hd;
+    const char *err = NULL;
+    float *rgba = NULL, *px;
+    char line[320];
+    size_t i, n;
+    struct stat st;
+    double width, height, lines, chunks, need, bpp = 0;
+    int c, r;
+    if (ParseEXRVersionFromFile(&ver, path) != TINYEXR_SUCCESS) {
+        fprintf(stderr, "fogrt: -e %s: not an OpenEXR image (or too short for its header)\n", path);
+        return NULL;
+    }
+    if (ver.multipart || ver.non_image) { fprintf(stderr, "fogrt: -e %s: multi-part and deep OpenEXR images are not supported\n", path); return NULL; }
+    InitEXRHeader(&hd);
+    if ((r = ParseEXRHeaderFromFile(&hd, &ver, path, &err)) != TINYEXR_SUCCESS) {
+        fprintf(stderr, "fogrt: -e %s: cannot read the OpenEXR header: %s\n", path, one_line(err, line, sizeof line));
+        if (err) FreeEXRErrorMessage(err);
+        return NULL;
+    }
+    width = (double)hd.data_window.max_x - (double)hd.data_window.min_x + 1.0;
+    height = (double)hd.data_window.max_y - (double)hd.data_window.min_y + 1.0;
+    for (c = 0; c < hd.num_channels; ++c) bpp += hd.pixel_types[c] == TINYEXR_PIXELTYPE_HALF ? 2.0 : 4.0;
+    switch (hd.compression_type) {
+    case TINYEXR_COMPRESSIONTYPE_ZIP: lines = 16; break;
+    case TINYEXR_COMPRESSIONTYPE_PIZ: lines = 32; break;
+    default: lines = 1; break;
+    }
+    chunks = hd.tiled ? 1.0 : ceil(height / lines);
+    need = (double)hd.header_len + chunks * 16.0 +
+           (!hd.tiled && hd.compression_type == TINYEXR_COMPRESSIONTYPE_NONE ? width * height * bpp : 0.0);
+    FreeEXRHeader(&hd);
+    if (!(width >= 1 && height >= 1) || width * height > CLI_MAX_ENV_PIXELS) {
+        fprintf(stderr, "fogrt: -e %s: %.0fx%.0f pixels, outside [1, %.0f M pixels]\n", path, width, height, CLI_MAX_ENV_PIXELS / (1024.0 * 1024.0));
+        return NULL;
+    }
+    if (stat(path, &st) == 0 && (double)st.st_size < need) {
+        fprintf(stderr, "fogrt: -e %s: the file is too short for its %.0fx%.0f pixels (at least %.0f bytes, it has %.0f)\n",
+                path, width, height, need, (double)st.st_size);
+        return NULL;
+    }
+    if (LoadEXR(&rgba, w, h, path, &err) != TINYEXR_SUCCESS) {
+        fprintf(stderr, "fogrt: -e %s: cannot read the OpenEXR image: %s\n", path, one_line(err, line, sizeof line));
+        if (err) FreeEXRErrorMessage(err);
+        return NULL;
+    }
+    n = (size_t)*w * (size_t)*h;
+    px = (float *)malloc(sizeof(float) * 3 * n);
+    if (px) for (i = 0; i < n; ++i) { px[3 * i] = rgba[4 * i]; px[3 * i + 1] = rgba[4 * i + 1]; px[3 * i + 2] = rgba[4 * i + 2]; }
+    else fprintf(stderr, "fogrt: -e %s: out of memory\n", path);
+    free(rgba);
+    return px;
+}
+#endif
+
+/* -e: an environment map, .pfm, .hdr or .exr (tinyexr, when the CLI was built with
+   libtinyexr-dev), as linear RGB; NULL with one message on failure. */
 static float *read_env_map(const char *path, int *w, int *h)
 {
-    if (ends_with(path, ".pfm")) return read_pfm_for("-e", path, 0, 0, w, h);
-    if (ends_with(path, ".hdr")) {
-        int n = 0;
-        float *px = stbi_loadf(path, w, h, &n, 3);
-        if (!px) fprintf(stderr, "fogrt: -e %s: cannot read the HDR image: %s\n", path, stbi_failure_reason());
-        return px;
-    }
-    if (ends_with(path, ".exr")) {
+    if (cli_ends_with(path, ".pfm")) return read_pfm_for("-e", path, 0, 0, w, h);
+    if (cli_ends_with(path, ".hdr")) return read_hdr(path, w, h);
+    if (cli_ends_with(path, ".exr")) {
 #ifdef FOGRT_CLI_EXR
-        float *rgba = NULL, *px;
-        const char *err = NULL;
-        size_t i, n;
-        if (LoadEXR(&rgba, w, h, path, &err) != TINYEXR_SUCCESS) {
-            fprintf(stderr, "fogrt: -e %s: cannot read the OpenEXR image: %s\n", path, err ? err : "unknown error");
-            if (err) FreeEXRErrorMessage(err);
-            return NULL;
-        }
-        n = (size_t)*w * (size_t)*h;
-        px = (float *)malloc(sizeof(float) * 3 * n);
-        if (px) for (i = 0; i < n; ++i) { px[3 * i] = rgba[4 * i]; px[3 * i + 1] = rgba[4 * i + 1]; px[3 * i + 2] = rgba[4 * i + 2]; }
-        else fprintf(stderr, "fogrt: -e %s: out of memory\n", path);
-        free(rgba);
-        return px;
+        return read_exr(path, w, h);
 #else
         fprintf(stderr, "fogrt: -e %s: this fogrt was built without OpenEXR support (install libtinyexr-dev and rebuild), or give a .hdr or .pfm map\n", path);
         return NULL;
@@ -1261,10 +1265,11 @@ static void render_adaptive(const fogrt_scene *scene, const fogrt_render_desc *r
             fogrt_rng rng;
             double s1 = 0.0, s2 = 0.0;
             uint32_t n = 0, taken = 0;
+            if (cli_interrupted) break;      /* a row of many samples stops mid-row too */
             fogrt_rng_seed(&rng, rd->seed, (uint64_t)pix);
-            while (taken < (uint32_t)o->spp) {
+            while (taken < (uint32_t)o->spp && !cli_interrupted) {
                 int k;
-                for (k = 0; k < o->batch && taken < (uint32_t)o->spp; ++k, ++taken) {
+                for (k = 0; k < o->batch && taken < (uint32_t)o->spp && !cli_interrupted; ++k, ++taken) {
                     fogrt_vec3 org, dir, L;
                     float jx = fogrt_rng_float(&rng), jy = fogrt_rng_float(&rng);
                     float l1 = fogrt_rng_float(&rng), l2 = fogrt_rng_float(&rng), lum;
@@ -1307,6 +1312,108 @@ static void render_adaptive(const fogrt_scene *scene, const fogrt_render_desc *r
     take_measurement(p, img, cli_interrupted ? "interrupted" : "final");
 }
 
+/* The box of the scene's geometry, an axis without thickness (a lone plane) given a little;
+   false when there is none. */
+static bool scene_box(const fogrt_scene_info *info, fogrt_vec3 *lo, fogrt_vec3 *hi)
+{
+    float l[3], h[3], ext = 0.0f;
+    int k;
+    l[0] = info->bounds_min.x; l[1] = info->bounds_min.y; l[2] = info->bounds_min.z;
+    h[0] = info->bounds_max.x; h[1] = info->bounds_max.y; h[2] = info->bounds_max.z;
+    for (k = 0; k < 3; ++k) {
+        if (!(isfinite(l[k]) && isfinite(h[k]) && l[k] <= h[k])) return false;
+        if (h[k] - l[k] > ext) ext = h[k] - l[k];
+    }
+    for (k = 0; k < 3; ++k)
+        if (!(h[k] - l[k] > 1e-6f * ext)) {
+            float pad = 1e-3f * (ext > 0.0f ? ext : 1.0f) + 1e-6f * fmaxf(fabsf(l[k]), fabsf(h[k]));
+            l[k] -= pad; h[k] += pad;
+        }
+    lo->x = l[0]; lo->y = l[1]; lo->z = l[2];
+    hi->x = h[0]; hi->y = h[1]; hi->z = h[2];
+    return true;
+}
+
+/* Where the fog is, for the progress header and the summary line. */
+static void describe_fog(const fogrt_medium_desc *md, const fogrt_scene_info *info, char *buf, size_t n)
+{
+    if (!(md->sigma_t > 0.0f)) { snprintf(buf, n, "no fog"); return; }
+    if (md->bounded)
+        snprintf(buf, n, "fog (density %g) in the box %g,%g,%g to %g,%g,%g", (double)md->sigma_t,
+                 (double)md->bounds_min.x, (double)md->bounds_min.y, (double)md->bounds_min.z,
+                 (double)md->bounds_max.x, (double)md->bounds_max.y, (double)md->bounds_max.z);
+    else if (info->has_environment)
+        snprintf(buf, n, "fog (density %g) in the box of the geometry %g,%g,%g to %g,%g,%g (the sky shows through)", (double)md->sigma_t,
+                 (double)info->bounds_min.x, (double)info->bounds_min.y, (double)info->bounds_min.z,
+                 (double)info->bounds_max.x, (double)info->bounds_max.y, (double)info->bounds_max.z);
+    else
+        snprintf(buf, n, "fog (density %g) everywhere, also outside the scene's geometry (--fog-bounds scene keeps it inside)",
+                 (double)md->sigma_t);
+}
+
+/* The sample goal as the header says it. */
+static const char *ps_target_text(const cli_options *o, char *buf, size_t n)
+{
+    if (o->spp_set || (o->time_budget <= 0 && o->target_error <= 0)) snprintf(buf, n, "%d spp", o->spp);
+    else if (o->time_budget > 0) snprintf(buf, n, "for %g s", o->time_budget);
+    else snprintf(buf, n, "to a relative error of %g", o->target_error);
+    return buf;
+}
+
+/* The scene file's kind: by extension, and by content when it is plainly something else. */
+static int check_scene_kind(const char *path)
+{
+    const char *kind = cli_sniff_kind(path, false);
+    bool known = cli_ends_with(path, ".dae") || cli_ends_with(path, ".obj") || cli_ends_with(path, ".ply");
+    if (kind) {
+        fprintf(stderr, "fogrt: %s: %s, not a scene: fogrt reads .dae, .obj, .ply\n", path, kind);
+        return 2;
+    }
+    if (!known) {
+        fprintf(stderr, "fogrt: %s: unknown scene type: fogrt reads .dae, .obj, .ply\n", path);
+        return 2;
+    }
+    return 0;
+}
+
+/* --log: a new file gets the header row now; an existing one must be a fogrt log (its first
+   line that header), else appending would damage a file that is something else. NULL with
+   *status set (2 refused, 1 cannot write) after one message. */
+static FILE *open_log(const char *path, int *status)
+{
+    struct stat st;
+    FILE *f;
+    bool fresh = true;
+    if (stat(path, &st) == 0) {
+        if (!S_ISREG(st.st_mode)) {
+            fprintf(stderr, "fogrt: --log %s: is %s, not a regular file\n", path, cli_file_kind(st.st_mode));
+            *status = 2; return NULL;
+        }
+        if (st.st_size > 0) {
+            char first[256];
+            size_t n;
+            f = fopen(path, "rb");
+            if (!f) { fprintf(stderr, "fogrt: --log %s: cannot read: %s\n", path, strerror(errno)); *status = 1; return NULL; }
+            n = fread(first, 1, strlen(log_header), f);
+            fclose(f);
+            if (n != strlen(log_header) || memcmp(first, log_header, n) != 0) {
+                fprintf(stderr, "fogrt: --log %s: exists and is not a fogrt log (its first line is not the header row): "
+                        "not appending to it; give a new file or an earlier --log\n", path);
+                *status = 2; return NULL;
+            }
+            fresh = false;
+        }
+    }
+    f = fopen(path, "a");
+    if (!f) { fprintf(stderr, "fogrt: --log %s: cannot write: %s\n", path, strerror(errno)); *status = 1; return NULL; }
+    if (fresh && (fputs(log_header, f) < 0 || fflush(f) != 0)) {
+        fprintf(stderr, "fogrt: --log %s: write failed: %s\n", path, strerror(errno));
+        fclose(f);
+        *status = 1; return NULL;
+    }
+    return f;
+}
+
 /* ------------------------------------------------------------------------------------------
    main
    ------------------------------------------------------------------------------------------ */
@@ -1335,9 +1442,9 @@ int main(int argc, char **argv)
     fogrt_image img;
     fogrt_error_estimate ee;
     render_state ps;
-    out_target out, rate_out;
-    membuf enc;
-    char rate_name[4096], where[4200], err_a[64], err_b[64], reason[256], target[32];
+    cli_output out, rate_out;
+    cli_membuf enc;
+    char rate_name[4096], where[4200], err_a[64], err_b[64], reason[256], target[64], fog_text[256];
     const char *why, *stopped_by = NULL, *cam_where;
     float *rgb = NULL, *ref = NULL, *rates = NULL;
     unsigned char *rgb8 = NULL;
@@ -1346,6 +1453,9 @@ int main(int argc, char **argv)
     double t0, t_load, elapsed, spp_mean;
     int status = 0, threads, frame_w, frame_h;
 
+    cli_std_streams();          /* before any file is opened: 0-2 are never an image */
+    cli_sane_omp_env(argv);
+    cli_prog = "fogrt";
     memset(&logbuf, 0, sizeof logbuf);
     memset(&ps, 0, sizeof ps);
     memset(&enc, 0, sizeof enc);
@@ -1355,20 +1465,42 @@ int main(int argc, char **argv)
     if (status) return status;
     cli_tty = isatty(2) != 0;
     install_signals();
-    threads = cap_threads(o.threads);
+    if ((threads = cli_resolve_threads(o.threads)) == 0) return 2;
 
-    /* Inputs must be regular files (a FIFO would block the loader); outputs must be writable */
+    /* Inputs must be regular files (a FIFO would block the loader) of the right kind */
     if (o.scene && (status = check_input_file("", o.scene)) != 0) return status;
+    if (o.scene && (status = check_scene_kind(o.scene)) != 0) return status;
     if (o.camera_file && (status = check_input_file("-c ", o.camera_file)) != 0) return status;
+    if (o.camera_file && (why = cli_sniff_kind(o.camera_file, true)) != NULL) {
+        fprintf(stderr, "fogrt: -c %s: %s, not a CS184 camera settings file (text, as CS184 writes it)\n", o.camera_file, why);
+        return 2;
+    }
     if (o.reference && (status = check_input_file("--reference ", o.reference)) != 0) return status;
     if (o.env_map && (status = check_input_file("-e ", o.env_map)) != 0) return status;
     if (!o.print_camera && !o.trace) {
-        if (!prepare_output(&out, "-f", o.output)) return 1;
+        /* No output may be an input or another output (checked before anything is written) */
+        cli_file in[4], outs[3];
+        int nin = 0, nout = 0;
+        if (o.scene) cli_identify(&in[nin++], "", o.scene);
+        if (o.camera_file) cli_identify(&in[nin++], "-c", o.camera_file);
+        if (o.env_map) cli_identify(&in[nin++], "-e", o.env_map);
+        if (o.reference) cli_identify(&in[nin++], "--reference", o.reference);
+        cli_identify(&outs[nout++], "-f", o.output);
         if (o.adaptive) {
             rate_path(o.output, rate_name, sizeof rate_name);
-            if (!prepare_output(&rate_out, "-f", rate_name)) return 1;
+            cli_identify(&outs[nout++], "-a (the rate image)", rate_name);
         }
+        if (o.log_path) cli_identify(&outs[nout++], "--log", o.log_path);
+        if ((status = cli_check_aliases(in, nin, outs, nout)) != 0) return status;
+
+        if (!cli_prepare_output(&out, "-f", o.output)) return 1;
+        if (o.adaptive && !cli_prepare_output(&rate_out, "-a (the rate image)", rate_name)) return 1;
         if (o.reference && !(ref = read_reference(o.reference, o.width, o.height))) return 2;
+        if (o.log_path) {           /* created (or checked) now, not after the render */
+            ps.log = open_log(o.log_path, &status);
+            if (!ps.log) { free(ref); return status; }
+            ps.log_path = o.log_path;
+        }
         if (!o.output_set && !o.quiet)
             fprintf(stderr, "fogrt: no -f given: writing %s (CS184 would open its viewer here; for fogrt's live preview run `make preview`, then `build/preview [scene]`)\n", o.output);
     }
@@ -1388,11 +1520,7 @@ int main(int argc, char **argv)
         r = fogrt_scene_add_default(scene);
         if (r) { fail_line(&logbuf, "default scene", r); status = 1; goto done; }
     } else {
-        is_dae = ends_with(o.scene, ".dae");
-        if (!is_dae && !ends_with(o.scene, ".obj") && !ends_with(o.scene, ".ply")) {
-            fprintf(stderr, "fogrt: %s: unknown scene type (expected .dae, .obj or .ply)\n", o.scene);
-            status = 2; goto done;
-        }
+        is_dae = cli_ends_with(o.scene, ".dae");
         if (!is_dae) {               /* a mesh: into the default fog-filled Cornell box */
             r = fogrt_scene_add_default(scene);
             if (r) { fail_line(&logbuf, "default scene", r); status = 1; goto done; }
@@ -1411,9 +1539,10 @@ int main(int argc, char **argv)
     else if (o.paper_g && md.sigma_t == 0.0f) md.sigma_t = 0.2f;   /* the paper's -g switches fog on */
     if (o.albedo_set) md.albedo = o.albedo;
     if (o.g_set) md.g = o.g;
-    if (o.fog_bounds_set) { md.bounded = true; md.bounds_min = o.fog_lo; md.bounds_max = o.fog_hi; }
+    if (o.fog_where == CLI_FOG_BOX) { md.bounded = true; md.bounds_min = o.fog_lo; md.bounds_max = o.fog_hi; }
+    if (o.fog_where == CLI_FOG_ALL) md.bounded = false;
     r = fogrt_scene_set_medium(scene, &md);
-    if (r) { fail_line(&logbuf, o.fog_bounds_set ? "--density/--albedo/--g/--fog-bounds" : "--density/--albedo/--g", r); status = 2; goto done; }
+    if (r) { fail_line(&logbuf, o.fog_where == CLI_FOG_BOX ? "--density/--albedo/--g/--fog-bounds" : "--density/--albedo/--g", r); status = 2; goto done; }
     if (o.env_map) {                             /* -e: the environment map light */
         int ew = 0, eh = 0;
         float *env;
@@ -1465,6 +1594,22 @@ int main(int argc, char **argv)
     /* Build */
     bd = fogrt_build_defaults();
     bd.heuristic = o.bvh;
+    if (o.fog_where == CLI_FOG_SCENE && md.sigma_t > 0.0f) {
+        /* The scene's box is known once it is built: a quick build (no roulette pilot) for
+           it, the fog set to that box, then the real build. */
+        fogrt_build_desc quick = bd;
+        quick.roulette_pilot = false;
+        r = fogrt_scene_build(scene, &quick);
+        if (r) { fail_line(&logbuf, o.scene ? o.scene : "default scene", r); status = r == FOGRT_RESULT_EMPTY_SCENE ? 2 : 1; goto done; }
+        fogrt_scene_get_info(scene, &info);
+        if (!scene_box(&info, &md.bounds_min, &md.bounds_max)) {
+            fprintf(stderr, "fogrt: --fog-bounds scene: %s has no finite geometry to bound the fog\n", o.scene ? o.scene : "the scene");
+            status = 2; goto done;
+        }
+        md.bounded = true;
+        r = fogrt_scene_set_medium(scene, &md);
+        if (r) { fail_line(&logbuf, "--fog-bounds scene", r); status = 2; goto done; }
+    }
     r = fogrt_scene_build(scene, &bd);
     if (r) { fail_line(&logbuf, o.scene ? o.scene : "default scene", r); status = r == FOGRT_RESULT_EMPTY_SCENE ? 2 : 1; goto done; }
     t_load = now_seconds() - t0;
@@ -1498,19 +1643,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "fogrt: -r %d %d: image too large to allocate (%s)\n", o.width, o.height, fogrt_result_string(r));
         status = 2; goto done;
     }
-    if (o.log_path) {
-        struct stat st;
-        if (stat(o.log_path, &st) == 0 && !S_ISREG(st.st_mode)) {
-            fprintf(stderr, "fogrt: --log %s: is %s, not a regular file\n", o.log_path, file_kind(st.st_mode));
-            status = 2; goto done;
-        }
-        ps.log = fopen(o.log_path, "a");
-        if (!ps.log) { fprintf(stderr, "fogrt: --log %s: cannot write: %s\n", o.log_path, strerror(errno)); status = 1; goto done; }
-        ps.log_path = o.log_path;
-        if (fseek(ps.log, 0, SEEK_END) != 0 || ftell(ps.log) == 0) fputs(log_header, ps.log);
-    }
-
-    /* Render */
+    /* Render: a header line saying what is rendered and where the fog is */
+    describe_fog(&md, &info, fog_text, sizeof fog_text);
+    if (!o.quiet)
+        fprintf(stderr, "fogrt: rendering %s (%dx%d, %s, %d thread%s): %s\n", o.scene ? o.scene : "the default scene",
+                o.width, o.height, o.adaptive ? "adaptive" : ps_target_text(&o, target, sizeof target), threads, threads == 1 ? "" : "s", fog_text);
     fill_render_desc(&o, threads, &rd);
     ps.o = &o;
     ps.threads = threads;
@@ -1556,11 +1693,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "fogrt: -f %s: could not encode the image (out of memory)\n", o.output);
         status = 1; goto done;
     }
-    if (!write_output(&out, &enc)) { status = 1; goto done; }
+    if (!cli_write_output(&out, &enc)) { status = 1; goto done; }
     if (o.adaptive) {
         enc.size = 0;
         rate_image(&img, o.spp, rgb8);
-        if (!encode_image(rate_name, o.width, o.height, NULL, 1.0f, rgb8, &enc) || !write_output(&rate_out, &enc)) {
+        if (!encode_image(rate_name, o.width, o.height, NULL, 1.0f, rgb8, &enc) || !cli_write_output(&rate_out, &enc)) {
             if (enc.failed) fprintf(stderr, "fogrt: -f %s: could not encode the image (out of memory)\n", rate_name);
             status = 1; goto done;
         }
@@ -1577,11 +1714,11 @@ int main(int argc, char **argv)
         target[0] = 0;
         if (o.adaptive || ps.show_target) snprintf(target, sizeof target, "/%d", o.spp);
         fprintf(stderr, "fogrt: %swrote %s%s%s (%dx%d): %s%.6g%s spp in %.2f s (load %.2f s), %.3g M samples/s, "
-                "rel. error %s%s, %llu non-finite samples dropped\n",
+                "rel. error %s%s, %llu non-finite samples dropped; %s\n",
                 cli_interrupted ? "interrupted: " : "", o.output, o.adaptive ? " and " : "", o.adaptive ? rate_name : "",
                 o.width, o.height, o.adaptive ? "adaptive, mean " : "", spp_mean, target, elapsed, t_load,
                 elapsed > 0 ? (double)ee.samples / elapsed * 1e-6 : 0.0, err_a, err_b,
-                (unsigned long long)img.rejected);
+                (unsigned long long)img.rejected, fog_text);
     }
     if (ps.log_failed) status = 1;
     else if (cli_interrupted) status = 130;

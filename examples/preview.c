@@ -44,6 +44,7 @@
 #include "fogrt.h"
 #define FOGRT_LOAD_IMPLEMENTATION
 #include "fogrt_load.h"
+#include "cli_common.h"
 
 #include <GLFW/glfw3.h>   /* also brings <GL/gl.h>: legacy OpenGL 1.x is all we use */
 
@@ -79,7 +80,7 @@ typedef struct preview_options {
     float density; bool density_set;
     fogrt_vec3 albedo; bool albedo_set;
     float g; bool g_set; bool paper_g;
-    float exposure;
+    float exposure;           /* --exposure, as the multiplier 2^EV */
     const char *scene;
     const char *save_dir;
     int frames;               /* --frames: scripted mode when > 0 */
@@ -87,7 +88,6 @@ typedef struct preview_options {
     const char *screenshot;   /* --screenshot */
 } preview_options;
 
-#define PREVIEW_MAX_SIDE 8192
 
 static const char *controls_text =
     "Keys and mouse:\n"
@@ -114,38 +114,32 @@ static void usage(FILE *f)
         "usage: preview [options] [scene.dae | mesh.obj | mesh.ply]\n"
         "Interactive progressive preview of the embedded default scene (no scene argument), a\n"
         "CS184 COLLADA scene, or an OBJ/PLY mesh placed in the default fog-filled Cornell box.\n"
+        "Long flags also take --flag=value.\n"
         "\n"
-        "Flags shared with fogrt (same meanings):\n"
-        "  -r W H         image size in pixels (default 320 240; the window is --scale times it)\n"
-        "  -t N           render threads (default 0 = all cores)\n"
-        "  -m N           maximum ray depth: bounces after the camera ray, 0 = emission only,\n"
-        "                 -1 = unlimited (default 64)\n"
-        "  -l N           samples per area light at each light-sampling step (default 1)\n"
-        "  -H             start with hemisphere sampling (no light sampling)\n"
-        "  -g G           HG g in [-1, 1]; like the paper also turns fog on (density 0.2) when\n"
-        "                 the scene has none and --density is not given\n"
-        "  --density S    extinction sigma_t >= 0 (default: the scene's; 0.3 default scene)\n"
-        "  --albedo A     single-scattering albedo in [0, 1], a scalar or r,g,b (default 0.9)\n"
-        "  --g G          HG g in [-1, 1], > 0 forward (default: the scene's; 0.6 default scene)\n"
-        "  --integrator I path or direct (default path)\n"
-        "  --fresnel F    schlick or exact (default schlick)\n"
-        "  --seed N       random seed (default 0)\n"
-        "  -h             this help\n"
-        "(-s, -f, -a, --time and --target-error do not apply: the preview refines until you quit.)\n"
+        "Flags shared with fogrt (the same meanings and limits in both):\n");
+    cli_common_usage(f, 320, 240);
+    fprintf(f,
+        "  (-r: the window is --scale times it; -m: the ] key goes on to unlimited depth)\n"
+        "(fogrt's other flags, -s, -f, -a, --time, --target-error and the rest, do not apply:\n"
+        "the preview refines until you quit.)\n"
         "\n"
         "Preview flags:\n"
         "  --scale K      window pixels per image pixel, 1..8 (default 2)\n"
         "  --batch N      samples per pixel per batch, 1..64 (default 1)\n"
-        "  --exposure E   exposure multiplier > 0 (default 1)\n"
         "  --save-dir DIR where `s` writes its PNG and PFM (default .)\n"
-        "  --frames N     scripted mode: run N frames, each showing one more finished batch, then exit\n"
+        "  --frames N     scripted mode: run N frames, each showing one more finished batch, then\n"
+        "                 exit (default 0: interactive)\n"
         "  --keys LIST    scripted key presses: FRAME:KEY,... KEY is a key above (f, w, [, ...),\n"
         "                 F1, esc, drag:DX,DY (a mouse drag by DX,DY window pixels) or wheel:N\n"
-        "                 e.g. --keys \"10:f,20:w,20:w,30:s,40:drag:60,0\"\n"
+        "                 e.g. --keys \"10:f,20:w,20:w,30:s,40:drag:60,0\" (default none)\n"
         "  --screenshot F write the window's content as PNG after the last frame (or at exit)\n"
+        "                 (default none)\n"
         "\n%s"
-        "\nAt exit a summary line gives frames/s, samples/s, input polls/s and the key-to-restart\n"
-        "and key-to-new-frame latency. Exit status: 0 ok, 2 bad input, 1 no window or render failure.\n",
+        "\nSaves and screenshots are written as fogrt writes its images: a temporary file, every\n"
+        "write checked, then renamed over the old file; neither may be the scene file.\n"
+        "At exit a summary line gives frames/s, samples/s, input polls/s and the key-to-restart\n"
+        "and key-to-new-frame latency. Exit status: 0 ok, 2 bad input, 1 no window, a render\n"
+        "failure or a screenshot that could not be written (the file is named).\n",
         controls_text);
 }
 
@@ -184,156 +178,76 @@ static void preview_image_free(fogrt_image *img)
 static int bad_flag(const char *flag, const char *fmt, ...)
 {
     va_list ap;
-    fprintf(stderr, "preview: %s: ", flag);
+    char msg[512];
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    fprintf(stderr, " (preview -h lists the flags)\n");
-    return 2;
+    return cli_bad_flag(flag, "%s", msg);
 }
 
-static bool to_long(const char *s, long lo, long hi, long *out)
-{
-    char *end;
-    long v;
-    errno = 0;
-    v = strtol(s, &end, 10);
-    if (errno != 0 || end == s || *end != '\0' || v < lo || v > hi) return false;
-    *out = v;
-    return true;
-}
-static bool to_int(const char *s, int lo, int hi, int *out)
-{
-    long v;
-    if (!to_long(s, lo, hi, &v)) return false;
-    *out = (int)v;
-    return true;
-}
-static bool to_float(const char *s, float *out)
-{
-    char *end;
-    double v;
-    errno = 0;
-    v = strtod(s, &end);
-    if (errno != 0 || end == s || *end != '\0' || !isfinite(v) || fabs(v) > 1e30) return false;
-    *out = (float)v;
-    return true;
-}
-/* "0.9" or "0.9,0.8,0.7", every channel in [0, 1] */
-static bool to_albedo(const char *s, fogrt_vec3 *out)
-{
-    float c[3];
-    int n = 0;
-    const char *p = s;
-    while (n < 3) {
-        char buf[64];
-        size_t len = strcspn(p, ",");
-        if (len == 0 || len >= sizeof buf) return false;
-        memcpy(buf, p, len);
-        buf[len] = '\0';
-        if (!to_float(buf, &c[n]) || c[n] < 0.0f || c[n] > 1.0f) return false;
-        n++;
-        p += len;
-        if (*p == '\0') break;
-        p++;
-    }
-    if (*p != '\0' || (n != 1 && n != 3)) return false;
-    if (n == 1) c[1] = c[2] = c[0];
-    out->x = c[0]; out->y = c[1]; out->z = c[2];
-    return true;
-}
-static bool has_suffix(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), m = strlen(suffix), i;
-    if (n < m) return false;
-    for (i = 0; i < m; ++i) {
-        char c = s[n - m + i];
-        if (c >= 'A' && c <= 'Z') c = (char)(c + ('a' - 'A'));
-        if (c != suffix[i]) return false;
-    }
-    return true;
-}
+static bool to_int(const char *s, int lo, int hi, int *out) { return cli_parse_int(s, lo, hi, out); }
+
+/* The flags the preview takes, for "did you mean"; and fogrt's own, which do not apply. */
+static const char *const preview_flag_names[] = {
+    "-r", "-t", "-l", "-m", "-H", "-g", "--g", "--density", "--albedo", "--integrator", "--fresnel",
+    "--seed", "--exposure", "-h", "--help",
+    "--scale", "--batch", "--save-dir", "--frames", "--keys", "--screenshot", NULL
+};
+static const char *const fogrt_only_flags[] = {
+    "-s", "-o", "-f", "-b", "-d", "-a", "-c", "-e", "--camera-pos", "--look-at", "--up", "--fov",
+    "--cs184-framing", "--print-camera", "--fog-bounds", "--equiangular", "--lights", "--glow",
+    "--footprint", "--expected-emission", "--mis", "--pixel-rates", "--bvh", "--time",
+    "--target-error", "--quiet", "--log", "--reference", "--trace", NULL
+};
 
 /* Returns 0, 2 (bad input, message printed) or -1 (help printed). */
 static int parse_flags(int argc, char **argv, preview_options *o)
 {
-    int i;
+    cli_arg A;
+    cli_common c;
+    int i, k;
     memset(o, 0, sizeof *o);
-    o->width = 320; o->height = 240; o->scale = 2; o->light_samples = 1; o->max_depth = 64;
-    o->integrator = FOGRT_INTEGRATOR_PATH; o->fresnel = FOGRT_FRESNEL_SCHLICK;
-    o->batch = 1; o->exposure = 1.0f; o->save_dir = ".";
-    for (i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-#define NEED(k) do { if (i + (k) >= argc) return bad_flag(a, "needs %d value%s", (k), (k) > 1 ? "s" : ""); } while (0)
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) { usage(stdout); return -1; }
-        else if (strcmp(a, "-r") == 0) {
-            NEED(2);
-            if (!to_int(argv[i + 1], 8, PREVIEW_MAX_SIDE, &o->width) || !to_int(argv[i + 2], 8, PREVIEW_MAX_SIDE, &o->height))
-                return bad_flag(a, "width and height must be integers in [8, %d], got '%s %s'", PREVIEW_MAX_SIDE, argv[i + 1], argv[i + 2]);
-            i += 2;
-        }
-        else if (strcmp(a, "-t") == 0) { NEED(1); if (!to_int(argv[++i], 0, 4096, &o->threads)) return bad_flag(a, "threads must be an integer in [0, 4096], got '%s'", argv[i]); }
-        else if (strcmp(a, "-l") == 0) { NEED(1); if (!to_int(argv[++i], 1, 1 << 16, &o->light_samples)) return bad_flag(a, "light samples must be an integer in [1, 65536], got '%s'", argv[i]); }
-        else if (strcmp(a, "-m") == 0) {
+    cli_common_defaults(&c, 320, 240);
+    o->scale = 2; o->batch = 1; o->save_dir = ".";
+    A.argc = argc; A.argv = argv;
+    for (i = 1; i < argc; i = A.i + 1) {
+        const char *a, *v;
+        cli_arg_at(&A, i);
+        a = A.name;
+#define NEED(n) do { if (!cli_has(&A, (n))) return bad_flag(a, "needs %d value%s", (n), (n) > 1 ? "s" : ""); } while (0)
+        if (cli_is(&A, "-h") || cli_is(&A, "--help")) { usage(stdout); return -1; }
+        if ((k = cli_common_flag(&A, &c)) >= 0) { if (k) return k; }
+        else if (cli_is(&A, "--scale")) { NEED(1); v = cli_next(&A); if (!to_int(v, 1, 8, &o->scale)) return bad_flag(a, "scale must be an integer in [1, 8], got '%s'", v); }
+        else if (cli_is(&A, "--batch")) { NEED(1); v = cli_next(&A); if (!to_int(v, 1, 64, &o->batch)) return bad_flag(a, "batch must be an integer in [1, 64], got '%s'", v); }
+        else if (cli_is(&A, "--save-dir")) { NEED(1); o->save_dir = cli_next(&A); }
+        else if (cli_is(&A, "--frames")) { NEED(1); v = cli_next(&A); if (!to_int(v, 1, 1000000, &o->frames)) return bad_flag(a, "frames must be an integer in [1, 1000000], got '%s'", v); }
+        else if (cli_is(&A, "--keys")) { NEED(1); o->keys = cli_next(&A); }
+        else if (cli_is(&A, "--screenshot")) {
             NEED(1);
-            if (!to_int(argv[++i], -1, 1 << 20, &o->max_depth))
-                return bad_flag(a, "maximum ray depth must be an integer >= 0, or -1 (unlimited), got '%s'", argv[i]);
+            o->screenshot = cli_next(&A);
+            if (!cli_ends_with(o->screenshot, ".png")) return bad_flag(a, "screenshot '%s' must end in .png", o->screenshot);
         }
-        else if (strcmp(a, "-H") == 0) o->hemisphere = true;
-        else if (strcmp(a, "-g") == 0 || strcmp(a, "--g") == 0) {
-            NEED(1);
-            if (!to_float(argv[++i], &o->g) || o->g < -1.0f || o->g > 1.0f) return bad_flag(a, "g must be a number in [-1, 1], got '%s'", argv[i]);
-            o->g_set = true;
-            if (a[1] == 'g') o->paper_g = true;
+        else if (a[0] == '-' && a[1] != '\0') {
+            for (k = 0; fogrt_only_flags[k]; ++k)
+                if (strcmp(a, fogrt_only_flags[k]) == 0)
+                    return bad_flag(a, "does not apply to the preview, which refines until you quit (use fogrt for a fixed render)");
+            return cli_unknown_flag(a, preview_flag_names);
         }
-        else if (strcmp(a, "--density") == 0) { NEED(1); if (!to_float(argv[++i], &o->density) || o->density < 0.0f) return bad_flag(a, "density must be a number >= 0, got '%s'", argv[i]); o->density_set = true; }
-        else if (strcmp(a, "--albedo") == 0) { NEED(1); if (!to_albedo(argv[++i], &o->albedo)) return bad_flag(a, "albedo must be a number in [0, 1] or r,g,b with each in [0, 1], got '%s'", argv[i]); o->albedo_set = true; }
-        else if (strcmp(a, "--integrator") == 0) {
-            NEED(1); ++i;
-            if (strcmp(argv[i], "path") == 0) o->integrator = FOGRT_INTEGRATOR_PATH;
-            else if (strcmp(argv[i], "direct") == 0) o->integrator = FOGRT_INTEGRATOR_DIRECT;
-            else return bad_flag(a, "must be path or direct, got '%s'", argv[i]);
-        }
-        else if (strcmp(a, "--fresnel") == 0) {
-            NEED(1); ++i;
-            if (strcmp(argv[i], "schlick") == 0) o->fresnel = FOGRT_FRESNEL_SCHLICK;
-            else if (strcmp(argv[i], "exact") == 0) o->fresnel = FOGRT_FRESNEL_EXACT;
-            else return bad_flag(a, "must be schlick or exact, got '%s'", argv[i]);
-        }
-        else if (strcmp(a, "--seed") == 0) {
-            char *end;
-            unsigned long long v;
-            NEED(1); ++i;
-            errno = 0;
-            v = strtoull(argv[i], &end, 10);
-            if (argv[i][0] == '-' || argv[i][0] == '+' || errno != 0 || end == argv[i] || *end != '\0')
-                return bad_flag(a, "seed must be a non-negative integer, got '%s'", argv[i]);
-            o->seed = (uint64_t)v;
-        }
-        else if (strcmp(a, "--scale") == 0) { NEED(1); if (!to_int(argv[++i], 1, 8, &o->scale)) return bad_flag(a, "scale must be an integer in [1, 8], got '%s'", argv[i]); }
-        else if (strcmp(a, "--batch") == 0) { NEED(1); if (!to_int(argv[++i], 1, 64, &o->batch)) return bad_flag(a, "batch must be an integer in [1, 64], got '%s'", argv[i]); }
-        else if (strcmp(a, "--exposure") == 0) { NEED(1); if (!to_float(argv[++i], &o->exposure) || !(o->exposure > 0.0f)) return bad_flag(a, "exposure must be a number > 0, got '%s'", argv[i]); }
-        else if (strcmp(a, "--save-dir") == 0) { NEED(1); o->save_dir = argv[++i]; }
-        else if (strcmp(a, "--frames") == 0) { NEED(1); if (!to_int(argv[++i], 1, 1000000, &o->frames)) return bad_flag(a, "frames must be an integer in [1, 1000000], got '%s'", argv[i]); }
-        else if (strcmp(a, "--keys") == 0) { NEED(1); o->keys = argv[++i]; }
-        else if (strcmp(a, "--screenshot") == 0) {
-            NEED(1);
-            o->screenshot = argv[++i];
-            if (!has_suffix(o->screenshot, ".png")) return bad_flag(a, "screenshot '%s' must end in .png", o->screenshot);
-        }
-        else if (strcmp(a, "-s") == 0 || strcmp(a, "-f") == 0 || strcmp(a, "-a") == 0 || strcmp(a, "--time") == 0 ||
-                 strcmp(a, "--target-error") == 0)
-            return bad_flag(a, "does not apply to the preview, which refines until you quit (use fogrt for a fixed render)");
-        else if (a[0] == '-' && a[1] != '\0') return bad_flag(a, "unknown flag");
         else {
-            if (o->scene) return bad_flag(a, "only one scene file may be given (already have '%s')", o->scene);
-            o->scene = a;
+            if (o->scene) return bad_flag(argv[i], "only one scene file may be given (already have '%s')", o->scene);
+            o->scene = argv[i];
         }
+        if (A.inline_value && !A.inline_used) return bad_flag(a, "takes no value, got '%s'", argv[i]);
 #undef NEED
     }
+    o->width = c.width; o->height = c.height; o->threads = c.threads; o->light_samples = c.light_samples;
+    o->max_depth = c.max_depth; o->hemisphere = c.hemisphere; o->integrator = c.integrator; o->fresnel = c.fresnel;
+    o->seed = c.seed; o->density = c.density; o->density_set = c.density_set; o->albedo = c.albedo;
+    o->albedo_set = c.albedo_set; o->g = c.g; o->g_set = c.g_set; o->paper_g = c.paper_g;
+    o->exposure = exp2f(c.exposure_ev);           /* --exposure is stops, as in fogrt */
     if (o->keys && o->frames == 0) return bad_flag("--keys", "needs --frames (scripted mode)");
     if (o->width * o->scale > 16384 || o->height * o->scale > 16384)
-        return bad_flag("--scale", "window of %dx%d pixels is too large", o->width * o->scale, o->height * o->scale);
+        return bad_flag("--scale", "window of %dx%d pixels is too large (at most 16384 on a side)", o->width * o->scale, o->height * o->scale);
     return 0;
 }
 
@@ -531,9 +445,14 @@ static int load_scene(app *a)
     lo.image_width = o->width; lo.image_height = o->height;
     lo.logger.func = load_note;
     if (o->scene) {
-        is_dae = has_suffix(o->scene, ".dae");
-        if (!is_dae && !has_suffix(o->scene, ".obj") && !has_suffix(o->scene, ".ply")) {
-            fprintf(stderr, "preview: %s: unknown scene type (expected .dae, .obj or .ply)\n", o->scene);
+        const char *kind = cli_sniff_kind(o->scene, false);
+        is_dae = cli_ends_with(o->scene, ".dae");
+        if (kind) {
+            fprintf(stderr, "preview: %s: %s, not a scene: the preview reads .dae, .obj, .ply\n", o->scene, kind);
+            return 2;
+        }
+        if (!is_dae && !cli_ends_with(o->scene, ".obj") && !cli_ends_with(o->scene, ".ply")) {
+            fprintf(stderr, "preview: %s: unknown scene type: the preview reads .dae, .obj, .ply\n", o->scene);
             return 2;
         }
     }
@@ -1100,29 +1019,48 @@ static void update_title(app *a)
     a->last_title = now_seconds();
 }
 
+/* One output as fogrt writes it (examples/cli_common.h): never the scene file, written to a
+   temporary file with every write checked, then renamed over the old file. */
+static bool write_file(const app *a, const char *flag, const char *path, const cli_membuf *b)
+{
+    cli_output out;
+    if (b->failed) { fprintf(stderr, "preview: %s %s: could not encode the image (out of memory)\n", flag, path); return false; }
+    if (a->opt.scene) {
+        cli_file in, o;
+        cli_identify(&in, "", a->opt.scene);
+        cli_identify(&o, flag, path);
+        if (cli_check_aliases(&in, 1, &o, 1) != 0) return false;
+    }
+    return cli_prepare_output(&out, flag, path) && cli_write_output(&out, b);
+}
+
 /* s: the shown image as PNG (tonemapped) and PFM (linear), the settings in the name. */
 static void save_image(app *a)
 {
     char name[512], path[1024];
     const view_params *v = &a->rgb_params;
+    cli_membuf b;
     size_t n;
+    bool ok;
     if (a->rgb_spp == 0) { fprintf(stderr, "preview: s: nothing to save yet (no full-resolution sample)\n"); return; }
     snprintf(name, sizeof name, "fogrt-preview_%s_g%.2f_density%.3g%s_albedo%.2f_%s_%s_eq%s_depth%d_%dx%d_%llu-spp",
              a->scene_name, (double)v->g, (double)v->density, v->fog ? "" : "-off", (double)v->albedo.x,
              v->path ? "path" : "direct", v->nee ? "nee" : "hemisphere", v->equiangular ? "on" : "off",
              v->max_depth, a->rgb_w, a->rgb_h, (unsigned long long)a->rgb_spp);
     snprintf(path, sizeof path, "%s/%s.pfm", a->opt.save_dir, name);
-    if (fogrt_write_pfm(path, a->rgb_w, a->rgb_h, a->rgb) != FOGRT_RESULT_OK) {
-        fprintf(stderr, "preview: s: could not write %s: %s\n", path, strerror(errno));
-        return;
-    }
+    memset(&b, 0, sizeof b);
+    cli_encode_pfm(a->rgb_w, a->rgb_h, a->rgb, &b);
+    ok = write_file(a, "s:", path, &b);
+    free(b.data);
+    if (!ok) return;
     n = strlen(path);
     memcpy(path + n - 4, ".png", 4);
     fogrt_tonemap_rgb8(a->rgb, a->rgb_w, a->rgb_h, a->exposure, FOGRT_TONEMAP_SRGB, a->rgb8);
-    if (!stbi_write_png(path, a->rgb_w, a->rgb_h, 3, a->rgb8, a->rgb_w * 3)) {
-        fprintf(stderr, "preview: s: could not write %s\n", path);
-        return;
-    }
+    memset(&b, 0, sizeof b);
+    if (!stbi_write_png_to_func(cli_membuf_stb, &b, a->rgb_w, a->rgb_h, 3, a->rgb8, a->rgb_w * 3)) b.failed = true;
+    ok = write_file(a, "s:", path, &b);
+    free(b.data);
+    if (!ok) return;
     path[n - 4] = '\0';
     printf("preview: saved %s.png and %s.pfm\n", path, path);
     fflush(stdout);
@@ -1134,12 +1072,13 @@ static bool write_screenshot(app *a, const char *path)
     int fw, fh, y;
     unsigned char *px, *row;
     size_t stride;
+    cli_membuf b;
     bool ok;
     glfwGetFramebufferSize(a->window, &fw, &fh);
     stride = 3 * (size_t)fw;
     px = (unsigned char *)malloc(stride * (size_t)fh);
     row = (unsigned char *)malloc(stride);
-    if (!px || !row) { free(px); free(row); fprintf(stderr, "preview: --screenshot: out of memory\n"); return false; }
+    if (!px || !row) { free(px); free(row); fprintf(stderr, "preview: --screenshot %s: out of memory\n", path); return false; }
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadBuffer(GL_BACK);
     glReadPixels(0, 0, fw, fh, GL_RGB, GL_UNSIGNED_BYTE, px);
@@ -1148,8 +1087,10 @@ static bool write_screenshot(app *a, const char *path)
         memcpy(px + stride * (size_t)y, px + stride * (size_t)(fh - 1 - y), stride);
         memcpy(px + stride * (size_t)(fh - 1 - y), row, stride);
     }
-    ok = stbi_write_png(path, fw, fh, 3, px, (int)stride) != 0;
-    if (!ok) fprintf(stderr, "preview: --screenshot %s: could not write the file\n", path);
+    memset(&b, 0, sizeof b);
+    if (!stbi_write_png_to_func(cli_membuf_stb, &b, fw, fh, 3, px, (int)stride)) b.failed = true;
+    ok = write_file(a, "--screenshot", path, &b);
+    free(b.data);
     free(px); free(row);
     return ok;
 }
@@ -1263,9 +1204,23 @@ int main(int argc, char **argv)
     bool worker_started = false;
     size_t pixels;
 
+    cli_std_streams();          /* before any file is opened: 0-2 are never a saved image */
+    cli_sane_omp_env(argv);
+    cli_prog = "preview";
     status = parse_flags(argc, argv, &a->opt);
     if (status == -1) return 0;
     if (status) return status;
+    if ((a->opt.threads = cli_resolve_threads(a->opt.threads)) == 0) return 2;
+    if (a->opt.screenshot) {    /* never the scene file; writable, found out before the window opens */
+        cli_output out;
+        if (a->opt.scene) {
+            cli_file in, o;
+            cli_identify(&in, "", a->opt.scene);
+            cli_identify(&o, "--screenshot", a->opt.screenshot);
+            if (cli_check_aliases(&in, 1, &o, 1) != 0) return 2;
+        }
+        if (!cli_prepare_output(&out, "--screenshot", a->opt.screenshot)) return 1;
+    }
     if (a->opt.keys) {
         char msg[160];
         if (!parse_script(a->opt.keys, a->opt.frames, &ev, &nev, msg, sizeof msg)) {
@@ -1309,6 +1264,7 @@ int main(int argc, char **argv)
         sigemptyset(&sa.sa_mask);
         sigaction(SIGINT, &sa, NULL);
         sigaction(SIGTERM, &sa, NULL);
+        sigaction(SIGHUP, &sa, NULL);
     }
     glfwMakeContextCurrent(a->window);
     glfwSwapInterval(1);

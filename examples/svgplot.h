@@ -2,8 +2,10 @@
    and examples/figures.c. No dependencies beyond <stdio.h> and <math.h>.
 
    One plot: axes (linear or logarithmic, chosen per axis) with tick labels and axis titles,
-   any number of series (polyline + point markers, optional dashed line), a legend on the
-   right, and optional lines of monospace text under the plot (a table). Include it in one
+   any number of series (polyline + point markers, optional dashed line, optional colour; a
+   guide line such as a reference slope without markers), a legend on the right, and optional
+   lines of monospace text under the plot (a table, a caption). Sizes are meant for a
+   projector: 16 px text on a 1000 x 700 picture. Include it in one
    C file; everything is static. */
 #ifndef SVGPLOT_H_INCLUDED
 #define SVGPLOT_H_INCLUDED
@@ -18,6 +20,8 @@ typedef struct svgplot_series {
     const double *x, *y;   /* n points; points with a non-finite or (log axis) non-positive value are skipped */
     int n;
     int dashed;
+    const char *colour;    /* NULL: the next of the palette */
+    int no_markers;        /* a guide line (a reference slope): no point markers */
 } svgplot_series;
 
 typedef struct svgplot_desc {
@@ -26,7 +30,7 @@ typedef struct svgplot_desc {
     int log_x, log_y;
     const char *const *notes;        /* lines of text under the plot (a table), or NULL */
     int note_count;
-    int width, height;               /* 0: 900 x 650 */
+    int width, height;               /* 0: 1000 x 700 */
 } svgplot_desc;
 
 /* Colours that stay apart for colour-blind readers (Okabe-Ito), then repeat. */
@@ -107,8 +111,8 @@ static int svgplot__ticks(double lo, double hi, int log_axis, double *out, int m
 
 static void svgplot_write(FILE *f, const svgplot_desc *d, const svgplot_series *s, int ns)
 {
-    int W = d->width ? d->width : 900, H = d->height ? d->height : 650;
-    double x0 = 90, y0 = 50, x1 = W - 250, y1 = H - 70 - 16.0 * d->note_count;
+    int W = d->width ? d->width : 1000, H = d->height ? d->height : 700;
+    double x0 = 100, y0 = 56, x1 = W - 290, y1 = H - 80 - 18.0 * d->note_count;
     double xlo, xhi, ylo, yhi, ticks[64];
     int i, k, nt;
     if (y1 < y0 + 150) y1 = y0 + 150;
@@ -116,10 +120,10 @@ static void svgplot_write(FILE *f, const svgplot_desc *d, const svgplot_series *
     svgplot__range(s, ns, 1, d->log_y, &ylo, &yhi);
     fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\" "
-               "font-family=\"Helvetica, Arial, sans-serif\" font-size=\"13\">\n", W, H, W, H);
+               "font-family=\"Helvetica, Arial, sans-serif\" font-size=\"16\">\n", W, H, W, H);
     fprintf(f, "<rect width=\"%d\" height=\"%d\" fill=\"white\"/>\n", W, H);
     if (d->title) {
-        fprintf(f, "<text x=\"%.1f\" y=\"28\" font-size=\"16\" font-weight=\"bold\">", x0);
+        fprintf(f, "<text x=\"%.1f\" y=\"32\" font-size=\"20\" font-weight=\"bold\">", x0);
         svgplot__text(f, d->title);
         fprintf(f, "</text>\n");
     }
@@ -128,7 +132,7 @@ static void svgplot_write(FILE *f, const svgplot_desc *d, const svgplot_series *
     for (k = 0; k < nt; ++k) {
         double px = svgplot__map(ticks[k], xlo, xhi, d->log_x, x0, x1);
         fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", px, y0, px, y1);
-        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>\n", px, y1 + 18, ticks[k]);
+        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>\n", px, y1 + 22, ticks[k]);
     }
     nt = svgplot__ticks(ylo, yhi, d->log_y, ticks, 64);
     for (k = 0; k < nt; ++k) {
@@ -139,19 +143,19 @@ static void svgplot_write(FILE *f, const svgplot_desc *d, const svgplot_series *
     fprintf(f, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" stroke=\"black\"/>\n",
             x0, y0, x1 - x0, y1 - y0);
     if (d->x_label) {
-        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">", 0.5 * (x0 + x1), y1 + 40);
+        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">", 0.5 * (x0 + x1), y1 + 48);
         svgplot__text(f, d->x_label);
         fprintf(f, "</text>\n");
     }
     if (d->y_label) {
-        fprintf(f, "<text transform=\"translate(22 %.1f) rotate(-90)\" text-anchor=\"middle\">", 0.5 * (y0 + y1));
+        fprintf(f, "<text transform=\"translate(24 %.1f) rotate(-90)\" text-anchor=\"middle\">", 0.5 * (y0 + y1));
         svgplot__text(f, d->y_label);
         fprintf(f, "</text>\n");
     }
     /* series and legend */
     for (i = 0; i < ns; ++i) {
-        const char *c = svgplot__colour(i);
-        double ly = y0 + 10 + 36.0 * i;
+        const char *c = s[i].colour ? s[i].colour : svgplot__colour(i);
+        double ly = y0 + 10 + 42.0 * i;
         fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"2\"%s points=\"", c,
                 s[i].dashed ? " stroke-dasharray=\"6 4\"" : "");
         for (k = 0; k < s[i].n; ++k)
@@ -159,25 +163,25 @@ static void svgplot_write(FILE *f, const svgplot_desc *d, const svgplot_series *
                 fprintf(f, "%.1f,%.1f ", svgplot__map(s[i].x[k], xlo, xhi, d->log_x, x0, x1),
                         svgplot__map(s[i].y[k], ylo, yhi, d->log_y, y1, y0));
         fprintf(f, "\"/>\n");
-        for (k = 0; k < s[i].n; ++k)
+        for (k = 0; k < s[i].n && !s[i].no_markers; ++k)
             if (svgplot__usable(s[i].x[k], d->log_x) && svgplot__usable(s[i].y[k], d->log_y))
                 fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"2.5\" fill=\"%s\"/>\n",
                         svgplot__map(s[i].x[k], xlo, xhi, d->log_x, x0, x1),
                         svgplot__map(s[i].y[k], ylo, yhi, d->log_y, y1, y0), c);
         fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"2\"%s/>\n",
                 x1 + 15, ly, x1 + 40, ly, c, s[i].dashed ? " stroke-dasharray=\"6 4\"" : "");
-        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"12\">", x1 + 46, ly + 4);
+        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"15\">", x1 + 46, ly + 5);
         svgplot__text(f, s[i].label ? s[i].label : "");
         fprintf(f, "</text>\n");
         if (s[i].sublabel) {
-            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"11\" fill=\"#444\">", x1 + 46, ly + 18);
+            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"13\" fill=\"#444\">", x1 + 46, ly + 21);
             svgplot__text(f, s[i].sublabel);
             fprintf(f, "</text>\n");
         }
     }
     for (k = 0; k < d->note_count; ++k) {
-        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-family=\"DejaVu Sans Mono, Menlo, monospace\" font-size=\"12\" xml:space=\"preserve\">",
-                x0 - 60, y1 + 62 + 16.0 * k);
+        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-family=\"DejaVu Sans Mono, Menlo, monospace\" font-size=\"14\" xml:space=\"preserve\">",
+                x0 - 60, y1 + 78 + 18.0 * k);
         svgplot__text(f, d->notes[k]);
         fprintf(f, "</text>\n");
     }

@@ -2,12 +2,13 @@
 #   make bench       BVH build time, bytes per triangle, closest-hit and shadow (any-hit)
 #                    Mrays/s (1 and 2 threads), render samples/s and its 2T/1T;
 #                    BENCH_ARGS=--quick for a short, noisy run
-#   make bench-spot  the spot-lit goal of issue 16, against session 2's header in the same run
-#   make callgrind   instruction cost of the fog code in a fog-free render (fails above +3%)
+#   make bench-spot  the paper's spot-lit fog at equal time, this tree against the header of
+#                    commit SPOT_BASE in the same run (default 7a4a5f3, the goal's reference)
+#   make callgrind   instructions a scene pays for features it does not use (fails above +1%)
 #   make variance-sources  which samples carry an image's noise (VS_ARGS: scene and flags)
 #
 # What it compares against and reads:
-#   - Embree 3 (rtcIntersect1, rtcOccluded1, its memory monitor), the yardstick of issue 16:
+#   - Embree 3 (rtcIntersect1, rtcOccluded1, its memory monitor), the yardstick of every ratio:
 #     Debian's libembree-dev, installed by `make bench` with apt-get when root; otherwise it
 #     stops with one line naming the package. `make bench BENCH_EMBREE=0` runs without it
 #     (fogrt's figures alone, no ratios).
@@ -40,18 +41,22 @@ $(BUILD)/bench/fogrt_bench_alone: bench/bench.c fogrt.h $(wildcard fogrt_load.h)
 bench: $(BENCH_BIN)
 	./$(BENCH_BIN) $(BENCH_ARGS)
 
-# Issue 16's spot-lit goal in the same run as the header the issue measured (session 2's,
-# rebuilt from git history into build/spot-baseline): about a minute per run, SPOT_RUNS runs.
+# The spot-lit fog at equal time against SPOT_BASE's header, rebuilt from git history into
+# build/spot-base/<commit> (bench/spot_goal.sh): about a minute per run, SPOT_RUNS runs.
+# SPOT_BASE: any commit (e.g. HEAD~1); 7a4a5f3 is the reference of the goal, under
+# SPOT_GOAL percent at the time it takes for 128 spp.
 SPOT_RUNS ?= 2
+SPOT_BASE ?= 7a4a5f3
+SPOT_GOAL ?= 25
 bench-spot: $(BUILD)/fogrt
-	sh bench/spot_goal.sh $(BUILD)/fogrt $(SHARED) $(SPOT_RUNS)
+	sh bench/spot_goal.sh $(BUILD)/fogrt $(SHARED) $(SPOT_RUNS) $(SPOT_BASE) $(SPOT_GOAL)
 
 # No OpenMP here on purpose: one thread, a deterministic instruction count.
 callgrind:
 	CC='$(CC)' CFLAGS='$(CFLAGS)' BUILD='$(BUILD)' sh bench/callgrind.sh
 
-# The estimator levers of docs/benchmarks.md in work, not wall time (one thread; the
-# spot-lit part needs $(SHARED)/scenes; a few minutes): lights by power, the glow.
+# Estimator levers in work, not wall time (bench/levers.c; one thread; the spot-lit part
+# needs $(SHARED)/scenes; about 6 minutes): lights by power, the glow, expected emission.
 LEVERS_ARGS ?=
 # (one rule for the single-file bench programs that read scenes: levers, variance_sources)
 $(BUILD)/bench/levers $(BUILD)/bench/variance_sources: $(BUILD)/bench/%: bench/%.c fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | $(BUILD)

@@ -11,7 +11,7 @@ TINYEXR_HEADER := /usr/include/tinyexr.h
 # Under SANITIZE=1: stb_image_write's JPEG encoder (Debian's libstb-dev, not ours) shifts a
 # signed int past its range, which UBSan would abort on; the rest of UBSan stays on.
 CLI_SANITIZE := $(if $(filter 1,$(SANITIZE)),-fno-sanitize=shift)
-$(BUILD)/fogrt: examples/fogrt_cli.c examples/fogrt_cli_trace.c examples/stb_write.h fogrt.h fogrt_load.h | deps-stb deps-exr $(BUILD)
+$(BUILD)/fogrt: examples/fogrt_cli.c examples/fogrt_cli_trace.c examples/cli_common.h examples/stb_write.h fogrt.h fogrt_load.h | deps-stb deps-exr $(BUILD)
 	$(CC) $(ALL_CFLAGS) $(CLI_SANITIZE) $$([ -e $(TINYEXR_HEADER) ] && echo -DFOGRT_CLI_EXR) -o $@ examples/fogrt_cli.c \
 	  examples/fogrt_cli_trace.c $$([ -e $(TINYEXR_HEADER) ] && echo -ltinyexr) $(LDLIBS)
 

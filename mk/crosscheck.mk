@@ -1,5 +1,5 @@
 # mk/crosscheck.mk - fogrt against Mitsuba 3 on the same scenes (docs/validation.md).
-#   make crosscheck                   all scenes, about 24 s per renderer per scene (~10 min)
+#   make crosscheck                   all scenes, about 24 s per renderer per scene (about 6 min)
 #   make crosscheck CROSSCHECK_ARGS=--quick                 a 1-minute smoke run (no measurement)
 #   make crosscheck CROSSCHECK_ARGS="--scenes fog_iso,spot_fog"
 #   make crosscheck CROSSCHECK_FOGRT=path/to/fogrt          another fogrt build
@@ -8,7 +8,7 @@
 # $(BUILD)/crosscheck/results.md, results.json and <scene>_side.png. Mitsuba's fast
 # llvm_ad_rgb variant needs LLVM >= 16: Debian's libllvm19 is installed when we are root;
 # without it the script falls back to the scalar_rgb variant and says so.
-#   make bench-mitsuba                the same run, read as issue 16's benchmark: it ends with
+#   make bench-mitsuba                the same run, read as a benchmark (docs/benchmarks.md): it ends with
 #                                     relMSE x CPU seconds of both renderers and their ratio
 #   make chi2-mitsuba                 fogrt's direction samplers in Mitsuba's own chi-square
 #                                     harness, Mitsuba's samplers beside them (docs/testing.md;

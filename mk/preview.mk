@@ -18,7 +18,7 @@ deps-xvfb:
 preview: $(BUILD)/preview
 
 # pkg-config runs when the rule runs (after deps-glfw), never when the Makefile is read.
-$(BUILD)/preview: examples/preview.c fogrt.h fogrt_load.h mk/preview.mk | deps-stb deps-glfw $(BUILD)
+$(BUILD)/preview: examples/preview.c examples/cli_common.h fogrt.h fogrt_load.h mk/preview.mk | deps-stb deps-glfw $(BUILD)
 	$(CC) $(ALL_CFLAGS) -pthread $$(pkg-config --cflags glfw3) -o $@ examples/preview.c \
 	  $$(pkg-config --libs glfw3) $$(pkg-config --libs gl 2>/dev/null || echo -lGL) -pthread $(LDLIBS)
 

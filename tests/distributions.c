@@ -21,16 +21,19 @@
 #include "fogrt.h"
 #include "stats.h"
 #include "examples/stb_write.h"           /* stb_image_write, its warnings silenced */
+#include "examples/plotfont.h"
 
 #define N_SAMPLES 200000
-#define PW 150            /* panel size in pixels */
-#define PH 100
 #define MAX_CELLS 4096
+#define MAX_ROWS 64
 
 /* One check: a table of rows x cols cells (rows = 1: a 1-D histogram, drawn as bars). */
 typedef struct check {
     char name[48], title[96], params[320], model[224];
     int rows, cols;
+    char xq[96], yq[96], unit[64];   /* the axes' quantities and the density's unit */
+    double x0, x1;                   /* the x axis (columns or bins) from x0 to x1 */
+    double redge[MAX_ROWS + 1];      /* 2-D: the y value of each row's top edge, then the bottom */
     double obs[MAX_CELLS], exp_[MAX_CELLS], var[MAX_CELLS];   /* var 0: use exp_ */
     bool negative, binomial;
     double chi2, p;
@@ -43,69 +46,258 @@ static FILE *md_out;                  /* the generated part of the index page */
 static const char *out_dir;
 static int failures;
 
-/* ---- drawing: 8-bit RGB panels ---- */
-static unsigned char img[PH][3 * PW + 2][3];
+/* ---- drawing: one PNG per check that stands alone on a projector ----
+   A header (title, verdict, sampler and model), then for a 1-D check two plots (the
+   density observed as bars with the model's as a line; the residual of every bin) and for
+   a 2-D check three heat maps (observed, expected, residual) with their colour scales.
+   Every plot has its axes, tick labels and the quantity with its unit. */
+#define TXT 2                 /* text scale: 10 x 14 pixel glyphs */
+#define CHAR_W (PF_ADVANCE * TXT)
+static const unsigned char INK[3] = {30, 30, 30}, GOOD[3] = {0, 120, 60}, BAD[3] = {200, 30, 30};
 
-static void put(int x, int y, const double c[3])
-{
-    int k;
-    if (x < 0 || y < 0 || x >= 3 * PW + 2 || y >= PH) return;
-    for (k = 0; k < 3; ++k) img[y][x][k] = (unsigned char)(255.0 * fmin(fmax(c[k], 0.0), 1.0) + 0.5);
-}
-/* A dark-to-bright ramp (black, purple, orange, pale yellow) for counts. */
-static void ramp(double v, double c[3])
+/* The glass check's angles (its bars are these, not a continuous x). */
+static const double glass_cos[6] = {0.95, 0.8, 0.6, 0.4, 0.2, 0.05};
+
+/* A dark-to-bright ramp (black, purple, orange, pale yellow) for densities. */
+static void ramp(double v, unsigned char c[3])
 {
     static const double key[4][3] = {{0.02, 0.02, 0.06}, {0.45, 0.10, 0.50}, {0.95, 0.50, 0.15}, {1.0, 0.97, 0.75}};
     double x = fmin(fmax(v, 0.0), 1.0) * 3.0;
     int i = x >= 3.0 ? 2 : (int)x, k;
-    for (k = 0; k < 3; ++k) c[k] = key[i][k] + (x - i) * (key[i + 1][k] - key[i][k]);
+    for (k = 0; k < 3; ++k) c[k] = (unsigned char)(255.0 * (key[i][k] + (x - i) * (key[i + 1][k] - key[i][k])) + 0.5);
 }
 /* Residual colours: blue (-4 and below), white (0), red (+4 and above); green = impossible. */
-static void diverging(double r, double c[3])
+static void diverging(double r, unsigned char c[3])
 {
     double a = fmin(fabs(r) / 4.0, 1.0);
-    if (r == HUGE_VAL) { c[0] = 0.1; c[1] = 0.9; c[2] = 0.2; return; }
-    c[0] = r < 0 ? 1.0 - a : 1.0; c[1] = 1.0 - a; c[2] = r > 0 ? 1.0 - a : 1.0;
+    if (r == HUGE_VAL) { c[0] = 25; c[1] = 230; c[2] = 50; return; }
+    c[0] = (unsigned char)(255.0 * (r < 0 ? 1.0 - a : 1.0) + 0.5);
+    c[1] = (unsigned char)(255.0 * (1.0 - a) + 0.5);
+    c[2] = (unsigned char)(255.0 * (r > 0 ? 1.0 - a : 1.0) + 0.5);
 }
 static double residual(int i)
 {
     double v = C.binomial || C.var[i] > 0.0 ? C.var[i] : C.exp_[i];
-    if (v <= 0.0) return C.obs[i] > 0.0 ? HUGE_VAL : 0.0;
+    if (v <= 0.0) return C.obs[i] != C.exp_[i] ? HUGE_VAL : 0.0;   /* a certain outcome: exact */
     return (C.obs[i] - C.exp_[i]) / sqrt(v);
 }
-
-static void draw(void)
+/* What a bar or cell shows: samples per unit of the axes (per unit of x, per steradian, ...),
+   or for the glass check the fraction of samples that reflected. */
+static double cell_size(int i)
 {
-    const double white[3] = {1, 1, 1}, grey[3] = {0.55, 0.55, 0.55}, dark[3] = {0.12, 0.12, 0.12};
-    double top = 0.0;
-    int i, x, y, p;
-    for (i = 0; i < C.rows * C.cols; ++i) top = fmax(top, fmax(C.obs[i], C.exp_[i]));
-    for (y = 0; y < PH; ++y) for (x = 0; x < 3 * PW + 2; ++x) put(x, y, (x == PW || x == 2 * PW + 1) ? white : dark);
-    for (p = 0; p < 3; ++p) {
-        int x0 = p * (PW + 1);
-        for (y = 0; y < PH; ++y)
-            for (x = 0; x < PW; ++x) {
-                double c[3];
-                if (C.rows > 1) {                          /* heat map, row 0 at the top */
-                    int cell = (y * C.rows / PH) * C.cols + x * C.cols / PW;
-                    if (p < 2) ramp((p == 0 ? C.obs[cell] : C.exp_[cell]) / top, c);
-                    else diverging(residual(cell), c);
-                    put(x0 + x, y, c);
-                } else {                                   /* bars, bin 0 on the left */
-                    int cell = x * C.cols / PW;
-                    double h = (PH - 1 - y) / (double)(PH - 1);   /* 0 at the bottom */
-                    if (p < 2) {
-                        double v = (p == 0 ? C.obs[cell] : C.exp_[cell]) / top;
-                        if (h <= v) { ramp(0.35 + 0.65 * v, c); put(x0 + x, y, c); }
-                    } else {
-                        double r = residual(cell), v = r == HUGE_VAL ? 1.0 : fmax(-1.0, fmin(1.0, r / 4.0));
-                        double m = 2.0 * h - 1.0;                  /* -1 bottom .. 1 top */
-                        if ((m >= 0 && m <= v) || (m <= 0 && m >= v)) { diverging(r, c); put(x0 + x, y, c); }
-                        else if (fabs(m) < 0.01 || fabs(fabs(m) - 0.5) < 0.01) put(x0 + x, y, grey);  /* 0, +-2 */
-                    }
-                }
-            }
+    double dx = (C.x1 - C.x0) / C.cols;
+    if (C.binomial) return 1.0;
+    return C.rows > 1 ? dx * fabs(C.redge[i / C.cols] - C.redge[i / C.cols + 1]) : dx;
+}
+static double shown(const double *v, int i)
+{
+    return C.binomial ? v[i] / (N_SAMPLES / 10) : v[i] / (N_SAMPLES * cell_size(i));
+}
+static void tick_label(double v, char *buf, size_t size)
+{
+    if (fabs(v) < 1e-12) v = 0.0;
+    snprintf(buf, size, "%.3g", v);
+}
+
+/* Text wrapped to `chars` per line from (x, y); returns the y under the last line. */
+static int wrapped(pf_canvas *c, int x, int y, const char *text, int chars, const unsigned char col[3])
+{
+    char lines[16][256], clean[512];
+    int n, k, j = 0;
+    for (k = 0; text[k] && j < (int)sizeof clean - 1; ++k) if (text[k] != '`') clean[j++] = text[k];   /* Markdown code marks */
+    clean[j] = '\0';
+    n = pf_wrap(clean, chars, lines, 16);
+    for (k = 0; k < n; ++k, y += PF_LINE * TXT) pf_text(c, x, y, lines[k], TXT, col);
+    return y;
+}
+
+/* Tick values at a 1-2-5 step, 3 to 8 of them, between lo and hi (in either order). */
+static int nice_ticks(double lo, double hi, double *t, int max)
+{
+    double a = fmin(lo, hi), b = fmax(lo, hi), span = b - a, step, v;
+    int n = 0;
+    if (!(span > 0.0)) { t[0] = a; return 1; }
+    step = pow(10.0, floor(log10(span / 4.0)));
+    if (span / step > 8.0) step *= 2.0;
+    if (span / step > 8.0) step *= 2.5;
+    for (v = ceil(a / step - 1e-9) * step; v <= b + 1e-9 * span && n < max; v += step) t[n++] = fabs(v) < 1e-9 * step ? 0.0 : v;
+    return n;
+}
+
+/* x axis under a plot at (px, py, pw, ph): ticks over C.x0..C.x1 (the glass check: its
+   angles, at every other bar), and the quantity centred below. */
+static void x_axis(pf_canvas *c, int px, int py, int pw, int ph, const char *quantity)
+{
+    double t[16], at;
+    int k, n = C.binomial ? 6 : nice_ticks(C.x0, C.x1, t, 16);
+    char buf[32];
+    for (k = 0; k < n; ++k) {
+        int x;
+        if (C.binomial) {
+            at = (2 * k + 0.5) / 12.0;
+            tick_label(glass_cos[(2 * k) % 6] * (k < 3 ? 1.0 : -1.0), buf, sizeof buf);
+        } else {
+            at = (t[k] - C.x0) / (C.x1 - C.x0);
+            tick_label(t[k], buf, sizeof buf);
+        }
+        x = px + (int)(at * (pw - 1) + 0.5);
+        pf_rect(c, x, py + ph, 1, 6, INK);
+        pf_text_at(c, x, py + ph + 9, buf, TXT, INK, 1);
     }
+    pf_text_at(c, px + pw / 2, py + ph + 9 + PF_LINE * TXT + 2, quantity, TXT, INK, 1);
+}
+/* y axis left of a plot: the value vb sits at height fb and vt at ft (heights 0 bottom,
+   1 top, linear between); ticks at nice values in that range. */
+static void y_axis(pf_canvas *c, int px, int py, int ph, double vb, double fb, double vt, double ft,
+                   const char *quantity, int margin)
+{
+    double t[16];
+    int k, n = nice_ticks(vb, vt, t, 16);
+    char buf[32];
+    for (k = 0; k < n; ++k) {
+        double f = fb + (t[k] - vb) / (vt - vb) * (ft - fb);
+        int y = py + ph - 1 - (int)(f * (ph - 1) + 0.5);
+        pf_rect(c, px - 6, y, 6, 1, INK);
+        tick_label(t[k], buf, sizeof buf);
+        pf_text_at(c, px - 9, y - PF_GLYPH_H * TXT / 2 + 2, buf, TXT, INK, 2);
+    }
+    pf_text_up(c, px - margin, py + ph / 2, quantity, TXT, INK);
+}
+/* A vertical colour scale at (x, y), h high: lo at the bottom, hi at the top. */
+static void colour_bar(pf_canvas *c, int x, int y, int h, double lo, double hi, bool residual_scale, const char *quantity)
+{
+    double t[16];
+    int j, n = nice_ticks(lo, hi, t, 16), widest = 0;
+    char buf[32];
+    for (j = 0; j < h; ++j) {
+        unsigned char col[3];
+        double v = lo + (hi - lo) * (h - 1 - j) / (h - 1);
+        if (residual_scale) diverging(v, col); else ramp((v - lo) / (hi - lo), col);
+        pf_rect(c, x, y + j, 18, 1, col);
+    }
+    pf_frame(c, x, y, 18, h, INK);
+    for (j = 0; j < n; ++j) {
+        int yy = y + h - 1 - (int)((t[j] - lo) / (hi - lo) * (h - 1) + 0.5);
+        tick_label(t[j], buf, sizeof buf);
+        pf_rect(c, x + 18, yy, 4, 1, INK);
+        pf_text(c, x + 25, yy - PF_GLYPH_H * TXT / 2 + 2, buf, TXT, INK);
+        if (pf_text_width(buf, TXT) > widest) widest = pf_text_width(buf, TXT);
+    }
+    pf_text_up(c, x + 25 + widest + 6, y + h / 2, quantity, TXT, INK);
+}
+
+/* 1-D: bars of the observed density with the expected one as a step line; and the residuals. */
+static int draw_1d(pf_canvas *c, int top)
+{
+    const int pw = 460, ph = 260, left = 110, block = 600;
+    double ytop = 0.0;
+    int i, p;
+    for (i = 0; i < C.cols; ++i) ytop = fmax(ytop, fmax(shown(C.obs, i), shown(C.exp_, i)));
+    ytop *= 1.08;
+    for (p = 0; p < 2; ++p) {
+        int px = p * block + left, py = top + PF_LINE * TXT + 6;
+        pf_text(c, px, top, p == 0 ? "observed (bars) and expected (line)" : "residual (observed - expected) / sd", TXT, INK);
+        pf_rect(c, px, py, pw, ph, PF_WHITE);
+        for (i = 0; i < C.cols; ++i) {
+            int xa = px + i * pw / C.cols, xb = px + (i + 1) * pw / C.cols - 1;
+            if (p == 0) {
+                int hb = (int)(shown(C.obs, i) / ytop * (ph - 1) + 0.5), he = (int)(shown(C.exp_, i) / ytop * (ph - 1) + 0.5);
+                pf_rect(c, xa + 1, py + ph - hb, xb - xa, hb, PF_BLUE);
+                pf_rect(c, xa, py + ph - 1 - he - 1, xb - xa + 1, 3, PF_ORANGE);
+            } else {
+                double r = residual(i), rv = r == HUGE_VAL ? 4.0 : fmax(-4.0, fmin(4.0, r));
+                int y0 = py + ph / 2, y1 = py + ph / 2 - (int)(rv / 4.0 * (ph / 2 - 1));
+                unsigned char col[3];
+                diverging(r, col);
+                pf_rect(c, xa + 1, y1 < y0 ? y1 : y0, xb - xa, abs(y1 - y0) + 1, col);
+                pf_frame(c, xa + 1, y1 < y0 ? y1 : y0, xb - xa, abs(y1 - y0) + 1, PF_GREY);
+            }
+        }
+        if (p == 1) {
+            pf_line(c, px, py + ph / 2, px + pw - 1, py + ph / 2, INK, 1, 0);
+            pf_line(c, px, py + ph / 4, px + pw - 1, py + ph / 4, PF_GREY, 1, 5);
+            pf_line(c, px, py + 3 * ph / 4, px + pw - 1, py + 3 * ph / 4, PF_GREY, 1, 5);
+        }
+        pf_frame(c, px - 1, py - 1, pw + 2, ph + 2, INK);
+        x_axis(c, px, py, pw, ph, C.xq);
+        if (p == 0) y_axis(c, px, py, ph, 0.0, 0.0, ytop, 1.0, C.unit, left - 8);
+        else y_axis(c, px, py, ph, -4.0, 0.0, 4.0, 1.0, "residual [sd]", left - 8);
+    }
+    {   /* the legend, under the left plot */
+        int y = top + PF_LINE * TXT + 6 + ph + 9 + 2 * PF_LINE * TXT + 8, x = left;
+        pf_rect(c, x, y, 24, 14, PF_BLUE);
+        pf_text(c, x + 32, y, "observed", TXT, INK);
+        x += 32 + pf_text_width("observed", TXT) + 30;
+        pf_rect(c, x, y + 5, 24, 3, PF_ORANGE);
+        pf_text(c, x + 32, y, "expected (model)", TXT, INK);
+        pf_text(c, block + left, y, "dashed: +-2 sd; beyond +-4 cut off", TXT, PF_GREY);
+        return y + PF_LINE * TXT + 10;
+    }
+}
+
+/* 2-D: observed and expected heat maps on one colour scale, and the residual map. */
+static int draw_2d(pf_canvas *c, int top)
+{
+    const int pw = 300, ph = 240, left = 110, gap = 44, bar = 120;
+    const int px[3] = {left, left + pw + gap, left + 2 * pw + gap + bar + gap};
+    const char *head[3] = {"observed", "expected (model)", "residual (obs - exp) / sd"};
+    double dtop = 0.0;
+    int i, p, x, y, py = top + PF_LINE * TXT + 6;
+    for (i = 0; i < C.rows * C.cols; ++i) dtop = fmax(dtop, fmax(shown(C.obs, i), shown(C.exp_, i)));
+    for (p = 0; p < 3; ++p) {
+        pf_text(c, px[p], top, head[p], TXT, INK);
+        for (y = 0; y < ph; ++y)
+            for (x = 0; x < pw; ++x) {
+                int cell = (y * C.rows / ph) * C.cols + x * C.cols / pw;
+                unsigned char col[3];
+                if (p < 2) ramp(shown(p == 0 ? C.obs : C.exp_, cell) / dtop, col);
+                else diverging(residual(cell), col);
+                pf_put(c, px[p] + x, py + y, col);
+            }
+        pf_frame(c, px[p] - 1, py - 1, pw + 2, ph + 2, INK);
+        x_axis(c, px[p], py, pw, ph, C.xq);
+    }
+    /* rows of equal steps from the top; a cone's grid ends in one row that holds everything
+       below it, left out of the scale and named in the label */
+    if (fabs((C.redge[C.rows] - C.redge[C.rows - 1]) - (C.redge[1] - C.redge[0])) < 1e-9) {
+        y_axis(c, px[0], py, ph, C.redge[C.rows], 0.0, C.redge[0], 1.0, C.yq, left - 8);
+    } else {
+        char q[128];
+        snprintf(q, sizeof q, "%s (last row to %g)", C.yq, C.redge[C.rows]);
+        y_axis(c, px[0], py, ph, C.redge[C.rows - 1], 1.0 / C.rows, C.redge[0], 1.0, q, left - 8);
+    }
+    colour_bar(c, px[1] + pw + 14, py, ph, 0.0, dtop, false, C.unit);
+    colour_bar(c, px[2] + pw + 14, py, ph, -4.0, 4.0, true, "[sd]");
+    pf_text(c, px[2], py + ph + 9 + 2 * PF_LINE * TXT + 8, "green: samples where p = 0", TXT, PF_GREY);
+    return py + ph + 9 + 3 * PF_LINE * TXT + 14;
+}
+
+/* The whole picture: header, plots; written to OUT_DIR/name.png. */
+static void draw_and_write(bool rejected, const char *path)
+{
+    const int width = C.rows > 1 ? 1330 : 1200, chars = (width - 20) / CHAR_W;
+    pf_canvas c = pf_canvas_make(width, 900, PF_WHITE), out;
+    char line[512];
+    int y = 12, bottom;
+    snprintf(line, sizeof line, "%s%s", C.negative ? "Negative control: " : "", C.title);
+    if (pf_text_width(line, 3) <= width - 20) { pf_text(&c, 10, y, line, 3, PF_BLACK); y += PF_LINE * 3; }
+    else y = wrapped(&c, 10, y, line, chars, PF_BLACK);
+    snprintf(line, sizeof line, "chi2 = %.2f, dof = %d, p = %.3g: %s at alpha' = %.3g%s", C.chi2, C.dof, C.p,
+             rejected ? "rejected" : "accepted", stats_alpha(),
+             C.negative ? (rejected ? " (as a negative control must be)" : " (NEGATIVE CONTROL NOT REJECTED)") : "");
+    y = wrapped(&c, 10, y, line, chars, C.pass ? GOOD : BAD);
+    snprintf(line, sizeof line, "%d samples. %s.", N_SAMPLES, C.params);
+    y = wrapped(&c, 10, y + 4, line, chars, PF_GREY);
+    snprintf(line, sizeof line, "Model: %s.", C.model);
+    y = wrapped(&c, 10, y, line, chars, PF_GREY);
+    bottom = C.rows > 1 ? draw_2d(&c, y + 14) : draw_1d(&c, y + 14);
+    out = pf_canvas_make(width, bottom, PF_WHITE);   /* cropped to what was drawn */
+    memcpy(out.rgb, c.rgb, (size_t)3 * (size_t)width * (size_t)bottom);
+    if (!stbi_write_png(path, out.w, out.h, 3, out.rgb, out.w * 3)) {
+        fprintf(stderr, "distributions: could not write %s\n", path);
+        exit(1);
+    }
+    pf_canvas_free(&c); pf_canvas_free(&out);
 }
 
 /* Scores the current check, draws it, writes its PNG and its section of the index page. */
@@ -131,12 +323,8 @@ static void finish(void)
     rejected = C.p < alpha || C.dof < 1;
     C.pass = C.negative ? rejected : !rejected;
     if (!C.pass) ++failures;
-    draw();
     snprintf(path, sizeof path, "%s/%s.png", out_dir, C.name);
-    if (!stbi_write_png(path, 3 * PW + 2, PH, 3, img, (3 * PW + 2) * 3)) {
-        fprintf(stderr, "distributions: could not write %s\n", path);
-        exit(1);
-    }
+    draw_and_write(rejected, path);
     printf("%-24s chi2 = %10.2f  dof = %4d  p = %-10.4g %s\n", C.name, C.chi2, C.dof, C.p,
            C.negative ? (rejected ? "rejected (negative control: as it must be)" : "NOT REJECTED (negative control failed)")
                       : (rejected ? "REJECTED" : "accepted"));
@@ -187,6 +375,10 @@ static void check_hg(double g, double model_g, const char *name)
         snprintf(C.params, sizeof C.params, "`fogrt_sample_hg`, wo = (0.3, -0.5, 0.812), %d bins of log10(1 %s cos theta) "
                  "(theta from d = -wo: the distance from the %s peak) from -6 (left; the first bin from 0) to log10(2) (right)",
                  bins, back ? "+" : "-", back ? "backward" : "forward");
+    C.x0 = linear ? -1.0 : lo; C.x1 = linear ? 1.0 : hi;
+    if (linear) snprintf(C.xq, sizeof C.xq, "cos theta (theta from d = -wo)");
+    else snprintf(C.xq, sizeof C.xq, "log10(1 %s cos theta), 1st bin: -inf", back ? "+" : "-");
+    snprintf(C.unit, sizeof C.unit, "density [per unit of x]");
     snprintf(C.model, sizeof C.model, "the exact HG CDF in cos theta for g = %g, in double%s", model_g,
              C.negative ? " (wrong on purpose: mu measured from wo instead of d = -wo)" : "");
     fogrt_rng_seed(&rng, 1401, (uint64_t)(g * 1000 + 5000));
@@ -261,6 +453,12 @@ static void check_directions(const char *name, const char *title, int which, cel
     snprintf(C.params, sizeof C.params, "%s; grid of %d rows of cos theta (top: +z, equal steps down to %.3g, the last "
              "row down to -1) x %d columns of phi", params, rows, cos_lo, cols);
     snprintf(C.model, sizeof C.model, "%s", model);
+    C.x0 = -STATS_PI; C.x1 = STATS_PI;
+    snprintf(C.xq, sizeof C.xq, "phi [rad]");
+    snprintf(C.yq, sizeof C.yq, "cos theta");
+    snprintf(C.unit, sizeof C.unit, "density [1/sr]");
+    for (r = 0; r < rows; ++r) C.redge[r] = 1.0 - (1.0 - cos_lo) * r / rows;
+    C.redge[rows] = -1.0;
     fogrt_rng_seed(&rng, 1402, (uint64_t)which);
     for (i = 0; i < N_SAMPLES; ++i) {
         float u1 = fogrt_rng_float(&rng), u2 = fogrt_rng_float(&rng), pdf;
@@ -308,6 +506,11 @@ static void check_triangle(bool naive)
     snprintf(C.params, sizeof C.params, "%s, barycentrics (b1, b2) on a %d x %d grid: b1 down, b2 across; "
              "cells past the diagonal b1 + b2 = 1 are outside", naive ? "the naive map" : "`fogrt_sample_triangle`", K, K);
     snprintf(C.model, sizeof C.model, "uniform on the triangle: each cell's area inside it (half on the diagonal)");
+    C.x0 = 0.0; C.x1 = 1.0;
+    snprintf(C.xq, sizeof C.xq, "b2 (barycentric)");
+    snprintf(C.yq, sizeof C.yq, "b1 (barycentric)");
+    snprintf(C.unit, sizeof C.unit, "density [per unit area]");
+    for (r = 0; r <= K; ++r) C.redge[r] = (double)r / K;
     fogrt_rng_seed(&rng, 1403, 0);
     for (i = 0; i < N_SAMPLES; ++i) {
         float u1 = fogrt_rng_float(&rng), u2 = fogrt_rng_float(&rng), b1, b2;
@@ -367,6 +570,11 @@ static void check_area_light(void)
     snprintf(C.params, sizeof C.params, "`fogrt__sample_area_light` (private; what next-event estimation calls), "
              "a mesh of two triangles of areas 1 and 0.25, sampled points binned in (z down, x across)");
     snprintf(C.model, sizeof C.model, "uniform by area over the whole mesh: each cell's exact area inside it");
+    C.x0 = -0.5; C.x1 = 2.0;
+    snprintf(C.xq, sizeof C.xq, "x [scene units]");
+    snprintf(C.yq, sizeof C.yq, "z [scene units]");
+    snprintf(C.unit, sizeof C.unit, "density [1 / unit^2]");
+    for (r = 0; r <= rows; ++r) C.redge[r] = (double)r / rows;
     memset(&m, 0, sizeof m); m.emission.x = m.emission.y = m.emission.z = 1.0f;
     memset(&md, 0, sizeof md);
     md.positions = pos; md.vertex_count = 4; md.indices = idx; md.triangle_count = 2;
@@ -419,6 +627,10 @@ static void check_1d(bool equiangular)
                  "the last bin also holds t > 10", bins);
         snprintf(C.model, sizeof C.model, "the CDF 1 - exp(-sigma_t t) (eq. 5)");
     }
+    C.x0 = 0.0; C.x1 = equiangular ? eq_b : t_max;
+    snprintf(C.xq, sizeof C.xq, equiangular ? "distance t along the ray [scene units]"
+                                            : "t [scene units] (last bin: t > 9.75)");
+    snprintf(C.unit, sizeof C.unit, "density [1 / scene unit]");
     fogrt_rng_seed(&rng, 1405, equiangular);
     for (i = 0; i < N_SAMPLES; ++i) {
         float u = fogrt_rng_float(&rng), pdf, t;
@@ -440,13 +652,15 @@ static void check_1d(bool equiangular)
    reflections in 20000 samples against n F; the residual is (k - nF) / sqrt(n F (1 - F)). */
 static void check_glass(void)
 {
-    const double cosines[6] = {0.95, 0.8, 0.6, 0.4, 0.2, 0.05};
+    const double *cosines = glass_cos;
     const int n = N_SAMPLES / 10;
     fogrt_material_desc m;
     fogrt_rng rng;
     int k, i;
     start("glass_lobe", "Glass: reflect or refract (the Fresnel choice)", 1, 12);
     C.binomial = true;
+    snprintf(C.xq, sizeof C.xq, "cos theta: outside | inside");
+    snprintf(C.unit, sizeof C.unit, "fraction reflected");
     snprintf(C.params, sizeof C.params, "`fogrt_sample_bsdf` on glass (ior 1.5, Schlick), %d samples at each of 12 "
              "angles: cos theta = 0.95 .. 0.05 from outside (left), then the same from inside (right); bar = reflections", n);
     snprintf(C.model, sizeof C.model, "binomial, reflect with probability F = `fogrt_fresnel_schlick` (F = 1 past the critical angle: all must reflect); chi2 = sum of z^2 over the other angles");

@@ -505,7 +505,7 @@ static void test_intersect_triangle(void)
     TEST_ASSERT_FALSE(fogrt_intersect_triangle(v0, v0, v0, v3(0, 0, 2), v3(0, 0, -1), 0, INFINITY, &t, &u, &v));
     /* A ray lying in the triangle's plane (up to rounding), passing 2.7 units from it: the
        determinant is rounding noise (-7.5e-9 for edges of length ~1) and dividing by it
-       must not produce a hit far outside the triangle. (Found by the soup test below.) */
+       must not produce a hit far outside the triangle (a case from the soup test below). */
     {
         fogrt_vec3 a = v3(0.573809505f, 0.543248653f, -0.368106663f);
         fogrt_vec3 b = v3(-0.385244191f, 0.546278358f, -0.599250436f);

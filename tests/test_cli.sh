@@ -1,7 +1,7 @@
 #!/bin/sh
 # test_cli.sh - the `fogrt` command line: bad input gives exit status 2 and one message naming
 # the flag or file:line, without writing an image; good input renders and writes the image;
-# then one block per point of issues 15, 11 (point 1) and 17: Ctrl-C/SIGTERM, atomic and
+# then one block per feature: Ctrl-C/SIGTERM, atomic and
 # checked writes, the free camera, exposure and JPG, CS184 framing, -m 0 / -o 0, the -a rate
 # image, the progress line and --log/--reference, black scenes, ceilings and limits.
 # Takes about 30 s (a 2-second interrupt, a 6-second progress log).
@@ -132,7 +132,7 @@ done
 "$fogrt" --quiet -s 2 -r 20 16 --seed 3 -t 2 -f "$tmp/t2.pfm" tests/data/dae_mirror_node.dae
 check "cmp -s '$tmp/t1.pfm' '$tmp/t2.pfm'" "the image depends on the thread count"
 
-# ==== the fogrt command in real use (issues 15, 11 point 1, 17): one block per point ====
+# ==== the fogrt command in real use: one block per feature ====
 # pfm_stats FILE: "W H pixels_nonzero sum_r sum_g sum_b floats" of a PFM (od reads the floats).
 pfm_stats() {
     hdr=$(head -n 3 "$1" | wc -c)
@@ -383,7 +383,7 @@ else
 fi
 # ==== end of the fogrt command in real use ====
 
-# ==== loader refusals (fogrt_load.h, issue 17): exit 2, exactly one stderr line naming the file ====
+# ==== loader refusals (fogrt_load.h): exit 2, exactly one stderr line naming the file ====
 # refused NAME WORD DESCRIPTION -- ARGS...: like expect 2, and stderr is one line naming NAME
 refused() {
     name=$1 word=$2 what=$3
@@ -422,7 +422,7 @@ else
 fi
 # ==== end of the loader refusals ====
 
-# ==== fog bounds, environment maps, the path trace (issues 15 and 14) ====
+# ==== fog bounds, environment maps, the path trace ====
 # --fog-bounds: refused unless six numbers with min < max; a box of fog around the default
 # scene's middle renders, and is darker than no fog where it stands
 expect 2 "--fog-bounds" "fog bounds with min > max" -- --fog-bounds 1,0,0,0,1,1 -f "$out"; one_line_no_image "fog bounds with min > max"
@@ -471,6 +471,131 @@ else
     echo "test_cli.sh: bunny.dae in haze skipped (../shared/scenes/cs184 absent)"
 fi
 # ==== end of fog bounds, environment maps, the path trace ====
+
+# ==== hostile runs, second round (issue 40): aliasing, closed streams, threads, values,
+#      environment maps, stopping ====
+# -- alias_*: no output may be (or resolve to) an input or another output: exit 2 naming
+#    both, before rendering, every file as it was --
+mkdir "$tmp/al"
+cp tests/data/obj_polygons.obj "$tmp/al/scene.obj"
+cp tests/data/cam_settings.txt "$tmp/al/cam.txt"
+"$fogrt" --quiet -s 1 -r 16 12 -f "$tmp/al/ref.pfm"
+"$fogrt" --quiet -s 1 -r 16 8 -f "$tmp/al/env.pfm"
+for f in scene.obj cam.txt ref.pfm env.pfm; do cp "$tmp/al/$f" "$tmp/al/$f.orig"; done
+# unchanged F...: every named file is byte for byte its copy from before the run
+unchanged() { for f in "$@"; do cmp -s "$tmp/al/$f" "$tmp/al/$f.orig" || return 1; done; }
+expect 2 "--reference" "alias_reference: -f REF --reference REF" -- -s 1 -r 16 12 -f "$tmp/al/ref.pfm" --reference "$tmp/al/ref.pfm"
+check "grep -q -- '-f .*ref.pfm' '$tmp/err' && [ \$(wc -l <'$tmp/err') -eq 1 ] && unchanged ref.pfm" "alias_reference: not one line naming both, or the reference changed"
+expect 2 "-e" "alias_env: -e ENV -f ENV" -- -s 1 -r 16 12 -e "$tmp/al/env.pfm" -f "$tmp/al/env.pfm"
+check "unchanged env.pfm" "alias_env: the environment map changed"
+ln -s cam.txt "$tmp/al/camlink.png"
+expect 2 "-c" "alias_camera_symlink: -f a symlink to the -c file" -- -s 1 -r 16 12 -c "$tmp/al/cam.txt" -f "$tmp/al/camlink.png"
+check "unchanged cam.txt" "alias_camera_symlink: the camera file changed"
+ln -s scene.obj "$tmp/al/out_link.ppm"
+expect 2 "scene.obj" "alias_scene_symlink: -f a symlink to the scene" -- -s 1 -r 16 12 -f "$tmp/al/out_link.ppm" "$tmp/al/scene.obj"
+ln "$tmp/al/scene.obj" "$tmp/al/hard.pfm"
+expect 2 "scene.obj" "alias_scene_hardlink: -f a hard link to the scene" -- -s 1 -r 16 12 -f "$tmp/al/hard.pfm" "$tmp/al/scene.obj"
+check "unchanged scene.obj" "alias_scene: the scene file changed"
+cp "$tmp/al/cam.txt" "$tmp/al/ad_rate.png"; cp "$tmp/al/cam.txt" "$tmp/al/ad_rate.png.orig"
+expect 2 "rate image" "alias_rate_image: -a's rate image is the -c file" -- -s 4 -a 2 0.5 -r 16 12 -c "$tmp/al/ad_rate.png" -f "$tmp/al/ad.pfm"
+check "unchanged ad_rate.png && [ ! -e '$tmp/al/ad.pfm' ]" "alias_rate_image: the camera file changed or an image was written"
+expect 2 "--log" "alias_log_scene: --log the scene" -- -s 1 -r 16 12 --log "$tmp/al/scene.obj" -f "$tmp/al/x.pfm" "$tmp/al/scene.obj"
+check "unchanged scene.obj" "alias_log_scene: the scene file changed"
+expect 2 "two outputs" "alias_log_output: --log OUT -f OUT" -- -s 1 -r 16 12 --log "$tmp/al/o.pfm" -f "$tmp/al/o.pfm"
+check "[ ! -e '$tmp/al/o.pfm' ]" "alias_log_output: a file was written"
+ln -s new.pfm "$tmp/al/dangling.csv"
+expect 2 "two outputs" "alias_dangling_link: --log a dangling link to the -f file" -- -s 1 -r 16 12 --log "$tmp/al/dangling.csv" -f "$tmp/al/new.pfm"
+# --log appends only to a fogrt log, which is created at the start
+printf 'my notes\n' >"$tmp/al/notes.csv"; cp "$tmp/al/notes.csv" "$tmp/al/notes.csv.orig"
+expect 2 "not a fogrt log" "log_not_a_log: --log a file that is not a fogrt log" -- -s 1 -r 16 12 --log "$tmp/al/notes.csv" -f "$tmp/al/n.pfm"
+check "unchanged notes.csv" "log_not_a_log: the file was changed"
+expect 2 "bad_index.dae" "log_created_at_start: a new --log, then a scene that fails to load" -- -s 1 -r 16 12 --log "$tmp/al/start.csv" -f "$tmp/al/s.pfm" tests/data/bad_index.dae
+check "[ \"\$(cat '$tmp/al/start.csv')\" = 'seconds,spp,samples_per_second,est_rel_mse,est_rel_error,ref_rel_mse,ref_rmse,ref_ratio_r,ref_ratio_g,ref_ratio_b,event' ]" "log_created_at_start: the log was not created with its header at the start"
+"$fogrt" --quiet -s 2 -r 16 12 --log "$tmp/al/start.csv" -f "$tmp/al/s.pfm"
+"$fogrt" --quiet -s 2 -r 16 12 --log "$tmp/al/start.csv" -f "$tmp/al/s.pfm"
+check "[ \$(grep -c '^seconds,' '$tmp/al/start.csv') -eq 1 ] && [ \$(grep -c ',final$\\|,batch$' '$tmp/al/start.csv') -ge 2 ]" "log_append: a fogrt log was not appended to (one header, rows of two runs)"
+
+# -- closed_streams: with 0-2 closed the image is still the image and the summary never in
+#    the log; a reader of stderr that goes away (SIGPIPE) does not kill the run --
+"$fogrt" -s 2 -r 16 12 -f "$tmp/cs.pfm" --log "$tmp/cs.csv" 2>&-
+st=$?
+check "[ $st -eq 0 ] && pfm_ok '$tmp/cs.pfm' 16 12" "closed_stderr: exit $st or no 16x12 PFM"
+check "! grep -q 'fogrt' '$tmp/cs.csv' && ! grep -q 'fogrt' '$tmp/cs.pfm'" "closed_stderr: messages landed in the log or the image"
+"$fogrt" -s 2 -r 16 12 -f "$tmp/cs3.pfm" <&- >&- 2>&-
+st=$?
+check "[ $st -eq 0 ] && pfm_ok '$tmp/cs3.pfm' 16 12" "closed_all_three: exit $st or no 16x12 PFM"
+( "$fogrt" -s 4 -r 32 24 -f "$tmp/pipe.pfm" 2>&1 >/dev/null; echo $? >"$tmp/pipe.st" ) | true
+check "[ \"\$(cat '$tmp/pipe.st')\" = 0 ] && pfm_ok '$tmp/pipe.pfm' 32 24" "sigpipe_stderr: a closed stderr pipe gave exit $(cat "$tmp/pipe.st") or no image"
+
+# -- threads: OMP_NUM_THREADS=100000 is capped (said where -h says), too small a stack is
+#    refused, and threads the system cannot start are fewer threads, not a crash --
+OMP_NUM_THREADS=100000 "$fogrt" -s 1 -r 16 12 -f "$tmp/omp.pfm" 2>"$tmp/omp.err"
+st=$?
+check "[ $st -eq 0 ] && grep -q 'OMP_NUM_THREADS=100000: using' '$tmp/omp.err' && pfm_ok '$tmp/omp.pfm' 16 12" "threads_omp_100000: exit $st: $(head -2 "$tmp/omp.err")"
+check "\"$fogrt\" -h | grep -q 'at most $(sed -n 's/^#define CLI_MAX_THREADS //p' examples/cli_common.h)'" "threads_cap_in_help: -h does not state the thread cap"
+OMP_STACKSIZE=16K "$fogrt" -s 1 -r 16 12 -f "$tmp/stk.pfm" 2>"$tmp/stk.err"
+st=$?
+check "[ $st -eq 2 ] && grep -q 'OMP_STACKSIZE=16K' '$tmp/stk.err' && [ ! -e '$tmp/stk.pfm' ]" "threads_small_stack: OMP_STACKSIZE=16K gave exit $st: $(cat "$tmp/stk.err")"
+OMP_STACKSIZE=1M "$fogrt" --quiet -s 1 -r 16 12 -t 2 -f "$tmp/stk1m.pfm"
+check "[ $? -eq 0 ]" "threads_stack_1M: OMP_STACKSIZE=1M was refused"
+if ! nm "$fogrt" 2>/dev/null | grep -q __asan_init; then
+    ( ulimit -v 1500000; OMP_STACKSIZE=512M "$fogrt" -t 8 -s 1 -r 16 12 -f "$tmp/few.pfm" ) 2>"$tmp/few.err"
+    st=$?
+    check "[ $st -eq 0 ] && pfm_ok '$tmp/few.pfm' 16 12" "threads_fallback: 8 threads of 512 MB stack under a 1.5 GB limit: exit $st: $(head -2 "$tmp/few.err")"
+    grep 'could start only' "$tmp/few.err" | sed 's/^/test_cli.sh: threads_fallback: /'
+fi
+
+# -- extreme_values: a tiny up vector is normalised; --trace indices past their range refused --
+"$fogrt" --quiet -s 2 -r 24 18 --seed 2 --camera-pos 0,1,3 --look-at 0,0.7,0 --up 0,1,0 -f "$tmp/up1.pfm"
+"$fogrt" --quiet -s 2 -r 24 18 --seed 2 --camera-pos 0,1,3 --look-at 0,0.7,0 --up 0,1e-30,0 -f "$tmp/up30.pfm"
+check "cmp -s '$tmp/up1.pfm' '$tmp/up30.pfm'" "up_tiny: --up 0,1e-30,0 renders differently from --up 0,1,0"
+"$fogrt" --quiet -s 2 -r 24 18 --seed 2 --camera-pos 0,1,3 --look-at 0,0.7,0 --up 0,7e37,0 -f "$tmp/up37.pfm"
+check "cmp -s '$tmp/up1.pfm' '$tmp/up37.pfm'" "up_huge: --up 0,7e37,0 renders differently from --up 0,1,0"
+expect 2 "--trace" "trace_index_past_2^32" -- --trace 4294967296,0 -r 24 18
+expect 2 "--trace" "trace_sample_past_2^32" -- --trace 1,1,4294967296 -r 24 18
+expect 2 "--trace" "trace_negative" -- --trace 1,-1 -r 24 18
+expect 0 "" "trace_last_sample" -- --trace 1,1,4294967295 -r 24 18
+
+# -- env_maps: the declared size checked against the file before allocating; truncated maps
+#    refused naming the file, in one line --
+printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 8192\n' >"$tmp/big.hdr"
+/usr/bin/time -f '%M' -o "$tmp/big.kb" "$fogrt" -s 1 -r 16 12 -e "$tmp/big.hdr" -f "$out" 2>"$tmp/err" || true
+check "grep -q 'big.hdr: the file is too short' '$tmp/err' && [ \$(wc -l <'$tmp/err') -eq 1 ]" "env_hdr_declared_huge: $(cat "$tmp/err")"
+[ -s "$tmp/big.kb" ] && echo "test_cli.sh: env_hdr_declared_huge: a $(wc -c <"$tmp/big.hdr")-byte .hdr declaring 8192x8192 refused with $(tail -1 "$tmp/big.kb") KB peak memory"
+check "[ ! -s '$tmp/big.kb' ] || [ \$(tail -1 '$tmp/big.kb') -lt 200000 ]" "env_hdr_declared_huge: the refusal took $(tail -1 "$tmp/big.kb" 2>/dev/null) KB"
+{ printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 16\n'; i=0; while [ $i -lt 16 ]; do printf '\200\240\310\201'; i=$((i + 1)); done; } >"$tmp/row.hdr"
+refused "row.hdr" "" "env_hdr_one_row_of_four" -- -s 1 -r 16 12 -e "$tmp/row.hdr" -f "$out"
+check "grep -q 'truncated\\|too short' '$tmp/err'" "env_hdr_one_row_of_four: does not say truncated: $(cat "$tmp/err")"
+printf 'PF\n32768 32768\n-1.0\n01234567890123456' >"$tmp/big.pfm"
+refused "big.pfm" "too short" "env_pfm_declared_huge" -- -s 1 -r 16 12 -e "$tmp/big.pfm" -f "$out"
+if "$fogrt" -h | grep -q '\.exr'; then
+    "$fogrt" --quiet -s 1 -r 16 8 -f "$tmp/env.exr"
+    head -c 200 "$tmp/env.exr" >"$tmp/cut.exr"
+    refused "cut.exr" "" "env_exr_truncated" -- -s 1 -r 16 12 -e "$tmp/cut.exr" -f "$out"
+    printf 'v/1\001garbage' >"$tmp/junk.exr"
+    refused "junk.exr" "" "env_exr_junk" -- -s 1 -r 16 12 -e "$tmp/junk.exr" -f "$out"
+fi
+
+# -- stopping: SIGTERM, SIGINT and SIGHUP stop every long loop within about a second; SIGHUP
+#    leaves no temporary file --
+# stop_latency NAME SIGNAL ARGS...: starts a render, signals it 1.5 s in, prints and checks
+stop_latency() {
+    name=$1 sig=$2 limit=$3
+    shift 3
+    "$fogrt" "$@" 2>"$tmp/$name.err" &
+    pid=$!
+    sleep 1.5
+    t_sig=$(now); kill -"$sig" "$pid"; wait "$pid"; st=$?; t_end=$(now)
+    lat=$(echo "$t_end $t_sig" | awk '{ printf "%.2f", $1 - $2 }')
+    echo "test_cli.sh: $name: stopped $lat s after SIG$sig (exit $st)"
+    check "[ $st -eq 130 ] && awk 'BEGIN { exit !($lat < $limit) }'" "$name: exit $st, $lat s after SIG$sig (limit $limit s)"
+}
+mkdir "$tmp/hup"
+stop_latency stop_adaptive TERM 1.5 -a 1 1e-6 -s 100000 -r 16 12 -f "$tmp/hup/a.pfm"
+stop_latency stop_sighup HUP 1.5 -s 100000 -r 64 48 -f "$tmp/hup/h.pfm"
+check "pfm_ok '$tmp/hup/h.pfm' 64 48 && [ -z \"\$(ls -A '$tmp/hup' | grep tmp)\" ]" "stop_sighup: no image, or a temporary file left behind"
+stop_latency stop_light_samples TERM 15 -l 65536 -s 1 -r 16 12 -f "$tmp/hup/l.pfm"
+# ==== end of hostile runs, second round ====
 
 echo "test_cli.sh: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

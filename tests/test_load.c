@@ -1064,7 +1064,7 @@ static void test_fuzz_regressions(void)
 }
 
 /* ------------------------------------------------------------------------------------------
-   5. Memory, files and refusals (issues 13 and 17)
+   5. Memory, files and refusals
    ------------------------------------------------------------------------------------------ */
 /* A counting allocator: live blocks and bytes, the peak, and an optional failure at the
    fail_at-th call (1-based; 0: never). */

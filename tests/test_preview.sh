@@ -199,5 +199,56 @@ check "[ $rc -eq 0 ] && [ -n '$png' ] && [ -n '$pfm' ]" "s did not write a PNG a
 check "[ -n '$png' ] && [ \"\$(head -c 2 '$tmp/saved/$pfm')\" = 'PF' ]" "the saved .pfm is not a colour PFM"
 check "grep -q 'fog on / off' '$tmp/save.out'" "h did not print the key table"
 
+# ---- the flags shared with fogrt (examples/cli_common.h): one parser, one meaning ----
+run depthneg -m -1
+check "[ $rc -eq 2 ] && grep -q -- '-m' '$tmp/depthneg.err'" "-m -1: exit $rc, expected 2 as in fogrt (the ] key gives unlimited depth)" depthneg
+run misspelt --densty 0.5
+check "[ $rc -eq 2 ] && grep -q 'did you mean --density?' '$tmp/misspelt.err'" "--densty: exit $rc, no suggestion" misspelt
+run fogrtonly -s 4
+check "[ $rc -eq 2 ] && grep -q 'does not apply to the preview' '$tmp/fogrtonly.err'" "-s: exit $rc, not said to be fogrt's" fogrtonly
+cp "$tmp/base.png" "$tmp/image.obj"
+run pngscene "$tmp/image.obj"
+check "[ $rc -eq 2 ] && grep -q 'a PNG image, not a scene' '$tmp/pngscene.err'" "a PNG named .obj: exit $rc, not said to be a PNG" pngscene
+# --exposure is stops, as in fogrt: 0 is the base picture, -1 darker, =value accepted
+run ev0 $common --exposure=0 --screenshot "$tmp/ev0.png"
+set -- $("$tmp/pngcheck" diff "$tmp/base.png" "$tmp/ev0.png" 2>/dev/null)
+check "[ $rc -eq 0 ] && [ '${1:-x}' = '0.0000' ]" "--exposure=0 is not the default picture (mean difference ${1:-?})" ev0
+run evm1 $common --exposure -1 --screenshot "$tmp/evm1.png"
+set -- $("$tmp/pngcheck" stats "$tmp/evm1.png" 2>/dev/null)
+evm1=${3:-0}
+set -- $("$tmp/pngcheck" stats "$tmp/base.png" 2>/dev/null)
+check "[ $rc -eq 0 ] && awk 'BEGIN { exit !($evm1 < 0.9 * ${3:-0} && $evm1 > 0.5 * ${3:-0}) }'" "--exposure -1 is not one stop darker through the sRGB curve ($evm1 vs ${3:-?})" evm1
+OMP_NUM_THREADS=100000 "$preview" $common --screenshot "$tmp/omp.png" >"$tmp/omp.out" 2>"$tmp/omp.err"; rc=$?
+check "[ $rc -eq 0 ] && grep -q 'OMP_NUM_THREADS=100000: using' '$tmp/omp.err'" "OMP_NUM_THREADS=100000: exit $rc" omp
+OMP_STACKSIZE=16K "$preview" $common --screenshot "$tmp/stk.png" >"$tmp/stk.out" 2>"$tmp/stk.err"; rc=$?
+check "[ $rc -eq 2 ] && grep -q 'OMP_STACKSIZE' '$tmp/stk.err'" "OMP_STACKSIZE=16K: exit $rc, expected 2 naming it" stk
+
+# ---- --screenshot and s write as fogrt does: temporary file, checked writes, rename ----
+ln -s /dev/full "$tmp/full.png"
+run shotfull $common --screenshot "$tmp/full.png"
+check "[ $rc -eq 1 ] && grep -q 'full.png' '$tmp/shotfull.err' && grep -q 'No space left' '$tmp/shotfull.err'" "--screenshot to /dev/full: exit $rc, expected 1 naming the file" shotfull
+printf 'an old picture' >"$tmp/old.png"; cp "$tmp/old.png" "$tmp/old.orig"
+( ulimit -f 8; "$preview" $common --screenshot "$tmp/old.png" >"$tmp/shotbig.out" 2>"$tmp/shotbig.err" ); rc=$?
+check "[ $rc -eq 1 ] && grep -q 'old.png' '$tmp/shotbig.err' && cmp -s '$tmp/old.png' '$tmp/old.orig'" "--screenshot beyond ulimit -f: exit $rc, or the old file was damaged" shotbig
+check "[ -z \"\$(ls -A '$tmp' | grep '\\.tmp-')\" ]" "--screenshot left a temporary file behind"
+if [ "$(id -u)" -eq 0 ] && mkdir "$tmp/small" && mount -t tmpfs -o size=64k tmpfs "$tmp/small" 2>/dev/null; then
+    # a real full disk: an old PNG on a 64 KB file system, the rest of it filled
+    cp "$tmp/old.orig" "$tmp/small/shot.png"
+    dd if=/dev/zero of="$tmp/small/fill" bs=4k 2>/dev/null
+    run shotdisk $common --screenshot "$tmp/small/shot.png"
+    check "[ $rc -eq 1 ] && grep -q 'shot.png' '$tmp/shotdisk.err' && cmp -s '$tmp/small/shot.png' '$tmp/old.orig'" "--screenshot on a full disk: exit $rc, or the old PNG was damaged" shotdisk
+    check "[ -z \"\$(ls -A '$tmp/small' | grep tmp)\" ]" "--screenshot on a full disk left a temporary file"
+    mkdir -p "$tmp/small2"
+    run savedisk $common --keys "$frames:s" --save-dir "$tmp/small"
+    check "grep -q 'No space left' '$tmp/savedisk.err' && [ -z \"\$(ls -A '$tmp/small' | grep -v '^fill\$\\|^shot.png\$')\" ]" "s on a full disk: no message, or a partial file left" savedisk
+    umount "$tmp/small"
+else
+    echo "test_preview.sh: full-disk screenshot skipped (needs root and a tmpfs mount)"
+fi
+cp tests/data/obj_polygons.obj "$tmp/scene.obj" 2>/dev/null || cp "$(dirname "$0")/data/obj_polygons.obj" "$tmp/scene.obj"
+ln -s scene.obj "$tmp/scene_link.png"
+run shotalias $common --screenshot "$tmp/scene_link.png" "$tmp/scene.obj"
+check "[ $rc -eq 2 ] && grep -q 'same file' '$tmp/shotalias.err' && cmp -s '$tmp/scene.obj' \"\$(dirname \"$0\")/data/obj_polygons.obj\"" "--screenshot a symlink to the scene: exit $rc, expected 2 with the scene intact" shotalias
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

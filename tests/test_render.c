@@ -570,9 +570,9 @@ static void test_nee_unbiased_without_fog(void)
     batch_estimate with_mis, without_mis, no_nee;
     TEST_ASSERT_EQUAL_UINT32(0, fogrt_scene_get_features(scene) & FOGRT_FEATURE_MEDIUM);
     /* 20 batches each: no NEE finds the small lamp only by hitting it, its batch means are
-       heavy-tailed, and 10 batches (9 degrees of freedom) estimated its standard error so
-       poorly that an unbiased pair landed 4.1 errors apart (the stratified pixel positions
-       drew new samples; 6 x 40 further batches agreed within 2.2 errors) */
+       heavy-tailed, and 10 batches (9 degrees of freedom) estimate its standard error so
+       poorly that an unbiased pair can land 4.1 errors apart (seen at one seed; 6 x 40
+       further batches agreed within 2.2 errors) */
     with_mis = batch_mean(scene, &rd, 8, 20, 100);
     rd.mis = false;
     without_mis = batch_mean(scene, &rd, 8, 20, 200);

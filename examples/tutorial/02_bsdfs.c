@@ -23,7 +23,9 @@ int main(int argc, char **argv)
     fogrt_vec3 wo;                       /* local frame: the normal is +z; 45 degrees off it */
     fogrt_scene *scene;
     fogrt_render_desc rd = fogrt_render_defaults();
-    tut_strip strip = tut_strip_make(1);
+    tut_strip strip = tut_strip_make(1,
+        "Step 2, the BSDFs: diffuse, mirror, refraction and glass spheres (left to "
+        "right) in the Cornell box under its ceiling lamp; path traced, no fog");
     int k;
     if (spp < 1) { fprintf(stderr, "02_bsdfs: samples_per_pixel must be >= 1\n"); return 2; }
     wo.x = sinf(0.785398f); wo.y = 0.0f; wo.z = cosf(0.785398f);

@@ -23,7 +23,9 @@ int main(int argc, char **argv)
     int spp = argc > 2 ? atoi(argv[2]) : 32;
     fogrt_scene *scene;
     fogrt_render_desc rd = fogrt_render_defaults();
-    tut_strip strip = tut_strip_make(2);
+    tut_strip strip = tut_strip_make(2,
+        "Step 3, direct light (one bounce): the four spheres lit by the ceiling lamp, "
+        "sampled two ways at the same samples per pixel");
     if (spp < 1) { fprintf(stderr, "03_direct: samples_per_pixel must be >= 1\n"); return 2; }
     scene = tut_scene_create();
     tut_cornell_box(scene, 0.3f, 12.0f);

@@ -24,7 +24,9 @@ int main(int argc, char **argv)
     int spp = argc > 2 ? atoi(argv[2]) : 64;
     fogrt_scene *scene;
     fogrt_render_desc rd = fogrt_render_defaults();
-    tut_strip strip = tut_strip_make(3);
+    tut_strip strip = tut_strip_make(3,
+        "Step 4, path tracing and Russian roulette: the four spheres, direct light only "
+        "against every bounce with roulette from bounce 3 or 1");
     if (spp < 1) { fprintf(stderr, "04_path_rr: samples_per_pixel must be >= 1\n"); return 2; }
     scene = tut_scene_create();
     tut_cornell_box(scene, 0.3f, 12.0f);

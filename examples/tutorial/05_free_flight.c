@@ -23,7 +23,9 @@ int main(int argc, char **argv)
     const char *png = argc > 1 ? argv[1] : "05_free_flight.png";
     int spp = argc > 2 ? atoi(argv[2]) : 64;
     const float sigma[4] = {0.0f, 0.1f, 0.2f, 0.4f};
-    tut_strip strip = tut_strip_make(4);
+    tut_strip strip = tut_strip_make(4,
+        "Step 5, free flight: the Cornell box filled with absorbing fog (albedo 0) of "
+        "rising density sigma_t [1 / scene unit]");
     fogrt_render_desc rd = fogrt_render_defaults();
     fogrt_rng rng;
     int k, i, n = 1000000, reach = 0;

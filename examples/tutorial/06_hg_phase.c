@@ -20,7 +20,9 @@ int main(int argc, char **argv)
     const char *png = argc > 1 ? argv[1] : "06_hg_phase.png";
     int spp = argc > 2 ? atoi(argv[2]) : 64;
     const float g[4] = {-0.5f, 0.0f, 0.5f, 0.9f};
-    tut_strip strip = tut_strip_make(4);
+    tut_strip strip = tut_strip_make(4,
+        "Step 6, the Henyey-Greenstein phase: scattering fog (sigma_t 0.3, albedo 0.9), "
+        "a spot light on the back wall aimed at the camera, g from -0.5 to 0.9");
     fogrt_render_desc rd = fogrt_render_defaults();
     fogrt_light_desc spot;
     fogrt_vec3 wo;

@@ -20,7 +20,10 @@ int main(int argc, char **argv)
 {
     const char *png = argc > 1 ? argv[1] : "07_nee_fog.png";
     int spp = argc > 2 ? atoi(argv[2]) : 64;
-    tut_strip strip = tut_strip_make(2);
+    tut_strip strip = tut_strip_make(2,
+        "Step 7, light sampling in fog: fog (sigma_t 0.3, albedo 0.9, g 0.5) lit only "
+        "by the ceiling lamp, with and without next-event estimation at the fog "
+        "collisions");
     fogrt_render_desc rd = fogrt_render_defaults();
     fogrt_scene *scene;
     double t_on, t_off;

@@ -21,7 +21,9 @@ int main(int argc, char **argv)
 {
     const char *png = argc > 1 ? argv[1] : "08_equiangular.png";
     int spp = argc > 2 ? atoi(argv[2]) : 32;
-    tut_strip strip = tut_strip_make(2);
+    tut_strip strip = tut_strip_make(2,
+        "Step 8, equiangular sampling: a point light in fog (sigma_t 0.3, albedo 0.9, g "
+        "0.3), its light gathered along every fog segment or only at collisions");
     fogrt_render_desc rd = fogrt_render_defaults();
     fogrt_light_desc point;
     fogrt_scene *scene;

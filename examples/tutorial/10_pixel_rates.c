@@ -47,6 +47,11 @@ static double render(const fogrt_scene *scene, fogrt_render_desc rd, int spp, fl
     fogrt_image_resolve(&img, rgb);
     for (i = 0; i < (size_t)TUT_W * TUT_H; ++i) mean += (rgb[3 * i] + rgb[3 * i + 1] + rgb[3 * i + 2]) / 3.0;
     tut_strip_put(strip, k, rgb, 1.5f);
+    {
+        char detail[96];
+        snprintf(detail, sizeof detail, "%d spp on average, relative error %.4f", spp, err.relative_error);
+        tut_strip_caption(strip, k, label, detail);
+    }
     fogrt_image_free(&img);
     free(rgb);
     return mean / (TUT_W * TUT_H);
@@ -56,7 +61,9 @@ int main(int argc, char **argv)
 {
     const char *png = argc > 1 ? argv[1] : "10_pixel_rates.png";
     int spp = argc > 2 ? atoi(argv[2]) : 64;
-    tut_strip strip = tut_strip_make(3);
+    tut_strip strip = tut_strip_make(3,
+        "Step 10, where the samples go: a spot light in fog (sigma_t 0.5, albedo 0.9, g "
+        "0.6) over a diffuse sphere, every pixel alike against pixel rates");
     fogrt_render_desc rd = fogrt_render_defaults();
     fogrt_light_desc spot;
     fogrt_scene *scene;
@@ -91,6 +98,11 @@ int main(int argc, char **argv)
     for (i = 0; i < (size_t)TUT_W * TUT_H; ++i) { lo = rates[i] < lo ? rates[i] : lo; hi = rates[i] > hi ? rates[i] : hi; }
     for (i = 0; i < (size_t)TUT_W * TUT_H; ++i) map[3 * i] = map[3 * i + 1] = map[3 * i + 2] = rates[i] / hi;
     tut_strip_put(&strip, 1, map, 0.0f);
+    {
+        char detail[96];
+        snprintf(detail, sizeof detail, "black 0, white %.2f x the mean rate (here %.2f to %.2f)", (double)hi, (double)lo, (double)hi);
+        tut_strip_caption(&strip, 1, "the rates fogrt_image_sample_rates made from the 8 spp pilot", detail);
+    }
     printf("rates: %.2f to %.2f times the mean; image means %.5f (alike) and %.5f (rates): the same light\n",
            (double)lo, (double)hi, even, adaptive);
     tut_strip_write(&strip, png);

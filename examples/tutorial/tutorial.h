@@ -5,7 +5,8 @@
    clock, a logger, the Cornell box they all render (built from fogrt's public API, so you
    can read how a scene is made), a render call that prints its time and error, and the PNG
    writer (stb_image_write, Debian package libstb-dev). The image of each example is a row
-   of panels, one per setting it compares.                                                  */
+   of panels, one per setting it compares, under a title and each with its caption (drawn
+   with examples/plotfont.h), so the picture can be shown without the text around it.                                                  */
 #ifndef FOGRT_TUTORIAL_H
 #define FOGRT_TUTORIAL_H
 
@@ -15,6 +16,7 @@
 #include <time.h>
 
 #include "../stb_write.h"           /* stb_image_write, its warnings silenced */
+#include "../plotfont.h"            /* the titles and captions drawn into the PNG */
 
 /* Panel size of the tutorial images: small, so `make tutorial` stays quick. An example may
    define its own before including this file. */
@@ -145,16 +147,35 @@ static inline void tut_fog(fogrt_scene *scene, float sigma_t, float albedo, floa
     tut_check(fogrt_scene_set_medium(scene, &md), "fogrt_scene_set_medium");
 }
 
-/* A row of n panels of TUT_W x TUT_H, in 8-bit sRGB, written as one PNG at the end. */
-typedef struct tut_strip { int n; unsigned char *rgb8; } tut_strip;
+/* A row of n panels of TUT_W x TUT_H, in 8-bit sRGB, written as one PNG at the end: a title
+   on top, the panels drawn twice their size (so that the picture reads on a projector), and
+   under each panel its caption: what it shows, then its samples per pixel and error (the
+   numbers that are the same on every run; times are not, so they stay in the transcript). */
+#define TUT_MAX_PANELS 8
+#define TUT_ZOOM 2
+typedef struct tut_strip {
+    int n;
+    unsigned char *rgb8;
+    char title[256];
+    char caption[TUT_MAX_PANELS][2][128];
+} tut_strip;
 
-static inline tut_strip tut_strip_make(int n)
+static inline tut_strip tut_strip_make(int n, const char *title)
 {
     tut_strip s;
+    memset(&s, 0, sizeof s);
     s.n = n;
+    snprintf(s.title, sizeof s.title, "%s", title);
     s.rgb8 = (unsigned char *)calloc((size_t)n * TUT_W * TUT_H * 3, 1);
-    if (!s.rgb8) { fprintf(stderr, "tutorial: out of memory\n"); exit(1); }
+    if (!s.rgb8 || n > TUT_MAX_PANELS) { fprintf(stderr, "tutorial: out of memory or too many panels\n"); exit(1); }
     return s;
+}
+
+/* The caption of panel k: what it is (black), and a second line (grey), e.g. its numbers. */
+static inline void tut_strip_caption(tut_strip *s, int k, const char *what, const char *detail)
+{
+    snprintf(s->caption[k][0], sizeof s->caption[k][0], "%s", what);
+    snprintf(s->caption[k][1], sizeof s->caption[k][1], "%s", detail ? detail : "");
 }
 
 /* Copies one panel (linear RGB floats, TUT_W x TUT_H) into slot k, with an exposure. */
@@ -169,11 +190,34 @@ static inline void tut_strip_put(tut_strip *s, int k, const float *rgb, float ex
 
 static inline void tut_strip_write(tut_strip *s, const char *path)
 {
-    if (!stbi_write_png(path, s->n * TUT_W, TUT_H, 3, s->rgb8, s->n * TUT_W * 3)) {
+    const int scale = 2, gap = 12, pw = TUT_W * TUT_ZOOM, ph = TUT_H * TUT_ZOOM, line = PF_LINE * scale;
+    const int width = s->n * pw + (s->n + 1) * gap, chars = (pw - 4) / (PF_ADVANCE * scale);
+    char wrapped[16][256];
+    int title_lines = pf_wrap(s->title, (width - 2 * gap) / (PF_ADVANCE * scale), wrapped, 4), caption_lines = 0, k, j, y;
+    pf_canvas c;
+    for (k = 0; k < s->n; ++k) {
+        int m = pf_wrap(s->caption[k][0], chars, NULL, 8) + pf_wrap(s->caption[k][1], chars, NULL, 8);
+        if (m > caption_lines) caption_lines = m;
+    }
+    c = pf_canvas_make(width, gap + title_lines * line + gap / 2 + ph + gap / 2 + caption_lines * line + gap, PF_WHITE);
+    for (j = 0; j < title_lines; ++j) pf_text(&c, gap, gap + j * line, wrapped[j], scale, PF_BLACK);
+    y = gap + title_lines * line + gap / 2;
+    for (k = 0; k < s->n; ++k) {
+        int x0 = gap + k * (pw + gap), px, py, part, yy = y + ph + gap / 2;
+        for (py = 0; py < ph; ++py)       /* each pixel drawn as a TUT_ZOOM x TUT_ZOOM block */
+            for (px = 0; px < pw; ++px)
+                pf_put(&c, x0 + px, y + py, s->rgb8 + (((size_t)(py / TUT_ZOOM) * s->n + (size_t)k) * TUT_W + (size_t)(px / TUT_ZOOM)) * 3);
+        for (part = 0; part < 2; ++part) {
+            int m = pf_wrap(s->caption[k][part], chars, wrapped, 8);
+            for (j = 0; j < m; ++j, yy += line) pf_text(&c, x0 + 2, yy, wrapped[j], scale, part ? PF_GREY : PF_BLACK);
+        }
+    }
+    if (!stbi_write_png(path, c.w, c.h, 3, c.rgb, c.w * 3)) {
         fprintf(stderr, "tutorial: could not write %s\n", path);
         exit(1);
     }
     printf("wrote %s (%d panel%s of %dx%d)\n", path, s->n, s->n == 1 ? "" : "s", TUT_W, TUT_H);
+    pf_canvas_free(&c);
     free(s->rgb8);
 }
 
@@ -199,7 +243,12 @@ static inline double tut_render(const fogrt_scene *scene, const fogrt_render_des
            seconds, err.relative_error, 1.0 / (err.relative_error * err.relative_error * seconds),
            (double)st.rays / seconds * 1e-6);
     fogrt_image_resolve(&img, rgb);
-    if (strip) tut_strip_put(strip, k, rgb, exposure);
+    if (strip) {
+        char detail[96];
+        snprintf(detail, sizeof detail, "%d spp, relative error %.4f", spp, err.relative_error);
+        tut_strip_put(strip, k, rgb, exposure);
+        tut_strip_caption(strip, k, label, detail);
+    }
     fogrt_image_free(&img);
     free(rgb);
     return seconds;

@@ -486,7 +486,7 @@ def main():
     with open(os.path.join(a.out, "results.md"), "w") as f:
         f.write(markdown(results))
     print("crosscheck: %d scenes in %.0f s -> %s" % (len(todo), results["seconds"], os.path.join(a.out, "results.md")))
-    # Equal-time efficiency (make bench-mitsuba, issue 16): relative MSE x CPU seconds of each
+    # Equal-time efficiency (make bench-mitsuba): relative MSE x CPU seconds of each
     # renderer (its own batch noise over the scene, the same denominator for both), and their
     # ratio; the goal is fogrt at or below 0.5x Mitsuba's on every scene.
     print("equal-time error: relMSE x CPU seconds (lower is better); goal fogrt/Mitsuba <= 0.5")
