@@ -1339,11 +1339,11 @@ static void describe_fog(const fogrt_medium_desc *md, const fogrt_scene_info *in
 {
     if (!(md->sigma_t > 0.0f)) { snprintf(buf, n, "no fog"); return; }
     if (md->bounded)
-        snprintf(buf, n, "fog (density %g) in the box %g,%g,%g to %g,%g,%g", (double)md->sigma_t,
+        snprintf(buf, n, "fog (density %g) in the box %.4g,%.4g,%.4g to %.4g,%.4g,%.4g", (double)md->sigma_t,
                  (double)md->bounds_min.x, (double)md->bounds_min.y, (double)md->bounds_min.z,
                  (double)md->bounds_max.x, (double)md->bounds_max.y, (double)md->bounds_max.z);
     else if (info->has_environment)
-        snprintf(buf, n, "fog (density %g) in the box of the geometry %g,%g,%g to %g,%g,%g (the sky shows through)", (double)md->sigma_t,
+        snprintf(buf, n, "fog (density %g) in the box of the geometry %.4g,%.4g,%.4g to %.4g,%.4g,%.4g (the sky shows through)", (double)md->sigma_t,
                  (double)info->bounds_min.x, (double)info->bounds_min.y, (double)info->bounds_min.z,
                  (double)info->bounds_max.x, (double)info->bounds_max.y, (double)info->bounds_max.z);
     else
