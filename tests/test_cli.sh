@@ -568,12 +568,28 @@ refused "row.hdr" "" "env_hdr_one_row_of_four" -- -s 1 -r 16 12 -e "$tmp/row.hdr
 check "grep -q 'truncated\\|too short' '$tmp/err'" "env_hdr_one_row_of_four: does not say truncated: $(cat "$tmp/err")"
 printf 'PF\n32768 32768\n-1.0\n01234567890123456' >"$tmp/big.pfm"
 refused "big.pfm" "too short" "env_pfm_declared_huge" -- -s 1 -r 16 12 -e "$tmp/big.pfm" -f "$out"
+/usr/bin/time -f '%M' -o "$tmp/bigpfm.kb" "$fogrt" -s 1 -r 16 12 -e "$tmp/big.pfm" -f "$out" 2>/dev/null || true
+[ -s "$tmp/bigpfm.kb" ] && echo "test_cli.sh: env_pfm_declared_huge: a $(wc -c <"$tmp/big.pfm")-byte .pfm declaring 32768x32768 refused with $(tail -1 "$tmp/bigpfm.kb") KB peak memory"
 if "$fogrt" -h | grep -q '\.exr'; then
     "$fogrt" --quiet -s 1 -r 16 8 -f "$tmp/env.exr"
     head -c 200 "$tmp/env.exr" >"$tmp/cut.exr"
     refused "cut.exr" "" "env_exr_truncated" -- -s 1 -r 16 12 -e "$tmp/cut.exr" -f "$out"
     printf 'v/1\001garbage' >"$tmp/junk.exr"
     refused "junk.exr" "" "env_exr_junk" -- -s 1 -r 16 12 -e "$tmp/junk.exr" -f "$out"
+    if command -v python3 >/dev/null 2>&1; then
+        # the 16x8 map's header made to declare 4096x4096 (its windows patched)
+        python3 - "$tmp/env.exr" "$tmp/huge.exr" <<'PY'
+import sys, struct
+d = bytearray(open(sys.argv[1], 'rb').read())
+for name in (b'dataWindow\0box2i\0', b'displayWindow\0box2i\0'):
+    i = d.find(name) + len(name) + 4
+    d[i:i + 16] = struct.pack('<4i', 0, 0, 4095, 4095)
+open(sys.argv[2], 'wb').write(d)
+PY
+        /usr/bin/time -f '%M' -o "$tmp/huge.kb" "$fogrt" -s 1 -r 16 12 -e "$tmp/huge.exr" -f "$out" 2>"$tmp/err" || true
+        check "grep -q 'huge.exr: the file is too short' '$tmp/err' && [ \$(wc -l <'$tmp/err') -eq 1 ]" "env_exr_declared_huge: $(cat "$tmp/err")"
+        [ -s "$tmp/huge.kb" ] && echo "test_cli.sh: env_exr_declared_huge: a $(wc -c <"$tmp/huge.exr")-byte .exr declaring 4096x4096 refused with $(tail -1 "$tmp/huge.kb") KB peak memory"
+    fi
 fi
 
 # -- stopping: SIGTERM, SIGINT and SIGHUP stop every long loop within about a second; SIGHUP
@@ -595,6 +611,17 @@ stop_latency stop_adaptive TERM 1.5 -a 1 1e-6 -s 100000 -r 16 12 -f "$tmp/hup/a.
 stop_latency stop_sighup HUP 1.5 -s 100000 -r 64 48 -f "$tmp/hup/h.pfm"
 check "pfm_ok '$tmp/hup/h.pfm' 64 48 && [ -z \"\$(ls -A '$tmp/hup' | grep tmp)\" ]" "stop_sighup: no image, or a temporary file left behind"
 stop_latency stop_light_samples TERM 15 -l 65536 -s 1 -r 16 12 -f "$tmp/hup/l.pfm"
+# a signal while the scene loads and builds (nothing rendered yet) quits at once: a fan of
+# 300000 slivers takes seconds to build (the roulette pilot)
+awk 'BEGIN { n = 300000; print "v 0 0.5 0"; for (i = 0; i <= n; i++) { a = 6.283185307 * i / n; printf "v %f 0.5 %f\n", 0.4 * cos(a), 0.4 * sin(a) }
+             for (i = 0; i < n; i++) printf "f 1 %d %d\n", i + 2, i + 3 }' >"$tmp/fan.obj"
+"$fogrt" -s 1 -r 8 6 -f "$tmp/hup/fan.pfm" "$tmp/fan.obj" 2>"$tmp/fan.err" &
+pid=$!
+sleep 0.5
+t_sig=$(now); kill -TERM "$pid"; wait "$pid"; st=$?; t_end=$(now)
+lat=$(echo "$t_end $t_sig" | awk '{ printf "%.2f", $1 - $2 }')
+echo "test_cli.sh: stop_while_loading: stopped $lat s after SIGTERM (exit $st)"
+check "[ $st -eq 130 ] && grep -q 'before rendering' '$tmp/fan.err' && awk 'BEGIN { exit !($lat < 1.0) }' && [ ! -e '$tmp/hup/fan.pfm' ]" "stop_while_loading: exit $st, $lat s: $(cat "$tmp/fan.err")"
 # ==== end of hostile runs, second round ====
 
 # ==== what a new user trips over (issue 37): the fog's extent, -h, one meaning per flag,
