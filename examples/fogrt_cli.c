@@ -479,6 +479,7 @@ static void release_image(fogrt_image *img)
    ------------------------------------------------------------------------------------------ */
 static volatile sig_atomic_t cli_interrupted = 0;
 static volatile sig_atomic_t cli_tty = 0;     /* stderr is a terminal */
+static volatile sig_atomic_t cli_rendering = 0;   /* samples may exist: stop and write them */
 
 static void write_stderr_raw(const char *s, size_t n)
 {
@@ -492,6 +493,12 @@ static void on_signal(int sig)
 {
     static const char again[] = "\nfogrt: interrupted again: quitting without writing\n";
     static const char first[] = "\nfogrt: interrupted: stopping and writing the image so far (Ctrl-C again quits at once)\n";
+    static const char early[] = "\nfogrt: interrupted before rendering: nothing written\n";
+    if (!cli_rendering) {      /* loading or building: nothing to save, and no loop to ask */
+        if (cli_temp_live) unlink(cli_temp_path);
+        write_stderr_raw(early + !cli_tty, sizeof early - 1 - (size_t)!cli_tty);
+        _exit(130);
+    }
     if (cli_interrupted) {
         if (cli_temp_live) unlink(cli_temp_path);
         write_stderr_raw(again + !cli_tty, sizeof again - 1 - (size_t)!cli_tty);
@@ -1339,11 +1346,11 @@ static void describe_fog(const fogrt_medium_desc *md, const fogrt_scene_info *in
 {
     if (!(md->sigma_t > 0.0f)) { snprintf(buf, n, "no fog"); return; }
     if (md->bounded)
-        snprintf(buf, n, "fog (density %g) in the box %g,%g,%g to %g,%g,%g", (double)md->sigma_t,
+        snprintf(buf, n, "fog (density %g) in the box %.4g,%.4g,%.4g to %.4g,%.4g,%.4g", (double)md->sigma_t,
                  (double)md->bounds_min.x, (double)md->bounds_min.y, (double)md->bounds_min.z,
                  (double)md->bounds_max.x, (double)md->bounds_max.y, (double)md->bounds_max.z);
     else if (info->has_environment)
-        snprintf(buf, n, "fog (density %g) in the box of the geometry %g,%g,%g to %g,%g,%g (the sky shows through)", (double)md->sigma_t,
+        snprintf(buf, n, "fog (density %g) in the box of the geometry %.4g,%.4g,%.4g to %.4g,%.4g,%.4g (the sky shows through)", (double)md->sigma_t,
                  (double)info->bounds_min.x, (double)info->bounds_min.y, (double)info->bounds_min.z,
                  (double)info->bounds_max.x, (double)info->bounds_max.y, (double)info->bounds_max.z);
     else
@@ -1649,6 +1656,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "fogrt: rendering %s (%dx%d, %s, %d thread%s): %s\n", o.scene ? o.scene : "the default scene",
                 o.width, o.height, o.adaptive ? "adaptive" : ps_target_text(&o, target, sizeof target), threads, threads == 1 ? "" : "s", fog_text);
     fill_render_desc(&o, threads, &rd);
+    cli_rendering = 1;
     ps.o = &o;
     ps.threads = threads;
     ps.tty = isatty(2) != 0;

@@ -568,12 +568,28 @@ refused "row.hdr" "" "env_hdr_one_row_of_four" -- -s 1 -r 16 12 -e "$tmp/row.hdr
 check "grep -q 'truncated\\|too short' '$tmp/err'" "env_hdr_one_row_of_four: does not say truncated: $(cat "$tmp/err")"
 printf 'PF\n32768 32768\n-1.0\n01234567890123456' >"$tmp/big.pfm"
 refused "big.pfm" "too short" "env_pfm_declared_huge" -- -s 1 -r 16 12 -e "$tmp/big.pfm" -f "$out"
+/usr/bin/time -f '%M' -o "$tmp/bigpfm.kb" "$fogrt" -s 1 -r 16 12 -e "$tmp/big.pfm" -f "$out" 2>/dev/null || true
+[ -s "$tmp/bigpfm.kb" ] && echo "test_cli.sh: env_pfm_declared_huge: a $(wc -c <"$tmp/big.pfm")-byte .pfm declaring 32768x32768 refused with $(tail -1 "$tmp/bigpfm.kb") KB peak memory"
 if "$fogrt" -h | grep -q '\.exr'; then
     "$fogrt" --quiet -s 1 -r 16 8 -f "$tmp/env.exr"
     head -c 200 "$tmp/env.exr" >"$tmp/cut.exr"
     refused "cut.exr" "" "env_exr_truncated" -- -s 1 -r 16 12 -e "$tmp/cut.exr" -f "$out"
     printf 'v/1\001garbage' >"$tmp/junk.exr"
     refused "junk.exr" "" "env_exr_junk" -- -s 1 -r 16 12 -e "$tmp/junk.exr" -f "$out"
+    if command -v python3 >/dev/null 2>&1; then
+        # the 16x8 map's header made to declare 4096x4096 (its windows patched)
+        python3 - "$tmp/env.exr" "$tmp/huge.exr" <<'PY'
+import sys, struct
+d = bytearray(open(sys.argv[1], 'rb').read())
+for name in (b'dataWindow\0box2i\0', b'displayWindow\0box2i\0'):
+    i = d.find(name) + len(name) + 4
+    d[i:i + 16] = struct.pack('<4i', 0, 0, 4095, 4095)
+open(sys.argv[2], 'wb').write(d)
+PY
+        /usr/bin/time -f '%M' -o "$tmp/huge.kb" "$fogrt" -s 1 -r 16 12 -e "$tmp/huge.exr" -f "$out" 2>"$tmp/err" || true
+        check "grep -q 'huge.exr: the file is too short' '$tmp/err' && [ \$(wc -l <'$tmp/err') -eq 1 ]" "env_exr_declared_huge: $(cat "$tmp/err")"
+        [ -s "$tmp/huge.kb" ] && echo "test_cli.sh: env_exr_declared_huge: a $(wc -c <"$tmp/huge.exr")-byte .exr declaring 4096x4096 refused with $(tail -1 "$tmp/huge.kb") KB peak memory"
+    fi
 fi
 
 # -- stopping: SIGTERM, SIGINT and SIGHUP stop every long loop within about a second; SIGHUP
@@ -595,7 +611,111 @@ stop_latency stop_adaptive TERM 1.5 -a 1 1e-6 -s 100000 -r 16 12 -f "$tmp/hup/a.
 stop_latency stop_sighup HUP 1.5 -s 100000 -r 64 48 -f "$tmp/hup/h.pfm"
 check "pfm_ok '$tmp/hup/h.pfm' 64 48 && [ -z \"\$(ls -A '$tmp/hup' | grep tmp)\" ]" "stop_sighup: no image, or a temporary file left behind"
 stop_latency stop_light_samples TERM 15 -l 65536 -s 1 -r 16 12 -f "$tmp/hup/l.pfm"
+# a signal while the scene loads and builds (nothing rendered yet) quits at once: a fan of
+# 300000 slivers takes seconds to build (the roulette pilot)
+awk 'BEGIN { n = 300000; print "v 0 0.5 0"; for (i = 0; i <= n; i++) { a = 6.283185307 * i / n; printf "v %f 0.5 %f\n", 0.4 * cos(a), 0.4 * sin(a) }
+             for (i = 0; i < n; i++) printf "f 1 %d %d\n", i + 2, i + 3 }' >"$tmp/fan.obj"
+"$fogrt" -s 1 -r 8 6 -f "$tmp/hup/fan.pfm" "$tmp/fan.obj" 2>"$tmp/fan.err" &
+pid=$!
+sleep 0.5
+t_sig=$(now); kill -TERM "$pid"; wait "$pid"; st=$?; t_end=$(now)
+lat=$(echo "$t_end $t_sig" | awk '{ printf "%.2f", $1 - $2 }')
+echo "test_cli.sh: stop_while_loading: stopped $lat s after SIGTERM (exit $st)"
+check "[ $st -eq 130 ] && grep -q 'before rendering' '$tmp/fan.err' && awk 'BEGIN { exit !($lat < 1.0) }' && [ ! -e '$tmp/hup/fan.pfm' ]" "stop_while_loading: exit $st, $lat s: $(cat "$tmp/fan.err")"
 # ==== end of hostile runs, second round ====
+
+# ==== what a new user trips over (issue 37): the fog's extent, -h, one meaning per flag,
+#      EXR output, friendlier parsing, the README's examples ====
+# -- flags_listed: the flags the parser takes, the flags -h lists and the README's table agree --
+parser_flags=$(grep -ho 'cli_is(&\{0,1\}A, "[^"]*")' examples/fogrt_cli.c examples/cli_common.h | sed 's/.*"\(.*\)")/\1/' | sort -u | tr '\n' ' ')
+help_flags=$("$fogrt" -h | sed -n 's/^  \(-[-a-zA-Z0-9]*\).*/\1/p' | sort -u | tr '\n' ' ')
+readme_flags=$(sed -n '/^| flag | default | meaning |/,/^$/p' README.md | sed 's/\\|/\//g' | awk -F'|' 'NR > 2 { print $2 }' | grep -o '`-[-a-zA-Z0-9]*' | tr -d '`' | sort -u | tr '\n' ' ')
+check "[ -n '$parser_flags' ] && [ '$parser_flags' = '$help_flags' ]" "flags_listed: the parser takes [$parser_flags], -h lists [$help_flags]"
+check "[ '$parser_flags' = '$readme_flags' ]" "flags_listed: the parser takes [$parser_flags], README's table lists [$readme_flags]"
+"$fogrt" -h >"$tmp/help.txt"
+undefaulted=$(awk '/^  -/ { if (flag != "" && !ok) print flag; flag = $1; ok = /default/ || /this help/ || /the same as -h/; next }
+                   /^    / && flag != "" { if (/default/) ok = 1; next }
+                   { if (flag != "" && !ok) print flag; flag = "" }
+                   END { if (flag != "" && !ok) print flag }' "$tmp/help.txt" | tr '\n' ' ')
+check "[ -z '$undefaulted' ]" "flags_listed: -h gives no default for: $undefaulted"
+check "grep -q -- '--exposure EV.*stops' '$tmp/help.txt'" "flags_listed: -h does not say --exposure is in stops"
+
+# -- fog_bounds: all, scene or a box; the header and the summary say where the fog is --
+expect 0 "everywhere" "fog_bounds_all: the header says the fog is everywhere" -- -s 2 -r 24 18 --density 0.5 --fog-bounds all -f "$tmp/fb_all.pfm" "$lit"
+check "[ \$(grep -c 'everywhere' '$tmp/err') -eq 2 ]" "fog_bounds_all: not in both the header and the summary: $(cat "$tmp/err")"
+expect 0 "in the box" "fog_bounds_scene: the header says the box" -- -s 2 -r 24 18 --density 0.5 --fog-bounds scene -f "$tmp/fb_scene.pfm" "$lit"
+check "grep -q '^fogrt: rendering .*in the box' '$tmp/err' && grep -q '^fogrt: wrote .*in the box' '$tmp/err'" "fog_bounds_scene: not in both the header and the summary: $(cat "$tmp/err")"
+check "! cmp -s '$tmp/fb_all.pfm' '$tmp/fb_scene.pfm'" "fog_bounds_scene: the same image as fog everywhere"
+expect 0 "" "fog_bounds_default_is_all" -- --quiet -s 2 -r 24 18 --density 0.5 -f "$tmp/fb_def.pfm" "$lit"
+check "cmp -s '$tmp/fb_all.pfm' '$tmp/fb_def.pfm'" "fog_bounds_default_is_all: the default differs from --fog-bounds all"
+expect 0 "no fog" "fog_bounds_no_fog: a .dae without --density says so" -- -s 1 -r 16 12 -f "$tmp/fb_none.pfm" "$lit"
+expect 2 "--fog-bounds" "fog_bounds_bad_word" -- --fog-bounds room -f "$out"
+check "grep -q 'all, scene' '$tmp/err'" "fog_bounds_bad_word: the message does not name all and scene"
+
+# -- exr_output: -f out.exr is the PFM's floats exactly (read back with tinyexr) --
+if "$fogrt" -h | grep -q '\.exr'; then
+    expect 0 "" "exr_output: write an EXR" -- --quiet -s 2 -r 24 18 --seed 3 -f "$tmp/rt.exr" "$lit"
+    "$fogrt" --quiet -s 2 -r 24 18 --seed 3 -f "$tmp/rt.pfm" "$lit"
+    cat >"$tmp/exrcmp.c" <<'CEOF'
+/* exrcmp A.exr B.pfm: exit 0 when the EXR's RGB floats equal the PFM's (rows from the top) */
+#include <tinyexr.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+int main(int argc, char **argv)
+{
+    float *rgba = NULL, *pfm;
+    const char *err = NULL;
+    int w, h, pw, ph, x, y, c, bad = 0;
+    char line[64];
+    FILE *f;
+    if (argc != 3 || LoadEXR(&rgba, &w, &h, argv[1], &err) != 0) { fprintf(stderr, "exrcmp: cannot read %s\n", argc > 1 ? argv[1] : "?"); return 2; }
+    f = fopen(argv[2], "rb");
+    if (!f || !fgets(line, sizeof line, f) || !fgets(line, sizeof line, f) || sscanf(line, "%d %d", &pw, &ph) != 2 || !fgets(line, sizeof line, f)) return 2;
+    if (pw != w || ph != h) { fprintf(stderr, "exrcmp: %dx%d against %dx%d\n", w, h, pw, ph); return 1; }
+    pfm = (float *)malloc(sizeof(float) * 3 * (size_t)w * (size_t)h);
+    if (!pfm || fread(pfm, sizeof(float) * 3, (size_t)w * (size_t)h, f) != (size_t)w * (size_t)h) return 2;
+    for (y = 0; y < h; ++y)
+        for (x = 0; x < w; ++x)
+            for (c = 0; c < 3; ++c)
+                if (rgba[4 * ((size_t)y * w + x) + c] != pfm[3 * ((size_t)(h - 1 - y) * w + x) + c]) bad++;
+    printf("%d of %d values differ\n", bad, 3 * w * h);
+    return bad != 0;
+}
+CEOF
+    if ${CC:-cc} -O1 -o "$tmp/exrcmp" "$tmp/exrcmp.c" -ltinyexr 2>"$tmp/cc.err"; then
+        check "'$tmp/exrcmp' '$tmp/rt.exr' '$tmp/rt.pfm' >/dev/null" "exr_output: the EXR's floats are not the PFM's: $("$tmp/exrcmp" "$tmp/rt.exr" "$tmp/rt.pfm" 2>&1)"
+    else
+        echo "test_cli.sh: exr_output round trip skipped (cannot build a tinyexr reader: $(head -1 "$tmp/cc.err"))"
+    fi
+    expect 0 "" "exr_output: an EXR fogrt wrote is an environment map" -- --quiet -s 1 -r 16 12 -e "$tmp/rt.exr" -f "$tmp/rt_env.pfm" tests/data/dae_minimal_yup.dae
+else
+    echo "test_cli.sh: exr_output skipped (fogrt built without libtinyexr-dev)"
+fi
+
+# -- friendly_parsing: --flag=value, "did you mean", files of the wrong kind --
+"$fogrt" --quiet -s 2 -r 16 12 --seed 4 --density 0.5 -f "$tmp/eq_a.pfm"
+"$fogrt" --quiet -s 2 -r 16 12 --seed=4 --density=0.5 -f "$tmp/eq_b.pfm"
+check "cmp -s '$tmp/eq_a.pfm' '$tmp/eq_b.pfm'" "flag_equals: --seed=4 --density=0.5 renders differently from --seed 4 --density 0.5"
+expect 2 "takes no value" "flag_equals: --quiet=yes" -- --quiet=yes -f "$out"
+expect 2 "--density" "flag_equals: --density= (empty)" -- --density= -f "$out"
+expect 2 "did you mean --density?" "did_you_mean: --densty" -- --densty 0.5 -f "$out"; one_line_no_image "did you mean"
+expect 2 "did you mean --fog-bounds?" "did_you_mean: --fog-bound" -- --fog-bound all -f "$out"
+expect 2 "did you mean --exposure?" "did_you_mean: -exposure" -- -exposure 1 -f "$out"
+expect 2 "--bogus" "did_you_mean: nothing near --bogus" -- --bogus -f "$out"
+check "! grep -q 'did you mean' '$tmp/err'" "did_you_mean: --bogus got a suggestion: $(cat "$tmp/err")"
+cp docs/fog.png "$tmp/picture.png"; cp docs/fog.png "$tmp/picture.obj"
+refused "picture.png" "a PNG image, not a scene: fogrt reads .dae, .obj, .ply" "wrong_kind: a PNG as the scene" -- -f "$out" "$tmp/picture.png"
+refused "picture.obj" "a PNG image, not a scene: fogrt reads .dae, .obj, .ply" "wrong_kind: a PNG named .obj" -- -f "$out" "$tmp/picture.obj"
+refused "fogrt" "an executable (ELF), not a CS184 camera settings file" "wrong_kind: -c with an executable" -- -f "$out" -c "$fogrt_abs"
+printf '\001\002\033[31m\377\376\300 1 2\n' >"$tmp/bytes.cam"
+expect 2 "bytes.cam" "wrong_kind: -c with raw bytes" -- -f "$out" -c "$tmp/bytes.cam"
+check "! LC_ALL=C grep -q '[^[:print:]]' '$tmp/err'" "wrong_kind: -c printed raw bytes: $(od -c "$tmp/err" | head -3)"
+
+# -- readme_timing: every fogrt example in the README says how long it takes --
+untimed=$(sed -n '/^## The `fogrt` command/,/^## /p' README.md | grep '^build/fogrt' | grep -v '[0-9] s\b\|[0-9] s)\|minutes\|--time [0-9]' | head -3)
+check "[ -z \"\$untimed\" ]" "readme_timing: README examples without their time: $untimed"
+# ==== end of issue 37 ====
 
 echo "test_cli.sh: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -870,6 +870,32 @@ static void test_camera_file(void)
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_IO_ERROR, fogrt_load_camera_file(DATA_DIR "no_such_camera.txt", 480, 360, &cam, &rep));
 }
 
+/* A message quoting bytes of a binary file holds no raw bytes: control bytes and broken
+   UTF-8 become '?', well-formed UTF-8 (a material named in another script) is kept. */
+static void test_messages_are_printable(void)
+{
+    fogrt_camera_desc cam;
+    fogrt_load_report rep;
+    fogrt_scene *s = NULL;
+    fogrt_load_options opt;
+    static const char cam_bytes[] = "\001\033[31m\377\300\xe2\x82 1 2\n";
+    static const char obj_bytes[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \033\377\n";
+    static const char obj_utf8[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \xc3\xa9\n";
+    const unsigned char *p;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_camera_memory(cam_bytes, sizeof cam_bytes - 1, "bytes.cam", 480, 360, &cam, &rep));
+    for (p = (const unsigned char *)rep.message; *p; ++p)
+        TEST_ASSERT_TRUE_MESSAGE(*p >= 0x20 && *p < 0x7F, rep.message);
+    TEST_ASSERT_NOT_NULL(strchr(rep.message, '?'));
+    memset(&opt, 0, sizeof opt);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_create(NULL, &s));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_obj_memory(s, obj_bytes, sizeof obj_bytes - 1, "bytes.obj", &opt, &rep));
+    for (p = (const unsigned char *)rep.message; *p; ++p)
+        TEST_ASSERT_TRUE_MESSAGE(*p >= 0x20 && *p < 0x7F, rep.message);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_PARSE_ERROR, fogrt_load_obj_memory(s, obj_utf8, sizeof obj_utf8 - 1, "utf8.obj", &opt, &rep));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(rep.message, "\xc3\xa9"), rep.message);
+    fogrt_scene_destroy(s);
+}
+
 /* ------------------------------------------------------------------------------------------
    4. Malformed and truncated input
    ------------------------------------------------------------------------------------------ */
@@ -1712,6 +1738,7 @@ int main(void)
     RUN_TEST(test_mesh_placement);
     RUN_TEST(test_stanford_bunny_ply);
     RUN_TEST(test_camera_file);
+    RUN_TEST(test_messages_are_printable);
     RUN_TEST(test_malformed_files);
     RUN_TEST(test_truncated_files);
     RUN_TEST(test_fuzz_regressions);
