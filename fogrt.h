@@ -41,13 +41,22 @@
     FOGRT_STATIC           make every function static (private to one translation unit)
     FOGRT_MALLOC(sz,u) / FOGRT_FREE(p,u)   default allocator (both or neither; default libc)
     FOGRT_ASSERT(c)        programmer-error check (default: assert)
+    FOGRT_MINIMAL          compile Part I alone, the paper's renderer (Part II, the appendix of
+                           speed and variance reduction, is left out; fogrt_render_defaults()
+                           is then fogrt_render_paper_defaults())
+    FOGRT_NO_WIDE_BVH      leave out appendix A, the wide BVH (the binary tree is traced)
+    FOGRT_NO_LAMPS_IN_FOG  leave out appendix B: equiangular sampling, glow, footprint, expected
+                           emission (render desc fields that ask for them fail)
+    FOGRT_NO_ESTIMATION    leave out appendix C: environment-map sampling, exact Fresnel, fog in
+                           a box, lights by power, the roulette's pilot, stratified pixel
+                           positions, per-pixel rates (fogrt_image_sample_rates)
     FOGRT_NO_MEDIUM        strip the fog: no free-flight, transmittance, phase or equiangular
                            code (fogrt_scene_set_medium with sigma_t > 0 fails)
     FOGRT_NO_GLASS         strip the refraction and glass BSDFs, Fresnel and refraction
                            (fogrt_scene_add_material of those types fails)
     FOGRT_NO_EXACT_FRESNEL strip the exact dielectric Fresnel (a render asking for
                            FOGRT_FRESNEL_EXACT fails)
-                           One policy for the three: what needs a stripped feature returns
+                           One policy for all of these: what needs a stripped feature returns
                            FOGRT_RESULT_UNSUPPORTED and logs one line naming the macro; the
                            stripped public functions are not compiled (make check-compile
                            checks with nm that their code is gone).
@@ -112,7 +121,18 @@
     MIT, see the end of the file.
 */
 #ifndef FOGRT_H_INCLUDED
-#if defined(FOGRT_MINIMAL) && !defined(FOGRT_NO_EXACT_FRESNEL)
+#ifdef FOGRT_MINIMAL            /* Part I alone: every appendix of Part II removed */
+#ifndef FOGRT_NO_WIDE_BVH
+#define FOGRT_NO_WIDE_BVH
+#endif
+#ifndef FOGRT_NO_LAMPS_IN_FOG
+#define FOGRT_NO_LAMPS_IN_FOG
+#endif
+#ifndef FOGRT_NO_ESTIMATION
+#define FOGRT_NO_ESTIMATION
+#endif
+#endif
+#if defined(FOGRT_NO_ESTIMATION) && !defined(FOGRT_NO_EXACT_FRESNEL)
 #define FOGRT_NO_EXACT_FRESNEL   /* the exact Fresnel is Part II's (C) */
 #endif
 #define FOGRT_H_INCLUDED
@@ -510,7 +530,7 @@ FOGRT_API float fogrt_sample_hg_mu(float g, float u);
 FOGRT_API fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf);
 /* Phase function / pdf for outward wo and wi: uses mu = -dot(wo, wi). */
 FOGRT_API float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi);
-#ifndef FOGRT_MINIMAL
+#ifndef FOGRT_NO_LAMPS_IN_FOG
 /* Part II, B. Equiangular distance sampling along a ray toward a point light (Kulla and Fajardo 2012):
    the light at distance h from the ray's line, its closest approach at t = delta; samples
    t in [a, b] (b may be +infinity) with pdf proportional to 1 / (h^2 + (t - delta)^2), which
@@ -739,7 +759,7 @@ FOGRT_API double fogrt_image_pixel_variance(const fogrt_image *img, size_t pixel
    (Part II, C says why). rates: width x height floats. OUT_OF_MEMORY, or INVALID_ARGUMENT
    for an image without samples; an image without noise gets rates of 1. */
 #define FOGRT_MAX_SAMPLE_RATE 64.0f
-#ifndef FOGRT_MINIMAL
+#ifndef FOGRT_NO_ESTIMATION
 FOGRT_API fogrt_result fogrt_image_sample_rates(const fogrt_image *img, float *rates);   /* Part II, C */
 #endif
 
@@ -874,7 +894,8 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
    Part II, after it, is an appendix of speed and variance reduction, one idea a chapter
    (A: the wide BVH; B: lamps in fog; C: sampling and estimation; D: the path trace; E: the
    full integrator, Algorithm 1 with all of them), which fogrt_render_defaults() uses.
-   FOGRT_MINIMAL compiles Part I alone.
+   FOGRT_MINIMAL compiles Part I alone; FOGRT_NO_WIDE_BVH, FOGRT_NO_LAMPS_IN_FOG and
+   FOGRT_NO_ESTIMATION leave out appendix A, B or C.
 
    Part I reaches Part II only at these seams, each marked "SEAM n" where it stands:
      1. fogrt__traverse            the wide tree, when the build made one (A)
@@ -1461,6 +1482,10 @@ FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medi
         return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.g: outside [-1, 1]");
     if (m->bounded && !fogrt__box_ok(m->bounds_min, m->bounds_max))
         return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.bounds_min/bounds_max: not finite, beyond 1e30, or min not below max on every axis");
+#ifdef FOGRT_NO_ESTIMATION
+    if (m->bounded && m->sigma_t > 0.0f)
+        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "medium.bounded: fog in a box needs a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
+#endif
 #ifdef FOGRT_NO_MEDIUM
     if (m->sigma_t > 0.0f)
         return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "medium: fogrt was compiled with FOGRT_NO_MEDIUM");
@@ -1962,14 +1987,14 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 
 /* The scene's ray query: the binary tree above, or the wide tree of Part II (A) when the
    build made one. */
-#ifndef FOGRT_MINIMAL
+#ifndef FOGRT_NO_WIDE_BVH
 FOGRT__PRIVATE bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
                                       fogrt_hit *hit, bool any_hit, bool *done);
 #endif
 FOGRT__HOT bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
                                 fogrt_hit *hit, bool any_hit)
 {
-#ifndef FOGRT_MINIMAL
+#ifndef FOGRT_NO_WIDE_BVH
     bool done, found = fogrt__x_traverse(s, o, d, tmin, tmax, hit, any_hit, &done);   /* SEAM 1 */
     if (done) return found;
 #endif
@@ -3058,6 +3083,10 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fog
         !fogrt__finite(d->c_trav) || !fogrt__finite(d->c_int))
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: heuristic, layout, bins (1..64), max_leaf_size (>= 1), c_trav or c_int out of range");
     if (d->heuristic == FOGRT_BVH_DEFAULT) d->heuristic = FOGRT_BVH_SAH;
+#ifdef FOGRT_NO_WIDE_BVH
+    if (d->layout == FOGRT_BVH_LAYOUT_WIDE)
+        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "build desc: layout wide needs a build without FOGRT_NO_WIDE_BVH (and FOGRT_MINIMAL)");
+#endif
     return FOGRT_RESULT_OK;
 }
 /* The tree, and the primitives in BVH order in the form the traversal reads. leaf_keep:
@@ -3100,8 +3129,10 @@ FOGRT__PRIVATE bool fogrt__build_spots(fogrt_scene *s)
     }
     return true;
 }
+#ifndef FOGRT_NO_WIDE_BVH
+FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n);   /* Part II, A */
+#endif
 #ifndef FOGRT_MINIMAL
-FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n);   /* Part II */
 FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n);
 #endif
 FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
@@ -3115,7 +3146,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
     n = s->tri_count + s->sph_count;
     if (n == 0 && s->light_count == 0 && !s->has_env)
         return fogrt__fail(s, FOGRT_RESULT_EMPTY_SCENE, "scene: no geometry and no light");
-#ifndef FOGRT_MINIMAL
+#ifndef FOGRT_NO_WIDE_BVH
     leaf_keep = fogrt__x_leaf_keep(&d, n);              /* SEAM 2: what the wide tree needs of it */
 #endif
     if (!fogrt__build_lights(s) || !fogrt__build_tree(s, &d, n, leaf_keep) || !fogrt__build_spots(s)) {
@@ -3161,21 +3192,14 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_paper_defaults(void)
     };
     return d;
 }
-#ifdef FOGRT_MINIMAL
-FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void) { return fogrt_render_paper_defaults(); }
-#else
+/* Part II's defaults: lamps in fog (B) on, as far as the build has them. */
 FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void)
 {
     fogrt_render_desc d = fogrt_render_paper_defaults();
-    d.equiangular = d.glow = d.footprint = d.expected_emission = true;   /* Part II's defaults */
-    return d;
-}
+#ifndef FOGRT_NO_LAMPS_IN_FOG
+    d.equiangular = d.glow = d.footprint = d.expected_emission = true;
 #endif
-/* Whether a desc asks for anything beyond the paper (Part II). */
-FOGRT__PRIVATE bool fogrt__beyond_paper(const fogrt_render_desc *d)
-{
-    return d->equiangular || d->glow || d->footprint || d->light_by_power || d->expected_emission ||
-           d->sample_rate != NULL;
+    return d;
 }
 /* The settings the integrators read, from a desc (NULL: the defaults). A desc must come
    from fogrt_render_defaults(): a zeroed one would silently mean "max depth 0, no light
@@ -3191,11 +3215,15 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: max_depth (>= -1), min_depth (>= 0), rr_depth (>= 0), light_samples (>= 1), integrator or fresnel out of range");
 #ifdef FOGRT_NO_EXACT_FRESNEL
     if (d.fresnel == FOGRT_FRESNEL_EXACT)
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: fresnel exact needs a build without FOGRT_NO_EXACT_FRESNEL");
+        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: fresnel exact needs a build without FOGRT_NO_EXACT_FRESNEL, FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
 #endif
-#ifdef FOGRT_MINIMAL
-    if (fogrt__beyond_paper(&d))
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: equiangular, glow, footprint, light_by_power, expected_emission and sample_rate need a build without FOGRT_MINIMAL (start from fogrt_render_paper_defaults())");
+#ifdef FOGRT_NO_LAMPS_IN_FOG
+    if (d.equiangular || d.glow || d.footprint || d.expected_emission)
+        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: equiangular, glow, footprint and expected_emission need a build without FOGRT_NO_LAMPS_IN_FOG and FOGRT_MINIMAL (start from fogrt_render_paper_defaults())");
+#endif
+#ifdef FOGRT_NO_ESTIMATION
+    if (d.light_by_power || d.sample_rate)
+        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: light_by_power and sample_rate need a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
 #endif
     st->max_depth = d.max_depth < 0 ? 0x7FFFFFFF : d.max_depth;
     st->min_depth = d.min_depth;
@@ -3365,7 +3393,7 @@ typedef struct fogrt__job {
     const float *rate;       /* per-pixel rates (Part II, C), or NULL: spp samples in every pixel */
     uint64_t coin;           /* with rates: a key that changes from call to call */
 } fogrt__job;
-#ifndef FOGRT_MINIMAL
+#ifndef FOGRT_NO_ESTIMATION
 FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy);
 FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix);   /* Part II, C */
 #endif
@@ -3380,7 +3408,7 @@ FOGRT__PRIVATE void fogrt__pixel_ray(const fogrt__job *job, int width, int heigh
     uint64_t key = (pix << 32) | (uint64_t)index;
     float l1, l2;
     fogrt_rng_seed(rng, fogrt__hash64(key ^ job->base), 0);
-#ifndef FOGRT_MINIMAL
+#ifndef FOGRT_NO_ESTIMATION
     fogrt__x_pixel_position(job->base, pix, index, jx, jy);                 /* SEAM 8 */
 #else
     *jx = fogrt_rng_float(rng); *jy = fogrt_rng_float(rng);
@@ -3400,7 +3428,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_pixel(const fogrt__job *job, int width, i
 /* How many samples pixel pix takes in this call: spp, or as its rate says (Part II, C). */
 FOGRT__PRIVATE uint32_t fogrt__pixel_spp(const fogrt__job *job, size_t pix)
 {
-#ifndef FOGRT_MINIMAL
+#ifndef FOGRT_NO_ESTIMATION
     if (job->rate) return fogrt__x_pixel_spp(job, pix);                      /* SEAM 8 */
 #else
     (void)pix;
@@ -3682,6 +3710,9 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
      E. The full integrator: Algorithm 1 with B and C's steps added, as fogrt_render_defaults()
         runs it                                      (table "Full integrator")
    ========================================================================================== */
+#if !defined(FOGRT_NO_MEDIUM) && !defined(FOGRT_NO_LAMPS_IN_FOG)
+#define FOGRT__LAMPS 1             /* appendix B is compiled */
+#endif
 struct fogrt__wbvh;
 struct fogrt__footprint;
 struct fogrt__hg_table;
@@ -3700,6 +3731,7 @@ struct fogrt__x {
     struct fogrt__hg_table *hg;   /* B: HG per unit angle for the medium's g, with lamps in fog */
 };
 
+#ifndef FOGRT_NO_WIDE_BVH
 /* ------------------------------------------------------------------------------------------
    A. The wide BVH
    What it adds: 8 (or 4) children per node, their boxes tested side by side in SIMD lanes
@@ -4536,8 +4568,10 @@ FOGRT__PRIVATE bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__
     *done = s->x && s->x->wide && s->x->wide->node_count;
     return *done && fogrt__wbvh_traverse(s, s->x->wide, o, d, tmin, tmax, hit, any_hit);
 }
+#endif /* FOGRT_NO_WIDE_BVH */
 
 
+#ifdef FOGRT__LAMPS
 /* ------------------------------------------------------------------------------------------
    B. Lamps in fog
    What it adds: point and spot lights in fog, the lamps of the paper's own scenes, found
@@ -5075,6 +5109,8 @@ FOGRT__PRIVATE bool fogrt__clip_to_cone(const fogrt_light_desc *l, float cos_c, 
 }
 #endif
 
+#endif /* FOGRT__LAMPS */
+
 /* ------------------------------------------------------------------------------------------
    C. Sampling and estimation
    What it adds: environment maps sampled by their brightness; the exact dielectric
@@ -5105,6 +5141,7 @@ FOGRT__PUBLIC float fogrt_fresnel_dielectric(float eta, float cos_i)
 }
 #endif
 #endif
+#ifndef FOGRT_NO_ESTIMATION
 /* The environment map (CS184's mapping): direction <-> (x, y) in [0,1)^2 of the image,
    theta = pi y from +y, phi = 2 pi x with phi = atan2(-z, x) + pi. The sampling density of
    a pixel is its table weight over the total, per unit (x, y); per solid angle it is divided
@@ -5182,6 +5219,7 @@ FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s)
     s->x->env_total = total;
     return true;
 }
+#endif
 
 #ifndef FOGRT_NO_MEDIUM
 /* The part [*a, *b] of the ray segment o + t d, t in [0, tmax], that lies in the fog: all of
@@ -5202,6 +5240,7 @@ FOGRT__PRIVATE bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__
     return *b > *a;
 }
 #endif
+#ifndef FOGRT_NO_ESTIMATION
 /* Where the fog is: the medium's box, or with an environment light and no box the box of
    the geometry (fog filling all space would hide the sky), or everywhere. */
 FOGRT__PRIVATE void fogrt__fog_bounds(fogrt_scene *s, uint32_t n)
@@ -5213,13 +5252,18 @@ FOGRT__PRIVATE void fogrt__fog_bounds(fogrt_scene *s, uint32_t n)
     s->x->fog_lo = s->bmin; s->x->fog_hi = s->bmax;
     fogrt__log(s, FOGRT_LOG_WARNING, "medium: the scene has an environment light and the fog no bounds: the fog fills the box of the geometry");
 }
+#endif
 /* The one light list: lights 0 .. light_count-1 are the point and spot lights, then the
    area lights, and last the environment map when there is one. A point light is sampled once (it is one direction), any other light
    light_samples times; a point light needs two uniforms (the sphere of a light with a
    radius), an area light three (the triangle, then the point on it). */
 FOGRT__PRIVATE uint32_t fogrt__light_total(const fogrt_scene *s)
 {
+#ifndef FOGRT_NO_ESTIMATION
     return s->light_count + s->area_light_count + (s->env_map && s->x->env_total > 0.0 ? 1u : 0u);
+#else
+    return s->light_count + s->area_light_count;        /* the map is found by escaping rays only */
+#endif
 }
 /* Choosing lights by power (render desc light_by_power): each light's radiant flux,
    estimated as luminance x emitting area x pi for an area light, intensity x the solid
@@ -5243,28 +5287,46 @@ FOGRT__PRIVATE float fogrt__light_power(const fogrt_scene *s, uint32_t i, float 
     return (float)(s->x->env_total * FOGRT__PI_D / (2.0 * (double)s->env_w * (double)s->env_h)) *   /* mean radiance */
            FOGRT__PI * 4.0f * FOGRT__PI * radius * radius;
 }
+FOGRT__PRIVATE float fogrt__light_radius(const fogrt_scene *s)    /* of the sphere around the geometry */
+{
+    return FOGRT__MAX(0.5f * fogrt__length(fogrt__sub(s->bmax, s->bmin)), 1e-6f);
+}
+#ifdef FOGRT__LAMPS
+/* The share c of d' (E): half the point and spot lights' share of the light's power, 1/2
+   when they are all of it. */
+FOGRT__PRIVATE float fogrt__glow_share_of(const fogrt_scene *s)
+{
+    uint32_t i, n = fogrt__light_total(s);
+    double total = 0.0, lamps = 0.0;
+    if (n < 2) return 0.5f;
+    for (i = 0; i < n; ++i) {
+        double w = (double)FOGRT__MAX(fogrt__light_power(s, i, fogrt__light_radius(s)), 0.0f);
+        total += w;
+        if (i < s->light_count) lamps += w;
+    }
+    return total > 0.0 ? (float)(0.5 * lamps / total) : 0.5f;
+}
+#endif
+#ifndef FOGRT_NO_ESTIMATION
 FOGRT__PRIVATE bool fogrt__build_light_pick(fogrt_scene *s)
 {
     uint32_t i, n = fogrt__light_total(s);
-    double total = 0.0, lamps = 0.0, run = 0.0;
-    float radius = FOGRT__MAX(0.5f * fogrt__length(fogrt__sub(s->bmax, s->bmin)), 1e-6f);
-    s->x->glow_share = 0.5f;
+    double total = 0.0, run = 0.0;
     if (n < 2) return true;
     s->x->light_pick = (float *)fogrt__alloc(&s->allocator, sizeof(float) * n);
     if (!s->x->light_pick) return false;
     for (i = 0; i < n; ++i) {                            /* the powers, then their running sum */
-        s->x->light_pick[i] = FOGRT__MAX(fogrt__light_power(s, i, radius), 0.0f);
+        s->x->light_pick[i] = FOGRT__MAX(fogrt__light_power(s, i, fogrt__light_radius(s)), 0.0f);
         total += (double)s->x->light_pick[i];
-        if (i < s->light_count) lamps += (double)s->x->light_pick[i];
     }
     for (i = 0; i < n; ++i) {
         run += total > 0.0 ? (double)s->x->light_pick[i] : 1.0;
         s->x->light_pick[i] = (float)(run / (total > 0.0 ? total : (double)n));
     }
     s->x->light_pick[n - 1] = 1.0f;
-    if (total > 0.0) s->x->glow_share = (float)(0.5 * lamps / total);   /* the lamps' share of the power */
     return true;
 }
+#endif
 FOGRT__PRIVATE int fogrt__light_sample_count(const fogrt_scene *s, const fogrt__settings *st, uint32_t i)
 {
     return i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->light_samples;
@@ -5278,7 +5340,11 @@ FOGRT__PRIVATE bool fogrt__sample_light(const fogrt_scene *s, uint32_t i, fogrt_
 {
     if (i < s->light_count) return fogrt__sample_point_light(s, &s->lights[i], x, u, ls);
     if (i - s->light_count < s->area_light_count) return fogrt__sample_area_light(s, &s->area_lights[i - s->light_count], x, u, ls);
+#ifndef FOGRT_NO_ESTIMATION
     return fogrt__sample_env(s, u, ls);
+#else
+    return false;
+#endif
 }
 /* The probability that next-event estimation picks light i: 1 when every light is sampled. */
 FOGRT__PRIVATE float fogrt__pick_prob(const fogrt_scene *s, bool by_power, uint32_t i)
@@ -5287,6 +5353,7 @@ FOGRT__PRIVATE float fogrt__pick_prob(const fogrt_scene *s, bool by_power, uint3
     return s->x->light_pick[i] - (i ? s->x->light_pick[i - 1] : 0.0f);
 }
 
+#ifndef FOGRT_NO_ESTIMATION
 /* Adaptive sampling (not in the paper). The error above is a sum over pixels, and pixels
    are not equally noisy: in the paper's spot-lit box the lit cone, the floor it lights
    and the bunny's edges are noisier than the dim fog around them. With the same cost per
@@ -5501,6 +5568,7 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix)
         * (1.0 / 9007199254740992.0) < want - whole && n < room) ++n;
     return n;
 }
+#endif /* FOGRT_NO_ESTIMATION */
 
 /* ------------------------------------------------------------------------------------------
    E. The full integrator
@@ -5711,6 +5779,7 @@ FOGRT__PRIVATE bool fogrt__is_scattering(const fogrt__path *P)
 {
     return P->v.is_medium || !fogrt__bsdf_is_delta(P->type);
 }
+#ifdef FOGRT__LAMPS
 /* The lamps whose glow (B) a scattering vertex in fog may aim its next direction
    at (d'): every point and spot light. At most FOGRT__GLOW_MAX, the first
    ones; none on a mirror or glass surface, outside the fog, or with the glow switched off.
@@ -5763,6 +5832,7 @@ FOGRT__PRIVATE float fogrt__glow_mix(const fogrt_scene *s, const fogrt__vertex *
 {
     return fogrt__glow_mix_known(s, v, g, wi, pdf_b, -1, 0.0f);
 }
+#endif
 /* One light sample's share of the light reflected at v (eq. 13): f Le T V w / (n pdf),
    with w the MIS weight (1 for a delta light, or with MIS off). */
 #ifdef FOGRT_TRACE
@@ -5780,7 +5850,11 @@ FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt
     f = fogrt__vertex_f(s, v, ls->wi, &pdf_b);
     if (!fogrt__is_black(f)) tr = fogrt__shadow(s, v, ls, P->rays);
     if (tr != 0.0f) {
+#ifdef FOGRT__LAMPS
         if (g && g->n > 0 && !ls->delta && st->mis) pdf_b = fogrt__glow_mix(s, v, g, ls->wi, pdf_b);   /* how scattering picks wi */
+#else
+        (void)g;
+#endif
         w = ls->delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls->pdf, pdf_b);
         c = fogrt__scale(fogrt__mul(f, ls->Le), tr * w / (ls->pdf * (float)n));
     }
@@ -5842,6 +5916,7 @@ FOGRT__PRIVATE void fogrt__fog_vertex(fogrt__vertex *v, fogrt__v3 p, fogrt__v3 w
    the light seen from the fog point x(t) as at any fog vertex (2.3), weighted by
    sigma_s T(t) / pdf(t). A spot light only lights its cone: only the part of the ray inside
    it is sampled. With light_by_power, one point or spot light per segment, by power. */
+#ifdef FOGRT__LAMPS
 /* The point and spot lights a segment gathers, [*first, *last): all of them, or with
    light_by_power one, picked among them by power. Returns the probability of the pick. */
 FOGRT__PRIVATE float fogrt__equiangular_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
@@ -5886,6 +5961,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
     }
     return L;
 }
+#endif
 
 /* a. Free flight through the fog (eq. 4-6): does the ray collide before t_surface? The
    distance is sampled from where the ray is in the fog (t = a, 0 unless the fog is bounded
@@ -5902,8 +5978,12 @@ FOGRT__PRIVATE bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settin
     *tr = b < INFINITY ? fogrt_transmittance(s->medium.sigma_t, b - a) : 0.0f;
     t = a + fogrt_sample_exponential(s->medium.sigma_t, u);
     FOGRT__HOOK(fogrt__trace_free_flight(P, u, t, b, t < b));
+#ifdef FOGRT__LAMPS
     if (st->nee && P->xs->equiangular && s->light_count > 0 && may_scatter)
         fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, a, b)), "equiangular");
+#else
+    (void)st; (void)may_scatter;
+#endif
     if (!(t < b)) return false;                          /* leaves the fog or reaches the surface: T / T = 1 */
     P->beta = fogrt__mul(P->beta, s->medium.albedo);     /* sigma_s T / (sigma_t T) */
     fogrt__fog_vertex(&P->v, fogrt__madd(P->o, P->d, t), fogrt__neg(P->d));
@@ -5978,6 +6058,7 @@ FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__set
    cost a shadow ray per bounce for surfaces it hides. */
 #define FOGRT__BEHIND_MIN 0.0625f
 
+#ifdef FOGRT__LAMPS
 /* Whether to take that sample behind this collision (the roulette draw, when T is small). */
 FOGRT__PRIVATE bool fogrt__light_behind_wanted(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
 {
@@ -6001,6 +6082,7 @@ FOGRT__PRIVATE void fogrt__light_behind(const fogrt_scene *s, const fogrt__setti
     }
     P->v = keep; P->glow = keep_glow; P->type = type; P->entering = entering;
 }
+#endif
 
 /* A ray that leaves the scene: the environment's light, also as tr Le. */
 FOGRT__PRIVATE void fogrt__escape(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, fogrt__v3 beta,
@@ -6008,9 +6090,11 @@ FOGRT__PRIVATE void fogrt__escape(const fogrt_scene *s, const fogrt__settings *s
 {
     if (s->has_env && tr > 0.0f) {
         float w = 1.0f;                                 /* a map is also sampled by NEE: MIS */
+#ifndef FOGRT_NO_ESTIMATION
         if (s->env_map && !P->prev_delta && st->nee)
             w = st->mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->light_samples * fogrt__env_pdf(s, P->d) *
                                                  fogrt__pick_prob(s, P->xs->by_power, fogrt__light_total(s) - 1)) : 0.0f;
+#endif
         fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, fogrt__env_radiance(s, P->d)), w * tr), "environment");
     }
 }
@@ -6024,10 +6108,18 @@ FOGRT__PRIVATE bool fogrt__collided(const fogrt_scene *s, const fogrt__settings 
     if (hit) {
         const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit->prim)];
         fogrt__v3 p, ng, ns;
+#ifdef FOGRT__LAMPS
         bool behind = fogrt__light_behind_wanted(s, st, P);
+#else
+        bool behind = false;
+#endif
         if (!behind && (fogrt__is_black(m->emission) || !(tr > 0.0f))) return true;   /* nothing to add there */
         fogrt__surface_frame(s, P->o, P->d, hit, &p, &ng, &ns);
+#ifdef FOGRT__LAMPS
         if (behind) fogrt__light_behind(s, st, P, m, p, ng, ns, beta, limit);               /* b' */
+#else
+        (void)limit;
+#endif
         fogrt__surface_emission(s, st, P, m, hit, p, ng, beta, tr);
     } else {
         fogrt__escape(s, st, P, beta, tr);
@@ -6079,7 +6171,9 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
    or glass vertex cannot be reached by a light sample and is skipped. */
 FOGRT__HOT void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
 {
+#ifdef FOGRT__LAMPS
     if (P->xs->glow) fogrt__glow_setup(s, P, &P->v, &P->glow, fogrt__is_scattering(P) && (P->v.is_medium || P->type == FOGRT_BSDF_DIFFUSE));
+#endif
     if (st->nee && fogrt__is_scattering(P))             /* lamps at a surface seen through fog: T times (b') */
         fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__sample_lights(s, st, P,
                       P->v.is_medium || !P->xs->expected_emission ? 1.0f : P->seg_tr, false)), "light sample");
@@ -6100,7 +6194,7 @@ FOGRT__HOT bool fogrt__scatter_surface(const fogrt_scene *s, const fogrt__settin
     FOGRT__HOOK(fogrt__trace_bsdf(st, P, u, &bs, cos_o));
     return true;
 }
-#ifndef FOGRT_NO_MEDIUM
+#ifdef FOGRT__LAMPS
 #ifdef FOGRT_TRACE
 FOGRT__PRIVATE void fogrt__trace_glow(const fogrt__path *P, const float *u, bool glow,
                                       bool footprint, uint32_t light, float pdf_b, float pdf, fogrt__v3 weight);
@@ -6180,7 +6274,9 @@ FOGRT__HOT bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *st, 
     P->prev_p = P->v.p;
 #ifndef FOGRT_NO_MEDIUM
     if (!P->v.in_medium) return fogrt__scatter_surface(s, st, P);   /* (a vertex outside the fog: only d) */
+#ifdef FOGRT__LAMPS
     if (P->glow.n > 0) return fogrt__scatter_glow(s, st, P);
+#endif
     if (P->v.is_medium) {
         float u1 = fogrt_rng_float(P->rng), u2 = fogrt_rng_float(P->rng);
         P->d = fogrt__sample_hg_unit(s->medium.g, P->v.wo, u1, u2, &P->prev_pdf);
@@ -6273,6 +6369,7 @@ FOGRT__PRIVATE bool fogrt__lamps_in_fog(const fogrt_scene *s)
 {
     return (s->features & FOGRT_FEATURE_MEDIUM) && s->light_count > 0;
 }
+#ifndef FOGRT_NO_ESTIMATION
 /* The roulette's pilot (not in the paper). Russian roulette that keeps a path with
    probability q = throughput spends the same effort on every path of equal throughput,
    whatever the rest of the path is worth. fogrt keeps that shape and scales it by one
@@ -6387,6 +6484,7 @@ FOGRT__PRIVATE float fogrt__roulette_pilot(const fogrt_scene *s)
     }
     return k;
 }
+#endif /* FOGRT_NO_ESTIMATION */
 /* The full integrator's settings for a render desc (Part I's settings hold the desc). */
 FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__settings *st, fogrt__xs *xs)
 {
@@ -6433,30 +6531,45 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
     memset(x, 0, sizeof *x);
     s->x = x;
     x->rr_k = 1.0f;
+#ifndef FOGRT_NO_WIDE_BVH
     if (fogrt__wants_wide(d, n)) {                      /* A: the wide tree replaces the packed primitives */
         if (!fogrt__wide_build(s)) return false;
         fogrt__free(&s->allocator, s->prims); s->prims = NULL;
     }
+#else
+    (void)d;
+#endif
+#ifndef FOGRT_NO_ESTIMATION
     if (!fogrt__build_env(s)) return false;            /* C */
     fogrt__fog_bounds(s, n);
-#ifndef FOGRT_NO_MEDIUM
+#else
+    (void)n;
+#endif
+#ifdef FOGRT__LAMPS
+    x->glow_share = fogrt__glow_share_of(s);
     if (fogrt__lamps_in_fog(s)) {                       /* B */
         x->hg = (fogrt__hg_table *)fogrt__alloc(&s->allocator, sizeof *x->hg);
         if (!x->hg) return false;
         fogrt__hg_table_build(x->hg, s->medium.g);
     }
 #endif
+#ifndef FOGRT_NO_ESTIMATION
     if (!fogrt__build_light_pick(s)) return false;     /* C */
-#ifndef FOGRT_NO_MEDIUM
+#endif
+#ifdef FOGRT__LAMPS
     if (fogrt__lamps_in_fog(s) && !fogrt__find_footprints(s)) return false;   /* B */
 #endif
+#ifndef FOGRT_NO_ESTIMATION
     x->rr_k = d->roulette_pilot ? fogrt__roulette_pilot(s) : 1.0f;          /* C */
+#endif
     return true;
 }
 FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s)
 {
     if (!s->x) return;
+#ifndef FOGRT_NO_WIDE_BVH
     fogrt__wide_release(s);
+#endif
     fogrt__free(&s->allocator, s->x->env_cdf);
     fogrt__free(&s->allocator, s->x->light_pick);
     fogrt__free(&s->allocator, s->x->footprints);
@@ -6593,11 +6706,13 @@ FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
     b += sizeof *s->x;
     if (s->x->env_cdf) b += sizeof(float) * ((size_t)s->env_w + 1) * (size_t)s->env_h;
     if (s->x->light_pick) b += sizeof(float) * fogrt__light_total(s);
-#ifndef FOGRT_NO_MEDIUM
+#ifdef FOGRT__LAMPS
     if (s->x->footprints) b += sizeof(fogrt__footprint) * s->light_count;
     if (s->x->hg) b += sizeof *s->x->hg;
 #endif
+#ifndef FOGRT_NO_WIDE_BVH
     if (s->x->wide) b += fogrt__wbvh_bytes(s->x->wide);
+#endif
     return b;
 }
 FOGRT__PUBLIC void fogrt_scene_get_bvh(const fogrt_scene *s, const fogrt_bvh_node **nodes, uint32_t *node_count,
