@@ -318,8 +318,10 @@ FOGRT_API fogrt_result fogrt_scene_set_environment(fogrt_scene *scene, fogrt_vec
    across the columns. It replaces the constant environment, is sampled by next-event
    estimation in proportion to luminance x sin(theta), and is combined with BSDF and phase
    sampling by MIS. The scene copies the image; NULL rgb removes the map.               */
+#ifndef FOGRT_NO_ESTIMATION
 FOGRT_API fogrt_result fogrt_scene_set_environment_map(fogrt_scene *scene, int width, int height,
-                                                       const float *rgb, float scale);
+                                                       const float *rgb, float scale);   /* Part II, C */
+#endif
 
 /* fogrt_camera_desc
      position, look_at    eye and target (must differ)
@@ -1092,6 +1094,28 @@ FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x)
     return x ^ (x >> 31);
 }
 
+/* The seams: what Part I calls of Part II (numbered as in the list above). */
+struct fogrt__settings;
+struct fogrt__job;
+#ifndef FOGRT_NO_WIDE_BVH
+FOGRT__PRIVATE bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
+                                      fogrt_hit *hit, bool any_hit, bool *done);                  /* 1 (A) */
+FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n);                /* 2 (A) */
+#endif
+#ifndef FOGRT_MINIMAL
+FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n);        /* 3 */
+FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s);                                             /* 4 */
+FOGRT__PRIVATE bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax,
+                                      float *a, float *b);                                        /* 6 (C) */
+FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const struct fogrt__settings *st);      /* 7 (E) */
+FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const struct fogrt__settings *st, fogrt__v3 o,
+                                           fogrt__v3 d, fogrt_rng *rng, uint64_t *rays);
+#endif
+#ifndef FOGRT_NO_ESTIMATION
+FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy);   /* 8 (C) */
+FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const struct fogrt__job *job, size_t pix);
+#endif
+
 /* ------------------------------------------------------------------------------------------
    I.2 The scene: storage and validation
    Every add_* call validates all of its input before it changes anything, so an error
@@ -1129,7 +1153,7 @@ struct fogrt_scene {
     float *spot_cos;           /* built: per point or spot light, cos(cutoff) and cos(beam) */
     /* environment: a constant radiance, or a map (3 floats per pixel, CS184's mapping) */
     fogrt__v3 env; bool env_upper_only, has_env;
-    float *env_map; int env_w, env_h;
+    float *env_map; int env_w, env_h;   /* a map's pixels (set by Part II, C), or NULL */
     fogrt_camera_desc camera; bool has_camera;
     fogrt_medium_desc medium;
     /* built data (fogrt_scene_build) */
@@ -1192,9 +1216,6 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogr
     *out_scene = s;
     return FOGRT_RESULT_OK;
 }
-#ifndef FOGRT_MINIMAL
-FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s);   /* Part II */
-#endif
 FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s)
 {
 #ifndef FOGRT_MINIMAL
@@ -1407,36 +1428,6 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment(fogrt_scene *s, fogrt_vec
     s->built = false;
     return FOGRT_RESULT_OK;
 }
-FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment_map(fogrt_scene *s, int width, int height, const float *rgb, float scale)
-{
-    size_t i, n;
-    float *copy;
-    FOGRT_ASSERT(s);
-    if (!rgb) {
-        fogrt__free(&s->allocator, s->env_map);
-        s->env_map = NULL; s->env_w = s->env_h = 0;
-        s->has_env = !fogrt__is_black(s->env);
-        s->built = false;
-        return FOGRT_RESULT_OK;
-    }
-    if (width < 1 || height < 1 || (uint64_t)width * (uint64_t)height > ((uint64_t)1 << 28))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment map: width and height must be >= 1 and width x height at most 2^28");
-    if (!fogrt__finite(scale) || !(scale >= 0.0f))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment map: scale negative or not finite");
-    n = (size_t)width * (size_t)height * 3;
-    for (i = 0; i < n; ++i)
-        if (!fogrt__finite(rgb[i]) || rgb[i] < 0.0f || !fogrt__finite(rgb[i] * scale))
-            return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment map: a pixel is negative or not finite (after scale)");
-    copy = (float *)fogrt__alloc(&s->allocator, sizeof(float) * n);
-    if (!copy) return FOGRT_RESULT_OUT_OF_MEMORY;
-    for (i = 0; i < n; ++i) copy[i] = rgb[i] * scale;
-    fogrt__free(&s->allocator, s->env_map);
-    s->env_map = copy; s->env_w = width; s->env_h = height;
-    s->has_env = true;
-    s->built = false;
-    return FOGRT_RESULT_OK;
-}
-
 FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_camera_desc *desc)
 {
     fogrt_camera_desc c;
@@ -1987,10 +1978,6 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 
 /* The scene's ray query: the binary tree above, or the wide tree of Part II (A) when the
    build made one. */
-#ifndef FOGRT_NO_WIDE_BVH
-FOGRT__PRIVATE bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
-                                      fogrt_hit *hit, bool any_hit, bool *done);
-#endif
 FOGRT__HOT bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
                                 fogrt_hit *hit, bool any_hit)
 {
@@ -2415,23 +2402,10 @@ FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, 
     cos_l = fabsf(fogrt__dot(fogrt__normalize(to), ny));
     return cos_l > 0.0f ? d2 / (cos_l * a->area) : 0.0f;
 }
-/* The environment's radiance in direction d: the constant, or the map's pixel (CS184's
-   mapping: theta = acos(y) down the rows, phi = atan2(-z, x) + pi across the columns). */
-FOGRT__PRIVATE size_t fogrt__env_pixel(const fogrt_scene *s, fogrt__v3 d, float *sin_theta)
-{
-    float y = acosf(FOGRT__CLAMP(d.y, -1.0f, 1.0f)) * FOGRT__INV_PI;
-    float x = (atan2f(-d.z, d.x) + FOGRT__PI) * (0.5f * FOGRT__INV_PI);
-    int i = FOGRT__CLAMP((int)(x * (float)s->env_w), 0, s->env_w - 1), j = FOGRT__CLAMP((int)(y * (float)s->env_h), 0, s->env_h - 1);
-    *sin_theta = sqrtf(FOGRT__MAX(0.0f, (1.0f - d.y) * (1.0f + d.y)));
-    return (size_t)j * (size_t)s->env_w + (size_t)i;
-}
+/* The environment's radiance in direction d (a constant; Part II, C, adds maps). */
 FOGRT__PRIVATE fogrt__v3 fogrt__env_radiance(const fogrt_scene *s, fogrt__v3 d)
 {
-    float sin_t;
-    const float *c;
-    if (!s->env_map) return s->env_upper_only && !(d.y > 0.0f) ? fogrt__v(0.0f, 0.0f, 0.0f) : s->env;
-    c = s->env_map + 3 * fogrt__env_pixel(s, d, &sin_t);
-    return fogrt__v(c[0], c[1], c[2]);
+    return s->env_upper_only && !(d.y > 0.0f) ? fogrt__v(0.0f, 0.0f, 0.0f) : s->env;
 }
 
 /* ------------------------------------------------------------------------------------------
@@ -2478,9 +2452,6 @@ FOGRT__PUBLIC float fogrt_transmittance(float sigma_t, float distance)
     if (!(sigma_t > 0.0f) || !(distance > 0.0f)) return 1.0f;
     return expf(-sigma_t * distance);   /* underflows to 0 for optical depth > ~87: correct */
 }
-#ifndef FOGRT_MINIMAL
-FOGRT__PRIVATE bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax, float *a, float *b);
-#endif
 /* Eq. 8 along o + t d for t in [0, dist]: exp(-sigma_t x the length in fog). */
 FOGRT__PRIVATE float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float dist)
 {
@@ -3129,12 +3100,6 @@ FOGRT__PRIVATE bool fogrt__build_spots(fogrt_scene *s)
     }
     return true;
 }
-#ifndef FOGRT_NO_WIDE_BVH
-FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n);   /* Part II, A */
-#endif
-#ifndef FOGRT_MINIMAL
-FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n);
-#endif
 FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
 {
     fogrt_build_desc d;
@@ -3237,11 +3202,6 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
     if (out) *out = d;
     return FOGRT_RESULT_OK;
 }
-#ifndef FOGRT_MINIMAL
-FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const fogrt__settings *st);        /* Part II, E */
-FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
-                                           fogrt_rng *rng, uint64_t *rays);
-#endif
 /* One sample of the radiance arriving at o along -d. */
 FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
                                          fogrt_rng *rng, uint64_t *rays)
@@ -3393,10 +3353,6 @@ typedef struct fogrt__job {
     const float *rate;       /* per-pixel rates (Part II, C), or NULL: spp samples in every pixel */
     uint64_t coin;           /* with rates: a key that changes from call to call */
 } fogrt__job;
-#ifndef FOGRT_NO_ESTIMATION
-FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy);
-FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix);   /* Part II, C */
-#endif
 /* The camera ray of sample `index` of pixel (x, y), and the sample's random stream. Every
    sample has its own stream, derived from (seed, pixel, sample index): the image does not
    depend on the thread that renders it. The pixel filter is a box: the ray goes through a
@@ -5142,6 +5098,54 @@ FOGRT__PUBLIC float fogrt_fresnel_dielectric(float eta, float cos_i)
 #endif
 #endif
 #ifndef FOGRT_NO_ESTIMATION
+/* Environment maps: the map replaces the constant environment (the scene keeps the pixels,
+   times scale), is looked up in CS184's mapping, and is sampled by next-event estimation in
+   proportion to luminance x sin(theta). */
+FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment_map(fogrt_scene *s, int width, int height, const float *rgb, float scale)
+{
+    size_t i, n;
+    float *copy;
+    FOGRT_ASSERT(s);
+    if (!rgb) {
+        fogrt__free(&s->allocator, s->env_map);
+        s->env_map = NULL; s->env_w = s->env_h = 0;
+        s->has_env = !fogrt__is_black(s->env);
+        s->built = false;
+        return FOGRT_RESULT_OK;
+    }
+    if (width < 1 || height < 1 || (uint64_t)width * (uint64_t)height > ((uint64_t)1 << 28))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment map: width and height must be >= 1 and width x height at most 2^28");
+    if (!fogrt__finite(scale) || !(scale >= 0.0f))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment map: scale negative or not finite");
+    n = (size_t)width * (size_t)height * 3;
+    for (i = 0; i < n; ++i)
+        if (!fogrt__finite(rgb[i]) || rgb[i] < 0.0f || !fogrt__finite(rgb[i] * scale))
+            return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment map: a pixel is negative or not finite (after scale)");
+    copy = (float *)fogrt__alloc(&s->allocator, sizeof(float) * n);
+    if (!copy) return FOGRT_RESULT_OUT_OF_MEMORY;
+    for (i = 0; i < n; ++i) copy[i] = rgb[i] * scale;
+    fogrt__free(&s->allocator, s->env_map);
+    s->env_map = copy; s->env_w = width; s->env_h = height;
+    s->has_env = true;
+    s->built = false;
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PRIVATE size_t fogrt__env_pixel(const fogrt_scene *s, fogrt__v3 d, float *sin_theta)
+{
+    float y = acosf(FOGRT__CLAMP(d.y, -1.0f, 1.0f)) * FOGRT__INV_PI;
+    float x = (atan2f(-d.z, d.x) + FOGRT__PI) * (0.5f * FOGRT__INV_PI);
+    int i = FOGRT__CLAMP((int)(x * (float)s->env_w), 0, s->env_w - 1), j = FOGRT__CLAMP((int)(y * (float)s->env_h), 0, s->env_h - 1);
+    *sin_theta = sqrtf(FOGRT__MAX(0.0f, (1.0f - d.y) * (1.0f + d.y)));
+    return (size_t)j * (size_t)s->env_w + (size_t)i;
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__env_map_radiance(const fogrt_scene *s, fogrt__v3 d)
+{
+    float sin_t;
+    const float *c;
+    if (!s->env_map) return fogrt__env_radiance(s, d);
+    c = s->env_map + 3 * fogrt__env_pixel(s, d, &sin_t);
+    return fogrt__v(c[0], c[1], c[2]);
+}
 /* The environment map (CS184's mapping): direction <-> (x, y) in [0,1)^2 of the image,
    theta = pi y from +y, phi = 2 pi x with phi = atan2(-z, x) + pi. The sampling density of
    a pixel is its table weight over the total, per unit (x, y); per solid angle it is divided
@@ -6095,7 +6099,11 @@ FOGRT__PRIVATE void fogrt__escape(const fogrt_scene *s, const fogrt__settings *s
             w = st->mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->light_samples * fogrt__env_pdf(s, P->d) *
                                                  fogrt__pick_prob(s, P->xs->by_power, fogrt__light_total(s) - 1)) : 0.0f;
 #endif
+#ifndef FOGRT_NO_ESTIMATION
+        fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, fogrt__env_map_radiance(s, P->d)), w * tr), "environment");
+#else
         fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, fogrt__env_radiance(s, P->d)), w * tr), "environment");
+#endif
     }
 }
 #ifndef FOGRT_NO_MEDIUM
@@ -6506,7 +6514,7 @@ FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const fogrt__settings 
 {
     const fogrt_render_desc *d = &st->desc;
     return d->equiangular || d->glow || d->footprint || d->light_by_power || d->expected_emission ||
-           s->x->fog_bounded;
+           s->x->fog_bounded || s->env_map;
 }
 FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance_xs(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs,
                                               fogrt__v3 o, fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
