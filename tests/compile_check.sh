@@ -15,6 +15,8 @@
 #     FOGRT_NO_STDIO (compile only), with gcc, and the full strip as C++
 #   - what each strip macro claims to remove is gone from the object file (nm): the public
 #     functions of the feature are defined without the macro and absent with it
+#   - FOGRT_MINIMAL: no function defined in Part II of fogrt.h is left in the object file
+#     (nm, at -O0 with every static function kept), Part I's are
 # The C checks use -Wshadow -Wconversion -Wcast-qual on top of -Wall -Wextra -pedantic.
 # Exit status 1 if any check failed.
 #
@@ -260,6 +262,45 @@ if have "$GCC" && have nm; then
     run "nm: FOGRT_NO_STDIO removes the file writers" strip_nm FOGRT_NO_STDIO fogrt_write_pfm fogrt_write_ppm fopen
 else
     skip "nm checks: gcc or nm not installed"
+fi
+
+# ---- FOGRT_MINIMAL leaves Part II out whole (nm) --------------------------------------------
+# The names: every function defined between Part II's banner and its closing #endif. Both
+# objects are built at -O0 -fno-inline with -fkeep-static-functions (and FOGRT_TRACE, for
+# appendix D), so that every private function that exists shows up, called or not. The full
+# object must hold each name (the extraction and the flags work; the always-inline
+# FOGRT__HOT helpers excepted: they never stand alone, and their callers are checked), the
+# minimal one none of them and no symbol of Part II's families, and still Part I's.
+part2_names() {
+    awk '/PART II: BEYOND THE PAPER/ { p = 1 } /^#endif \/\* FOGRT_MINIMAL \*\// { p = 0 }
+         p && /^FOGRT__(PRIVATE|PUBLIC|HOT)/ { print }' "$ROOT/fogrt.h" | grep -v "^FOGRT__$1" |
+        sed -E 's/\(.*//; s/.*[ *]([A-Za-z_0-9]+)$/\1/' | sort -u
+}
+minimal_nm() {
+    flags="-std=c99 -O0 -fno-inline -fkeep-static-functions -DFOGRT_TRACE -I$ROOT"
+    $GCC $flags -c "$TMP/impl.c" -o "$TMP/nm_full.o" || return 1
+    $GCC $flags -DFOGRT_MINIMAL -c "$TMP/impl.c" -o "$TMP/nm_minimal.o" || return 1
+    nm "$TMP/nm_full.o" | awk '{ print $NF }' | sort -u >"$TMP/full.syms"
+    nm "$TMP/nm_minimal.o" | awk '{ print $NF }' | sort -u >"$TMP/minimal.syms"
+    part2_names NONE >"$TMP/part2.names"
+    part2_names HOT >"$TMP/part2_standalone.names"
+    n=$(wc -l <"$TMP/part2.names")
+    [ "$n" -ge 50 ] || { echo "only $n Part II functions found after the banner in fogrt.h"; return 1; }
+    missing=$(comm -23 "$TMP/part2_standalone.names" "$TMP/full.syms")
+    [ -z "$missing" ] || { echo "not in the full object (the check cannot see them):" $missing; return 1; }
+    left=$(comm -12 "$TMP/part2.names" "$TMP/minimal.syms")
+    [ -z "$left" ] || { echo "Part II functions left under FOGRT_MINIMAL:" $left; return 1; }
+    left=$(grep -E '^fogrt__(wbvh|wide|hg_table|hgt_|x_|glow|footprint|equiangular|pilot|sobol|env_pdf|sample_env|rate_|sat_|trace_)|^fogrt_(image_sample_rates|trace_path|trace_describe|sample_equiangular|equiangular_pdf|sample_glow|glow_pdf|fresnel_dielectric|scene_get_memory|scene_get_bvh|bvh_sah_cost|scene_intersect_brute)$' "$TMP/minimal.syms")
+    [ -z "$left" ] || { echo "Part II symbols left under FOGRT_MINIMAL:" $left; return 1; }
+    for sym in fogrt__algorithm1 fogrt__radiance fogrt__build_tree fogrt_render fogrt_scene_build fogrt_render_paper_defaults; do
+        grep -qx "$sym" "$TMP/minimal.syms" || { echo "$sym (Part I) missing from the FOGRT_MINIMAL object"; return 1; }
+    done
+    echo "$n Part II functions, none left under FOGRT_MINIMAL"
+}
+if have "$GCC" && have nm; then
+    run "nm: FOGRT_MINIMAL leaves out every function of Part II and keeps Part I" minimal_nm
+else
+    skip "nm FOGRT_MINIMAL check: gcc or nm not installed"
 fi
 
 echo "compile: $passed passed, $failed failed, $skipped skipped"

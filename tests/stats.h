@@ -48,7 +48,11 @@
    when someone adds or removes a test.                                                      */
 #define STATS_ALPHA 0.01
 #define STATS_TESTS_SAMPLING   90   /* tests/test_sampling.c: 74 chi-square + 16 KS */
+#ifdef FOGRT_MINIMAL   /* Part I alone: the binomial tests of the exact Fresnel (Part II, C) skip */
+#define STATS_TESTS_BSDF_STATS 11   /* tests/test_bsdf_stats.c: 5 chi-square + 6 binomial */
+#else
 #define STATS_TESTS_BSDF_STATS 17   /* tests/test_bsdf_stats.c: 5 chi-square + 12 binomial */
+#endif
 #define STATS_SUITE_TESTS (STATS_TESTS_SAMPLING + STATS_TESTS_BSDF_STATS)
 
 /* Where failing tests dump their tables (relative to the repository root, where tests run). */

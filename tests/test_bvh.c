@@ -829,6 +829,9 @@ static void test_sah_vs_volume(void)
    a primitive, or a lane test differs from the binary slab test. */
 static void test_layouts_agree(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("A: the wide BVH");
+#else
     static const uint32_t tris[3] = { 5, 900, 3000 }, spheres[3] = { 2, 0, 120 };
     static const fogrt_bvh_layout layouts[3] = { FOGRT_BVH_LAYOUT_BINARY, FOGRT_BVH_LAYOUT_WIDE, FOGRT_BVH_LAYOUT_DEFAULT };
     int k, l, hits, ray_count = 2000;
@@ -859,6 +862,7 @@ static void test_layouts_agree(void)
         free(rays); free(ref);
         free_soup(&s);
     }
+#endif
 }
 
 /* Every bin count from 2 to 64 (and 0 = the default 8) builds a valid tree that answers as

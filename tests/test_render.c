@@ -165,6 +165,7 @@ static void assert_means_agree(batch_estimate a, batch_estimate b, const char *w
    (roulette_pilot = false); the same scene built twice gets the same k;
    and the image mean with the pilot's k agrees with the mean with k = 1 (20 independent
    renders each, in two scenes): k changes the cost, not the answer. */
+#ifndef FOGRT_MINIMAL   /* helpers of Part II's test below */
 static fogrt_scene *spot_box(void)
 {
     fogrt_scene *scene = NULL;
@@ -200,8 +201,12 @@ static fogrt_scene *lit_floor(void)
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(scene, NULL));
     return scene;
 }
+#endif
 static void test_roulette_pilot(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("C: the roulette's pilot");
+#else
     fogrt_scene *spot = spot_box(), *again = spot_box(), *box = area_light_box(0.0f, false, 0.3f);
     fogrt_scene *glass = area_light_box(0.0f, true, 0.15f), *open = lit_floor(), *def = default_scene();
     fogrt_render_desc rd = render_desc(32, 24, 0);
@@ -236,6 +241,7 @@ static void test_roulette_pilot(void)
     assert_means_agree(with_k, with_1, "fog-free box with glass, roulette with the pilot's k vs k = 1");
     fogrt_scene_destroy(spot); fogrt_scene_destroy(again); fogrt_scene_destroy(box); fogrt_scene_destroy(glass);
     fogrt_scene_destroy(open); fogrt_scene_destroy(def);
+#endif
 }
 
 /* ------------------------------------------------------------------------------------------
@@ -344,6 +350,7 @@ static void test_split_samples_identical(void)
    63 degrees of freedom), and the four streams of a pixel are uncorrelated (|r| of their
    x and y below 4.5 / sqrt(N)). Fails on a scramble that is not nested (cells hold 0 or 2
    points), on one that is not uniform, or on streams that share their scramble. */
+#ifndef FOGRT_MINIMAL   /* helpers of Part II's test below */
 static int count_net_failures(uint64_t base, uint64_t pix, int stream, int first, int m)
 {
     int a, fails = 0, n = 1 << m;
@@ -373,8 +380,12 @@ static double chi2_8x8(uint64_t base, int point)
     for (i = 0; i < 64; ++i) chi2 += (cells[i] - expected) * (cells[i] - expected) / expected;
     return chi2;
 }
+#endif
 static void test_pixel_positions_stratified(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("C: stratified pixel streams");
+#else
     uint64_t base = fogrt__hash64(7);
     int p, r, fails = 0, pairs = 0;
     double c0, c5, sxy[FOGRT_IMAGE_STREAMS][2], cross[2] = { 0.0, 0.0 };
@@ -408,6 +419,7 @@ static void test_pixel_positions_stratified(void)
     snprintf(msg, sizeof msg, "streams: correlation %.4f (x), %.4f (y) over %d pairs", cross[0] / pairs, cross[1] / pairs, pairs);
     TEST_MESSAGE(msg);
     TEST_ASSERT_TRUE_MESSAGE(fabs(cross[0] / pairs) < 4.5 / sqrt((double)pairs) && fabs(cross[1] / pairs) < 4.5 / sqrt((double)pairs), msg);
+#endif
 }
 
 /* The same seed gives the same image; another seed gives a different one (in most pixels,
@@ -610,6 +622,9 @@ static void test_nee_unbiased_in_fog(void)
    mixture's weight. */
 static void test_glow_unbiased(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("B: the glow and footprint of a lamp");
+#else
     fogrt_scene *scene = NULL;
     fogrt_light_desc spot, point;
     fogrt_render_desc rd = render_desc(24, 18, 0);
@@ -645,6 +660,7 @@ static void test_glow_unbiased(void)
     assert_means_agree(glow, no_footprint, "glow with the spot's footprint vs without it");
     assert_means_agree(glow, collisions, "glow on vs lights found at fog collisions only");
     fogrt_scene_destroy(scene);
+#endif
 }
 
 /* expected_emission (the default) is another estimator of the same image: in the closed box
@@ -655,6 +671,9 @@ static void test_glow_unbiased(void)
    on the surface branch, or with the throughput after a collision's albedo. */
 static void test_expected_emission_unbiased(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("E: expected emission");
+#else
     int nee;
     for (nee = 0; nee < 2; ++nee) {
         fogrt_scene *scene = NULL;
@@ -686,6 +705,7 @@ static void test_expected_emission_unbiased(void)
         TEST_ASSERT_TRUE_MESSAGE(e_on.relative_error < 0.8 * e_off.relative_error, msg);
         fogrt_scene_destroy(scene);
     }
+#endif
 }
 
 /* Choosing one light per vertex by power (render desc light_by_power) is another estimator
@@ -696,6 +716,9 @@ static void test_expected_emission_unbiased(void)
    sample, or where a BSDF sample hits the lamp or the emissive sphere). */
 static void test_lights_by_power_unbiased(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("C: lights chosen by power");
+#else
     for (int fog = 0; fog < 2; fog++) {
         fogrt_scene *scene = NULL;
         fogrt_light_desc spot, point;
@@ -731,6 +754,7 @@ static void test_lights_by_power_unbiased(void)
         TEST_ASSERT_TRUE_MESSAGE(st_power.rays < st_all.rays, what);
         fogrt_scene_destroy(scene);
     }
+#endif
 }
 
 /* The DIRECT integrator (one bounce, the paper's baseline) estimates the same quantity as
@@ -1024,6 +1048,9 @@ static void test_write_files(void)
    colour changes (so the first check is not vacuous). */
 static void test_sample_rates_shape(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("C: per-pixel rates");
+#else
     fogrt_scene *scene = spot_box();
     fogrt_render_desc rd = render_desc(40, 30, 5);
     fogrt_image img, empty;
@@ -1070,6 +1097,7 @@ static void test_sample_rates_shape(void)
     free(r0); free(r1);
     fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
+#endif
 }
 
 /* fogrt_render with sample_rate: a pixel of rate 0 gets no sample, one of rate 2.5 gets 2 or
@@ -1078,6 +1106,9 @@ static void test_sample_rates_shape(void)
    NaN, negative or above FOGRT_MAX_SAMPLE_RATE are refused with the image untouched. */
 static void test_sample_rates_render(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("C: per-pixel rates");
+#else
     fogrt_scene *scene = default_scene();
     fogrt_render_desc rd = render_desc(16, 12, 3);
     fogrt_image a, b;
@@ -1120,6 +1151,7 @@ static void test_sample_rates_render(void)
     TEST_ASSERT_EQUAL_UINT64(total, twice);
     fogrt_image_free(&a);
     fogrt_scene_destroy(scene);
+#endif
 }
 
 /* Rendered the way the CLI does (8 spp alike, the rates, then 24 more spp at those rates),
@@ -1127,6 +1159,7 @@ static void test_sample_rates_render(void)
    over 16 renders each; and the image's own error estimate still matches the error
    measured between two such renders. Fails on rates that read a pixel's own samples in a
    way that shifts its mean, on a coin that sticks, or on counts that miss the streams. */
+#ifndef FOGRT_MINIMAL   /* helper of Part II's test below */
 static void render_adaptive_like_cli(const fogrt_scene *scene, fogrt_render_desc rd, fogrt_image *img, float *rates)
 {
     render_new(scene, &rd, 8, img, NULL);
@@ -1134,8 +1167,12 @@ static void render_adaptive_like_cli(const fogrt_scene *scene, fogrt_render_desc
     rd.sample_rate = rates;
     CHECK_OK(fogrt_render(scene, &rd, img, 24, NULL));
 }
+#endif
 static void test_sample_rates_unbiased(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("C: per-pixel rates");
+#else
     fogrt_scene *scene = spot_box();
     fogrt_render_desc rd = render_desc(32, 24, 0);
     float *rates = (float *)malloc(sizeof(float) * 32 * 24);
@@ -1166,6 +1203,7 @@ static void test_sample_rates_unbiased(void)
     fogrt_image_free(&img);
     fogrt_image_free(&other);
     fogrt_scene_destroy(scene);
+#endif
 }
 
 int main(int argc, char **argv)

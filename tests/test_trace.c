@@ -18,6 +18,7 @@
 #define H 18
 #define MAX_EVENTS 4096
 
+#ifndef FOGRT_MINIMAL   /* the helpers of the tests below, all of Part II */
 typedef struct recorder {
     fogrt_trace_event ev[MAX_EVENTS];
     int n;
@@ -70,10 +71,14 @@ static fogrt_scene *default_scene(void)
     return scene;
 }
 
+#endif
 /* The traced sample is the rendered one: a 1-spp image of the default scene holds, in every
    pixel, exactly what fogrt_trace_path returns for sample 0 of that pixel. */
 static void test_trace_is_the_rendered_sample(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("D: the path trace");
+#else
     fogrt_scene *scene = default_scene();
     fogrt_render_desc rd = fogrt_render_defaults();
     fogrt_image img;
@@ -92,6 +97,7 @@ static void test_trace_is_the_rendered_sample(void)
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, differ, "pixels whose traced sample differs from the rendered one");
     fogrt_image_free(&img);
     fogrt_scene_destroy(scene);
+#endif
 }
 
 /* The contributions add up to the sample, for every path of 4 samples per pixel of the
@@ -99,6 +105,9 @@ static void test_trace_is_the_rendered_sample(void)
    and end by Russian roulette (the first of each kind is printed). */
 static void test_contributions_add_up(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("D: the path trace");
+#else
     fogrt_scene *scene = default_scene();
     fogrt_render_desc rd = fogrt_render_defaults();
     bool seen_fog = false, seen_glass = false, seen_rr = false;
@@ -131,6 +140,7 @@ static void test_contributions_add_up(void)
     TEST_ASSERT_TRUE_MESSAGE(seen_fog && seen_glass && seen_rr, "no fog, glass or roulette-ended path found in 4 spp");
     TEST_ASSERT_EQUAL_INT(4 * W * H, checked);
     fogrt_scene_destroy(scene);
+#endif
 }
 
 /* The order of Algorithm 1: a camera ray first and END last; every segment starts with its
@@ -139,6 +149,9 @@ static void test_contributions_add_up(void)
    down. And every event has a readable description naming what it is. */
 static void test_event_order_and_text(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("D: the path trace");
+#else
     fogrt_scene *scene = default_scene();
     fogrt_render_desc rd = fogrt_render_defaults();
     int i, x, y, last_bounce = 0, descriptions = 0;
@@ -170,12 +183,16 @@ static void test_event_order_and_text(void)
         }
     TEST_ASSERT_GREATER_THAN(20, descriptions);
     fogrt_scene_destroy(scene);
+#endif
 }
 
 /* min_depth: the contributions it drops are marked as not counted, and the sample is the sum
    of the counted ones only (so the trace explains CS184's -o 0 too). */
 static void test_min_depth_marks_dropped_light(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("D: the path trace");
+#else
     fogrt_scene *scene = default_scene();
     fogrt_render_desc rd = fogrt_render_defaults();
     int x, dropped = 0;
@@ -192,6 +209,7 @@ static void test_min_depth_marks_dropped_light(void)
     }
     TEST_ASSERT_GREATER_THAN_MESSAGE(0, dropped, "min_depth 2 dropped no contribution on a whole row");
     fogrt_scene_destroy(scene);
+#endif
 }
 
 void setUp(void) {}

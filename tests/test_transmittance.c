@@ -17,6 +17,7 @@
 /* ---- bounded fog (fogrt_medium_desc.bounded) and the environment --------------------- */
 /* A scene of nothing but sky (constant radiance 1, or a constant map when map is true) and
    fog in the box [lo, hi]. */
+#ifndef FOGRT_MINIMAL   /* the scene of Part II's tests below */
 static fogrt_scene *sky_scene(float sigma_t, float albedo, float g, fogrt_vec3 lo, fogrt_vec3 hi, bool map)
 {
     fogrt_scene *scene = NULL;
@@ -37,6 +38,7 @@ static fogrt_scene *sky_scene(float sigma_t, float albedo, float g, fogrt_vec3 l
     CHECK_OK(fogrt_scene_build(scene, NULL));
     return scene;
 }
+#endif
 
 /* Transmittance through a bounded slab 0 <= y <= 1 of absorbing fog, seen against a white
    sky: the built-in fog transmittance is exactly expf(-sigma_t d) for d the length inside
@@ -45,6 +47,9 @@ static fogrt_scene *sky_scene(float sigma_t, float albedo, float g, fogrt_vec3 l
    fog at the box, if the camera outside the box is in fog, or if the sky is not reached. */
 static void test_bounded_slab_transmittance(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("C: fog in a box");
+#else
     static const struct { float o[3], d[3], len; } rays[] = {
         { { 0, 2, 0 },    { 0, -1, 0 },       1.0f },     /* straight through */
         { { 0, 2, 0 },    { 0.6f, -0.8f, 0 }, 1.25f },    /* at a slant: 1 / cos */
@@ -71,8 +76,10 @@ static void test_bounded_slab_transmittance(void)
         TEST_ASSERT_TRUE_MESSAGE(fabs(sum / n - want) <= 5.0 * se + 1e-7, msg);
     }
     fogrt_scene_destroy(scene);
+#endif
 }
 
+#ifndef FOGRT_MINIMAL   /* the helper of Part II's tests below */
 /* Samples of one ray with expected_emission on and off: on, every sample is want_on (to
    tol_on); off (the paper's way), every sample is 0 or want_off (to tol_off), and both
    outcomes are seen. */
@@ -99,6 +106,7 @@ static void check_expected_samples(const fogrt_scene *scene, fogrt_vec3 o, fogrt
         if (mode == 1) TEST_ASSERT_TRUE_MESSAGE(zeros > 0 && lit > 0, what);   /* the paper's: both outcomes */
     }
 }
+#endif
 
 /* The same slab with expected_emission (the default): the sky a ray reaches counts T Le
    whether or not the ray collides, so in absorbing fog every single sample is exactly the
@@ -107,6 +115,9 @@ static void check_expected_samples(const fogrt_scene *scene, fogrt_vec3 o, fogrt
    instead of the entry point), or if a collision still adds it in full. */
 static void test_expected_emission_through_slab(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("E: expected emission, C: fog in a box");
+#else
     static const struct { float o[3], d[3], len; } rays[] = {
         { { 0, 2, 0 },    { 0, -1, 0 },       1.0f },
         { { 0, 2, 0 },    { 0.6f, -0.8f, 0 }, 1.25f },
@@ -123,6 +134,7 @@ static void test_expected_emission_through_slab(void)
                                41 + (uint64_t)i, (double)expf(-sigma * rays[i].len), 1e-6, 1.0, 0.0, what);
     }
     fogrt_scene_destroy(scene);
+#endif
 }
 
 /* The light sampled at a surface seen through fog (chapter 14 b'): with expected_emission
@@ -134,6 +146,9 @@ static void test_expected_emission_through_slab(void)
    mean), or if the weight is the transmittance of another span. */
 static void test_light_behind_collision(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("E: expected emission");
+#else
     const float sigma = 0.7f;
     fogrt_scene *scene = NULL;
     fogrt_light_desc point;
@@ -152,6 +167,7 @@ static void test_light_behind_collision(void)
     check_expected_samples(scene, v3(0.5f, 2.0f, 0.0f), v3(0.0f, -1.0f, 0.0f), 43, want, 2e-6 * want, direct, 2e-6 * direct,
                            "the floor's direct light through absorbing fog");
     fogrt_scene_destroy(scene);
+#endif
 }
 
 /* A white furnace in a box: fog of albedo 1 in [-1, 1]^3 under a white sky. Whatever
@@ -162,6 +178,9 @@ static void test_light_behind_collision(void)
    rays' transmittance ignores the box, or if the map's pdf is wrong. */
 static void test_bounded_furnace(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("C: fog in a box");
+#else
     static const float gs[2] = { 0.0f, 0.7f };
     const int n = 20000;
     int gi, map, mode, start;
@@ -192,6 +211,7 @@ static void test_bounded_furnace(void)
                 }
             fogrt_scene_destroy(scene);
         }
+#endif
 }
 
 void setUp(void) {}
@@ -563,7 +583,11 @@ static void test_single_scattering_point_and_spot(void)
     };
     const float sigma_t = 0.5f, albedo = 0.8f, g = 0.3f;
     const fogrt_vec3 axis = { 0.2f, 1.0f, 0.0f };
+#ifdef FOGRT_MINIMAL
+    const int n = 100000, steps = 200000;   /* Part I's free flight and next-event estimate: */
+#else                                       /* noisier than equiangular, the same bound on se */
     const int n = 20000, steps = 200000;
+#endif
     const double t_end = 60.0;   /* e^-30: the rest is negligible */
     fogrt_vec3 o = v3(-3.0f, 1.5f, 0.1f), d;
     double al = sqrt(axis.x * axis.x + axis.y * axis.y + axis.z * axis.z);

@@ -8,6 +8,7 @@
 #ifndef FOGRT_TESTS_TEST_UTIL_H
 #define FOGRT_TESTS_TEST_UTIL_H
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -21,6 +22,69 @@
         TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, check_ok_r_,             \
                                       fogrt_result_string(check_ok_r_));        \
     } while (0)
+
+/* Under FOGRT_MINIMAL (fogrt.h's Part I alone) a test of Part II skips with one line naming
+   the appendix it needs: put PART_II_ONLY("...") first in its body, inside #ifdef
+   FOGRT_MINIMAL, and the Part II code under #else. */
+#define PART_II_ONLY(what) TEST_IGNORE_MESSAGE("needs Part II of fogrt.h (" what "): built with FOGRT_MINIMAL")
+
+/* fogrt.h's getters of the binary tree and its brute-force ray query are Part II's (they
+   serve the benchmarks too), so under FOGRT_MINIMAL the tests that check Part I's BVH with
+   them get the same three here, read from Part I's scene fields, under the same names. */
+#if defined(FOGRT_MINIMAL) && defined(FOGRT_IMPLEMENTATION)
+static inline void test_scene_get_bvh(const fogrt_scene *s, const fogrt_bvh_node **nodes, uint32_t *node_count,
+                                      const uint32_t **prim_index)
+{
+    if (nodes) *nodes = s->nodes;
+    if (node_count) *node_count = s->node_count;
+    if (prim_index) *prim_index = s->prim_index;
+}
+/* As fogrt.h's: box areas relative to the root's, 1 per inner node, 1 per primitive in a leaf. */
+static inline float test_bvh_sah_cost(const fogrt_scene *s)
+{
+    double cost = 0.0, root_area;
+    uint32_t i;
+    fogrt__aabb rb;
+    if (!s->nodes || s->node_count == 0) return 0.0f;
+    rb.lo = fogrt__v(s->nodes[0].bmin[0], s->nodes[0].bmin[1], s->nodes[0].bmin[2]);
+    rb.hi = fogrt__v(s->nodes[0].bmax[0], s->nodes[0].bmax[1], s->nodes[0].bmax[2]);
+    root_area = (double)FOGRT__MAX(fogrt__aabb_area(&rb), FLT_MIN);
+    for (i = 0; i < s->node_count; ++i) {
+        const fogrt_bvh_node *n = &s->nodes[i];
+        fogrt__aabb nb;
+        if (i == 1) continue;
+        nb.lo = fogrt__v(n->bmin[0], n->bmin[1], n->bmin[2]);
+        nb.hi = fogrt__v(n->bmax[0], n->bmax[1], n->bmax[2]);
+        cost += (double)fogrt__aabb_area(&nb) / root_area * (n->prim_count > 0 ? 1.0 * n->prim_count : 1.0);
+    }
+    return (float)cost;
+}
+/* Every primitive tested, the closest hit kept: the reference the BVH must match. */
+static inline bool test_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax,
+                                              fogrt_hit *hit)
+{
+    uint32_t i;
+    bool found = false;
+    for (i = 0; i < s->tri_count + s->sph_count; ++i) {
+        float t, u = 0.0f, v = 0.0f;
+        bool h;
+        if (i < s->tri_count) {
+            const fogrt__v3 *tv = &s->tri_v[3 * i];
+            h = fogrt__hit_triangle(o, d, tv[0], fogrt__sub(tv[1], tv[0]), fogrt__sub(tv[2], tv[0]), tmin, tmax, &t, &u, &v);
+        } else {
+            h = fogrt__hit_sphere(o, d, s->sph_c[i - s->tri_count], s->sph_r[i - s->tri_count], tmin, tmax, &t);
+        }
+        if (h) {
+            found = true; tmax = t;
+            if (hit) { hit->t = t; hit->prim = i; hit->u = u; hit->v = v; }
+        }
+    }
+    return found;
+}
+#define fogrt_scene_get_bvh test_scene_get_bvh
+#define fogrt_bvh_sah_cost test_bvh_sah_cost
+#define fogrt_scene_intersect_brute test_scene_intersect_brute
+#endif
 
 /* ---- vectors --------------------------------------------------------------------------- */
 
