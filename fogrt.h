@@ -441,12 +441,14 @@ typedef struct fogrt_bvh_node {
     float bmax[3]; uint32_t prim_count;
 } fogrt_bvh_node;
 
+#ifndef FOGRT_MINIMAL   /* inspection (Part II): the tree, its cost, memory, a brute-force query */
 FOGRT_API void fogrt_scene_get_bvh(const fogrt_scene *scene, const fogrt_bvh_node **nodes,
                                    uint32_t *node_count, const uint32_t **prim_index);
 /* SAH cost of the built tree (1 per inner node, 1 per primitive in a leaf, each weighted by
    its box's surface area relative to the root): lets the SAH and the volume heuristic be
    compared on equal terms, whatever c_trav and c_int the build used. */
 FOGRT_API float fogrt_bvh_sah_cost(const fogrt_scene *scene);
+#endif
 
 /* What the scene uses, found by fogrt_scene_build; the integrator skips everything else. */
 enum {
@@ -472,15 +474,20 @@ typedef struct fogrt_scene_info {
     bool built;
 } fogrt_scene_info;
 FOGRT_API void fogrt_scene_get_info(const fogrt_scene *scene, fogrt_scene_info *info);
+/* The message of the last call on this scene that failed (what the logger was told), or ""
+   before any failed: the precise reason, also without a logger. */
+FOGRT_API const char *fogrt_scene_last_error(const fogrt_scene *scene);
 FOGRT_API fogrt_result fogrt_scene_get_material(const fogrt_scene *scene, uint32_t id, fogrt_material_desc *out);
 FOGRT_API fogrt_result fogrt_scene_get_light(const fogrt_scene *scene, uint32_t index, fogrt_light_desc *out);
 FOGRT_API void fogrt_scene_get_camera(const fogrt_scene *scene, fogrt_camera_desc *out);
 FOGRT_API void fogrt_scene_get_medium(const fogrt_scene *scene, fogrt_medium_desc *out);
 /* Material of triangle i (i < triangle_count) or sphere i - triangle_count. */
 FOGRT_API uint32_t fogrt_scene_get_prim_material(const fogrt_scene *scene, uint32_t prim);
+#ifndef FOGRT_MINIMAL
 /* Bytes the scene's arrays hold: geometry, materials and lights, and once built the BVH(s)
    and the light and environment tables (used sizes; spare capacity not counted). */
 FOGRT_API size_t fogrt_scene_get_memory(const fogrt_scene *scene);
+#endif
 
 /* ------------------------------------------------------------------------------------------
    Ray queries (after fogrt_scene_build)
@@ -497,9 +504,11 @@ FOGRT_API bool fogrt_scene_intersect(const fogrt_scene *scene, fogrt_vec3 o, fog
 /* Any hit with tmin < t < tmax (shadow rays). */
 FOGRT_API bool fogrt_scene_occluded(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d,
                                     float tmin, float tmax);
+#ifndef FOGRT_MINIMAL
 /* The same closest-hit answer by testing every primitive: the reference for BVH tests. */
 FOGRT_API bool fogrt_scene_intersect_brute(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d,
                                            float tmin, float tmax, fogrt_hit *hit);
+#endif
 /* Ray-triangle (Moller-Trumbore) and ray-sphere tests on their own. */
 FOGRT_API bool fogrt_intersect_triangle(fogrt_vec3 v0, fogrt_vec3 v1, fogrt_vec3 v2, fogrt_vec3 o,
                                         fogrt_vec3 d, float tmin, float tmax, float *t, float *u, float *v);
@@ -674,7 +683,8 @@ typedef struct fogrt_progress {
                        one per light, for scenes with many lights (docs/benchmarks.md)
      light_samples     1 (>= 1): samples per area light at each next-event estimate (CS184 -l)
      seed              0: base seed of every random stream
-     threads           0 = all OpenMP threads; ignored without OpenMP
+     threads           0 = all OpenMP threads; at most FOGRT_MAX_THREADS (256) and 4 per
+                       processor (more are cut to that); ignored without OpenMP
      sample_rate       NULL: every pixel gets the call's spp samples. Else width x height
                        rates (rows from the top, each finite, 0 to FOGRT_MAX_SAMPLE_RATE):
                        pixel p gets spp x rate[p] samples on average, the fraction decided
@@ -710,7 +720,9 @@ typedef struct fogrt_render_desc {
 FOGRT_API fogrt_render_desc fogrt_render_defaults(void);
 /* The paper's method alone: Part I's Algorithm 1 with light sampling and MIS (equiangular,
    glow, footprint, light_by_power and expected_emission off). Under FOGRT_MINIMAL the
-   defaults above are these. */
+   defaults above are these. A scene with fog in a box or an environment map is still
+   rendered by Part II's integrator (with these settings: the same method), since Part I
+   knows neither. */
 FOGRT_API fogrt_render_desc fogrt_render_paper_defaults(void);
 
 /* Accumulation buffer owned by the caller: per pixel the sum of sample radiance (RGB), the
@@ -725,6 +737,7 @@ FOGRT_API fogrt_render_desc fogrt_render_paper_defaults(void);
    NULL: fogrt_render then keeps no stream sums and the estimate falls back to the sample
    variance (which overestimates the error of stratified samples). */
 #define FOGRT_IMAGE_STREAMS 4
+#define FOGRT_MAX_THREADS 256
 typedef struct fogrt_image {
     int width, height;
     double *sum;         /* 3 * width * height: sum of sample radiance (RGB) */
@@ -769,6 +782,7 @@ typedef struct fogrt_render_stats {
     uint64_t camera_rays;    /* samples taken */
     uint64_t rays;           /* all rays traced (camera, bounce and shadow) */
     uint64_t rejected;       /* non-finite samples dropped in this call */
+    bool black;              /* after this call every pixel of the image is black */
 } fogrt_render_stats;
 
 /* Adds samples_per_pixel samples to every pixel of img. The same (seed, pixel, sample
@@ -794,7 +808,7 @@ typedef enum fogrt_trace_kind {
     FOGRT_TRACE_FREE_FLIGHT,   /* eq. 6: u[0] -> t; t_max = the surface (inf: none); flag: a fog collision */
     FOGRT_TRACE_SURFACE,       /* the ray reached primitive prim at p; bsdf */
     FOGRT_TRACE_ESCAPE,        /* the ray left the scene along d */
-    FOGRT_TRACE_LIGHT_SAMPLE,  /* next-event estimation (eq. 3/13) toward light: d = wi, t = distance,
+    FOGRT_TRACE_LIGHT_SAMPLE,  /* next-event estimation (eq. 3) toward light: d = wi, t = distance,
                                   Le, pdf, f (phase or BSDF |cos|), pdf_other (BSDF/phase pdf of wi),
                                   transmittance (eq. 8, 0 if blocked), mis_weight; value = f Le T w / pdf */
     FOGRT_TRACE_EQUIANGULAR,   /* a point on the segment for light: u[0] -> t, pdf; then the light sample
@@ -802,7 +816,7 @@ typedef enum fogrt_trace_kind {
     FOGRT_TRACE_PHASE_SAMPLE,  /* eq. 11-12: u[0] -> cos_theta, u[1] -> phi; pdf; d = the new direction */
     FOGRT_TRACE_BSDF_SAMPLE,   /* u[0] picks the lobe (fresnel: its F), u[1], u[2] the direction;
                                   lobe; pdf; value = the weight f |cos| / pdf; d = the new direction */
-    FOGRT_TRACE_GLOW_SAMPLE,   /* the mixed direction of 14 d': flag: u[0] chose the glow of light
+    FOGRT_TRACE_GLOW_SAMPLE,   /* the mixed direction of E d': flag: u[0] chose the glow of light
                                   light (else the phase function or BSDF), source "footprint"
                                   when it chose that lamp's footprint on a plane; d; pdf = the
                                   mixture's pdf, pdf_other = the phase/BSDF pdf; value = the weight */
@@ -1169,6 +1183,8 @@ struct fogrt_scene {
     float eps;                 /* absolute ray offset floor, relative to the scene size */
     float r2_min;              /* smallest squared distance to a point light (2.3) */
     struct fogrt__x *x;        /* Part II's state: NULL under FOGRT_MINIMAL */
+    char *error;               /* the last failure's message: points at error_text (writable */
+    char error_text[256];      /*   through a const scene, as a log line is) */
 };
 
 FOGRT__PRIVATE void fogrt__log(const fogrt_scene *s, fogrt_log_level level, const char *msg)
@@ -1177,9 +1193,16 @@ FOGRT__PRIVATE void fogrt__log(const fogrt_scene *s, fogrt_log_level level, cons
 }
 FOGRT__PRIVATE fogrt_result fogrt__fail(const fogrt_scene *s, fogrt_result r, const char *msg)
 {
+    size_t n = strlen(msg);
     fogrt__log(s, FOGRT_LOG_ERROR, msg);
+    if (s && s->error) {
+        n = n < sizeof s->error_text - 1 ? n : sizeof s->error_text - 1;
+        memcpy(s->error, msg, n);
+        s->error[n] = '\0';
+    }
     return r;
 }
+FOGRT__PUBLIC const char *fogrt_scene_last_error(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->error; }
 
 /* Move *ptr to a new array of new_cap elements, keeping its first used elements. Returns
    false when out of memory, leaving the old array untouched. */
@@ -1213,23 +1236,28 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogr
     memset(s, 0, sizeof *s);
     s->allocator = d.allocator;
     s->logger = d.logger;
+    s->error = s->error_text;
     *out_scene = s;
     return FOGRT_RESULT_OK;
+}
+/* Drops the built data without freeing it (fogrt_scene_build keeps it until the new build
+   has succeeded), or frees it. */
+FOGRT__PRIVATE void fogrt__forget_built(fogrt_scene *s)
+{
+    s->nodes = NULL; s->node_count = 0; s->prim_index = NULL; s->prims = NULL;
+    s->area_lights = NULL; s->area_light_count = 0; s->light_prims = NULL; s->light_cdf = NULL;
+    s->prim_light = NULL; s->spot_cos = NULL; s->x = NULL; s->built = false;
 }
 FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s)
 {
 #ifndef FOGRT_MINIMAL
     fogrt__x_release(s);                                 /* SEAM 4 */
 #endif
-    fogrt__free(&s->allocator, s->nodes); s->nodes = NULL; s->node_count = 0;
-    fogrt__free(&s->allocator, s->prim_index); s->prim_index = NULL;
-    fogrt__free(&s->allocator, s->prims); s->prims = NULL;
-    fogrt__free(&s->allocator, s->area_lights); s->area_lights = NULL; s->area_light_count = 0;
-    fogrt__free(&s->allocator, s->light_prims); s->light_prims = NULL;
-    fogrt__free(&s->allocator, s->light_cdf); s->light_cdf = NULL;
-    fogrt__free(&s->allocator, s->prim_light); s->prim_light = NULL;
-    fogrt__free(&s->allocator, s->spot_cos); s->spot_cos = NULL;
-    s->built = false;
+    fogrt__free(&s->allocator, s->nodes); fogrt__free(&s->allocator, s->prim_index);
+    fogrt__free(&s->allocator, s->prims); fogrt__free(&s->allocator, s->area_lights);
+    fogrt__free(&s->allocator, s->light_prims); fogrt__free(&s->allocator, s->light_cdf);
+    fogrt__free(&s->allocator, s->prim_light); fogrt__free(&s->allocator, s->spot_cos);
+    fogrt__forget_built(s);
 }
 FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s)
 {
@@ -2578,62 +2606,31 @@ FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi)
 }
 #endif /* FOGRT_NO_MEDIUM */
 
+
+
+
 /* ------------------------------------------------------------------------------------------
-   I.3 The camera: pinhole or thin lens (the paper's section 4.2)
+   3.4 The global illumination pipeline: Algorithm 1 (eq. 13) and the one-bounce baseline
+   Algorithm 1 is written as a recursion; fogrt__algorithm1 below runs it as a loop (the
+   recursion's tail call), keeping the product of the weights of eq. 13 as the throughput
+   beta = prod f cos / pdf, so that the light found at depth k counts beta_k Le. Its steps
+   carry the numbers of the algorithm's lines:
+     2     "ray depth > 0 and coin flip(p)": the depth limit, and Russian roulette after
+           rr_depth bounces: continue with probability q = min(0.95, max(beta)), weight 1/q
+           (unbiased: the path's expected value is unchanged);
+     3-4   intersect the BVH (t_i), sample a fog collision t_fog (3.1), keep the nearer;
+     5-10  light sampling at the vertex: in fog over the sphere of directions (6), at a
+           surface over the hemisphere (9), each light's sample weighted by MIS (2.3);
+     11-20 the new direction: HG in fog (15, 3.3), the BSDF on a surface (19, 2.2);
+     13,22 the weight of eq. 13: f cos / pdf (HG: p / p = 1; the fog's albedo sigma_s /
+           sigma_t at a collision, since transmittance and free-flight pdf cancel);
+     12,23 one bounce more.
+   Light reached by the ray itself (an emitter hit, or the sky) is added with the MIS weight
+   of BSDF sampling, so that the two estimates of an area light add up to one. The medium
+   fills all space outside refractive objects: a ray that refracts into one leaves the fog
+   until it refracts out again. Light that bounced fewer than min_depth times is not counted
+   (CS184's -o 0).
    ------------------------------------------------------------------------------------------ */
-typedef struct fogrt__camera { fogrt__v3 pos, right, up, fwd; float tan_x, tan_y, lens, focal; } fogrt__camera;
-
-FOGRT__PRIVATE fogrt__camera fogrt__camera_setup(const fogrt_scene *s, int width, int height)
-{
-    fogrt__camera c;
-    fogrt_camera_desc d = s->camera;
-    float aspect = (float)width / (float)FOGRT__MAX(height, 1), t;
-    if (!s->has_camera) {                       /* no camera: look at the scene from +z */
-        fogrt__v3 centre = fogrt__scale(fogrt__add(s->bmin, s->bmax), 0.5f);
-        float r = 0.5f * fogrt__length(fogrt__sub(s->bmax, s->bmin));
-        memset(&d, 0, sizeof d);
-        d.look_at = centre;
-        d.position = fogrt__add(centre, fogrt__v(0.0f, 0.0f, 2.5f * FOGRT__MAX(r, 1e-3f)));
-        d.up = fogrt__v(0.0f, 1.0f, 0.0f);
-        d.fov_deg = 45.0f;
-    }
-    c.pos = d.position;
-    c.fwd = fogrt__normalize(fogrt__sub(d.look_at, d.position));
-    c.right = fogrt__normalize(fogrt__cross(c.fwd, d.up));
-    c.up = fogrt__cross(c.right, c.fwd);
-    t = tanf(0.5f * d.fov_deg * FOGRT__PI / 180.0f);
-    if (d.fov_is_horizontal) { c.tan_x = t; c.tan_y = t / aspect; }
-    else { c.tan_y = t; c.tan_x = t * aspect; }
-    c.lens = d.lens_radius;
-    c.focal = d.focal_distance > 0.0f ? d.focal_distance : fogrt__length(fogrt__sub(d.look_at, d.position));
-    return c;
-}
-FOGRT__PRIVATE void fogrt__camera_generate(const fogrt__camera *c, int width, int height, float px, float py,
-                                           float lu1, float lu2, fogrt__v3 *o, fogrt__v3 *d)
-{
-    float x = (2.0f * px / (float)width - 1.0f) * c->tan_x;
-    float y = (1.0f - 2.0f * py / (float)height) * c->tan_y;
-    fogrt__v3 dir = fogrt__normalize(fogrt__add(c->fwd, fogrt__add(fogrt__scale(c->right, x), fogrt__scale(c->up, y))));
-    *o = c->pos;
-    if (c->lens > 0.0f) {        /* thin lens: aim through the focus point from a lens sample */
-        float lx, ly;
-        fogrt__v3 focus = fogrt__madd(c->pos, dir, c->focal / fogrt__dot(dir, c->fwd));
-        fogrt__concentric_disk(lu1, lu2, &lx, &ly);
-        *o = fogrt__add(c->pos, fogrt__add(fogrt__scale(c->right, lx * c->lens), fogrt__scale(c->up, ly * c->lens)));
-        dir = fogrt__normalize(fogrt__sub(focus, *o));
-    }
-    *d = dir;
-}
-FOGRT__PUBLIC void fogrt_camera_ray(const fogrt_scene *s, int width, int height, float px, float py,
-                                    float lens_u1, float lens_u2, fogrt_vec3 *o, fogrt_vec3 *d)
-{
-    fogrt__camera c;
-    FOGRT_ASSERT(s && o && d);
-    c = fogrt__camera_setup(s, width, height);
-    fogrt__camera_generate(&c, width, height, px, py, lens_u1, lens_u2, o, d);
-}
-
-
 /* A ray's hit as a surface point: the point, its geometric normal and its shading normal. */
 FOGRT__HOT void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, const fogrt_hit *h,
                                      fogrt__v3 *p, fogrt__v3 *ng, fogrt__v3 *ns)
@@ -2659,29 +2656,6 @@ FOGRT__HOT void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v
         *ns = *ng;
     }
 }
-
-/* ------------------------------------------------------------------------------------------
-   3.4 The global illumination pipeline: Algorithm 1 (eq. 13) and the one-bounce baseline
-   Algorithm 1 is written as a recursion; fogrt__algorithm1 below runs it as a loop (the
-   recursion's tail call), keeping the product of the weights of eq. 13 as the throughput
-   beta = prod f cos / pdf, so that the light found at depth k counts beta_k Le. Its steps
-   carry the numbers of the algorithm's lines:
-     2     "ray depth > 0 and coin flip(p)": the depth limit, and Russian roulette after
-           rr_depth bounces: continue with probability q = min(0.95, max(beta)), weight 1/q
-           (unbiased: the path's expected value is unchanged);
-     3-4   intersect the BVH (t_i), sample a fog collision t_fog (3.1), keep the nearer;
-     5-10  light sampling at the vertex: in fog over the sphere of directions (6), at a
-           surface over the hemisphere (9), each light's sample weighted by MIS (2.3);
-     11-20 the new direction: HG in fog (15, 3.3), the BSDF on a surface (19, 2.2);
-     13,22 the weight of eq. 13: f cos / pdf (HG: p / p = 1; the fog's albedo sigma_s /
-           sigma_t at a collision, since transmittance and free-flight pdf cancel);
-     12,23 one bounce more.
-   Light reached by the ray itself (an emitter hit, or the sky) is added with the MIS weight
-   of BSDF sampling, so that the two estimates of an area light add up to one. The medium
-   fills all space outside refractive objects: a ray that refracts into one leaves the fog
-   until it refracts out again. Light that bounced fewer than min_depth times is not counted
-   (CS184's -o 0).
-   ------------------------------------------------------------------------------------------ */
 /* A surface vertex at p (normals ng, ns from fogrt__surface_frame) for the ray arriving
    along -wo: reflective BSDFs are two-sided (the frame turns to wo's side), refractive ones
    keep the outward normal, so wo.z < 0 in the frame means "inside". Returns whether wo is
@@ -2860,6 +2834,61 @@ FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__se
         }
     }
     return w.L;
+}
+
+/* ------------------------------------------------------------------------------------------
+   I.3 The camera: pinhole or thin lens (the paper's section 4.2)
+   ------------------------------------------------------------------------------------------ */
+typedef struct fogrt__camera { fogrt__v3 pos, right, up, fwd; float tan_x, tan_y, lens, focal; } fogrt__camera;
+
+FOGRT__PRIVATE fogrt__camera fogrt__camera_setup(const fogrt_scene *s, int width, int height)
+{
+    fogrt__camera c;
+    fogrt_camera_desc d = s->camera;
+    float aspect = (float)width / (float)FOGRT__MAX(height, 1), t;
+    if (!s->has_camera) {                       /* no camera: look at the scene from +z */
+        fogrt__v3 centre = fogrt__scale(fogrt__add(s->bmin, s->bmax), 0.5f);
+        float r = 0.5f * fogrt__length(fogrt__sub(s->bmax, s->bmin));
+        memset(&d, 0, sizeof d);
+        d.look_at = centre;
+        d.position = fogrt__add(centre, fogrt__v(0.0f, 0.0f, 2.5f * FOGRT__MAX(r, 1e-3f)));
+        d.up = fogrt__v(0.0f, 1.0f, 0.0f);
+        d.fov_deg = 45.0f;
+    }
+    c.pos = d.position;
+    c.fwd = fogrt__normalize(fogrt__sub(d.look_at, d.position));
+    c.right = fogrt__normalize(fogrt__cross(c.fwd, d.up));
+    c.up = fogrt__cross(c.right, c.fwd);
+    t = tanf(0.5f * d.fov_deg * FOGRT__PI / 180.0f);
+    if (d.fov_is_horizontal) { c.tan_x = t; c.tan_y = t / aspect; }
+    else { c.tan_y = t; c.tan_x = t * aspect; }
+    c.lens = d.lens_radius;
+    c.focal = d.focal_distance > 0.0f ? d.focal_distance : fogrt__length(fogrt__sub(d.look_at, d.position));
+    return c;
+}
+FOGRT__PRIVATE void fogrt__camera_generate(const fogrt__camera *c, int width, int height, float px, float py,
+                                           float lu1, float lu2, fogrt__v3 *o, fogrt__v3 *d)
+{
+    float x = (2.0f * px / (float)width - 1.0f) * c->tan_x;
+    float y = (1.0f - 2.0f * py / (float)height) * c->tan_y;
+    fogrt__v3 dir = fogrt__normalize(fogrt__add(c->fwd, fogrt__add(fogrt__scale(c->right, x), fogrt__scale(c->up, y))));
+    *o = c->pos;
+    if (c->lens > 0.0f) {        /* thin lens: aim through the focus point from a lens sample */
+        float lx, ly;
+        fogrt__v3 focus = fogrt__madd(c->pos, dir, c->focal / fogrt__dot(dir, c->fwd));
+        fogrt__concentric_disk(lu1, lu2, &lx, &ly);
+        *o = fogrt__add(c->pos, fogrt__add(fogrt__scale(c->right, lx * c->lens), fogrt__scale(c->up, ly * c->lens)));
+        dir = fogrt__normalize(fogrt__sub(focus, *o));
+    }
+    *d = dir;
+}
+FOGRT__PUBLIC void fogrt_camera_ray(const fogrt_scene *s, int width, int height, float px, float py,
+                                    float lens_u1, float lens_u2, fogrt_vec3 *o, fogrt_vec3 *d)
+{
+    fogrt__camera c;
+    FOGRT_ASSERT(s && o && d);
+    c = fogrt__camera_setup(s, width, height);
+    fogrt__camera_generate(&c, width, height, px, py, lens_u1, lens_u2, o, d);
 }
 
 /* ------------------------------------------------------------------------------------------
@@ -3100,34 +3129,42 @@ FOGRT__PRIVATE bool fogrt__build_spots(fogrt_scene *s)
     }
     return true;
 }
+/* The build, into fresh arrays: the scene as it was comes back if it fails. */
+FOGRT__PRIVATE bool fogrt__build_all(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n)
+{
+    uint32_t leaf_keep = 0;
+#ifndef FOGRT_NO_WIDE_BVH
+    leaf_keep = fogrt__x_leaf_keep(d, n);               /* SEAM 2: what the wide tree needs of it */
+#endif
+    fogrt__forget_built(s);
+    if (!fogrt__build_lights(s) || !fogrt__build_tree(s, d, n, leaf_keep) || !fogrt__build_spots(s)) return false;
+    s->features = fogrt__features(s);
+    s->built = true;
+#ifndef FOGRT_MINIMAL
+    if (!fogrt__x_build(s, d, n)) return false;         /* SEAM 3: Part II's tables */
+#endif
+    return true;
+}
 FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
 {
     fogrt_build_desc d;
-    uint32_t n, leaf_keep = 0;
+    fogrt_scene old;
+    uint32_t n;
     fogrt_result r;
     FOGRT_ASSERT(s);
     if ((r = fogrt__resolve_build(s, desc, &d)) != FOGRT_RESULT_OK) return r;
-    fogrt__free_built(s);
     n = s->tri_count + s->sph_count;
     if (n == 0 && s->light_count == 0 && !s->has_env)
         return fogrt__fail(s, FOGRT_RESULT_EMPTY_SCENE, "scene: no geometry and no light");
-#ifndef FOGRT_NO_WIDE_BVH
-    leaf_keep = fogrt__x_leaf_keep(&d, n);              /* SEAM 2: what the wide tree needs of it */
-#endif
-    if (!fogrt__build_lights(s) || !fogrt__build_tree(s, &d, n, leaf_keep) || !fogrt__build_spots(s)) {
+    old = *s;
+    if (!fogrt__build_all(s, &d, n)) {
         fogrt__free_built(s);
+        *s = old;                                       /* the scene as it was, built or not */
         return FOGRT_RESULT_OUT_OF_MEMORY;
     }
-    s->features = fogrt__features(s);
+    fogrt__free_built(&old);                            /* the previous build's data */
     if (s->area_light_count == 0 && s->light_count == 0 && !s->has_env)
         fogrt__log(s, FOGRT_LOG_WARNING, "scene: nothing emits light (no light, emissive material or environment): every image will be black");
-    s->built = true;
-#ifndef FOGRT_MINIMAL
-    if (!fogrt__x_build(s, &d, n)) {                    /* SEAM 3: Part II's tables */
-        fogrt__free_built(s);
-        return FOGRT_RESULT_OUT_OF_MEMORY;
-    }
-#endif
     return FOGRT_RESULT_OK;
 }
 
@@ -3455,6 +3492,7 @@ FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render
     int rows_done = 0, cancelled = 0, last_report = 0;
 #ifdef _OPENMP
     int nthreads = d->threads > 0 ? d->threads : omp_get_max_threads();
+    nthreads = FOGRT__MIN(nthreads, FOGRT__MIN(FOGRT_MAX_THREADS, 4 * omp_get_num_procs()));
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) reduction(+ : rays, rejected, samples)
 #endif
     for (y = 0; y < height; ++y) {
@@ -3509,9 +3547,12 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
     if (spp > 0 && !fogrt__render_rows(&job, &d, &rays, &rejected, &samples)) result = FOGRT_RESULT_CANCELLED;
     img->rejected += rejected;
     if (stats) {
+        size_t i, n = 3 * (size_t)img->width * (size_t)img->height;
         stats->camera_rays = samples;
         stats->rays = rays;
         stats->rejected = rejected;
+        for (i = 0; i < n && img->sum[i] == 0.0; ++i) {}
+        stats->black = i == n;
     }
     return result;
 }
@@ -3587,7 +3628,22 @@ FOGRT__PRIVATE fogrt_result fogrt__add_quad(fogrt_scene *s, fogrt__v3 a, fogrt__
     m.positions = pos; m.vertex_count = 4; m.indices = idx; m.triangle_count = 2; m.material = mat;
     return fogrt_scene_add_mesh(s, &m);
 }
+FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s);
+/* All of the default scene or nothing: a failure midway takes back what was added. */
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
+{
+    fogrt_scene keep;
+    fogrt_result r;
+    FOGRT_ASSERT(s);
+    keep = *s;
+    if ((r = fogrt__add_default(s)) != FOGRT_RESULT_OK) {
+        s->material_count = keep.material_count; s->tri_count = keep.tri_count; s->mesh_count = keep.mesh_count;
+        s->sph_count = keep.sph_count; s->light_count = keep.light_count;
+        s->camera = keep.camera; s->has_camera = keep.has_camera; s->medium = keep.medium; s->built = keep.built;
+    }
+    return r;
+}
+FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s)
 {
     fogrt_material_desc md;
     fogrt_light_desc ld;
@@ -3661,10 +3717,12 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
         behind a fog collision, expected emission, HG per unit angle   (table "Lamps in fog")
      C. Sampling and estimation: environment-map sampling, exact Fresnel, fog in a box,
         lights chosen by power, the roulette's pilot, stratified pixel streams, per-pixel
-        rates                                        (table "Sampling and estimation")
+        rates                       (tables "Roulette pilot", "Stratified pixel positions",
+                                                     "Pixel rates", "Lights by power")
      D. The path trace: one event per step of a path, for fogrt_trace_path (FOGRT_TRACE)
      E. The full integrator: Algorithm 1 with B and C's steps added, as fogrt_render_defaults()
-        runs it                                      (table "Full integrator")
+        runs it                                      (table "Strip cost")
+     F. Inspecting a scene: its tree, the tree's cost, a brute-force query, its memory
    ========================================================================================== */
 #if !defined(FOGRT_NO_MEDIUM) && !defined(FOGRT_NO_LAMPS_IN_FOG)
 #define FOGRT__LAMPS 1             /* appendix B is compiled */
@@ -5075,7 +5133,8 @@ FOGRT__PRIVATE bool fogrt__clip_to_cone(const fogrt_light_desc *l, float cos_c, 
    sample rates from the first samples' noise (adaptive sampling, unbiased).
    What it costs: each only where a scene or a desc asks for it, except the pilot (a
    fraction of a second at build) and the stratified positions (a few integer operations
-   per sample). Its gain: docs/benchmarks.md, table "Sampling and estimation".
+   per sample). Their gains: docs/benchmarks.md, tables "Roulette pilot", "Stratified pixel
+   positions", "Pixel rates" and "Lights by power".
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_NO_GLASS
 #ifndef FOGRT_NO_EXACT_FRESNEL
@@ -5575,33 +5634,8 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix)
 #endif /* FOGRT_NO_ESTIMATION */
 
 /* ------------------------------------------------------------------------------------------
-   E. The full integrator
-   What it adds: Part I's Algorithm 1 with the steps of B and C, as fogrt_render_defaults()
-   runs it. What it costs: nothing for a feature a scene does not use (make callgrind; table
-   "Full integrator"). A path is followed event by event, one named function per step:
-     a. fogrt__free_flight: in fog, sample a collision distance t (3.1). If t comes before
-        the surface, the event is a fog collision and the path weight is multiplied by the
-        albedo sigma_s/sigma_t (transmittance and pdf cancel); otherwise the ray reaches the
-        surface with probability T and weight T/T = 1. Point and spot lights are gathered
-        along the way by equiangular sampling with the phase function (B).
-     b. fogrt__surface_emission: add the emission the ray reaches (weighted by MIS when
-        next-event estimation could have found it too; in fog by T, whether or not the
-        free flight collided first: expected emission, B), and fogrt__surface_event: set up
-        the surface's frame.
-     b'. fogrt__light_behind (B): after a fog collision, the light of point and spot lights
-        sampled at the surface behind it, times T; step c counts it T times when the ray
-        gets there.
-     c. fogrt__light_step: at the scattering vertex, fog or surface, sample the lights (2.3),
-        one chosen by power where asked (C).
-     d. fogrt__scatter: the new direction: Henyey-Greenstein in the fog (3.3), the BSDF on a
-        surface (2.2).
-     d'. fogrt__scatter_glow (B): near point and spot lights in fog, some of the new
-        directions aim at the glow around a lamp instead, so that the paths that pass next
-        to it are common and light, not rare and huge; some of those aimed at a spot light
-        aim at the floor it lights (its footprint).
-     e. fogrt__roulette: Russian roulette, scaled by the scene's pilot (C).
-   A scene without fog never enters step a: it pays one well-predicted branch per bounce.
-   The one-bounce baseline (fogrt__radiance_direct) uses the same steps.
+   The state of a path in Part II: what the trace (D) reports and the full integrator (E)
+   follows.
    ------------------------------------------------------------------------------------------ */
 /* The full integrator's settings: Part I's, and what the desc asks of Part II. */
 typedef struct fogrt__xs {
@@ -5759,6 +5793,36 @@ FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__path *P, fogrt__v3 c, bool 
 }
 #endif
 
+
+/* ------------------------------------------------------------------------------------------
+   E. The full integrator
+   What it adds: Part I's Algorithm 1 with the steps of B and C, as fogrt_render_defaults()
+   runs it. What it costs: nothing for a feature a scene does not use (make callgrind; table
+   "Strip cost"). A path is followed event by event, one named function per step:
+     a. fogrt__free_flight: in fog, sample a collision distance t (3.1). If t comes before
+        the surface, the event is a fog collision and the path weight is multiplied by the
+        albedo sigma_s/sigma_t (transmittance and pdf cancel); otherwise the ray reaches the
+        surface with probability T and weight T/T = 1. Point and spot lights are gathered
+        along the way by equiangular sampling with the phase function (B).
+     b. fogrt__surface_emission: add the emission the ray reaches (weighted by MIS when
+        next-event estimation could have found it too; in fog by T, whether or not the
+        free flight collided first: expected emission, B), and fogrt__surface_event: set up
+        the surface's frame.
+     b'. fogrt__light_behind (B): after a fog collision, the light of point and spot lights
+        sampled at the surface behind it, times T; step c counts it T times when the ray
+        gets there.
+     c. fogrt__light_step: at the scattering vertex, fog or surface, sample the lights (2.3),
+        one chosen by power where asked (C).
+     d. fogrt__scatter: the new direction: Henyey-Greenstein in the fog (3.3), the BSDF on a
+        surface (2.2).
+     d'. fogrt__scatter_glow (B): near point and spot lights in fog, some of the new
+        directions aim at the glow around a lamp instead, so that the paths that pass next
+        to it are common and light, not rare and huge; some of those aimed at a spot light
+        aim at the floor it lights (its footprint).
+     e. fogrt__roulette: Russian roulette, scaled by the scene's pilot (C).
+   A scene without fog never enters step a: it pays one well-predicted branch per bounce.
+   The one-bounce baseline (fogrt__radiance_direct) uses the same steps.
+   ------------------------------------------------------------------------------------------ */
 FOGRT__PRIVATE void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fogrt__xs *xs, fogrt__v3 o,
                                       fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
 {
@@ -6595,7 +6659,7 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_trace_path(const fogrt_scene *s, const fogrt_rend
 {
     fogrt__job job;
     fogrt__xs xs;
-    fogrt_render_desc d;
+    fogrt_render_desc d = fogrt_render_defaults();
     fogrt_trace_event e;
     fogrt_rng rng;
     uint64_t rays = 0;
@@ -6638,7 +6702,7 @@ FOGRT__PRIVATE void fogrt__describe_sample(const fogrt_trace_event *e, char *buf
     static const char *lobes[3] = { "diffuse", "reflect", "refract" };
     switch (e->kind) {
     case FOGRT_TRACE_LIGHT_SAMPLE:
-        snprintf(buf, size, "light sample (eq. 3/13) toward light %u: wi = (%.4f, %.4f, %.4f), r = %.4g, Le = (%.4g, %.4g, %.4g), "
+        snprintf(buf, size, "light sample (eq. 3) toward light %u: wi = (%.4f, %.4f, %.4f), r = %.4g, Le = (%.4g, %.4g, %.4g), "
                  "pdf %.4g; f = %.4g (bsdf/phase pdf %.4g); T*V (eq. 8) = %.4g; MIS w = %.4f -> (%.4g, %.4g, %.4g)",
                  (unsigned)e->light, FOGRT__V3F(e->d), (double)e->t, FOGRT__V3F(e->Le), (double)e->pdf, (double)e->f.y,
                  (double)e->pdf_other, (double)e->transmittance, (double)e->mis_weight, FOGRT__V3F(e->value)); break;
@@ -6689,10 +6753,12 @@ FOGRT__PUBLIC void fogrt_trace_describe(const fogrt_trace_event *e, char *buf, s
 #undef FOGRT__V3F
 #endif
 #endif
-/* Inspecting the tree and the scene's memory (benchmarks and tests): the BVH as built, its
-   SAH cost (the expected number of node visits and primitive tests of a random ray,
-   relative to the root's area), a brute-force ray query to check the tree against, and the
-   bytes the scene holds, Part II's tables included. */
+/* ------------------------------------------------------------------------------------------
+   F. Inspecting a scene (benchmarks and tests): the BVH as built, its SAH cost (the expected
+   number of node visits and primitive tests of a random ray, relative to the root's area),
+   a brute-force ray query to check the tree against, and the bytes the scene holds, Part
+   II's tables included.
+   ------------------------------------------------------------------------------------------ */
 FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
 {
     size_t t, p, b = sizeof *s, lit = 0;

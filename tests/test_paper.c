@@ -18,8 +18,9 @@ static double hg_mu_truth(double g, double u)
     double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u), mu = (1.0 + g * g - s * s) / (2.0 * g);
     return mu > 1.0 ? 1.0 : (mu < -1.0 ? -1.0 : mu);
 }
-/* Eq. 11 as the paper writes it (fogrt__sample_hg_mu_eq11) and the expanded form Part I
-   samples with (fogrt_sample_hg_mu) agree to within 1e-5 for every g the paper tries, and
+/* Eq. 11 as the paper writes it (fogrt__sample_hg_mu_eq11) and its expansion without a
+   division by g (fogrt_sample_hg_mu; Part I's direction sampler fogrt__sample_hg_pm forms
+   1 - mu and 1 + mu from the same expansion) agree to within 1e-5 for every g the paper tries, and
    the expanded one stays within 3e-7 of the truth everywhere, while the paper's form
    loses digits as 1/|g| for small g (and near |g| = 1): the reason for the expansion. */
 static void test_hg_eq11_matches_stable_form(void)
@@ -163,9 +164,10 @@ static fogrt_scene *box_scene(bool glass, bool fog, bool point_light)
    the same image: their means agree within 4.5 standard errors (a false alarm about once
    in 150000 runs of one comparison; the seeds are fixed, so a run repeats exactly). The
    negative control, Algorithm 1 cut at one bounce (biased dark), must be told apart. */
-static void check_agree(const char *name, fogrt_scene *scene, bool control)
+static void check_agree(const char *name, fogrt_scene *scene, bool control, fogrt_integrator integrator)
 {
     fogrt_render_desc paper = fogrt_render_paper_defaults(), full = fogrt_render_defaults(), cut;
+    paper.integrator = full.integrator = integrator;
     image_mean a, b;
     double z;
     char msg[200];
@@ -194,10 +196,13 @@ static void check_agree(const char *name, fogrt_scene *scene, bool control)
 #else
 #define NEEDS_PART_TWO() ((void)0)
 #endif
-static void test_algorithm1_agrees_default_scene(void) { NEEDS_PART_TWO(); check_agree("default scene", default_scene(), true); }
-static void test_algorithm1_agrees_fog_free_box(void) { NEEDS_PART_TWO(); check_agree("fog-free box", box_scene(false, false, false), true); }
-static void test_algorithm1_agrees_glass(void) { NEEDS_PART_TWO(); check_agree("glass sphere in a box", box_scene(true, false, false), false); }
-static void test_algorithm1_agrees_point_light_in_fog(void) { NEEDS_PART_TWO(); check_agree("point light in fog", box_scene(false, true, true), true); }
+static void test_algorithm1_agrees_default_scene(void) { NEEDS_PART_TWO(); check_agree("default scene", default_scene(), true, FOGRT_INTEGRATOR_PATH); }
+static void test_algorithm1_agrees_fog_free_box(void) { NEEDS_PART_TWO(); check_agree("fog-free box", box_scene(false, false, false), true, FOGRT_INTEGRATOR_PATH); }
+static void test_algorithm1_agrees_glass(void) { NEEDS_PART_TWO(); check_agree("glass sphere in a box", box_scene(true, false, false), false, FOGRT_INTEGRATOR_PATH); }
+static void test_algorithm1_agrees_point_light_in_fog(void) { NEEDS_PART_TWO(); check_agree("point light in fog", box_scene(false, true, true), true, FOGRT_INTEGRATOR_PATH); }
+/* The one-bounce baseline of both: the same image (no control: it is one bounce already). */
+static void test_one_bounce_agrees_default_scene(void) { NEEDS_PART_TWO(); check_agree("one bounce, default scene", default_scene(), false, FOGRT_INTEGRATOR_DIRECT); }
+static void test_one_bounce_agrees_glass(void) { NEEDS_PART_TWO(); check_agree("one bounce, glass sphere in a box", box_scene(true, false, false), false, FOGRT_INTEGRATOR_DIRECT); }
 
 int main(void)
 {
@@ -211,5 +216,7 @@ int main(void)
     RUN_TEST(test_algorithm1_agrees_fog_free_box);
     RUN_TEST(test_algorithm1_agrees_glass);
     RUN_TEST(test_algorithm1_agrees_point_light_in_fog);
+    RUN_TEST(test_one_bounce_agrees_default_scene);
+    RUN_TEST(test_one_bounce_agrees_glass);
     return UNITY_END();
 }
