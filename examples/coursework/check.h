@@ -1,0 +1,2097 @@
+/* check.h - the coursework kit's checker (docs/coursework.md): runs the checks of one step on
+   the functions a student wrote (declared in coursework.h), prints one line per check and
+   draws a picture per sampler check.
+
+   The checker receives the student's functions as pointers (cw_fns), so one program can
+   judge several solutions side by side: examples/coursework/check_step.c judges the file a
+   student hands in, tests/test_coursework.c judges fogrt's reference solutions and the
+   wrong solutions under tests/coursework/wrong/. Include it once, after fogrt.h.
+
+   How a check decides
+   - Samplers: the checker draws N uniform numbers from fixed seeds, bins the student's
+     samples and compares the counts with the analytic density of the paper's equation by
+     Pearson's chi-square (tests/stats.h: cells with expected counts below 5 are pooled).
+     The bins are equal-probability bins of the right distribution, so every bin expects the
+     same count and a sampler that puts its mass elsewhere stands out wherever it does.
+     A check fails when p < CW_ALPHA = 1e-4. The seeds are fixed, so a given solution always
+     gets the same verdict; a correct solution whose samples differ from fogrt's (another
+     but equally right formula, another u mapping) draws a fresh outcome and is rejected
+     with probability 1e-4 per check: the false-failure rate is below 1 in 1000 by the
+     threshold, not by luck of the seed. Checks that test several parameter sets at once
+     split the level among them (Bonferroni), so each check line keeps the 1e-4.
+   - Formulas (a pdf, eq. 8, eq. 9, Schlick, a split cost): compared with the checker's own
+     double-precision evaluation at fixed points, with a tolerance of float rounding times a
+     safety factor (stated on each line). A correct float implementation cannot fail them.
+   - Edge cases: finite, in-range answers at u = 0, u = 1 - 2^-24, g = 0, g = +-0.99,
+     extreme sigma_t and grazing directions.
+   A failing check says what it saw and the usual cause ("more samples near mu = -1 than
+   HG allows: is g's sign flipped?"); the picture shows the histogram against the density. */
+#ifndef FOGRT_COURSEWORK_CHECK_H
+#define FOGRT_COURSEWORK_CHECK_H
+
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "coursework.h"
+#include "../../tests/stats.h"
+#include "../plotfont.h"
+#include "../stb_write.h"
+
+#define CW_ALPHA 1e-4
+#define CW_N 200000             /* samples per sampler check */
+#define CW_MAX_CHECKS 48
+#define CW_HMAX 64              /* bins of a 1-D histogram */
+#define CW_PI 3.14159265358979323846
+
+/* The student's functions; a step uses its own members and ignores the rest. */
+typedef struct cw_fns {
+    float (*sample_free_flight)(float sigma_t, float u);
+    float (*free_flight_pdf)(float sigma_t, float t);
+    float (*transmittance)(float sigma_t, float distance);
+    float (*transmittance_estimate)(float sigma_t, float distance, float u);
+    float (*hg_phase)(float g, float mu);
+    float (*sample_hg_mu)(float g, float u);
+    fogrt_vec3 (*sample_hg)(float g, fogrt_vec3 wo, float u1, float u2);
+    float (*split_cost)(int heuristic, const cw_aabb *parent, const cw_aabb *left, int n_left,
+                        const cw_aabb *right, int n_right);
+    cw_split (*best_split)(int heuristic, const cw_aabb *parent, const cw_bins *bins);
+    int (*sample_diffuse)(fogrt_vec3 wo, float u1, float u2, cw_bsdf_sample *s);
+    float (*diffuse_pdf)(fogrt_vec3 wo, fogrt_vec3 wi);
+    int (*sample_mirror)(fogrt_vec3 wo, cw_bsdf_sample *s);
+    float (*fresnel_schlick)(float eta, float cos_i);
+    int (*sample_glass)(float eta, fogrt_vec3 wo, float u_lobe, cw_bsdf_sample *s);
+    float (*sample_equiangular)(float delta, float h, float a, float b, float u, float *pdf);
+    float (*equiangular_pdf)(float delta, float h, float a, float b, float t);
+} cw_fns;
+
+typedef struct cw_result {
+    char name[64];
+    int pass;
+    double seconds;
+    char line[1400];
+} cw_result;
+
+/* One run of a step's checks. img_dir NULL: no pictures; quiet: print nothing. */
+typedef struct cw_run {
+    const char *img_dir;
+    int quiet;
+    int count, passed;
+    double seconds;
+    cw_result r[CW_MAX_CHECKS];
+    clock_t t0;            /* start of the check being run */
+} cw_run;
+
+/* ==========================================================================================
+   Reporting
+   ========================================================================================== */
+static void cw_begin(cw_run *run) { run->t0 = clock(); }
+
+/* Records a check: measure is what was measured (statistic, p-value or values against the
+   tolerance), advice what a failure means (printed on failure only), png the picture. */
+static void cw_emit(cw_run *run, const char *name, int pass, const char *measure, const char *advice, const char *png)
+{
+    cw_result *r;
+    double s = (double)(clock() - run->t0) / CLOCKS_PER_SEC;
+    if (run->count >= CW_MAX_CHECKS) return;
+    r = &run->r[run->count++];
+    snprintf(r->name, sizeof r->name, "%s", name);
+    r->pass = pass;
+    r->seconds = s;
+    run->seconds += s;
+    if (pass) run->passed++;
+    snprintf(r->line, sizeof r->line, "%-30s %s %5.2f s  %s%s%s%s%s", name, pass ? "PASS" : "FAIL", s, measure,
+             !pass && advice && *advice ? "  -- " : "", !pass && advice ? advice : "",
+             png && *png ? "  [picture " : "", png && *png ? png : "");
+    if (png && *png) strncat(r->line, "]", sizeof r->line - strlen(r->line) - 1);
+    if (!run->quiet) { printf("%s\n", r->line); fflush(stdout); }
+    run->t0 = clock();
+}
+
+/* The first failing check's line, or NULL. */
+static inline const cw_result *cw_first_failure(const cw_run *run)
+{
+    int i;
+    for (i = 0; i < run->count; ++i) if (!run->r[i].pass) return &run->r[i];
+    return NULL;
+}
+
+/* A failing check whose name starts with name and whose line contains text, or NULL. */
+static inline const cw_result *cw_find_failure(const cw_run *run, const char *name, const char *text)
+{
+    int i;
+    for (i = 0; i < run->count; ++i)
+        if (!run->r[i].pass && strncmp(run->r[i].name, name, strlen(name)) == 0 && strstr(run->r[i].line, text))
+            return &run->r[i];
+    return NULL;
+}
+
+static void cw_fmt(char *out, size_t size, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(out, size, fmt, ap);
+    va_end(ap);
+}
+
+/* ==========================================================================================
+   Random numbers: fogrt's PCG32 (public API), one fixed stream per check
+   ========================================================================================== */
+static float cw_u(fogrt_rng *r) { return fogrt_rng_float(r); }
+static void cw_seed(fogrt_rng *r, uint64_t check) { fogrt_rng_seed(r, 0xC0FFEE12345ull, check); }
+#define CW_U_MAX (1.0f - 0x1p-24f)   /* the largest u the kit passes */
+
+/* ==========================================================================================
+   Pictures: a histogram (bars) against a model (line), with title, axes and legend
+   ========================================================================================== */
+typedef struct cw_plot {
+    const char *title, *xlabel, *ylabel, *bar_label, *line_label;
+    int n;
+    const double *x0, *x1, *bar, *line;   /* bar i covers [x0[i], x1[i]]; line NULL: none */
+    double xmin, xmax;                    /* the x range drawn */
+    int logy;                             /* 1: log scale; -1: chosen from the data's range */
+    int points;                           /* 1: the line joins the bars' centres (else steps) */
+    int bars_signed;                      /* 1: bars may be negative (y range from the data) */
+} cw_plot;
+
+static const unsigned char CW_BAR[3] = {140, 185, 225};
+
+/* A 2-pixel line between any two points (Bresenham with the error doubled once per step,
+   so diagonal segments end where they should). */
+static void cw_line(pf_canvas *c, int x0, int y0, int x1, int y1, const unsigned char col[3])
+{
+    int dx = abs(x1 - x0), dy = -abs(y1 - y0), sx = x0 < x1 ? 1 : -1, sy = y0 < y1 ? 1 : -1, err = dx + dy;
+    for (;;) {
+        int e2 = 2 * err;
+        pf_rect(c, x0, y0, 2, 2, col);
+        if (x0 == x1 && y0 == y1) break;
+        if (e2 >= dy) { err += dy; x0 += sx; }
+        if (e2 <= dx) { err += dx; y0 += sy; }
+    }
+}
+
+static void cw__axis_label(char *buf, size_t size, double v)
+{
+    if (v != 0.0 && (fabs(v) < 1e-3 || fabs(v) >= 1e5)) snprintf(buf, size, "%.1e", v);
+    else snprintf(buf, size, "%.4g", v);
+}
+
+static void cw_draw_plot(pf_canvas *c, int X, int Y, int W, int H, const cw_plot *p)
+{
+    int px0 = X + 78, py0 = Y + 36, pw = W - 78 - 16, ph = H - 36 - 58, i, k;
+    double ymin = 0.0, ymax = 0.0, lmin = HUGE_VAL;
+    int logy = p->logy;
+    int ts = pf_text_width(p->title, 2) <= W - 8 ? 2 : 1;
+    pf_text_at(c, X + W / 2, Y + 8, p->title, ts, PF_BLACK, 1);
+    for (i = 0; i < p->n; ++i) {
+        double v[2];
+        int j;
+        v[0] = p->bar ? p->bar[i] : 0.0;
+        v[1] = p->line ? p->line[i] : 0.0;
+        for (j = 0; j < 2; ++j) {
+            if (!isfinite(v[j])) continue;
+            if (v[j] > ymax) ymax = v[j];
+            if (v[j] < ymin) ymin = v[j];
+            if (v[j] > 0.0 && v[j] < lmin) lmin = v[j];
+        }
+    }
+    if (!p->bars_signed) ymin = 0.0;
+    if (logy < 0) logy = (ymax > 0.0 && lmin < HUGE_VAL && ymax / lmin > 60.0) ? 1 : 0;
+    if (logy) {
+        ymax = log10(ymax > 0.0 ? ymax : 1.0) + 0.15;
+        ymin = log10(lmin < HUGE_VAL ? lmin : 1e-3) - 0.3;
+        if (ymax - ymin > 8.0) ymin = ymax - 8.0;
+    } else {
+        double span = ymax - ymin;
+        if (!(span > 0.0)) span = 1.0;
+        ymax += 0.08 * span;
+        if (p->bars_signed && ymin < 0.0) ymin -= 0.08 * span;
+    }
+#define CW_YPIX(v) (py0 + ph - (int)lround(((logy ? log10(fmax((v), 1e-300)) : (v)) - ymin) / (ymax - ymin) * ph))
+#define CW_XPIX(x) (px0 + (int)lround((fmin(fmax((x), p->xmin), p->xmax) - p->xmin) / (p->xmax - p->xmin) * pw))
+    /* grid lines and tick labels */
+    for (k = 0; k <= 4; ++k) {
+        char lab[32];
+        double xv = p->xmin + (p->xmax - p->xmin) * k / 4.0, yv = ymin + (ymax - ymin) * k / 4.0;
+        int xp = px0 + pw * k / 4, yp = py0 + ph - ph * k / 4;
+        pf_line(c, xp, py0, xp, py0 + ph, PF_LIGHT, 1, 0);
+        pf_line(c, px0, yp, px0 + pw, yp, PF_LIGHT, 1, 0);
+        cw__axis_label(lab, sizeof lab, xv);
+        pf_text_at(c, xp, py0 + ph + 5, lab, 1, PF_GREY, 1);
+        cw__axis_label(lab, sizeof lab, logy ? pow(10.0, yv) : yv);
+        pf_text_at(c, px0 - 5, yp - 4, lab, 1, PF_GREY, 2);
+    }
+    /* bars */
+    if (p->bar)
+        for (i = 0; i < p->n; ++i) {
+            int xa, xb, ya, yb;
+            if (!isfinite(p->bar[i]) || p->x1[i] <= p->xmin || p->x0[i] >= p->xmax) continue;
+            if (logy && !(p->bar[i] > 0.0)) continue;
+            xa = CW_XPIX(p->x0[i]); xb = CW_XPIX(p->x1[i]);
+            ya = CW_YPIX(p->bar[i]); yb = logy ? py0 + ph : CW_YPIX(0.0);
+            if (ya > yb) { int t = ya; ya = yb; yb = t; }
+            if (ya < py0) ya = py0;
+            if (yb > py0 + ph) yb = py0 + ph;
+            if (xb <= xa) xb = xa + 1;
+            pf_rect(c, xa, ya, xb - xa, yb - ya + 1, CW_BAR);
+        }
+    /* the model */
+    if (p->line) {
+        int have = 0, lx = 0, ly = 0;
+        for (i = 0; i < p->n; ++i) {
+            int xa, xb, y;
+            if (!isfinite(p->line[i]) || p->x1[i] <= p->xmin || p->x0[i] >= p->xmax) { have = 0; continue; }
+            if (logy && !(p->line[i] > 0.0)) { have = 0; continue; }
+            y = CW_YPIX(p->line[i]);
+            if (y < py0) y = py0;
+            if (y > py0 + ph) y = py0 + ph;
+            if (p->points) {
+                xa = CW_XPIX(0.5 * (p->x0[i] + p->x1[i]));
+                if (have) cw_line(c, lx, ly, xa, y, PF_ORANGE);
+                pf_rect(c, xa - 2, y - 2, 5, 5, PF_ORANGE);
+                lx = xa; ly = y; have = 1;
+            } else {
+                xa = CW_XPIX(p->x0[i]); xb = CW_XPIX(p->x1[i]);
+                if (have) cw_line(c, lx, ly, xa, y, PF_ORANGE);
+                cw_line(c, xa, y, xb, y, PF_ORANGE);
+                lx = xb; ly = y; have = 1;
+            }
+        }
+    }
+#undef CW_YPIX
+#undef CW_XPIX
+    pf_frame(c, px0, py0, pw + 1, ph + 1, PF_BLACK);
+    pf_text_at(c, px0 + pw / 2, py0 + ph + 20, p->xlabel, 2, PF_BLACK, 1);
+    {
+        char yl[96];
+        snprintf(yl, sizeof yl, "%s%s", p->ylabel, logy ? " (log scale)" : "");
+        pf_text_up(c, X + 4, py0 + ph / 2, yl, 1, PF_BLACK);
+    }
+    /* legend, top right inside the plot */
+    {
+        int lx = px0 + pw - 8 - 12 - 6 * (int)fmax(strlen(p->bar_label ? p->bar_label : ""),
+                                                   strlen(p->line_label ? p->line_label : "")) - 12, ly = py0 + 8;
+        if (p->bar && p->bar_label) {
+            pf_rect(c, lx, ly, 12, 9, CW_BAR);
+            pf_text(c, lx + 18, ly, p->bar_label, 1, PF_BLACK);
+            ly += 14;
+        }
+        if (p->line && p->line_label) {
+            pf_line(c, lx, ly + 4, lx + 11, ly + 4, PF_ORANGE, 2, 0);
+            pf_text(c, lx + 18, ly, p->line_label, 1, PF_BLACK);
+        }
+    }
+}
+
+/* Writes the canvas with a verdict strip under it as img_dir/stem.png; path gets the name
+   ("" when pictures are off or the file could not be written). */
+static void cw_save(const cw_run *run, const char *stem, pf_canvas *c, const char *verdict, int pass, char *path, size_t size)
+{
+    pf_canvas out;
+    const char *lines[1];
+    path[0] = '\0';
+    if (!run->img_dir) return;
+    lines[0] = verdict;
+    out = pf_captioned(c->rgb, c->w, c->h, lines, 1, 1);
+    pf_rect(&out, 0, c->h, 6, out.h - c->h, pass ? PF_GREEN : PF_ORANGE);
+    snprintf(path, size, "%s/%s.png", run->img_dir, stem);
+    if (!stbi_write_png(path, out.w, out.h, 3, out.rgb, 3 * out.w)) path[0] = '\0';
+    pf_canvas_free(&out);
+}
+
+/* One plot alone in a picture. */
+static void cw_picture(const cw_run *run, const char *stem, const cw_plot *p, const char *verdict, int pass,
+                       char *path, size_t size)
+{
+    pf_canvas c;
+    path[0] = '\0';
+    if (!run->img_dir) return;
+    c = pf_canvas_make(760, 400, PF_WHITE);
+    cw_draw_plot(&c, 0, 0, 760, 400, p);
+    cw_save(run, stem, &c, verdict, pass, path, size);
+    pf_canvas_free(&c);
+}
+
+/* Two plots side by side (a 2-D check's two marginals). */
+static void cw_picture2(const cw_run *run, const char *stem, const cw_plot *a, const cw_plot *b, const char *verdict,
+                        int pass, char *path, size_t size)
+{
+    pf_canvas c;
+    path[0] = '\0';
+    if (!run->img_dir) return;
+    c = pf_canvas_make(1240, 400, PF_WHITE);
+    cw_draw_plot(&c, 0, 0, 620, 400, a);
+    cw_draw_plot(&c, 620, 0, 620, 400, b);
+    cw_save(run, stem, &c, verdict, pass, path, size);
+    pf_canvas_free(&c);
+}
+
+/* ==========================================================================================
+   1-D histograms against a model CDF
+   ========================================================================================== */
+typedef struct cw_hist {
+    int nb;
+    double edge[CW_HMAX + 1];   /* increasing; edge[nb] may be +infinity */
+    double obs[CW_HMAX], expd[CW_HMAX];
+    long n, invalid;
+    double first_invalid, first_invalid_u;
+    double sum;                 /* of the valid samples */
+} cw_hist;
+
+typedef double (*cw_cdf_fn)(double x, const void *user);
+
+static void cw_hist_init(cw_hist *h, int nb)
+{
+    memset(h, 0, sizeof *h);
+    h->nb = nb;
+}
+/* Adds one sample; outside [edge[0], edge[nb]] (beyond slack) or not finite: invalid. */
+static void cw_hist_add(cw_hist *h, double x, double u, double slack)
+{
+    int lo = 0, hi = h->nb;
+    h->n++;
+    if (isnan(x) || x < h->edge[0] - slack || x > h->edge[h->nb] + slack || (isinf(x) && !isinf(h->edge[h->nb]))
+        || (isinf(x) && x < 0)) {
+        if (h->invalid++ == 0) { h->first_invalid = x; h->first_invalid_u = u; }
+        return;
+    }
+    if (isinf(x)) {   /* +infinity with an infinite last edge: not a distance */
+        if (h->invalid++ == 0) { h->first_invalid = x; h->first_invalid_u = u; }
+        return;
+    }
+    h->sum += x;
+    if (x <= h->edge[0]) { h->obs[0] += 1.0; return; }
+    if (x >= h->edge[h->nb]) { h->obs[h->nb - 1] += 1.0; return; }
+    while (hi - lo > 1) {
+        int mid = (lo + hi) / 2;
+        if (h->edge[mid] <= x) lo = mid; else hi = mid;
+    }
+    h->obs[lo] += 1.0;
+}
+/* Expected counts from the model's CDF. */
+static void cw_hist_expect(cw_hist *h, cw_cdf_fn cdf, const void *user)
+{
+    int i;
+    for (i = 0; i < h->nb; ++i) h->expd[i] = (double)h->n * (cdf(h->edge[i + 1], user) - cdf(h->edge[i], user));
+}
+
+typedef struct cw_fit { double chi2, p; int dof; } cw_fit;
+static cw_fit cw_hist_fit(const double *obs, const double *expd, int n)
+{
+    cw_fit f;
+    stats_chi2_result r = stats_chi2(obs, expd, n);
+    f.chi2 = r.chi2; f.dof = r.dof; f.p = r.dof >= 1 ? r.p_value : 0.0;
+    return f;
+}
+
+/* The bin where observed and expected differ most, in standard deviations. */
+static int cw_worst_bin(const double *obs, const double *expd, int n, double *z)
+{
+    int i, w = 0;
+    double best = -1.0;
+    for (i = 0; i < n; ++i) {
+        double e = expd[i] > 0.0 ? expd[i] : 1e-9, d = fabs(obs[i] - e) / sqrt(e);
+        if (d > best) { best = d; w = i; }
+    }
+    *z = (obs[w] - expd[w]) / sqrt(expd[w] > 0.0 ? expd[w] : 1e-9);
+    return w;
+}
+
+/* Bars and line as densities (count / (N width)) for a picture; a last infinite bin is cut
+   at xmax. */
+static void cw_hist_density(const cw_hist *h, double xmax, double *x0, double *x1, double *bar, double *line)
+{
+    int i;
+    for (i = 0; i < h->nb; ++i) {
+        double a = h->edge[i], b = isinf(h->edge[i + 1]) ? fmax(xmax, a) : h->edge[i + 1], w = b - a;
+        x0[i] = a; x1[i] = b;
+        bar[i] = (w > 0.0 && !isinf(h->edge[i + 1])) ? h->obs[i] / ((double)h->n * w) : NAN;
+        line[i] = (w > 0.0 && !isinf(h->edge[i + 1])) ? h->expd[i] / ((double)h->n * w) : NAN;
+    }
+}
+
+/* The integral of a student's 1-D density over [a, b] (adaptive Simpson, tests/stats.h). */
+typedef struct cw__pdf1 { double (*f)(double x, const void *user); const void *user; } cw__pdf1;
+static double cw__pdf1_eval(double x, void *user)
+{
+    const cw__pdf1 *p = (const cw__pdf1 *)user;
+    double v = p->f(x, p->user);
+    return isfinite(v) ? v : 0.0;
+}
+static double cw_integrate(double (*f)(double x, const void *user), const void *user, double a, double b)
+{
+    cw__pdf1 p;
+    p.f = f; p.user = user;
+    return stats_integrate_1d(cw__pdf1_eval, &p, a, b, 1e-7, 22);
+}
+
+/* Normal two-sided p-value of z. */
+static double cw_normal_p(double z) { return erfc(fabs(z) / sqrt(2.0)); }
+
+static int cw_finite3(fogrt_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
+static double cw_len3(fogrt_vec3 v) { return sqrt((double)v.x * v.x + (double)v.y * v.y + (double)v.z * v.z); }
+static fogrt_vec3 cw_v3(double x, double y, double z)
+{
+    fogrt_vec3 v;
+    double l = sqrt(x * x + y * y + z * z);
+    v.x = (float)(x / l); v.y = (float)(y / l); v.z = (float)(z / l);
+    return v;
+}
+
+/* ==========================================================================================
+   Step 1: free-flight sampling (eq. 4-6)
+   ========================================================================================== */
+static double cw__exp_cdf(double t, const void *user)
+{
+    double s = *(const double *)user;
+    return t <= 0.0 ? 0.0 : (isinf(t) ? 1.0 : -expm1(-s * t));
+}
+typedef struct cw__ff { const cw_fns *f; double sigma; } cw__ff;
+static double cw__ff_pdf(double t, const void *user)
+{
+    const cw__ff *p = (const cw__ff *)user;
+    return p->f->free_flight_pdf((float)p->sigma, (float)t);
+}
+
+static void cw_step1(const cw_fns *f, cw_run *run)
+{
+    static const double sigmas[2] = {0.3, 5.0};
+    int k, i;
+    char name[64], m[512], adv[512], png[256], stem[64], title[160];
+    for (k = 0; k < 2; ++k) {
+        double sigma = sigmas[k], mean, x0[CW_HMAX], x1[CW_HMAX], bar[CW_HMAX], line[CW_HMAX];
+        cw_hist h;
+        cw_fit fit;
+        fogrt_rng rng;
+        cw__ff ff;
+        int pass, nb = 40;
+        cw_plot p;
+        /* the samples against eq. 6 */
+        cw_begin(run);
+        cw_hist_init(&h, nb);
+        for (i = 0; i < nb; ++i) h.edge[i] = -log1p(-(double)i / nb) / sigma;
+        h.edge[nb] = HUGE_VAL;
+        cw_seed(&rng, 100 + k);
+        for (i = 0; i < CW_N; ++i) {
+            float u = cw_u(&rng);
+            cw_hist_add(&h, f->sample_free_flight((float)sigma, u), u, 0.0);
+        }
+        cw_hist_expect(&h, cw__exp_cdf, &sigma);
+        fit = cw_hist_fit(h.obs, h.expd, nb);
+        pass = h.invalid == 0 && fit.p >= CW_ALPHA;
+        mean = h.n > h.invalid ? h.sum / (double)(h.n - h.invalid) : NAN;
+        cw_fmt(m, sizeof m, "chi2 = %.1f, dof %d, p = %.3g (fail if p < %g); mean t = %.4g, 1/sigma_t = %.4g",
+               fit.chi2, fit.dof, fit.p, CW_ALPHA, mean, 1.0 / sigma);
+        if (h.invalid)
+            cw_fmt(adv, sizeof adv, "%ld samples were negative, infinite or NaN (first: t = %g at u = %.9g): a distance "
+                   "is finite and >= 0 for every u in [0, 1)", h.invalid, h.first_invalid, h.first_invalid_u);
+        else if (mean * sigma > 1.05)
+            cw_fmt(adv, sizeof adv, "samples go too far: mean t = %.4g but eq. 6 gives 1/sigma_t = %.4g (%.3gx)%s", mean,
+                   1.0 / sigma, mean * sigma,
+                   fabs(mean - sigma) < 0.05 * sigma ? ": are you multiplying by sigma_t instead of dividing?" : "");
+        else if (mean * sigma < 0.95)
+            cw_fmt(adv, sizeof adv, "samples stop too soon: mean t = %.4g but eq. 6 gives 1/sigma_t = %.4g (%.3gx)%s", mean,
+                   1.0 / sigma, mean * sigma,
+                   fabs(mean - sigma) < 0.05 * sigma ? ": are you multiplying by sigma_t instead of dividing?" : "");
+        else
+            cw_fmt(adv, sizeof adv, "the mean is right but the shape is not exponential: invert eq. 6, t = -log(1 - u) / sigma_t");
+        cw_hist_density(&h, h.edge[nb - 1] * 1.15, x0, x1, bar, line);
+        memset(&p, 0, sizeof p);
+        cw_fmt(title, sizeof title, "Step 1: free-flight distances, sigma_t = %g (eq. 6)", sigma);
+        p.title = title; p.xlabel = "distance t"; p.ylabel = "density"; p.bar_label = "your samples";
+        p.line_label = "sigma_t exp(-sigma_t t)"; p.n = nb - 1; p.x0 = x0; p.x1 = x1; p.bar = bar; p.line = line;
+        p.xmin = 0.0; p.xmax = h.edge[nb - 1]; p.logy = 0;
+        cw_fmt(stem, sizeof stem, "step1_chi2_sigma%g", sigma);
+        cw_fmt(name, sizeof name, "step1.chi2 sigma_t=%g", sigma);
+        {
+            char verdict[700];
+            cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+            cw_picture(run, stem, &p, verdict, pass, png, sizeof png);
+        }
+        cw_emit(run, name, pass, m, adv, png);
+
+        /* the student's pdf against the student's own samples */
+        cw_begin(run);
+        ff.f = f; ff.sigma = sigma;
+        {
+            double total = 0.0, z;
+            int w;
+            for (i = 0; i < nb; ++i) {
+                double b = isinf(h.edge[i + 1]) ? h.edge[i] + 60.0 / sigma : h.edge[i + 1];
+                h.expd[i] = (double)h.n * cw_integrate(cw__ff_pdf, &ff, h.edge[i], b);
+                total += h.expd[i];
+            }
+            fit = cw_hist_fit(h.obs, h.expd, nb);
+            pass = h.invalid == 0 && fit.p >= CW_ALPHA;
+            w = cw_worst_bin(h.obs, h.expd, nb, &z);
+            cw_fmt(m, sizeof m, "chi2 = %.1f, dof %d, p = %.3g (fail if p < %g); your pdf's mass over the bins %.4g",
+                   fit.chi2, fit.dof, fit.p, CW_ALPHA, total / (double)h.n);
+            if (h.invalid)
+                cw_fmt(adv, sizeof adv, "the sampler gave invalid distances (see step1.chi2)");
+            else if (fabs(total / (double)h.n - 1.0) > 0.01)
+                cw_fmt(adv, sizeof adv, "your pdf integrates to %.4g, not 1, so it cannot describe your samples "
+                       "(see step1.pdf_integral)", total / (double)h.n);
+            else
+                cw_fmt(adv, sizeof adv, "your pdf and your sampler disagree most for t in [%.3g, %.3g): %.0f samples "
+                       "there, your pdf predicts %.0f: the pdf must be the density of the samples you draw",
+                       h.edge[w], h.edge[w + 1], h.obs[w], h.expd[w]);
+            cw_hist_density(&h, h.edge[nb - 1] * 1.15, x0, x1, bar, line);
+            cw_fmt(title, sizeof title, "Step 1: your pdf against your samples, sigma_t = %g", sigma);
+            p.title = title; p.line_label = "your pdf";
+            cw_fmt(stem, sizeof stem, "step1_pdf_vs_hist_sigma%g", sigma);
+            cw_fmt(name, sizeof name, "step1.pdf_vs_hist sigma_t=%g", sigma);
+            {
+                char verdict[700];
+                cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+                cw_picture(run, stem, &p, verdict, pass, png, sizeof png);
+            }
+            cw_emit(run, name, pass, m, adv, png);
+        }
+    }
+
+    /* the pdf integrates to one and is zero before the ray starts */
+    cw_begin(run);
+    {
+        static const double s3[3] = {0.02, 1.0, 40.0};
+        double worst = 0.0, worst_i = 1.0, worst_s = 1.0, neg = 0.0;
+        for (k = 0; k < 3; ++k) {
+            cw__ff ff;
+            double I;
+            ff.f = f; ff.sigma = s3[k];
+            I = cw_integrate(cw__ff_pdf, &ff, 0.0, 40.0 / s3[k]) + cw_integrate(cw__ff_pdf, &ff, 40.0 / s3[k], 80.0 / s3[k]);
+            if (!(fabs(I - 1.0) <= worst)) { worst = fabs(I - 1.0); worst_i = I; worst_s = s3[k]; }
+            neg = fmax(neg, fabs(f->free_flight_pdf((float)s3[k], -1.0f)));
+        }
+        {
+            int pass = worst <= 2e-3 && neg == 0.0;
+            cw_fmt(m, sizeof m, "integral of the pdf over t >= 0: %.6g at sigma_t = %g (expected 1 +- 0.002); pdf(t = -1) = %g",
+                   worst_i, worst_s, neg);
+            if (neg != 0.0)
+                cw_fmt(adv, sizeof adv, "your pdf is not zero at t < 0: eq. 6's CDF is 0 for t < 0, so no distance is negative");
+            else if (fabs(worst_i * worst_s - 1.0) < 0.01)
+                cw_fmt(adv, sizeof adv, "the pdf integrates to 1/sigma_t: the density is the derivative of eq. 6, "
+                       "sigma_t exp(-sigma_t t), with sigma_t in front");
+            else if (fabs(worst_i - worst_s * worst_s) < 0.01 * worst_s * worst_s)
+                cw_fmt(adv, sizeof adv, "the pdf integrates to sigma_t^2: write it as sigma_t exp(-sigma_t t), not sigma_t^2 ...");
+            else
+                cw_fmt(adv, sizeof adv, "a density must integrate to 1: the derivative of eq. 6 is sigma_t exp(-sigma_t t)");
+            cw_emit(run, "step1.pdf_integral", pass, m, adv, NULL);
+        }
+    }
+
+    /* the sample is eq. 6's inverse CDF at the u given */
+    cw_begin(run);
+    {
+        double worst = 0.0, wu = 0.0, wt = 0.0;
+        int decreasing = 0, n = 0;
+        float prev = -1.0f;
+        for (i = 0; i <= 64; ++i) {
+            float u = i < 64 ? (float)i / 64.0f : CW_U_MAX, t = f->sample_free_flight(1.0f, u);
+            double F = isfinite(t) ? -expm1(-(double)t) : (isinf(t) && t > 0 ? 1.0 : NAN), d = fabs(F - u);
+            if (i > 0 && t < prev) decreasing++;
+            prev = t;
+            if (!(d <= worst)) { worst = d; wu = u; wt = t; }
+            n++;
+        }
+        {
+            int pass = worst <= 1e-5;
+            cw_fmt(m, sizeof m, "largest |F(t(u)) - u| = %.3g at u = %.6g (t = %g, sigma_t = 1; tolerance 1e-5)", worst, wu, wt);
+            if (decreasing > n / 2)
+                cw_fmt(adv, sizeof adv, "t gets smaller as u grows: -log(u)/sigma_t has the right distribution but is not "
+                       "eq. 6's inverse (stratified or low-discrepancy u lose their order, and u = 0 gives infinity); "
+                       "the paper samples t = -log(1 - z)/lambda");
+            else
+                cw_fmt(adv, sizeof adv, "t(u) must solve F(t) = u with eq. 6's F(t) = 1 - exp(-sigma_t t)");
+            cw_emit(run, "step1.inverse_cdf", pass, m, adv, NULL);
+        }
+    }
+
+    /* edge cases: finite answers where a careless formula overflows */
+    cw_begin(run);
+    {
+        static const float cs[6][2] = {{1.0f, 0.0f}, {1.0f, CW_U_MAX}, {1e-6f, 0.5f}, {1e6f, 0.5f}, {1e6f, CW_U_MAX}, {1e-6f, CW_U_MAX}};
+        int bad = -1, total = 0, ok = 0;
+        float got = 0.0f;
+        const char *what = "";
+        for (i = 0; i < 6; ++i) {
+            float t = f->sample_free_flight(cs[i][0], cs[i][1]);
+            total++;
+            if (isfinite(t) && t >= 0.0f) ok++;
+            else if (bad < 0) { bad = i; got = t; what = "t"; }
+        }
+        {
+            static const float ps[4][2] = {{1e6f, 0.0f}, {1e-6f, 1e6f}, {1.0f, 1e30f}, {40.0f, 0.0f}};
+            for (i = 0; i < 4; ++i) {
+                float v = f->free_flight_pdf(ps[i][0], ps[i][1]);
+                total++;
+                if (isfinite(v) && v >= 0.0f) ok++;
+                else if (bad < 0) { bad = 6 + i; got = v; what = "pdf"; }
+            }
+            {
+                int pass = ok == total;
+                cw_fmt(m, sizeof m, "%d of %d edge cases finite and >= 0 (u = 0, u = 1 - 2^-24, sigma_t 1e-6 and 1e6)", ok, total);
+                if (bad == 0)
+                    cw_fmt(adv, sizeof adv, "u = 0 gave t = %g: log(u) is -infinity at u = 0, which the kit (and fogrt's "
+                           "random numbers) pass; u lies in [0, 1), so use log(1 - u) as the paper does", got);
+                else if (bad >= 0 && bad < 6)
+                    cw_fmt(adv, sizeof adv, "sigma_t = %g, u = %.9g gave %s = %g: a distance must be finite and >= 0",
+                           cs[bad][0], cs[bad][1], what, got);
+                else if (bad >= 6)
+                    cw_fmt(adv, sizeof adv, "pdf(sigma_t = %g, t = %g) = %g: it must be finite and >= 0",
+                           ps[bad - 6][0], ps[bad - 6][1], got);
+                else adv[0] = '\0';
+                cw_emit(run, "step1.edges", pass, m, adv, NULL);
+            }
+        }
+    }
+}
+
+/* ==========================================================================================
+   Step 2: transmittance (eq. 7-8)
+   ========================================================================================== */
+static void cw_step2(const cw_fns *f, cw_run *run)
+{
+    static const float sig[6] = {0.0f, 0.01f, 0.3f, 1.0f, 5.0f, 100.0f};
+    static const float dist[7] = {0.0f, 0.001f, 0.1f, 1.0f, 2.0f, 10.0f, 100.0f};
+    char m[512], adv[512], png[256];
+    int i, j;
+    /* eq. 8 itself */
+    cw_begin(run);
+    {
+        double worst = 0.0;
+        int wi = 0, wj = 0, linear = 0, inverse = 0, cases = 0;
+        for (i = 0; i < 6; ++i)
+            for (j = 0; j < 7; ++j) {
+                double T = f->transmittance(sig[i], dist[j]), ref = exp(-(double)sig[i] * dist[j]);
+                double err = fabs(T - ref) / (1e-6 + 1e-5 * ref);
+                if (!(err <= worst)) { worst = err; wi = i; wj = j; }
+                if (sig[i] * dist[j] > 0.05f && sig[i] * dist[j] < 0.9f) {
+                    cases++;
+                    if (fabs(T - (1.0 - (double)sig[i] * dist[j])) < 1e-4) linear++;
+                    if (sig[i] > 0.0f && fabs(T - exp(-(double)dist[j] / sig[i])) < 1e-5 * exp(-(double)dist[j] / sig[i]) + 1e-6) inverse++;
+                }
+            }
+        {
+            double T = f->transmittance(sig[wi], dist[wj]), ref = exp(-(double)sig[wi] * dist[wj]);
+            int pass = worst <= 1.0;
+            cw_fmt(m, sizeof m, "largest error at sigma_t = %g, d = %g: T = %.7g, eq. 8 gives %.7g (tolerance 1e-6 + 1e-5 T)",
+                   sig[wi], dist[wj], T, ref);
+            if (cases && linear == cases)
+                cw_fmt(adv, sizeof adv, "T = 1 - sigma_t d is only eq. 8's first-order approximation: eq. 7 integrates to "
+                       "exp(-sigma_t d), which never reaches 0");
+            else if (cases && inverse == cases)
+                cw_fmt(adv, sizeof adv, "T = exp(-d / sigma_t) divides by sigma_t; eq. 8 multiplies: exp(-sigma_t d)");
+            else
+                cw_fmt(adv, sizeof adv, "eq. 8: T = exp(-sigma_t d) (1 in clear air, 0 at infinite distance)");
+            cw_emit(run, "step2.eq8", pass, m, adv, NULL);
+        }
+    }
+    /* what eq. 7 implies: T(0) = 1, 0 <= T <= 1, decreasing, T(a + b) = T(a) T(b) */
+    cw_begin(run);
+    {
+        int bad = 0;
+        char what[256] = "";
+        for (i = 1; i < 6 && !bad; ++i) {
+            double t0 = f->transmittance(sig[i], 0.0f);
+            if (fabs(t0 - 1.0) > 1e-6) { bad = 1; cw_fmt(what, sizeof what, "T(d = 0) = %g at sigma_t = %g, not 1", t0, sig[i]); }
+            for (j = 1; j < 7 && !bad; ++j) {
+                double a = f->transmittance(sig[i], dist[j]), b = f->transmittance(sig[i], dist[j - 1]);
+                double h = f->transmittance(sig[i], 0.5f * dist[j]);
+                if (!(a >= 0.0 && a <= 1.0)) { bad = 1; cw_fmt(what, sizeof what, "T = %g at sigma_t = %g, d = %g is outside [0, 1]", a, sig[i], dist[j]); }
+                else if (a > b + 1e-7) { bad = 1; cw_fmt(what, sizeof what, "T grows with distance (sigma_t = %g, d = %g -> %g)", sig[i], dist[j - 1], dist[j]); }
+                else if (fabs(h * h - a) > 1e-5 * a + 1e-6) {
+                    bad = 1;
+                    cw_fmt(what, sizeof what, "T(%g)^2 = %.6g but T(%g) = %.6g at sigma_t = %g: eq. 7 makes every stretch of fog "
+                           "attenuate independently, so T(a + b) = T(a) T(b)", 0.5 * dist[j], h * h, dist[j], a, sig[i]);
+                }
+            }
+        }
+        cw_fmt(m, sizeof m, "T(0) = 1, 0 <= T <= 1, non-increasing, T(a + b) = T(a) T(b) on a grid: %s", bad ? "violated" : "hold");
+        cw_emit(run, "step2.properties", !bad, m, what, NULL);
+    }
+    /* edges */
+    cw_begin(run);
+    {
+        static const float es[5][3] = {{0.0f, 1e30f, 1.0f}, {1.0f, 1e30f, 0.0f}, {1e6f, 1.0f, 0.0f}, {1e-6f, 1e6f, 0.36787944f}, {0.0f, 0.0f, 1.0f}};
+        int ok = 0, bad = -1;
+        float got = 0.0f, inf_ok;
+        for (i = 0; i < 5; ++i) {
+            float T = f->transmittance(es[i][0], es[i][1]);
+            if (isfinite(T) && fabs(T - es[i][2]) <= 1e-5f) ok++;
+            else if (bad < 0) { bad = i; got = T; }
+        }
+        inf_ok = f->transmittance(0.0f, INFINITY);
+        if (isfinite(inf_ok) && inf_ok == 1.0f) ok++;
+        else if (bad < 0) { bad = 5; got = inf_ok; }
+        inf_ok = f->transmittance(2.0f, INFINITY);
+        if (inf_ok == 0.0f) ok++;
+        else if (bad < 0) { bad = 6; got = inf_ok; }
+        cw_fmt(m, sizeof m, "%d of 7 edge cases right (clear air at any distance, infinite distance, sigma_t d huge or tiny)", ok);
+        if (bad == 5)
+            cw_fmt(adv, sizeof adv, "sigma_t = 0, d = infinity gave %g: 0 * infinity is NaN in floating point; clear air "
+                   "transmits everything, T = 1 (test sigma_t = 0 or d = 0 first)", got);
+        else if (bad == 6)
+            cw_fmt(adv, sizeof adv, "sigma_t = 2, d = infinity gave %g, not 0", got);
+        else if (bad >= 0)
+            cw_fmt(adv, sizeof adv, "sigma_t = %g, d = %g gave %g, expected %g", es[bad][0], es[bad][1], got, es[bad][2]);
+        else adv[0] = '\0';
+        cw_emit(run, "step2.edges", ok == 7, m, adv, NULL);
+    }
+    /* the one-sample estimator: its mean is eq. 8 */
+    cw_begin(run);
+    {
+        static const float ds[6] = {0.1f, 0.5f, 1.0f, 2.0f, 3.0f, 5.0f};
+        double x0[6], x1[6], bar[6], line[6], worst_p = 1.0, worst_z = 0.0, wmean = 0.0, wT = 0.0, wd = 0.0;
+        int n = 40000, flipped = 0;
+        fogrt_rng rng;
+        cw_plot p;
+        char verdict[800];
+        for (j = 0; j < 6; ++j) {
+            double s = 0.0, s2 = 0.0, mean, var, T = exp(-(double)ds[j]), z, pv;
+            long bad = 0;
+            cw_seed(&rng, 200 + j);
+            for (i = 0; i < n; ++i) {
+                double e = f->transmittance_estimate(1.0f, ds[j], cw_u(&rng));
+                if (!isfinite(e)) { bad++; continue; }
+                s += e; s2 += e * e;
+            }
+            mean = s / n;
+            var = fmax(s2 / n - mean * mean, 0.0);
+            if (bad) z = HUGE_VAL;
+            else if (var > 0.0) z = (mean - T) / sqrt(var / n);
+            else z = fabs(mean - T) <= 1e-6 ? 0.0 : HUGE_VAL;
+            pv = cw_normal_p(z) * 6.0;     /* Bonferroni over the six distances */
+            if (pv > 1.0) pv = 1.0;
+            if (fabs(mean - (1.0 - T)) < 0.02) flipped++;
+            x0[j] = ds[j] - 0.12; x1[j] = ds[j] + 0.12; bar[j] = mean; line[j] = T;
+            if (pv < worst_p || j == 0) { worst_p = pv; worst_z = z; wmean = mean; wT = T; wd = ds[j]; }
+        }
+        {
+            int pass = worst_p >= CW_ALPHA;
+            cw_fmt(m, sizeof m, "worst distance d = %g: mean estimate %.5f vs T = %.5f, z = %.2f, p = %.3g "
+                   "(Bonferroni over 6 distances; fail if p < %g), %d estimates each", wd, wmean, wT, worst_z, worst_p, CW_ALPHA, n);
+            if (flipped >= 4)
+                cw_fmt(adv, sizeof adv, "your estimate averages 1 - T: it scores the flights that collide before d; T is "
+                       "the probability of NO collision (eq. 4), so score 1 when the free flight goes past d");
+            else
+                cw_fmt(adv, sizeof adv, "the estimate's mean must be exp(-sigma_t d): draw a free-flight distance t with u "
+                       "and return 1 if t >= d, else 0 (or any other unbiased estimate)");
+            memset(&p, 0, sizeof p);
+            p.title = "Step 2: mean of your transmittance estimates, sigma_t = 1 (eq. 8)";
+            p.xlabel = "distance d"; p.ylabel = "transmittance"; p.bar_label = "mean of your estimates";
+            p.line_label = "exp(-sigma_t d)"; p.n = 6; p.x0 = x0; p.x1 = x1; p.bar = bar; p.line = line;
+            p.xmin = 0.0; p.xmax = 5.5; p.points = 1; p.logy = 0;
+            cw_fmt(verdict, sizeof verdict, "step2.estimator %s: %s", pass ? "PASS" : "FAIL", m);
+            cw_picture(run, "step2_estimator", &p, verdict, pass, png, sizeof png);
+            cw_emit(run, "step2.estimator", pass, m, adv, png);
+        }
+    }
+}
+
+/* ==========================================================================================
+   Step 3: Henyey-Greenstein (eq. 9-12)
+   ========================================================================================== */
+static double cw_hg_ref(double g, double mu)
+{
+    return (1.0 - g * g) / (4.0 * CW_PI * pow(1.0 + g * g - 2.0 * g * mu, 1.5));
+}
+/* P(mu' <= mu) under HG, in a form without a division by g. */
+static double cw__hg_cdf(double mu, const void *user)
+{
+    double g = *(const double *)user, s;
+    if (mu <= -1.0) return 0.0;
+    if (mu >= 1.0) return 1.0;
+    if (g == 0.0) return 0.5 * (mu + 1.0);
+    s = sqrt(1.0 + g * g - 2.0 * g * mu);
+    /* (1 - g^2)/(2g) (1/s - 1/(1+g)) = (1 - g^2)(1 + g - s) / (2 g s (1 + g)), and
+       1 + g - s = ((1+g)^2 - s^2)/(1 + g + s) = 2g(1 + mu)/(1 + g + s) */
+    return (1.0 - g) * (1.0 + mu) / (s * (1.0 + g + s));
+}
+/* The mu at which the HG CDF reaches q (eq. 11 in a form exact at g = 0). */
+static double cw__hg_quantile(double g, double q)
+{
+    double D = (1.0 - g) + 2.0 * g * q;
+    return (2.0 * q - (1.0 - g)) / D + 2.0 * g * (1.0 - g) * (1.0 + g) * q * (1.0 - q) / (D * D);
+}
+typedef struct cw__hgp { const cw_fns *f; double g; } cw__hgp;
+static double cw__hg_student_mu(double mu, const void *user)
+{
+    const cw__hgp *p = (const cw__hgp *)user;
+    return 2.0 * CW_PI * p->f->hg_phase((float)p->g, (float)mu);
+}
+
+static void cw_step3(const cw_fns *f, cw_run *run)
+{
+    static const double gs_eq[6] = {-0.9, -0.5, 0.0, 0.3, 0.8, 0.99};
+    char name[64], m[600], adv[600], png[256], stem[64], title[160], verdict[900];
+    int i, k;
+    /* eq. 9 pointwise */
+    cw_begin(run);
+    {
+        double worst = 0.0, wg = 0.0, wmu = 0.0;
+        int n = 0, flipped = 0, times4pi = 0, permu = 0;
+        for (k = 0; k < 6; ++k)
+            for (i = 0; i <= 40; ++i) {
+                double g = (float)gs_eq[k], mu = (float)(-1.0 + 2.0 * i / 40.0), ref = cw_hg_ref(g, mu);
+                double v = f->hg_phase((float)g, (float)mu);
+                /* float rounding of 1 + g^2 - 2 g mu is relative to its terms, and the
+                   power 3/2 carries it on: near the peak (g -> 1, mu = 1) the base is
+                   (1 - g)^2, and a correct float formula is off by ~1e-6 terms / base */
+                double base = 1.0 + g * g - 2.0 * g * mu, terms = 1.0 + g * g + 2.0 * fabs(g * mu);
+                double err = fabs(v - ref) / ((1e-4 + 1e-6 * terms / base) * ref + 1e-9);
+                n++;
+                if (!(err <= worst)) { worst = err; wg = g; wmu = mu; }
+                if (fabs(v - cw_hg_ref(-g, mu)) <= 1e-4 * cw_hg_ref(-g, mu)) flipped++;
+                if (fabs(v - 4.0 * CW_PI * ref) <= 1e-4 * 4.0 * CW_PI * ref) times4pi++;
+                if (fabs(v - 2.0 * CW_PI * ref) <= 1e-4 * 2.0 * CW_PI * ref) permu++;
+            }
+        {
+            int pass = worst <= 1.0;
+            cw_fmt(m, sizeof m, "largest error at g = %g, mu = %g: %.7g against eq. 9's %.7g (relative tolerance 1e-4, more "
+                   "near the peak where float rounding grows)", wg, wmu, f->hg_phase((float)wg, (float)wmu), cw_hg_ref(wg, wmu));
+            if (flipped == n)
+                cw_fmt(adv, sizeof adv, "your values are HG with -g: is g's sign flipped? (g > 0 must favour mu = +1, the "
+                       "direction the light was already going)");
+            else if (times4pi == n)
+                cw_fmt(adv, sizeof adv, "your values are 4 pi times eq. 9: the 1/(4 pi) in front is missing");
+            else if (permu == n)
+                cw_fmt(adv, sizeof adv, "your values are 2 pi times eq. 9, the density per unit mu; eq. 9 is per steradian");
+            else
+                cw_fmt(adv, sizeof adv, "eq. 9: p(mu) = (1 - g^2) / (4 pi (1 + g^2 - 2 g mu)^(3/2))");
+            cw_emit(run, "step3.eq9", pass, m, adv, NULL);
+        }
+    }
+    /* normalisation over the sphere */
+    cw_begin(run);
+    {
+        double worst = 0.0, wI = 1.0, wg = 0.0;
+        for (k = 0; k < 6; ++k) {
+            cw__hgp hp;
+            double I;
+            hp.f = f; hp.g = gs_eq[k];
+            I = cw_integrate(cw__hg_student_mu, &hp, -1.0, 1.0);
+            if (!(fabs(I - 1.0) <= worst)) { worst = fabs(I - 1.0); wI = I; wg = gs_eq[k]; }
+        }
+        cw_fmt(m, sizeof m, "integral over the sphere, 2 pi * integral of p(mu) dmu: %.6g at g = %g (expected 1 +- 0.002)", wI, wg);
+        if (fabs(wI - 4.0 * CW_PI) < 0.05)
+            cw_fmt(adv, sizeof adv, "the phase function integrates to 4 pi = 12.57: eq. 9's 1/(4 pi) is missing");
+        else if (fabs(wI - 2.0 * CW_PI) < 0.05)
+            cw_fmt(adv, sizeof adv, "the phase function integrates to 2 pi: it is the density per unit mu; eq. 9 is per steradian");
+        else
+            cw_fmt(adv, sizeof adv, "a phase function is a density over directions: its integral over the sphere is 1");
+        cw_emit(run, "step3.phase_integral", worst <= 2e-3, m, adv, NULL);
+    }
+    /* mu samples against eq. 9's CDF, and the student's phase against the samples */
+    {
+        static const double gs[4] = {-0.7, 0.0, 0.3, 0.9};
+        for (k = 0; k < 4; ++k) {
+            double g = gs[k], mean, x0[CW_HMAX], x1[CW_HMAX], bar[CW_HMAX], line[CW_HMAX], z;
+            int nb = 50, pass, w;
+            cw_hist h;
+            cw_fit fit;
+            fogrt_rng rng;
+            cw_plot p;
+            cw__hgp hp;
+            double total = 0.0;
+            cw_begin(run);
+            cw_hist_init(&h, nb);
+            for (i = 0; i <= nb; ++i) h.edge[i] = i == 0 ? -1.0 : (i == nb ? 1.0 : cw__hg_quantile(g, (double)i / nb));
+            cw_seed(&rng, 300 + k);
+            for (i = 0; i < CW_N; ++i) {
+                float u = cw_u(&rng);
+                cw_hist_add(&h, f->sample_hg_mu((float)g, u), u, 1e-5);
+            }
+            cw_hist_expect(&h, cw__hg_cdf, &g);
+            fit = cw_hist_fit(h.obs, h.expd, nb);
+            pass = h.invalid == 0 && fit.p >= CW_ALPHA;
+            mean = h.n > h.invalid ? h.sum / (double)(h.n - h.invalid) : NAN;
+            cw_fmt(m, sizeof m, "chi2 = %.1f, dof %d, p = %.3g (fail if p < %g); mean mu = %.4f, HG's mean is g = %g",
+                   fit.chi2, fit.dof, fit.p, CW_ALPHA, mean, g);
+            if (h.invalid)
+                cw_fmt(adv, sizeof adv, "%ld samples were NaN or outside [-1, 1] (first: mu = %g at u = %.9g)%s", h.invalid,
+                       h.first_invalid, h.first_invalid_u,
+                       g == 0.0 ? ": at g = 0 eq. 11 divides 0 by 0; HG is then isotropic, mu = 2u - 1" : "");
+            else if (g != 0.0 && mean * g < 0.0 && fabs(mean + g) < 0.05)
+                cw_fmt(adv, sizeof adv, "more samples near mu = %s1 than HG with g = %g allows (mean mu = %.3f, should be %g): "
+                       "is g's sign flipped?", g > 0 ? "-" : "+", g, mean, g);
+            else if (fabs(mean - g) > 0.02)
+                cw_fmt(adv, sizeof adv, "mean mu = %.3f but HG's mean cosine is g = %g: the samples lean %s than eq. 9",
+                       mean, g, mean > g ? "further forward" : "further backward");
+            else
+                cw_fmt(adv, sizeof adv, "the mean is right but the shape is not HG's: check eq. 11 term by term");
+            cw_hist_density(&h, 1.0, x0, x1, bar, line);
+            memset(&p, 0, sizeof p);
+            cw_fmt(title, sizeof title, "Step 3: sampled mu = cos(theta), g = %g (eq. 11)", g);
+            p.title = title; p.xlabel = "mu = cos(theta) from the propagation direction"; p.ylabel = "density per unit mu";
+            p.bar_label = "your samples"; p.line_label = "HG, eq. 9 (x 2 pi)"; p.n = nb; p.x0 = x0; p.x1 = x1;
+            p.bar = bar; p.line = line; p.xmin = -1.0; p.xmax = 1.0; p.logy = -1;
+            cw_fmt(stem, sizeof stem, "step3_mu_chi2_g%g", g);
+            cw_fmt(name, sizeof name, "step3.mu_chi2 g=%g", g);
+            cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+            cw_picture(run, stem, &p, verdict, pass, png, sizeof png);
+            cw_emit(run, name, pass, m, adv, png);
+
+            /* the student's phase function integrated over the same bins */
+            cw_begin(run);
+            hp.f = f; hp.g = g;
+            for (i = 0; i < nb; ++i) {
+                h.expd[i] = (double)h.n * cw_integrate(cw__hg_student_mu, &hp, h.edge[i], h.edge[i + 1]);
+                total += h.expd[i];
+            }
+            fit = cw_hist_fit(h.obs, h.expd, nb);
+            pass = h.invalid == 0 && fit.p >= CW_ALPHA;
+            w = cw_worst_bin(h.obs, h.expd, nb, &z);
+            cw_fmt(m, sizeof m, "chi2 = %.1f, dof %d, p = %.3g (fail if p < %g); your phase function's mass %.4g",
+                   fit.chi2, fit.dof, fit.p, CW_ALPHA, total / (double)h.n);
+            if (h.invalid) cw_fmt(adv, sizeof adv, "the sampler gave invalid mu (see step3.mu_chi2)");
+            else if (fabs(total / (double)h.n - 1.0) > 0.01)
+                cw_fmt(adv, sizeof adv, "your phase function integrates to %.4g over the sphere, not 1 (see step3.phase_integral)",
+                       total / (double)h.n);
+            else
+                cw_fmt(adv, sizeof adv, "your phase function and your sampler disagree most for mu in [%.3f, %.3f): %.0f "
+                       "samples, your eq. 9 predicts %.0f; sampling and evaluation must use the same g and the same mu",
+                       h.edge[w], h.edge[w + 1], h.obs[w], h.expd[w]);
+            cw_hist_density(&h, 1.0, x0, x1, bar, line);
+            cw_fmt(title, sizeof title, "Step 3: your phase function against your samples, g = %g", g);
+            p.line_label = "your eq. 9 (x 2 pi)";
+            cw_fmt(stem, sizeof stem, "step3_pdf_vs_hist_g%g", g);
+            cw_fmt(name, sizeof name, "step3.pdf_vs_hist g=%g", g);
+            cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+            cw_picture(run, stem, &p, verdict, pass, png, sizeof png);
+            cw_emit(run, name, pass, m, adv, png);
+        }
+    }
+    /* full directions on the sphere around d = -wo (eq. 11 and 12) */
+    {
+        static const double cases[2][4] = {{0.5, 0.3, -0.5, 0.8}, {-0.3, 0.0, 0.0, -1.0}};
+        for (k = 0; k < 2; ++k) {
+            static stats_sphere_grid grid;
+            static double obs[20 * 16], expd[20 * 16];
+            double g = cases[k][0], dsum = 0.0;
+            fogrt_vec3 wo = cw_v3(cases[k][1], cases[k][2], cases[k][3]);
+            int nc = 20, np = 16, j, pass, empty_cols = 0;
+            long invalid = 0;
+            fogrt_rng rng;
+            cw_fit fit, fit_mu;
+            double mo[20], me[20], po[16], pe[16];
+            cw_begin(run);
+            stats_grid_init(&grid, nc, np);
+            stats_grid_set_axis(&grid, -wo.x, -wo.y, -wo.z);
+            for (i = 1; i < nc; ++i) grid.cos_edge[i] = cw__hg_quantile(g, (double)i / nc);
+            memset(obs, 0, sizeof obs);
+            cw_seed(&rng, 320 + k);
+            for (i = 0; i < CW_N; ++i) {
+                float u1 = cw_u(&rng), u2 = cw_u(&rng);
+                fogrt_vec3 wi = f->sample_hg((float)g, wo, u1, u2);
+                int cell = cw_finite3(wi) ? stats_grid_cell(&grid, wi.x, wi.y, wi.z) : -1;
+                if (cell < 0) { invalid++; continue; }
+                obs[cell] += 1.0;
+                dsum += -(wi.x * (double)wo.x + wi.y * (double)wo.y + wi.z * (double)wo.z);
+            }
+            for (i = 0; i < nc; ++i)
+                for (j = 0; j < np; ++j)
+                    expd[i * np + j] = CW_N * (cw__hg_cdf(grid.cos_edge[i + 1], &g) - cw__hg_cdf(grid.cos_edge[i], &g)) / np;
+            fit = cw_hist_fit(obs, expd, nc * np);
+            memset(mo, 0, sizeof mo); memset(me, 0, sizeof me); memset(po, 0, sizeof po); memset(pe, 0, sizeof pe);
+            for (i = 0; i < nc; ++i)
+                for (j = 0; j < np; ++j) {
+                    mo[i] += obs[i * np + j]; me[i] += expd[i * np + j];
+                    po[j] += obs[i * np + j]; pe[j] += expd[i * np + j];
+                }
+            for (j = 0; j < np; ++j) if (po[j] < 0.3 * pe[j]) empty_cols++;
+            fit_mu = cw_hist_fit(mo, me, nc);
+            pass = invalid == 0 && fit.p >= CW_ALPHA;
+            {
+                double mean = dsum / (double)(CW_N - invalid > 0 ? CW_N - invalid : 1);
+                cw_fmt(m, sizeof m, "chi2 = %.1f, dof %d, p = %.3g (fail if p < %g) on %d x %d cells (mu, phi) around d = -wo; "
+                       "mean cos(d, wi) = %.4f, g = %g", fit.chi2, fit.dof, fit.p, CW_ALPHA, nc, np, mean, g);
+                if (invalid)
+                    cw_fmt(adv, sizeof adv, "%ld directions were not finite or not unit length: build wi from sin(theta), "
+                           "cos(theta) and phi in an orthonormal frame around d", invalid);
+                else if (fabs(mean + g) < 0.03 && g != 0.0)
+                    cw_fmt(adv, sizeof adv, "the directions scatter around wo instead of the propagation direction d = -wo: "
+                           "mu is measured from d, so g > 0 keeps the light going the way it went");
+                else if (empty_cols >= np / 4)
+                    cw_fmt(adv, sizeof adv, "%d of %d azimuth sectors around d are (nearly) empty: phi must cover the whole "
+                           "circle, phi = 2 pi xi2 (eq. 12)", empty_cols, np);
+                else if (fit_mu.p >= CW_ALPHA)
+                    cw_fmt(adv, sizeof adv, "the angle from d is right but the azimuth is not uniform: phi = 2 pi xi2 "
+                           "(eq. 12) in a frame perpendicular to d");
+                else
+                    cw_fmt(adv, sizeof adv, "the angle to d does not follow HG: use your cw_sample_hg_mu for cos(theta) "
+                           "and measure it from d = -wo");
+            }
+            {
+                double ax0[20], ax1[20], ab[20], al[20], bx0[16], bx1[16], bb[16], bl[16];
+                cw_plot a, b;
+                for (i = 0; i < nc; ++i) {
+                    double w = grid.cos_edge[i + 1] - grid.cos_edge[i];
+                    ax0[i] = grid.cos_edge[i]; ax1[i] = grid.cos_edge[i + 1];
+                    ab[i] = mo[i] / (CW_N * w); al[i] = me[i] / (CW_N * w);
+                }
+                for (j = 0; j < np; ++j) {
+                    bx0[j] = -CW_PI + 2.0 * CW_PI * j / np; bx1[j] = bx0[j] + 2.0 * CW_PI / np;
+                    bb[j] = po[j] / (CW_N * 2.0 * CW_PI / np); bl[j] = pe[j] / (CW_N * 2.0 * CW_PI / np);
+                }
+                memset(&a, 0, sizeof a); memset(&b, 0, sizeof b);
+                cw_fmt(title, sizeof title, "Step 3: directions, g = %g: angle from d = -wo", g);
+                a.title = title; a.xlabel = "mu = cos(d, wi)"; a.ylabel = "density per unit mu"; a.bar_label = "your directions";
+                a.line_label = "HG"; a.n = nc; a.x0 = ax0; a.x1 = ax1; a.bar = ab; a.line = al; a.xmin = -1.0; a.xmax = 1.0;
+                a.logy = -1;
+                b.title = "... and azimuth phi around d (eq. 12)"; b.xlabel = "phi (radians)"; b.ylabel = "density per radian";
+                b.bar_label = "your directions"; b.line_label = "uniform"; b.n = np; b.x0 = bx0; b.x1 = bx1; b.bar = bb;
+                b.line = bl; b.xmin = -CW_PI; b.xmax = CW_PI; b.logy = 0;
+                cw_fmt(stem, sizeof stem, "step3_direction_chi2_g%g", g);
+                cw_fmt(name, sizeof name, "step3.direction_chi2 g=%g", g);
+                cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+                cw_picture2(run, stem, &a, &b, verdict, pass, png, sizeof png);
+            }
+            cw_emit(run, name, pass, m, adv, png);
+        }
+    }
+    /* edges */
+    cw_begin(run);
+    {
+        static const float eg[5] = {0.0f, 0.99f, -0.99f, 1e-4f, -1e-4f};
+        static const float eu[3] = {0.0f, 0.5f, CW_U_MAX};
+        int ok = 0, total = 0, bad = 0;
+        char what[300] = "";
+        for (k = 0; k < 5; ++k)
+            for (i = 0; i < 3; ++i) {
+                float mu = f->sample_hg_mu(eg[k], eu[i]);
+                double ref = cw__hg_quantile(eg[k], eu[i]);
+                total++;
+                if (isfinite(mu) && fabs(mu) <= 1.0f + 1e-5f && fabs(mu - ref) <= 2e-3) ok++;
+                else if (!bad++) {
+                    if (eg[k] == 0.0f && !isfinite(mu))
+                        cw_fmt(what, sizeof what, "g = 0 gave mu = %s at u = %g: eq. 11 divides by 2g; at g = 0 HG is "
+                               "isotropic, mu = 2u - 1 (use it when |g| is tiny)", isnan(mu) ? "nan" : "infinity", eu[i]);
+                    else
+                        cw_fmt(what, sizeof what, "g = %g, u = %.9g gave mu = %.7g, eq. 11 gives %.7g", eg[k], eu[i], mu, ref);
+                }
+                {
+                    fogrt_vec3 wo = cw_v3(0.0, 0.6, 0.8), wi = f->sample_hg(eg[k], wo, eu[i], eu[2 - i]);
+                    total++;
+                    if (cw_finite3(wi) && fabs(cw_len3(wi) - 1.0) < 1e-4) ok++;
+                    else if (!bad++)
+                        cw_fmt(what, sizeof what, "cw_sample_hg(g = %g, u1 = %.9g) gave (%g, %g, %g), not a unit vector",
+                               eg[k], eu[i], wi.x, wi.y, wi.z);
+                }
+            }
+        for (k = 0; k < 3; ++k)
+            for (i = -1; i <= 1; i += 2) {
+                float v = f->hg_phase(eg[k], (float)i);
+                total++;
+                if (isfinite(v) && v >= 0.0f) ok++;
+                else if (!bad++) cw_fmt(what, sizeof what, "p(g = %g, mu = %d) = %g", eg[k], i, v);
+            }
+        cw_fmt(m, sizeof m, "%d of %d edge cases finite and right (g = 0, +-1e-4, +-0.99; u = 0, 0.5, 1 - 2^-24)", ok, total);
+        cw_emit(run, "step3.edges", ok == total, m, what, NULL);
+    }
+}
+
+/* ==========================================================================================
+   Step 4: the BVH split choice (eq. 1-2)
+   ========================================================================================== */
+static double cw_box_area(const cw_aabb *b)
+{
+    double e0 = (double)b->hi[0] - b->lo[0], e1 = (double)b->hi[1] - b->lo[1], e2 = (double)b->hi[2] - b->lo[2];
+    if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) return 0.0;
+    return 2.0 * (e0 * e1 + e1 * e2 + e2 * e0);
+}
+static double cw_box_volume(const cw_aabb *b)
+{
+    double e0 = (double)b->hi[0] - b->lo[0], e1 = (double)b->hi[1] - b->lo[1], e2 = (double)b->hi[2] - b->lo[2];
+    if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) return 0.0;
+    return e0 * e1 * e2;
+}
+static double cw_ref_cost(int heuristic, const cw_aabb *parent, const cw_aabb *l, int nl, const cw_aabb *r, int nr)
+{
+    if (heuristic == CW_VOLUME) return nl * cw_box_volume(l) + nr * cw_box_volume(r);
+    return 1.0 + (nl * cw_box_area(l) + nr * cw_box_area(r)) / fmax(cw_box_area(parent), 1e-300);
+}
+static void cw_box_empty(cw_aabb *b)
+{
+    int a;
+    for (a = 0; a < 3; ++a) { b->lo[a] = FLT_MAX; b->hi[a] = -FLT_MAX; }
+}
+static void cw_box_grow(cw_aabb *b, const cw_aabb *c)
+{
+    int a;
+    for (a = 0; a < 3; ++a) { b->lo[a] = fminf(b->lo[a], c->lo[a]); b->hi[a] = fmaxf(b->hi[a], c->hi[a]); }
+}
+
+/* A node: its primitives' boxes, binned as fogrt bins them (equal slices of the centroid
+   range; every centroid in bin 0 on an axis where they coincide). */
+typedef struct cw_node {
+    int n;
+    cw_aabb prim[256];
+    cw_aabb parent;
+    cw_bins bins;
+} cw_node;
+
+static void cw_node_bin(cw_node *nd, int n_bins)
+{
+    double clo[3], chi[3];
+    int i, a;
+    cw_box_empty(&nd->parent);
+    for (a = 0; a < 3; ++a) { clo[a] = HUGE_VAL; chi[a] = -HUGE_VAL; }
+    for (i = 0; i < nd->n; ++i) {
+        cw_box_grow(&nd->parent, &nd->prim[i]);
+        for (a = 0; a < 3; ++a) {
+            double c = 0.5 * ((double)nd->prim[i].lo[a] + nd->prim[i].hi[a]);
+            clo[a] = fmin(clo[a], c); chi[a] = fmax(chi[a], c);
+        }
+    }
+    memset(&nd->bins, 0, sizeof nd->bins);
+    nd->bins.n_bins = n_bins;
+    for (a = 0; a < 3; ++a) for (i = 0; i < n_bins; ++i) cw_box_empty(&nd->bins.box[a][i]);
+    for (i = 0; i < nd->n; ++i)
+        for (a = 0; a < 3; ++a) {
+            double c = 0.5 * ((double)nd->prim[i].lo[a] + nd->prim[i].hi[a]);
+            int k = chi[a] > clo[a] ? (int)((c - clo[a]) / (chi[a] - clo[a]) * n_bins) : 0;
+            if (k >= n_bins) k = n_bins - 1;
+            if (k < 0) k = 0;
+            nd->bins.count[a][k]++;
+            cw_box_grow(&nd->bins.box[a][k], &nd->prim[i]);
+        }
+}
+/* The two sides of plane k on axis a. */
+static void cw_node_sides(const cw_node *nd, int a, int k, cw_aabb *l, int *nl, cw_aabb *r, int *nr)
+{
+    int j;
+    cw_box_empty(l); cw_box_empty(r);
+    *nl = *nr = 0;
+    for (j = 0; j < nd->bins.n_bins; ++j) {
+        if (!nd->bins.count[a][j]) continue;
+        if (j < k) { cw_box_grow(l, &nd->bins.box[a][j]); *nl += nd->bins.count[a][j]; }
+        else { cw_box_grow(r, &nd->bins.box[a][j]); *nr += nd->bins.count[a][j]; }
+    }
+}
+/* The reference's cheapest plane; cost HUGE_VAL and plane -1 when nothing splits. */
+static cw_split cw_ref_best(int heuristic, const cw_node *nd, double *cost)
+{
+    cw_split s;
+    int a, k;
+    s.axis = 0; s.plane = -1; s.cost = 0.0f;
+    *cost = HUGE_VAL;
+    for (a = 0; a < 3; ++a)
+        for (k = 1; k < nd->bins.n_bins; ++k) {
+            cw_aabb l, r;
+            int nl, nr;
+            double c;
+            cw_node_sides(nd, a, k, &l, &nl, &r, &nr);
+            if (!nl || !nr) continue;
+            c = cw_ref_cost(heuristic, &nd->parent, &l, nl, &r, nr);
+            if (c < *cost) { *cost = c; s.axis = a; s.plane = k; s.cost = (float)c; }
+        }
+    return s;
+}
+
+static double cw_rand_range(fogrt_rng *r, double a, double b) { return a + (b - a) * cw_u(r); }
+
+/* Random primitive sets of four kinds: uniform, two clusters, long along x, flat in z. */
+static void cw_make_node(cw_node *nd, fogrt_rng *r, int kind, int n)
+{
+    int i, a;
+    nd->n = n;
+    for (i = 0; i < n; ++i) {
+        double c[3], e[3];
+        for (a = 0; a < 3; ++a) { c[a] = cw_rand_range(r, 0.0, 1.0); e[a] = cw_rand_range(r, 0.002, 0.08); }
+        if (kind == 1) { double off = cw_u(r) < 0.3 ? 0.0 : 2.5; c[1] = c[1] * 0.3 + off; c[0] *= 0.5; }
+        if (kind == 2) { c[0] *= 8.0; e[0] *= 3.0; }
+        if (kind == 3) { c[2] = 0.0; e[2] = 0.0; e[1] *= 2.0; }
+        for (a = 0; a < 3; ++a) { nd->prim[i].lo[a] = (float)(c[a] - e[a]); nd->prim[i].hi[a] = (float)(c[a] + e[a]); }
+    }
+}
+
+static const char *cw_kind_name(int kind)
+{
+    static const char *names[4] = {"uniform", "two clusters", "long along x", "flat in z"};
+    return names[kind & 3];
+}
+
+/* The cost formulas on random boxes, with the usual mistakes recognised. */
+static void cw_step4_cost(const cw_fns *f, cw_run *run, int heuristic)
+{
+    fogrt_rng rng;
+    int i, n = 20000, matches[6] = {0, 0, 0, 0, 0, 0}, worst_i = -1;
+    double worst = 0.0;
+    char m[600], adv[600];
+    cw_aabb wl, wr, wp;
+    int wnl = 0, wnr = 0;
+    float wgot = 0.0f;
+    cw_begin(run);
+    cw_seed(&rng, heuristic == CW_SAH ? 400 : 401);
+    for (i = 0; i < n; ++i) {
+        cw_aabb l, r, p;
+        int a, nl = 1 + (int)(cw_u(&rng) * 100.0f), nr = 1 + (int)(cw_u(&rng) * 100.0f);
+        double ref, got, al, ar, ap, vl, vr, vp, alt[6];
+        for (a = 0; a < 3; ++a) {
+            double lo = cw_rand_range(&rng, -1.0, 1.0), hi = lo + cw_rand_range(&rng, 0.01, 2.0);
+            double lo2 = cw_rand_range(&rng, -1.0, 1.0), hi2 = lo2 + cw_rand_range(&rng, 0.01, 2.0);
+            l.lo[a] = (float)lo; l.hi[a] = (float)hi; r.lo[a] = (float)lo2; r.hi[a] = (float)hi2;
+        }
+        p = l;
+        cw_box_grow(&p, &r);
+        ref = cw_ref_cost(heuristic, &p, &l, nl, &r, nr);
+        got = f->split_cost(heuristic, &p, &l, nl, &r, nr);
+        al = cw_box_area(&l); ar = cw_box_area(&r); ap = cw_box_area(&p);
+        vl = cw_box_volume(&l); vr = cw_box_volume(&r); vp = cw_box_volume(&p);
+        if (heuristic == CW_SAH) {
+            alt[0] = nl * al + nr * ar;                       /* no division, no traversal cost */
+            alt[1] = (nl * al + nr * ar) / ap;                /* no traversal cost */
+            alt[2] = 1.0 + (nl * vl + nr * vr) / vp;          /* volumes */
+            alt[3] = 1.0 + (nl * ar + nr * al) / ap;          /* counts swapped */
+            alt[4] = 1.0 + (nl * al + nr * ar);               /* no division */
+            alt[5] = HUGE_VAL;
+        } else {
+            alt[0] = nl * vr + nr * vl;                       /* the product summed the wrong way */
+            alt[1] = (double)(nl + nr) * (vl + vr);
+            alt[2] = nl * al + nr * ar;                       /* areas */
+            alt[3] = (nl * vl + nr * vr) / vp;                /* divided by the parent */
+            alt[4] = 1.0 + nl * vl + nr * vr;
+            alt[5] = HUGE_VAL;
+        }
+        for (a = 0; a < 6; ++a) if (fabs(got - alt[a]) <= 1e-4 * fabs(alt[a])) matches[a]++;
+        {
+            double err = fabs(got - ref) / (1e-4 * fabs(ref) + 1e-12);
+            if (!(err <= worst)) { worst = err; worst_i = i; wl = l; wr = r; wp = p; wnl = nl; wnr = nr; wgot = (float)got; }
+        }
+    }
+    {
+        int pass = worst <= 1.0, a, best = -1;
+        const char *hname = heuristic == CW_SAH ? "SAH" : "volume heuristic";
+        for (a = 0; a < 6; ++a) if (matches[a] > n * 9 / 10) { best = a; break; }
+        if (worst_i < 0) { wl = wr = wp; }
+        cw_fmt(m, sizeof m, "%d random splits; worst: N_l = %d, N_r = %d, you gave %.7g, the %s gives %.7g (relative tolerance 1e-4)",
+               n, wnl, wnr, wgot, hname, cw_ref_cost(heuristic, &wp, &wl, wnl, &wr, wnr));
+        if (heuristic == CW_SAH) {
+            static const char *why[5] = {
+                "you return N_l A_l + N_r A_r: divide by the parent's area A (a ray that hits the parent hits a child with "
+                "probability A_child / A) and add the traversal cost 1",
+                "you return (N_l A_l + N_r A_r) / A: the SAH adds the traversal cost, 1 + ...",
+                "you used volumes; the SAH weighs each side by its surface area",
+                "each side's count must multiply its own area: N_l A_l + N_r A_r",
+                "you did not divide by the parent's area A: 1 + (N_l A_l + N_r A_r) / A"};
+            cw_fmt(adv, sizeof adv, "%s", best >= 0 && best < 5 ? why[best] : "SAH: 1 + (N_l A_l + N_r A_r) / A, A = 2 (dx dy + dy dz + dz dx)");
+        } else {
+            static const char *why[5] = {
+                "the volume heuristic's product is summed the wrong way (N_l V_r + N_r V_l): eq. 1 pairs each side's count "
+                "with its own volume, H = N_l V_l + N_r V_r",
+                "you multiply the sums, (N_l + N_r)(V_l + V_r): eq. 1 is a sum of products, N_l V_l + N_r V_r",
+                "you used surface areas: eq. 1 weighs each side by its volume V = dx dy dz",
+                "eq. 1 has no division by the parent's volume: H = N_l V_l + N_r V_r",
+                "eq. 1 has no traversal cost: H = N_l V_l + N_r V_r"};
+            cw_fmt(adv, sizeof adv, "%s", best >= 0 && best < 5 ? why[best] : "eq. 1: H = N_l V_l + N_r V_r");
+        }
+        cw_emit(run, heuristic == CW_SAH ? "step4.sah_cost" : "step4.volume_cost", pass, m, adv, NULL);
+    }
+}
+
+/* The student's choice on random binned nodes against the cheapest plane. */
+static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
+{
+    static cw_node nd;
+    fogrt_rng rng;
+    int s, sets = 400, good = 0, first_bad = -1, only_x = 0, worst_pick = 0, empty_pick = 0;
+    char m[700], adv[700], png[256], title[200], verdict[900];
+    cw_split bad_pick, bad_best;
+    double bad_cost = 0.0, bad_best_cost = 0.0;
+    int bad_n = 0, bad_kind = 0;
+    const char *hname = heuristic == CW_SAH ? "SAH" : "volume heuristic";
+    cw_begin(run);
+    memset(&bad_pick, 0, sizeof bad_pick); bad_best = bad_pick;
+    cw_seed(&rng, heuristic == CW_SAH ? 410 : 411);
+    for (s = 0; s < sets; ++s) {
+        int kind = s % 4, n = 2 + (int)(cw_u(&rng) * 150.0f), ok;
+        double best_cost, got_cost = HUGE_VAL;
+        cw_split best, got;
+        cw_make_node(&nd, &rng, kind, n);
+        cw_node_bin(&nd, 12);
+        best = cw_ref_best(heuristic, &nd, &best_cost);
+        got = f->best_split(heuristic, &nd.parent, &nd.bins);
+        if (best.plane < 0) ok = got.plane == -1;
+        else if (got.axis < 0 || got.axis > 2 || got.plane < 1 || got.plane >= nd.bins.n_bins) ok = 0;
+        else {
+            cw_aabb l, r;
+            int nl, nr;
+            cw_node_sides(&nd, got.axis, got.plane, &l, &nl, &r, &nr);
+            if (!nl || !nr) { ok = 0; got_cost = HUGE_VAL; }
+            else {
+                got_cost = cw_ref_cost(heuristic, &nd.parent, &l, nl, &r, nr);
+                ok = got_cost <= best_cost * (1.0 + 1e-5) + 1e-9;
+            }
+        }
+        if (ok) { good++; continue; }
+        if (first_bad < 0) {
+            int a, k;
+            double axis0_best = HUGE_VAL, worst = -1.0;
+            first_bad = s; bad_pick = got; bad_best = best; bad_cost = got_cost; bad_best_cost = best_cost;
+            bad_n = n; bad_kind = kind;
+            if (got.plane >= 1 && got.plane < nd.bins.n_bins && got.axis >= 0 && got.axis < 3) {
+                cw_aabb l, r;
+                int nl, nr;
+                cw_node_sides(&nd, got.axis, got.plane, &l, &nl, &r, &nr);
+                if (!nl || !nr) empty_pick = 1;
+            }
+            for (a = 0; a < 3; ++a)
+                for (k = 1; k < nd.bins.n_bins; ++k) {
+                    cw_aabb l, r;
+                    int nl, nr;
+                    double c;
+                    cw_node_sides(&nd, a, k, &l, &nl, &r, &nr);
+                    if (!nl || !nr) continue;
+                    c = cw_ref_cost(heuristic, &nd.parent, &l, nl, &r, nr);
+                    if (a == 0 && c < axis0_best) axis0_best = c;
+                    if (c > worst) worst = c;
+                }
+            if (got.axis == 0 && fabs(got_cost - axis0_best) <= 1e-6 * axis0_best + 1e-12) only_x = 1;
+            if (fabs(got_cost - worst) <= 1e-6 * worst + 1e-12) worst_pick = 1;
+        }
+    }
+    {
+        int pass = good == sets;
+        cw_fmt(m, sizeof m, "the cheapest plane (%s, 12 bins per axis) chosen on %d of %d random nodes", hname, good, sets);
+        if (pass) adv[0] = '\0';
+        else if (empty_pick || (bad_pick.plane >= 0 && bad_best.plane < 0))
+            cw_fmt(adv, sizeof adv, "node %d (%d primitives, %s): you chose axis %d plane %d, which leaves one side empty: a "
+                   "plane with no primitive on one side is not a split (skip it%s)", first_bad, bad_n, cw_kind_name(bad_kind),
+                   bad_pick.axis, bad_pick.plane, bad_best.plane < 0 ? "; return plane -1 when no plane splits" : "");
+        else if (bad_pick.plane < 1 || bad_pick.axis < 0 || bad_pick.axis > 2)
+            cw_fmt(adv, sizeof adv, "node %d (%d primitives, %s): you returned axis %d plane %d; planes run from 1 to n_bins - 1 "
+                   "(the best is axis %d plane %d)", first_bad, bad_n, cw_kind_name(bad_kind), bad_pick.axis, bad_pick.plane,
+                   bad_best.axis, bad_best.plane);
+        else
+            cw_fmt(adv, sizeof adv, "node %d (%d primitives, %s): you chose axis %d plane %d (cost %.5g), the cheapest is axis %d "
+                   "plane %d (%.5g)%s", first_bad, bad_n, cw_kind_name(bad_kind), bad_pick.axis, bad_pick.plane, bad_cost,
+                   bad_best.axis, bad_best.plane, bad_best_cost,
+                   worst_pick ? ": you kept the most expensive plane, keep the smallest cost"
+                   : only_x ? ": you searched axis x only; eq. 2 takes the best over x, y and z"
+                   : ": count each side from the bins' counts and grow each side's box from the bins' boxes");
+    }
+    /* the picture: the student's cost of every plane of one node, against the reference */
+    if (run->img_dir) {
+        double x0[3 * CW_MAX_BINS], x1[3 * CW_MAX_BINS], bar[3 * CW_MAX_BINS], line[3 * CW_MAX_BINS];
+        int a, k, np = 0;
+        cw_split got, best;
+        double bc;
+        cw_plot p;
+        cw_seed(&rng, 412);
+        cw_make_node(&nd, &rng, 1, 60);
+        cw_node_bin(&nd, 12);
+        best = cw_ref_best(heuristic, &nd, &bc);
+        got = f->best_split(heuristic, &nd.parent, &nd.bins);
+        for (a = 0; a < 3; ++a)
+            for (k = 1; k < nd.bins.n_bins; ++k) {
+                cw_aabb l, r;
+                int nl, nr;
+                cw_node_sides(&nd, a, k, &l, &nl, &r, &nr);
+                x0[np] = np + 0.15; x1[np] = np + 0.85;
+                bar[np] = (nl && nr) ? f->split_cost(heuristic, &nd.parent, &l, nl, &r, nr) : NAN;
+                line[np] = (nl && nr) ? cw_ref_cost(heuristic, &nd.parent, &l, nl, &r, nr) : NAN;
+                np++;
+            }
+        memset(&p, 0, sizeof p);
+        cw_fmt(title, sizeof title, "Step 4: %s of each plane; best %c%d, yours %c%d", hname,
+               "xyz"[best.axis % 3], best.plane, got.axis >= 0 && got.axis < 3 ? "xyz"[got.axis] : '?', got.plane);
+        p.title = title; p.xlabel = "candidate plane: x1..x11, y1..y11, z1..z11"; p.ylabel = "cost of the split";
+        p.bar_label = "your cw_split_cost"; p.line_label = heuristic == CW_SAH ? "SAH" : "eq. 1";
+        p.n = np; p.x0 = x0; p.x1 = x1; p.bar = bar; p.line = line; p.xmin = 0.0; p.xmax = np; p.points = 1; p.logy = 0;
+        cw_fmt(verdict, sizeof verdict, "%s %s: %s", heuristic == CW_SAH ? "step4.sah_choice" : "step4.volume_choice",
+               good == sets ? "PASS" : "FAIL", m);
+        cw_picture(run, heuristic == CW_SAH ? "step4_sah_choice" : "step4_volume_choice", &p, verdict, good == sets, png,
+                   sizeof png);
+    } else png[0] = '\0';
+    cw_emit(run, heuristic == CW_SAH ? "step4.sah_choice" : "step4.volume_choice", good == sets, m, adv, png);
+}
+
+/* Nodes where a careless choice goes wrong. */
+static void cw_step4_edges(const cw_fns *f, cw_run *run)
+{
+    static cw_node nd;
+    fogrt_rng rng;
+    int ok = 0, total = 0, i, h;
+    char m[400], adv[500] = "";
+    cw_begin(run);
+    cw_seed(&rng, 420);
+    for (h = 0; h < 2; ++h) {
+        cw_split got, best;
+        double bc;
+        /* flat: every volume is 0, any plane that splits is as good as any other */
+        cw_make_node(&nd, &rng, 3, 40);
+        cw_node_bin(&nd, 12);
+        best = cw_ref_best(h, &nd, &bc);
+        got = f->best_split(h, &nd.parent, &nd.bins);
+        total++;
+        {
+            cw_aabb l, r;
+            int nl = 0, nr = 0;
+            if (got.plane >= 1 && got.plane < 12 && got.axis >= 0 && got.axis < 3) cw_node_sides(&nd, got.axis, got.plane, &l, &nl, &r, &nr);
+            if (nl && nr && (h == CW_VOLUME || cw_ref_cost(h, &nd.parent, &l, nl, &r, nr) <= bc * (1 + 1e-5))) ok++;
+            else if (!adv[0])
+                cw_fmt(adv, sizeof adv, "flat node (every box has zero height, %s): you returned axis %d plane %d; %s", h ? "volume" : "SAH",
+                       got.axis, got.plane, h ? "every split then costs 0 under eq. 1, so a plane with primitives on both "
+                       "sides must still be returned (start from no plane, not from cost 0)" : "not the cheapest plane");
+        }
+        /* centroids that differ only along z: only z planes split */
+        cw_make_node(&nd, &rng, 0, 30);
+        for (i = 0; i < nd.n; ++i) { nd.prim[i].lo[0] = nd.prim[i].lo[1] = 0.0f; nd.prim[i].hi[0] = nd.prim[i].hi[1] = 0.1f; }
+        cw_node_bin(&nd, 12);
+        best = cw_ref_best(h, &nd, &bc);
+        got = f->best_split(h, &nd.parent, &nd.bins);
+        total++;
+        if (got.axis == 2 && got.plane == best.plane) ok++;
+        else if (!adv[0])
+            cw_fmt(adv, sizeof adv, "primitives stacked along z only (%s): you returned axis %d plane %d, the best is z plane %d; "
+                   "on x and y all centroids sit in bin 0, so no plane there splits", h ? "volume" : "SAH", got.axis, got.plane, best.plane);
+        /* every centroid in one place: nothing splits */
+        nd.n = 5;
+        for (i = 0; i < 5; ++i) { int a; for (a = 0; a < 3; ++a) { nd.prim[i].lo[a] = 0.0f; nd.prim[i].hi[a] = 1.0f + 0.0f * i; } }
+        cw_node_bin(&nd, 12);
+        got = f->best_split(h, &nd.parent, &nd.bins);
+        total++;
+        if (got.plane == -1) ok++;
+        else if (!adv[0])
+            cw_fmt(adv, sizeof adv, "five identical boxes (%s): you returned axis %d plane %d, but no plane splits them: return "
+                   "plane -1", h ? "volume" : "SAH", got.axis, got.plane);
+        /* two primitives */
+        cw_make_node(&nd, &rng, 0, 2);
+        cw_node_bin(&nd, 12);
+        best = cw_ref_best(h, &nd, &bc);
+        got = f->best_split(h, &nd.parent, &nd.bins);
+        total++;
+        {
+            cw_aabb l, r;
+            int nl = 0, nr = 0;
+            if (got.plane >= 1 && got.plane < 12 && got.axis >= 0 && got.axis < 3) cw_node_sides(&nd, got.axis, got.plane, &l, &nl, &r, &nr);
+            if (nl == 1 && nr == 1 && cw_ref_cost(h, &nd.parent, &l, nl, &r, nr) <= bc * (1 + 1e-5) + 1e-12) ok++;
+            else if (!adv[0])
+                cw_fmt(adv, sizeof adv, "two primitives (%s): you returned axis %d plane %d (%d left, %d right); the best is axis %d "
+                       "plane %d", h ? "volume" : "SAH", got.axis, got.plane, nl, nr, best.axis, best.plane);
+        }
+    }
+    cw_fmt(m, sizeof m, "%d of %d special nodes right (flat, stacked along one axis, identical boxes, two primitives)", ok, total);
+    cw_emit(run, "step4.edges", ok == total, m, adv, NULL);
+}
+
+static void cw_step4(const cw_fns *f, cw_run *run)
+{
+    cw_step4_cost(f, run, CW_SAH);
+    cw_step4_cost(f, run, CW_VOLUME);
+    cw_step4_choice(f, run, CW_SAH);
+    cw_step4_choice(f, run, CW_VOLUME);
+    cw_step4_edges(f, run);
+}
+
+/* ==========================================================================================
+   Step 5: BSDF sampling
+   ========================================================================================== */
+/* Schlick with the cosine on the thinner side, written from the formula (the reference). */
+static double cw_schlick_ref(double eta, double cos_i)
+{
+    double r0 = (eta - 1.0) / (eta + 1.0), c;
+    r0 *= r0;
+    if (cos_i < 0.0) {               /* leaving: the transmitted angle is outside */
+        double sin2_t = (1.0 - cos_i * cos_i) * eta * eta;
+        if (sin2_t >= 1.0) return 1.0;
+        c = sqrt(1.0 - sin2_t);
+    } else c = cos_i;
+    return r0 + (1.0 - r0) * pow(1.0 - c, 5.0);
+}
+typedef struct cw__dpdf { const cw_fns *f; fogrt_vec3 wo; } cw__dpdf;
+static double cw__diffuse_pdf_dir(const double w[3], void *user)
+{
+    const cw__dpdf *d = (const cw__dpdf *)user;
+    fogrt_vec3 wi;
+    float v;
+    wi.x = (float)w[0]; wi.y = (float)w[1]; wi.z = (float)w[2];
+    v = d->f->diffuse_pdf(d->wo, wi);
+    return isfinite(v) ? v : 0.0;
+}
+/* Exact probability of a (cos, phi) cell of the world grid under cosine sampling on the
+   side of sign s. */
+static double cw_cos_cell(double c0, double c1, double dphi, double s)
+{
+    double a = s > 0 ? fmax(c0, 0.0) : fmax(-c1, 0.0), b = s > 0 ? fmax(c1, 0.0) : fmax(-c0, 0.0);
+    return (b * b - a * a) * dphi / (2.0 * CW_PI);
+}
+
+static void cw_step5_diffuse(const cw_fns *f, cw_run *run)
+{
+    static const double wos[2][3] = {{0.3, 0.2, 0.9}, {-0.5, 0.1, -0.6}};
+    static stats_sphere_grid grid;
+    static double obs[20 * 16], expd[20 * 16];
+    static float sw[CW_N], sp[CW_N], sx[CW_N], sy[CW_N], sz[CW_N];
+    char name[64], m[600], adv[600], png[256], stem[64], title[160], verdict[900];
+    int k, i, j, nc = 20, np = 16;
+    for (k = 0; k < 2; ++k) {
+        fogrt_vec3 wo = cw_v3(wos[k][0], wos[k][1], wos[k][2]);
+        double side = wo.z > 0 ? 1.0 : -1.0, cos_sum = 0.0, other = 0.0;
+        long invalid = 0, none = 0, valid = 0;
+        fogrt_rng rng;
+        cw_fit fit;
+        int pass;
+        double mo[20], me[20], po[16], pe[16];
+        cw_begin(run);
+        stats_grid_init(&grid, nc, np);
+        memset(obs, 0, sizeof obs);
+        cw_seed(&rng, 500 + k);
+        for (i = 0; i < CW_N; ++i) {
+            cw_bsdf_sample s;
+            int cell;
+            memset(&s, 0, sizeof s);
+            sw[i] = NAN;
+            if (!f->sample_diffuse(wo, cw_u(&rng), cw_u(&rng), &s)) { none++; continue; }
+            cell = cw_finite3(s.wi) ? stats_grid_cell(&grid, s.wi.x, s.wi.y, s.wi.z) : -1;
+            if (cell < 0) { invalid++; continue; }
+            obs[cell] += 1.0;
+            cos_sum += fabs(s.wi.z);
+            if (s.wi.z * side < 0) other += 1.0;
+            sw[valid] = s.weight; sp[valid] = s.pdf; sx[valid] = s.wi.x; sy[valid] = s.wi.y; sz[valid] = s.wi.z;
+            valid++;
+        }
+        for (i = 0; i < nc; ++i)
+            for (j = 0; j < np; ++j)
+                expd[i * np + j] = CW_N * cw_cos_cell(grid.cos_edge[i], grid.cos_edge[i + 1], 2.0 * CW_PI / np, side);
+        fit = cw_hist_fit(obs, expd, nc * np);
+        /* "no sample" is allowed where u lands exactly on the horizon (u = 0 in a sqrt(u)
+           mapping): a few in 200000 at most */
+        pass = invalid == 0 && none <= 5 && fit.p >= CW_ALPHA;
+        {
+            double mc = valid ? cos_sum / valid : NAN;
+            cw_fmt(m, sizeof m, "chi2 = %.1f, dof %d, p = %.3g (fail if p < %g) on %d x %d cells (cos theta, phi); mean |cos| "
+                   "= %.4f (cosine-weighted: 2/3)", fit.chi2, fit.dof, fit.p, CW_ALPHA, nc, np, mc);
+            if (none > 5) cw_fmt(adv, sizeof adv, "no sample returned %ld times: only directions exactly on the horizon may be "
+                                 "refused", none);
+            else if (invalid) cw_fmt(adv, sizeof adv, "%ld directions were not finite or not unit length", invalid);
+            else if (other > 0.5 * valid)
+                cw_fmt(adv, sizeof adv, "%.0f%% of the directions went to the other side of the surface than wo (wo.z = %.2f): "
+                       "a diffuse surface reflects on wo's side, flip wi.z when wo.z < 0", 100.0 * other / valid, wo.z);
+            else if (fabs(mc - 0.5) < 0.01)
+                cw_fmt(adv, sizeof adv, "too few samples near the normal (mean |cos| %.3f; cosine-weighted gives 2/3, uniform "
+                       "1/2): this looks like uniform hemisphere sampling; take r = sqrt(u1), or z = sqrt(1 - u1)", mc);
+            else
+                cw_fmt(adv, sizeof adv, "the directions are not cosine-distributed around the normal (pdf cos(theta)/pi)");
+        }
+        memset(mo, 0, sizeof mo); memset(me, 0, sizeof me); memset(po, 0, sizeof po); memset(pe, 0, sizeof pe);
+        for (i = 0; i < nc; ++i)
+            for (j = 0; j < np; ++j) { mo[i] += obs[i * np + j]; me[i] += expd[i * np + j]; po[j] += obs[i * np + j]; pe[j] += expd[i * np + j]; }
+        {
+            double ax0[20], ax1[20], ab[20], al[20], bx0[16], bx1[16], bb[16], bl[16];
+            cw_plot a, b;
+            for (i = 0; i < nc; ++i) {
+                double w = grid.cos_edge[i + 1] - grid.cos_edge[i];
+                ax0[i] = grid.cos_edge[i]; ax1[i] = grid.cos_edge[i + 1]; ab[i] = mo[i] / (CW_N * w); al[i] = me[i] / (CW_N * w);
+            }
+            for (j = 0; j < np; ++j) {
+                bx0[j] = -CW_PI + 2.0 * CW_PI * j / np; bx1[j] = bx0[j] + 2.0 * CW_PI / np;
+                bb[j] = po[j] / (CW_N * 2.0 * CW_PI / np); bl[j] = pe[j] / (CW_N * 2.0 * CW_PI / np);
+            }
+            memset(&a, 0, sizeof a); memset(&b, 0, sizeof b);
+            cw_fmt(title, sizeof title, "Step 5: diffuse samples, wo.z = %.2f: cos theta", wo.z);
+            a.title = title; a.xlabel = "cos theta = wi.z"; a.ylabel = "density per unit cos"; a.bar_label = "your directions";
+            a.line_label = "cosine-weighted"; a.n = nc; a.x0 = ax0; a.x1 = ax1; a.bar = ab; a.line = al; a.xmin = -1; a.xmax = 1;
+            b.title = "... and azimuth phi around the normal"; b.xlabel = "phi (radians)"; b.ylabel = "density per radian";
+            b.bar_label = "your directions"; b.line_label = "uniform"; b.n = np; b.x0 = bx0; b.x1 = bx1; b.bar = bb; b.line = bl;
+            b.xmin = -CW_PI; b.xmax = CW_PI;
+            cw_fmt(stem, sizeof stem, "step5_diffuse_chi2_%s", side > 0 ? "above" : "below");
+            cw_fmt(name, sizeof name, "step5.diffuse_chi2 wo.z=%.2f", wo.z);
+            cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+            cw_picture2(run, stem, &a, &b, verdict, pass, png, sizeof png);
+        }
+        cw_emit(run, name, pass, m, adv, png);
+
+        /* the student's pdf against the student's samples, and its integral */
+        cw_begin(run);
+        {
+            cw__dpdf dp;
+            double total, z;
+            int w;
+            dp.f = f; dp.wo = wo;
+            total = stats_grid_expected_from_pdf(&grid, cw__diffuse_pdf_dir, &dp, (double)CW_N, expd);
+            fit = cw_hist_fit(obs, expd, nc * np);
+            pass = invalid == 0 && none <= 5 && fit.p >= CW_ALPHA && fabs(total - 1.0) <= 2e-3;
+            w = cw_worst_bin(obs, expd, nc * np, &z);
+            cw_fmt(m, sizeof m, "chi2 = %.1f, dof %d, p = %.3g (fail if p < %g); integral of your pdf over the sphere %.5f "
+                   "(expected 1 +- 0.002)", fit.chi2, fit.dof, fit.p, CW_ALPHA, total);
+            if (invalid || none > 5) cw_fmt(adv, sizeof adv, "the sampler failed (see step5.diffuse_chi2)");
+            else if (fabs(total - 2.0) < 0.01)
+                cw_fmt(adv, sizeof adv, "your pdf integrates to 2 over the sphere: it is nonzero on both sides; it must be "
+                       "zero on the side opposite wo");
+            else if (fabs(total - CW_PI) < 0.01)
+                cw_fmt(adv, sizeof adv, "your pdf integrates to pi: cos(theta)/pi, not cos(theta)");
+            else if (fabs(total - 1.0) > 2e-3)
+                cw_fmt(adv, sizeof adv, "your pdf integrates to %.4f over the sphere, not 1: per steradian it is |cos theta|/pi "
+                       "on wo's side, 0 on the other", total);
+            else
+                cw_fmt(adv, sizeof adv, "your pdf and your sampler disagree most at cos theta in [%.2f, %.2f): %.0f samples, your "
+                       "pdf predicts %.0f", grid.cos_edge[w / np], grid.cos_edge[w / np + 1], obs[w], expd[w]);
+            cw_fmt(name, sizeof name, "step5.diffuse_pdf wo.z=%.2f", wo.z);
+            cw_emit(run, name, pass, m, adv, NULL);
+        }
+
+        /* each sample's weight and pdf */
+        cw_begin(run);
+        {
+            double wsum = 0.0, werr = 0.0, fcos = 0.0, fonly = 0.0;
+            long nw = 0, bad_w = 0, bad_p = 0;
+            for (i = 0; i < valid; ++i) {
+                fogrt_vec3 wi;
+                double c = fabs(sz[i]), pdf_ref = c / CW_PI, mine;
+                wi.x = sx[i]; wi.y = sy[i]; wi.z = sz[i];
+                mine = f->diffuse_pdf(wo, wi);
+                if (!(fabs(sw[i] - 1.0) <= 1e-4)) { bad_w++; werr = fmax(werr, fabs(sw[i] - 1.0)); }
+                if (!(fabs(sp[i] - pdf_ref) <= 1e-4 * pdf_ref + 1e-6) || !(fabs(mine - pdf_ref) <= 1e-4 * pdf_ref + 1e-6)) bad_p++;
+                wsum += sw[i]; nw++;
+                if (fabs(sw[i] - c / CW_PI) <= 1e-4) fcos += 1.0;
+                if (fabs(sw[i] - 1.0 / CW_PI / (pdf_ref > 0 ? pdf_ref : 1)) <= 1e-3 * sw[i]) fonly += 1.0;
+            }
+            pass = nw > 0 && bad_w == 0 && bad_p == 0;
+            cw_fmt(m, sizeof m, "mean weight %.5f (f |cos| / pdf = 1 for a white diffuse surface), %ld weights off by more than "
+                   "1e-4, %ld pdfs off cos/pi by more than 1e-4", nw ? wsum / nw : NAN, bad_w, bad_p);
+            if (nw == 0) cw_fmt(adv, sizeof adv, "no valid samples to weigh");
+            else if (fcos > 0.9 * nw)
+                cw_fmt(adv, sizeof adv, "your weight is f |cos| = |cos|/pi: did you forget to divide by the pdf? With cosine-"
+                       "weighted sampling f |cos| / pdf = 1 for a white surface");
+            else if (fonly > 0.9 * nw)
+                cw_fmt(adv, sizeof adv, "your weight is f / pdf: the cosine of eq. 3 is missing (f |cos| / pdf)");
+            else if (bad_p)
+                cw_fmt(adv, sizeof adv, "the pdf stored in the sample (or cw_diffuse_pdf) is not |cos theta|/pi at the sampled "
+                       "direction");
+            else cw_fmt(adv, sizeof adv, "the weight is f |cos| / pdf (eq. 3); with f = 1/pi and pdf = |cos|/pi it is exactly 1");
+            cw_fmt(name, sizeof name, "step5.diffuse_weight wo.z=%.2f", wo.z);
+            cw_emit(run, name, pass, m, adv, NULL);
+        }
+    }
+}
+
+static void cw_step5_specular(const cw_fns *f, cw_run *run)
+{
+    fogrt_rng rng;
+    char m[600], adv[600] = "", png[256], verdict[900];
+    int i, k;
+    /* mirror */
+    cw_begin(run);
+    {
+        int ok = 0, n = 2000, back = 0, through = 0;
+        cw_seed(&rng, 510);
+        for (i = 0; i < n; ++i) {
+            double z = cw_rand_range(&rng, -1.0, 1.0);
+            fogrt_vec3 wo = cw_v3(cw_rand_range(&rng, -1, 1), cw_rand_range(&rng, -1, 1), fabs(z) < 0.01 ? 0.5 : z);
+            cw_bsdf_sample s;
+            memset(&s, 0, sizeof s);
+            if (f->sample_mirror(wo, &s) && fabs(s.wi.x + wo.x) < 1e-5 && fabs(s.wi.y + wo.y) < 1e-5 && fabs(s.wi.z - wo.z) < 1e-5
+                && fabs(s.weight - 1.0f) < 1e-5f && fabs(s.pdf - 1.0f) < 1e-5f) ok++;
+            else {
+                if (fabs(s.wi.x + wo.x) < 1e-5 && fabs(s.wi.y + wo.y) < 1e-5 && fabs(s.wi.z + wo.z) < 1e-5) back++;
+                if (fabs(s.wi.x - wo.x) < 1e-5 && fabs(s.wi.y - wo.y) < 1e-5 && fabs(s.wi.z + wo.z) < 1e-5) through++;
+                if (!adv[0])
+                    cw_fmt(adv, sizeof adv, "wo = (%.3f, %.3f, %.3f) gave wi = (%.3f, %.3f, %.3f), pdf %g, weight %g; the mirror "
+                           "direction is (-wo.x, -wo.y, wo.z) with pdf 1 (the lobe is always chosen) and weight 1",
+                           wo.x, wo.y, wo.z, s.wi.x, s.wi.y, s.wi.z, s.pdf, s.weight);
+            }
+        }
+        if (back > n / 2) cw_fmt(adv, sizeof adv, "wi = -wo sends the light back where it came from; a mirror reflects about the "
+                                 "normal: wi = (-wo.x, -wo.y, wo.z)");
+        else if (through > n / 2) cw_fmt(adv, sizeof adv, "wi = (wo.x, wo.y, -wo.z) goes through the surface; reflection stays on "
+                                         "wo's side: wi = (-wo.x, -wo.y, wo.z)");
+        cw_fmt(m, sizeof m, "%d of %d random wo (both sides) reflected exactly, pdf 1, weight 1 (tolerance 1e-5)", ok, n);
+        cw_emit(run, "step5.mirror", ok == n, m, adv, NULL);
+    }
+    /* Schlick */
+    cw_begin(run);
+    adv[0] = '\0';
+    {
+        static const float etas[3] = {1.5f, 1.33f, 2.4f};
+        double worst = 0.0, wc = 0.0, we = 0.0, wv = 0.0;
+        int inside_icos = 0, inside_n = 0, r0_bad = 0;
+        for (k = 0; k < 3; ++k)
+            for (i = 0; i <= 200; ++i) {
+                double c = -1.0 + 2.0 * i / 200.0, ref, v, err;
+                if (i == 100) continue;
+                ref = cw_schlick_ref(etas[k], (float)c);
+                v = f->fresnel_schlick(etas[k], (float)c);
+                err = fabs(v - ref);
+                if (!(err <= worst)) { worst = err; wc = c; we = etas[k]; wv = v; }
+                if (c < 0.0) {
+                    double r0 = ((etas[k] - 1.0) / (etas[k] + 1.0)), alt;
+                    r0 *= r0;
+                    alt = r0 + (1.0 - r0) * pow(1.0 - fabs(c), 5.0);
+                    inside_n++;
+                    if (fabs(v - alt) <= 1e-4) inside_icos++;
+                }
+                if (i == 200 && fabs(v - ref) > 1e-4) r0_bad = 1;
+            }
+        cw_fmt(m, sizeof m, "largest |F - Schlick| = %.3g at eta = %g, cos_i = %g (you: %.6f, Schlick: %.6f; tolerance 2e-5)",
+               worst, we, wc, wv, cw_schlick_ref(we, wc));
+        if (inside_icos > inside_n * 9 / 10)
+            cw_fmt(adv, sizeof adv, "from inside the glass (cos_i < 0) you used the incident cosine: Schlick needs the cosine on "
+                   "the thinner (outside) side, the transmitted cos_t = sqrt(1 - eta^2 (1 - cos_i^2)), and F = 1 past the "
+                   "critical angle");
+        else if (r0_bad)
+            cw_fmt(adv, sizeof adv, "at normal incidence F must be R0 = ((eta - 1)/(eta + 1))^2 = %.5f for eta = 1.5", 0.04);
+        else if (wc < 0.0)
+            cw_fmt(adv, sizeof adv, "wrong from inside (cos_i < 0): use |cos_t| on the outside; total internal reflection gives 1");
+        else
+            cw_fmt(adv, sizeof adv, "Schlick: F = R0 + (1 - R0)(1 - cos)^5 with R0 = ((eta - 1)/(eta + 1))^2");
+        cw_emit(run, "step5.schlick", worst <= 2e-5, m, adv, NULL);
+    }
+    /* glass: how often it reflects, against Schlick (binomial, Bonferroni over 6 angles) */
+    cw_begin(run);
+    {
+        static const float cs[6] = {0.95f, 0.5f, 0.1f, -0.95f, -0.8f, -0.76f};
+        double x0[6], x1[6], bar[6], line[6], worst_p = 1.0, wf = 0, wF = 0, wc = 0;
+        int n = 20000, flipped = 0, bad_dir = 0;
+        cw_plot p;
+        for (k = 0; k < 6; ++k) {
+            fogrt_vec3 wo = cw_v3(sqrt(1.0 - (double)cs[k] * cs[k]), 0.0, cs[k]);
+            double F = cw_schlick_ref(1.5, wo.z), pv;
+            long refl = 0;
+            cw_seed(&rng, 520 + k);
+            for (i = 0; i < n; ++i) {
+                cw_bsdf_sample s;
+                memset(&s, 0, sizeof s);
+                if (!f->sample_glass(1.5f, wo, cw_u(&rng), &s) || !cw_finite3(s.wi)) { bad_dir++; continue; }
+                if (s.wi.z * wo.z > 0.0f) refl++;
+            }
+            {
+                stats_binomial_result b = stats_binomial(refl, n, F);
+                pv = fmin(1.0, b.p_value * 6.0);
+                if (fabs(b.frequency - (1.0 - F)) < 0.01 && fabs(F - 0.5) > 0.05) flipped++;
+                x0[k] = cs[k] - 0.03; x1[k] = cs[k] + 0.03; bar[k] = b.frequency; line[k] = F;
+                if (pv < worst_p || k == 0) { worst_p = pv; wf = b.frequency; wF = F; wc = cs[k]; }
+            }
+        }
+        {
+            int pass = worst_p >= CW_ALPHA && bad_dir == 0;
+            cw_fmt(m, sizeof m, "worst angle cos_i = %g: reflected %.4f of %d, Schlick F = %.4f, p = %.3g (binomial, Bonferroni "
+                   "over 6 angles; fail if p < %g)", wc, wf, n, wF, worst_p, CW_ALPHA);
+            if (bad_dir) cw_fmt(adv, sizeof adv, "%d samples returned no direction or a non-finite one", bad_dir);
+            else if (flipped >= 4)
+                cw_fmt(adv, sizeof adv, "you reflect with probability 1 - F: reflect when u_lobe < F, refract otherwise");
+            else
+                cw_fmt(adv, sizeof adv, "at cos_i = %g you reflect %.3f of the time, Schlick says %.3f: choose reflection with "
+                       "probability F of your cw_fresnel_schlick (1 on total internal reflection)", wc, wf, wF);
+            memset(&p, 0, sizeof p);
+            p.title = "Step 5: how often glass (eta 1.5) reflects";
+            p.xlabel = "cos_i = wo.z (< 0: from inside)"; p.ylabel = "fraction reflected"; p.bar_label = "your glass";
+            p.line_label = "Schlick's F"; p.n = 6; p.x0 = x0; p.x1 = x1; p.bar = bar; p.line = line; p.xmin = -1.0; p.xmax = 1.0;
+            p.points = 1;
+            {
+                /* draw the six in order of cos for the joined line */
+                int a, b;
+                for (a = 0; a < 6; ++a)
+                    for (b = a + 1; b < 6; ++b)
+                        if (x0[b] < x0[a]) {
+                            double t;
+                            t = x0[a]; x0[a] = x0[b]; x0[b] = t; t = x1[a]; x1[a] = x1[b]; x1[b] = t;
+                            t = bar[a]; bar[a] = bar[b]; bar[b] = t; t = line[a]; line[a] = line[b]; line[b] = t;
+                        }
+            }
+            cw_fmt(verdict, sizeof verdict, "step5.glass_choice %s: %s", pass ? "PASS" : "FAIL", m);
+            cw_picture(run, "step5_glass_choice", &p, verdict, pass, png, sizeof png);
+            cw_emit(run, "step5.glass_choice", pass, m, adv, png);
+        }
+    }
+    /* glass: directions, pdf, weight */
+    cw_begin(run);
+    adv[0] = '\0';
+    {
+        int n = 3000, ok = 0;
+        cw_seed(&rng, 530);
+        for (i = 0; i < n; ++i) {
+            double z = cw_rand_range(&rng, -1.0, 1.0), ph = cw_rand_range(&rng, 0.0, 2.0 * CW_PI), sz = sqrt(1.0 - z * z);
+            fogrt_vec3 wo = cw_v3(sz * cos(ph), sz * sin(ph), fabs(z) < 0.02 ? 0.3 : z);
+            float u = i % 50 == 0 ? CW_U_MAX : (i % 50 == 1 ? 0.0f : cw_u(&rng));
+            double F = cw_schlick_ref(1.5, wo.z);
+            cw_bsdf_sample s;
+            int good = 1;
+            char why[400] = "";
+            memset(&s, 0, sizeof s);
+            if (!f->sample_glass(1.5f, wo, u, &s) || !cw_finite3(s.wi) || fabs(cw_len3(s.wi) - 1.0) > 1e-4) {
+                good = 0;
+                cw_fmt(why, sizeof why, "no direction or not a unit vector: wo = (%.3f, %.3f, %.3f) gave (%g, %g, %g)", wo.x, wo.y,
+                       wo.z, s.wi.x, s.wi.y, s.wi.z);
+            } else if (s.wi.z * wo.z > 0.0f) {      /* reflected */
+                if (fabs(s.wi.x + wo.x) > 1e-4 || fabs(s.wi.y + wo.y) > 1e-4 || fabs(s.wi.z - wo.z) > 1e-4) {
+                    good = 0;
+                    cw_fmt(why, sizeof why, "reflection of wo = (%.3f, %.3f, %.3f) went to (%.3f, %.3f, %.3f), not (-wo.x, -wo.y, wo.z)",
+                           wo.x, wo.y, wo.z, s.wi.x, s.wi.y, s.wi.z);
+                } else if (fabs(s.pdf - F) > 1e-3 * F + 1e-5 || fabs(s.weight - 1.0f) > 1e-3f) {
+                    good = 0;
+                    cw_fmt(why, sizeof why, "a reflection at cos_i = %.3f has pdf %g and weight %g; expected pdf F = %.5f and "
+                           "weight F / F = 1%s", wo.z, s.pdf, s.weight, F,
+                           fabs(s.weight - F) < 1e-3 ? " (your weight is F: divide by the pdf F)" : "");
+                }
+            } else {                                 /* refracted */
+                double eta = wo.z > 0 ? 1.5 : 1.0 / 1.5;   /* n_t / n_i */
+                double si = sqrt(fmax(0.0, 1.0 - (double)wo.z * wo.z)), st = sqrt(fmax(0.0, 1.0 - (double)s.wi.z * s.wi.z));
+                double dot_t = s.wi.x * (double)wo.x + s.wi.y * (double)wo.y;
+                if (F >= 1.0) {
+                    good = 0;
+                    cw_fmt(why, sizeof why, "refracted at cos_i = %.3f from inside, beyond the critical angle: total internal "
+                           "reflection must always reflect", wo.z);
+                } else if (fabs(st * eta - si) > 2e-3 || (si > 1e-3 && dot_t > 0.0)) {
+                    good = 0;
+                    cw_fmt(why, sizeof why, "refraction of wo = (%.3f, %.3f, %.3f) gave wi = (%.3f, %.3f, %.3f): sin_t = %.4f but "
+                           "Snell gives sin_i / eta = %.4f%s", wo.x, wo.y, wo.z, s.wi.x, s.wi.y, s.wi.z, st, si / eta,
+                           fabs(st - si * eta) < 2e-3 ? " (eta is inverted: leaving the glass, divide by 1/eta)" : "");
+                } else if (fabs(s.pdf - (1.0 - F)) > 1e-3 * (1.0 - F) + 1e-5 || fabs(s.weight - 1.0f) > 1e-3f) {
+                    good = 0;
+                    cw_fmt(why, sizeof why, "a refraction at cos_i = %.3f has pdf %g and weight %g; expected pdf 1 - F = %.5f and "
+                           "weight 1", wo.z, s.pdf, s.weight, 1.0 - F);
+                }
+            }
+            if (good) ok++;
+            else if (!adv[0]) cw_fmt(adv, sizeof adv, "%s", why);
+        }
+        cw_fmt(m, sizeof m, "%d of %d glass samples right: mirror or Snell direction, pdf F or 1 - F, weight 1 (both sides, "
+               "u_lobe 0 and 1 - 2^-24 included)", ok, n);
+        cw_emit(run, "step5.glass_dirs", ok == n, m, adv, NULL);
+    }
+    /* edges */
+    cw_begin(run);
+    adv[0] = '\0';
+    {
+        fogrt_vec3 wos[4];
+        float us[2] = {0.0f, CW_U_MAX};
+        int ok = 0, total = 0, a, b;
+        wos[0] = cw_v3(0, 0, 1); wos[1] = cw_v3(1, 0, 1e-6); wos[2] = cw_v3(0, 0, -1); wos[3] = cw_v3(0.6, 0.8, -1e-6);
+        for (a = 0; a < 4; ++a)
+            for (b = 0; b < 2; ++b) {
+                cw_bsdf_sample s;
+                memset(&s, 0, sizeof s);
+                total++;
+                /* refusing (0) is fine here: these u may put wi on the horizon */
+                if (!f->sample_diffuse(wos[a], us[b], us[1 - b], &s)
+                    || (cw_finite3(s.wi) && fabs(cw_len3(s.wi) - 1.0) < 1e-4 && isfinite(s.pdf) && isfinite(s.weight)
+                        && s.pdf >= 0.0f)) ok++;
+                else if (!adv[0])
+                    cw_fmt(adv, sizeof adv, "diffuse at wo = (%g, %g, %g), u = %g, %g gave wi = (%g, %g, %g), pdf %g, weight %g",
+                           wos[a].x, wos[a].y, wos[a].z, us[b], us[1 - b], s.wi.x, s.wi.y, s.wi.z, s.pdf, s.weight);
+                memset(&s, 0, sizeof s);
+                total++;
+                if (f->sample_glass(1.5f, wos[a], us[b], &s) && cw_finite3(s.wi) && fabs(cw_len3(s.wi) - 1.0) < 1e-4
+                    && isfinite(s.pdf) && isfinite(s.weight) && s.pdf > 0.0f) ok++;
+                else if (!adv[0])
+                    cw_fmt(adv, sizeof adv, "glass at wo = (%g, %g, %g), u_lobe = %g gave wi = (%g, %g, %g), pdf %g, weight %g",
+                           wos[a].x, wos[a].y, wos[a].z, us[b], s.wi.x, s.wi.y, s.wi.z, s.pdf, s.weight);
+            }
+        cw_fmt(m, sizeof m, "%d of %d edge cases finite (normal incidence, grazing wo on both sides, u = 0 and 1 - 2^-24)", ok, total);
+        cw_emit(run, "step5.edges", ok == total, m, adv, NULL);
+    }
+}
+
+static void cw_step5(const cw_fns *f, cw_run *run)
+{
+    cw_step5_diffuse(f, run);
+    cw_step5_specular(f, run);
+}
+
+/* ==========================================================================================
+   Step 9: equiangular sampling
+   ========================================================================================== */
+typedef struct cw__eq { double delta, h, a, b; const cw_fns *f; } cw__eq;
+static double cw__eq_theta(const cw__eq *e, double t) { return atan2(t - e->delta, e->h); }
+static double cw__eq_cdf(double t, const void *user)
+{
+    const cw__eq *e = (const cw__eq *)user;
+    double ta = cw__eq_theta(e, e->a), tb = isinf(e->b) ? 0.5 * CW_PI : cw__eq_theta(e, e->b);
+    if (t <= e->a) return 0.0;
+    if (t >= e->b) return 1.0;
+    return (cw__eq_theta(e, t) - ta) / (tb - ta);
+}
+static double cw__eq_quantile(const cw__eq *e, double q)
+{
+    double ta = cw__eq_theta(e, e->a), tb = isinf(e->b) ? 0.5 * CW_PI : cw__eq_theta(e, e->b);
+    return e->delta + e->h * tan(ta + q * (tb - ta));
+}
+static double cw__eq_density(const cw__eq *e, double t)
+{
+    double ta = cw__eq_theta(e, e->a), tb = isinf(e->b) ? 0.5 * CW_PI : cw__eq_theta(e, e->b);
+    if (t < e->a || t > e->b) return 0.0;
+    return e->h / ((tb - ta) * (e->h * e->h + (t - e->delta) * (t - e->delta)));
+}
+static double cw__eq_student_pdf(double t, const void *user)
+{
+    const cw__eq *e = (const cw__eq *)user;
+    return e->f->equiangular_pdf((float)e->delta, (float)e->h, (float)e->a, (float)e->b, (float)t);
+}
+
+static void cw_step9(const cw_fns *f, cw_run *run)
+{
+    static const double cases[4][4] = {{0.0, 1.0, -5.0, 5.0}, {2.0, 0.2, 0.0, HUGE_VAL}, {-1.0, 0.5, 0.0, 3.0}, {10.0, 0.05, 0.0, 4.0}};
+    char name[64], m[600], adv[600], png[256], stem[64], title[160], verdict[900];
+    int k, i;
+    double pdf_worst = 0.0;
+    char pdf_adv[600] = "";
+    int pdf_checked = 0;
+    for (k = 0; k < 4; ++k) {
+        cw__eq e;
+        cw_hist h;
+        cw_fit fit;
+        fogrt_rng rng;
+        int nb = 40, pass, no_delta = 0;
+        double x0[CW_HMAX], x1[CW_HMAX], bar[CW_HMAX], line[CW_HMAX], mean, tmax;
+        cw_plot p;
+        e.delta = cases[k][0]; e.h = cases[k][1]; e.a = cases[k][2]; e.b = cases[k][3]; e.f = f;
+        cw_begin(run);
+        cw_hist_init(&h, nb);
+        h.edge[0] = e.a; h.edge[nb] = e.b;
+        for (i = 1; i < nb; ++i) h.edge[i] = cw__eq_quantile(&e, (double)i / nb);
+        cw_seed(&rng, 900 + k);
+        for (i = 0; i < CW_N; ++i) {
+            float u = cw_u(&rng), pdf = -1.0f;
+            float t = f->sample_equiangular((float)e.delta, (float)e.h, (float)e.a, (float)e.b, u, &pdf);
+            cw_hist_add(&h, t, u, 1e-4 * (1.0 + fabs(e.a)));
+            if (i < 4000 && isfinite(t) && t >= e.a && t <= e.b) {
+                double ref = cw__eq_density(&e, t), mine = f->equiangular_pdf((float)e.delta, (float)e.h, (float)e.a, (float)e.b, t);
+                double err = fmax(fabs(pdf - ref), fabs(mine - ref)) / (1e-3 * ref + 1e-9);
+                pdf_checked++;
+                if (err > pdf_worst) {
+                    pdf_worst = err;
+                    if (err > 1.0)
+                        cw_fmt(pdf_adv, sizeof pdf_adv, "at delta = %g, h = %g, [a, b] = [%g, %g], t = %.5g: the sampler's pdf %.6g, "
+                               "cw_equiangular_pdf %.6g, the density is %.6g%s", e.delta, e.h, e.a, e.b, t, pdf, mine, ref,
+                               fabs(mine - ref / e.h) < 1e-3 * ref / e.h ? ": the factor h in the numerator is missing, "
+                               "p(t) = h / ((theta_b - theta_a)(h^2 + (t - delta)^2))" : "");
+                }
+            }
+        }
+        cw_hist_expect(&h, cw__eq_cdf, &e);
+        fit = cw_hist_fit(h.obs, h.expd, nb);
+        pass = h.invalid == 0 && fit.p >= CW_ALPHA;
+        mean = h.n > h.invalid ? h.sum / (double)(h.n - h.invalid) : NAN;
+        {
+            /* did the sampler forget delta? compare with the same distribution centred on 0 */
+            cw__eq z = e;
+            cw_hist hz = h;
+            cw_fit fz;
+            z.delta = 0.0;
+            cw_hist_expect(&hz, cw__eq_cdf, &z);
+            fz = cw_hist_fit(hz.obs, hz.expd, nb);
+            if (e.delta != 0.0 && fz.p > 1e-3) no_delta = 1;
+        }
+        cw_fmt(m, sizeof m, "chi2 = %.1f, dof %d, p = %.3g (fail if p < %g); delta %g, h %g, [a, b] = [%g, %g]",
+               fit.chi2, fit.dof, fit.p, CW_ALPHA, e.delta, e.h, e.a, e.b);
+        if (h.invalid)
+            cw_fmt(adv, sizeof adv, "%ld samples were NaN, infinite or outside [a, b] (first: t = %g at u = %.9g)", h.invalid,
+                   h.first_invalid, h.first_invalid_u);
+        else if (no_delta)
+            cw_fmt(adv, sizeof adv, "your samples crowd around t = 0 instead of the light's closest approach t = delta = %g: the "
+                   "angles are measured from delta, theta(t) = atan((t - delta)/h), t = delta + h tan(theta)", e.delta);
+        else
+            cw_fmt(adv, sizeof adv, "mean t %.4g; the samples do not follow 1/(h^2 + (t - delta)^2): t = delta + h tan(theta_a "
+                   "+ u (theta_b - theta_a))", mean);
+        tmax = isinf(e.b) ? h.edge[nb - 1] : e.b;
+        cw_hist_density(&h, tmax, x0, x1, bar, line);
+        memset(&p, 0, sizeof p);
+        cw_fmt(title, sizeof title, "Step 9: equiangular t, delta = %g, h = %g, [%g, %g]", e.delta, e.h, e.a, e.b);
+        p.title = title; p.xlabel = "distance t along the ray"; p.ylabel = "density"; p.bar_label = "your samples";
+        p.line_label = "h / ((theta_b - theta_a)(h^2 + (t - delta)^2))"; p.n = isinf(e.b) ? nb - 1 : nb; p.x0 = x0; p.x1 = x1;
+        p.bar = bar; p.line = line; p.xmin = e.a; p.xmax = tmax; p.logy = -1;
+        cw_fmt(stem, sizeof stem, "step9_chi2_case%d", k + 1);
+        cw_fmt(name, sizeof name, "step9.chi2 case %d", k + 1);
+        cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+        cw_picture(run, stem, &p, verdict, pass, png, sizeof png);
+        cw_emit(run, name, pass, m, adv, png);
+    }
+    /* the pdf the sampler returns and the pdf function, at the samples */
+    cw_begin(run);
+    cw_fmt(m, sizeof m, "%d samples: largest pdf error %.3g x the tolerance (relative 1e-3)", pdf_checked, pdf_worst / 1.0 * 1.0);
+    cw_emit(run, "step9.pdf_at_samples", pdf_checked > 0 && pdf_worst <= 1.0, m,
+            pdf_adv[0] ? pdf_adv : "the sampler's pdf and cw_equiangular_pdf must both be the density of t", NULL);
+    /* the pdf integrates to one over [a, b] */
+    cw_begin(run);
+    {
+        double worst = 0.0, wI = 1.0, wexp = 1.0, wh = 1.0;
+        int wk = 0;
+        for (k = 0; k < 4; ++k) {
+            cw__eq e;
+            double end, I, want, outside;
+            e.delta = cases[k][0]; e.h = cases[k][1]; e.a = cases[k][2]; e.b = cases[k][3]; e.f = f;
+            end = isinf(e.b) ? e.delta + 2000.0 * e.h : e.b;
+            /* split at delta, where a narrow peak sits */
+            if (e.delta > e.a && e.delta < end) I = cw_integrate(cw__eq_student_pdf, &e, e.a, e.delta) + cw_integrate(cw__eq_student_pdf, &e, e.delta, end);
+            else I = cw_integrate(cw__eq_student_pdf, &e, e.a, end);
+            want = cw__eq_cdf(end, &e);
+            outside = fabs(f->equiangular_pdf((float)e.delta, (float)e.h, (float)e.a, (float)e.b, (float)e.a - 1.0f));
+            if (outside > 0.0) I = HUGE_VAL;
+            if (!(fabs(I / want - 1.0) <= worst)) { worst = fabs(I / want - 1.0); wI = I; wexp = want; wk = k; wh = e.h; }
+        }
+        cw_fmt(m, sizeof m, "integral of your pdf over [a, b] in case %d: %.6g, expected %.6g (relative tolerance 2e-3)", wk + 1, wI, wexp);
+        if (isinf(wI)) cw_fmt(adv, sizeof adv, "your pdf is not zero before a: t outside [a, b] has density 0");
+        else if (fabs(wI / wexp - 1.0 / wh) < 0.01 / wh)
+            cw_fmt(adv, sizeof adv, "your pdf integrates to 1/h: the factor h in the numerator is missing, p(t) = h / ((theta_b - "
+                   "theta_a)(h^2 + (t - delta)^2))");
+        else cw_fmt(adv, sizeof adv, "a density must integrate to 1 over [a, b]: divide by theta_b - theta_a, with the angles "
+                    "measured from delta");
+        cw_emit(run, "step9.pdf_integral", worst <= 2e-3, m, adv, NULL);
+    }
+    /* edges */
+    cw_begin(run);
+    adv[0] = '\0';
+    {
+        static const float ec[5][4] = {{0.0f, 1.0f, -5.0f, 5.0f}, {2.0f, 0.2f, 0.0f, 1e30f}, {3.0f, 1e-4f, 0.0f, 6.0f},
+                                       {1e3f, 1e-3f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f, 0.0f}};
+        int ok = 0, total = 0, j;
+        float us[3] = {0.0f, 0.5f, CW_U_MAX};
+        for (k = 0; k < 5; ++k)
+            for (j = 0; j < 3; ++j) {
+                float b = k == 1 ? INFINITY : ec[k][3], pdf = -1.0f;
+                float t = f->sample_equiangular(ec[k][0], ec[k][1], ec[k][2], b, us[j], &pdf);
+                /* u = 0 must give t = a, up to float rounding of delta + h tan(theta_a) */
+                float slack = 1e-3f * (1.0f + fabsf(ec[k][2]) + fabsf(ec[k][2] - ec[k][0]));
+                int good = isfinite(t) && t >= ec[k][2] - slack && t <= b + slack && isfinite(pdf) && pdf >= 0.0f
+                           && (us[j] != 0.0f || fabsf(t - ec[k][2]) <= slack);
+                if (k == 4) good = isfinite(t) && isfinite(pdf);   /* an empty segment: anything finite */
+                total++;
+                if (good) ok++;
+                else if (!adv[0])
+                    cw_fmt(adv, sizeof adv, "delta = %g, h = %g, [a, b] = [%g, %g], u = %.9g gave t = %g, pdf = %g: t must be finite, "
+                           "in [a, b] (t = a at u = 0) and the pdf finite", ec[k][0], ec[k][1], ec[k][2], b, us[j], t, pdf);
+            }
+        cw_fmt(m, sizeof m, "%d of %d edge cases right (u = 0 and 1 - 2^-24, b = infinity, h = 1e-4, light far past the "
+               "segment, a = b)", ok, total);
+        cw_emit(run, "step9.edges", ok == total, m, adv, NULL);
+    }
+}
+
+/* ==========================================================================================
+   Dispatch
+   ========================================================================================== */
+static inline const char *cw_step_title(int step)
+{
+    switch (step) {
+    case 1: return "free-flight sampling (section 3.1, eq. 4-6)";
+    case 2: return "transmittance (section 3.2, eq. 7-8)";
+    case 3: return "Henyey-Greenstein phase function (section 3.3, eq. 9-12)";
+    case 4: return "BVH split: SAH and the volume heuristic (section 2.1, eq. 1-2)";
+    case 5: return "BSDF sampling: diffuse, mirror, glass with Schlick (sections 2.2, 4.2, eq. 3)";
+    case 9: return "equiangular sampling toward a point light (bonus)";
+    default: return NULL;
+    }
+}
+
+/* Runs one step's checks; returns the number that failed (-1: no such step). */
+static int cw_run_step(int step, const cw_fns *f, cw_run *run)
+{
+    int before = run->count, passed = run->passed;
+    switch (step) {
+    case 1: cw_step1(f, run); break;
+    case 2: cw_step2(f, run); break;
+    case 3: cw_step3(f, run); break;
+    case 4: cw_step4(f, run); break;
+    case 5: cw_step5(f, run); break;
+    case 9: cw_step9(f, run); break;
+    default: return -1;
+    }
+    return (run->count - before) - (run->passed - passed);
+}
+
+#endif

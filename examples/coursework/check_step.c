@@ -1,0 +1,55 @@
+/* check_step.c - judges one coursework step (docs/coursework.md).
+
+   Built by `make check-step STEP=N [SRC=their.c]` with -DCW_STEP=N and linked with the
+   student's file, which defines that step's functions (coursework.h). Prints one line per
+   check and writes the pictures into the directory given as the first argument (default
+   build/coursework). Exit status: 0 when every check passed, 1 otherwise.            */
+#include <stdio.h>
+#include <string.h>
+#define FOGRT_IMPLEMENTATION
+#include "fogrt.h"
+#include "check.h"
+
+#ifndef CW_STEP
+#error "build with -DCW_STEP=N (make check-step STEP=N)"
+#endif
+
+int main(int argc, char **argv)
+{
+    static cw_run run;
+    cw_fns f;
+    int failed;
+    memset(&f, 0, sizeof f);
+    memset(&run, 0, sizeof run);
+    run.img_dir = argc > 1 ? argv[1] : "build/coursework";
+#if CW_STEP == 1
+    f.sample_free_flight = cw_sample_free_flight;
+    f.free_flight_pdf = cw_free_flight_pdf;
+#elif CW_STEP == 2
+    f.transmittance = cw_transmittance;
+    f.transmittance_estimate = cw_transmittance_estimate;
+#elif CW_STEP == 3
+    f.hg_phase = cw_hg_phase;
+    f.sample_hg_mu = cw_sample_hg_mu;
+    f.sample_hg = cw_sample_hg;
+#elif CW_STEP == 4
+    f.split_cost = cw_split_cost;
+    f.best_split = cw_best_split;
+#elif CW_STEP == 5
+    f.sample_diffuse = cw_sample_diffuse;
+    f.diffuse_pdf = cw_diffuse_pdf;
+    f.sample_mirror = cw_sample_mirror;
+    f.fresnel_schlick = cw_fresnel_schlick;
+    f.sample_glass = cw_sample_glass;
+#elif CW_STEP == 9
+    f.sample_equiangular = cw_sample_equiangular;
+    f.equiangular_pdf = cw_equiangular_pdf;
+#else
+#error "steps 1-5 and 9 exist (6-8 need a render hook fogrt.h does not have yet)"
+#endif
+    printf("step %d: %s\n", CW_STEP, cw_step_title(CW_STEP));
+    failed = cw_run_step(CW_STEP, &f, &run);
+    printf("step %d: %d of %d checks passed in %.2f s%s\n", CW_STEP, run.passed, run.count, run.seconds,
+           failed ? "" : " -- all passed");
+    return failed ? 1 : 0;
+}
