@@ -746,6 +746,7 @@ typedef struct fogrt_image {
     double *stream_sum;      /* FOGRT_IMAGE_STREAMS * width * height: per pixel, each stream's luminance sum */
     uint32_t *stream_count;  /* FOGRT_IMAGE_STREAMS * width * height: per pixel, each stream's samples */
     uint64_t rejected;   /* non-finite samples seen and dropped */
+    uint64_t rated_spp;  /* spp asked for so far with sample rates (where each pixel's count stands) */
     fogrt_allocator allocator;   /* what fogrt_image_alloc used; fogrt_image_free uses it too */
 } fogrt_image;
 
@@ -3306,6 +3307,7 @@ FOGRT__PUBLIC void fogrt_image_clear(fogrt_image *img)
     if (img->stream_sum) memset(img->stream_sum, 0, sizeof(double) * FOGRT_IMAGE_STREAMS * n);
     if (img->stream_count) memset(img->stream_count, 0, sizeof(uint32_t) * FOGRT_IMAGE_STREAMS * n);
     img->rejected = 0;
+    img->rated_spp = 0;
 }
 FOGRT__PUBLIC void fogrt_image_resolve(const fogrt_image *img, float *rgb)
 {
@@ -3388,7 +3390,6 @@ typedef struct fogrt__job {
     uint64_t base;
     int spp;
     const float *rate;       /* per-pixel rates (Part II, C), or NULL: spp samples in every pixel */
-    uint64_t coin;           /* with rates: a key that changes from call to call */
 } fogrt__job;
 /* The camera ray of sample `index` of pixel (x, y), and the sample's random stream. Every
    sample has its own stream, derived from (seed, pixel, sample index): the image does not
@@ -3535,16 +3536,11 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
     if (stats) memset(stats, 0, sizeof *stats);
     if ((result = fogrt__resolve_render(s, desc, &job.st, &d)) != FOGRT_RESULT_OK) return result;
     if ((result = fogrt__check_image(s, &d, img, spp)) != FOGRT_RESULT_OK) return result;
-    job.s = s; job.img = img; job.spp = spp; job.rate = d.sample_rate; job.coin = 0;
+    job.s = s; job.img = img; job.spp = spp; job.rate = d.sample_rate;
     job.cam = fogrt__camera_setup(s, img->width, img->height);
     job.base = fogrt__hash64(d.seed);
-    if (job.rate) {
-        size_t i, n = (size_t)img->width * (size_t)img->height;
-        uint64_t total = 0;
-        for (i = 0; i < n; ++i) total += img->count[i];
-        job.coin = fogrt__hash64(job.base ^ fogrt__hash64(total));
-    }
     if (spp > 0 && !fogrt__render_rows(&job, &d, &rays, &rejected, &samples)) result = FOGRT_RESULT_CANCELLED;
+    if (job.rate && result == FOGRT_RESULT_OK) img->rated_spp += (uint64_t)spp;
     img->rejected += rejected;
     if (stats) {
         size_t i, n = 3 * (size_t)img->width * (size_t)img->height;
@@ -5435,7 +5431,7 @@ FOGRT__PRIVATE float fogrt__pick_prob(const fogrt_scene *s, bool by_power, uint3
    So a pixel's count depends on samples of other pixels only, which are independent of
    its own (each pixel, each sample, has its own random stream): its mean stays an
    average of samples whose number was fixed without looking at them. The rounding of
-   spp x rate to a count is a coin of its own (fogrt__pixel_spp).
+   spp x rate to a count is a coin of its own (fogrt__x_pixel_spp).
    The noise is sigma^2 = Var[mean] x n from the streams (so stratification counts). One
    rare path can make one pixel's estimate thousands of times its neighbours'; capped at
    16 times the colour's mean before the boxes sum them, such a pixel no longer drags its
@@ -5613,23 +5609,17 @@ FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_
     *jy = (float)(uy >> 8) * 5.9604644775390625e-8f;
 }
 
-/* How many samples pixel pix takes in this call: spp, or with sample rates spp x rate
-   rounded up or down by a coin drawn from (seed, pixel, its samples so far, the image's
-   samples so far), never from the pixel's radiance; so the mean count is spp x rate
-   exactly. (Without the image's total, a pixel whose coin said "down" to a rate below 1
-   would draw the same coin at the next call, and the next: it would never get another
-   sample.) */
+/* How many samples pixel pix takes in this call. After B spp asked for with rates, the
+   pixel has had floor(B x rate + u) of them, u a uniform of its own drawn from (seed,
+   pixel) alone, never from its radiance: the mean count is B x rate exactly, and it does
+   not depend on how B was split over calls (the image is the same for any batches). */
 FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix)
 {
-    double want, whole;
-    uint32_t n, room = 0xFFFFFFFFu - job->img->count[pix];
-    want = (double)job->spp * (double)job->rate[pix];
-    whole = floor(want);
-    if (whole >= (double)room) return room;
-    n = (uint32_t)whole;
-    if ((double)(fogrt__hash64(job->coin ^ fogrt__hash64(0x52415445ULL ^ (((uint64_t)pix << 32) | job->img->count[pix]))) >> 11)
-        * (1.0 / 9007199254740992.0) < want - whole && n < room) ++n;
-    return n;
+    double u = (double)(fogrt__hash64(job->base ^ fogrt__hash64(0x52415445ULL ^ (uint64_t)pix)) >> 11) * (1.0 / 9007199254740992.0);
+    double r = (double)job->rate[pix], b = (double)job->img->rated_spp;
+    double n = floor((b + (double)job->spp) * r + u) - floor(b * r + u);
+    double room = (double)(0xFFFFFFFFu - job->img->count[pix]);
+    return n <= 0.0 ? 0u : (uint32_t)(n < room ? n : room);
 }
 #endif /* FOGRT_NO_ESTIMATION */
 

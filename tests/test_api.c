@@ -164,6 +164,41 @@ static void test_absurd_thread_count_is_cut(void)
     fogrt_scene_destroy(s);
 }
 
+/* With per-pixel rates the image is a function of the inputs alone: 24 spp asked for in
+   one call, in 4 + 20, or in 24 calls of 1 give the same image bit for bit (the counts no
+   longer depend on how the samples were split, so neither on a caller's timing). */
+static void test_rates_do_not_depend_on_batches(void)
+{
+#ifdef FOGRT_NO_ESTIMATION
+    TEST_IGNORE_MESSAGE("needs Part II of fogrt.h (C: per-pixel rates): built with FOGRT_MINIMAL or FOGRT_NO_ESTIMATION");
+#else
+    fogrt_scene *s = NULL;
+    fogrt_image img[3];
+    fogrt_render_desc rd = fogrt_render_defaults();
+    float rates[16 * 12];
+    int i, k;
+    CHECK_OK(fogrt_scene_create(NULL, &s));
+    CHECK_OK(fogrt_scene_add_default(s));
+    CHECK_OK(fogrt_scene_build(s, NULL));
+    for (i = 0; i < 3; ++i) CHECK_OK(fogrt_image_alloc(&img[i], 16, 12, NULL));
+    CHECK_OK(fogrt_render(s, &rd, &img[0], 2, NULL));      /* every pixel alike, then the rates */
+    CHECK_OK(fogrt_image_sample_rates(&img[0], rates));
+    for (i = 1; i < 3; ++i) CHECK_OK(fogrt_render(s, &rd, &img[i], 2, NULL));
+    rd.sample_rate = rates;
+    CHECK_OK(fogrt_render(s, &rd, &img[0], 24, NULL));
+    CHECK_OK(fogrt_render(s, &rd, &img[1], 4, NULL));
+    rd.threads = 2;
+    CHECK_OK(fogrt_render(s, &rd, &img[1], 20, NULL));
+    for (k = 0; k < 24; ++k) CHECK_OK(fogrt_render(s, &rd, &img[2], 1, NULL));
+    for (i = 1; i < 3; ++i) {
+        TEST_ASSERT_EQUAL_MEMORY(img[0].count, img[i].count, sizeof(uint32_t) * 16 * 12);
+        TEST_ASSERT_EQUAL_MEMORY(img[0].sum, img[i].sum, sizeof(double) * 3 * 16 * 12);
+    }
+    for (i = 0; i < 3; ++i) fogrt_image_free(&img[i]);
+    fogrt_scene_destroy(s);
+#endif
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -172,5 +207,6 @@ int main(void)
     RUN_TEST(test_add_default_all_or_nothing);
     RUN_TEST(test_rebuild_all_or_nothing);
     RUN_TEST(test_absurd_thread_count_is_cut);
+    RUN_TEST(test_rates_do_not_depend_on_batches);
     return UNITY_END();
 }
