@@ -1113,14 +1113,14 @@ FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x)
 struct fogrt__settings;
 struct fogrt__job;
 #ifndef FOGRT_NO_WIDE_BVH
-FOGRT__PRIVATE bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
+FOGRT__HOT bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
                                       fogrt_hit *hit, bool any_hit, bool *done);                  /* 1 (A) */
 FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n);                /* 2 (A) */
 #endif
 #ifndef FOGRT_MINIMAL
 FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n);        /* 3 */
 FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s);                                             /* 4 */
-FOGRT__PRIVATE bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax,
+FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax,
                                       float *a, float *b);                                        /* 6 (C) */
 FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const struct fogrt__settings *st);      /* 7 (E) */
 FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const struct fogrt__settings *st, fogrt__v3 o,
@@ -2368,7 +2368,7 @@ FOGRT__PRIVATE int fogrt__cdf_find(const float *cdf, int n, float u, float *frac
 }
 /* A point y on a mesh light: a triangle chosen by area (fogrt__cdf_find), then a uniform
    point on it. *ny is its geometric normal. */
-FOGRT__PRIVATE uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__area_light *a, const float *u,
+FOGRT__HOT uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__area_light *a, const float *u,
                                                  fogrt__v3 *y, fogrt__v3 *ny)
 {
     const fogrt__v3 *v;
@@ -2383,7 +2383,7 @@ FOGRT__PRIVATE uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fog
 /* Area light a seen from p: an emissive sphere is sampled in the cone it subtends, a mesh
    by area (pdf 1/A, turned into solid angle). False when the sample is unusable: the back
    of a one-sided emitter, or p inside an emitting sphere. */
-FOGRT__PRIVATE bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area_light *a, fogrt__v3 p,
+FOGRT__HOT bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area_light *a, fogrt__v3 p,
                                              const float *u, fogrt__light_sample *ls)
 {
     fogrt__v3 y, ny, to;
@@ -2482,7 +2482,7 @@ FOGRT__PUBLIC float fogrt_transmittance(float sigma_t, float distance)
     return expf(-sigma_t * distance);   /* underflows to 0 for optical depth > ~87: correct */
 }
 /* Eq. 8 along o + t d for t in [0, dist]: exp(-sigma_t x the length in fog). */
-FOGRT__PRIVATE float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float dist)
+FOGRT__HOT float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float dist)
 {
 #ifndef FOGRT_MINIMAL
     float a, b;
@@ -4572,7 +4572,7 @@ FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n
     return FOGRT__MIN((uint32_t)d->max_leaf_size, (uint32_t)FOGRT__WBVH_LEAF);
 }
 /* Seam 1: the wide tree when there is one (*done), else Part I's binary tree. */
-FOGRT__PRIVATE bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
+FOGRT__HOT bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
                                       fogrt_hit *hit, bool any_hit, bool *done)
 {
     *done = s->x && s->x->wide && s->x->wide->node_count;
@@ -5284,7 +5284,7 @@ FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s)
 /* The part [*a, *b] of the ray segment o + t d, t in [0, tmax], that lies in the fog: all of
    it, or with bounded fog its part inside the box (a slab test like 2.1's, NaN-safe
    for axis-parallel rays on a face). False when the segment misses the fog. */
-FOGRT__PRIVATE bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax, float *a, float *b)
+FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax, float *a, float *b)
 {
     int k;
     *a = 0.0f; *b = tmax;
