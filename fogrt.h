@@ -691,6 +691,8 @@ typedef struct fogrt_progress {
                        by a coin of its own (adaptive sampling, unbiased when the rates
                        come from fogrt_image_sample_rates as Part II, C says)
      progress          optional; called between row blocks; return false to cancel
+     cancel            optional: the render stops within a sample (of every thread) once *cancel
+                       is non-zero, as when cancelled (a signal handler's flag, say)
      resolved          set by fogrt_render_defaults(): the fields hold their real values   */
 typedef struct fogrt_render_desc {
     int width, height;
@@ -713,6 +715,7 @@ typedef struct fogrt_render_desc {
     const float *sample_rate;
     bool (*progress)(const fogrt_progress *progress, void *user_data);
     void *user_data;
+    const volatile int *cancel;
     bool resolved;
 } fogrt_render_desc;
 
@@ -3190,7 +3193,7 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_paper_defaults(void)
         true, true, false, false, false, false, false,  /* nee, mis, equiangular, glow, footprint, light_by_power, expected_emission */
         1, 0, 0,                                        /* light_samples, seed, threads */
         NULL,                                           /* sample_rate: every pixel alike */
-        NULL, NULL,                                     /* progress, user_data */
+        NULL, NULL, NULL,                               /* progress, user_data, cancel */
         true                                            /* resolved */
     };
     return d;
@@ -3433,7 +3436,7 @@ FOGRT__PRIVATE uint32_t fogrt__pixel_spp(const fogrt__job *job, size_t pix)
    a non-finite sample is counted, never added (a zero in the mean, in its stream's mean
    too). Sample `index` adds its luminance to stream index mod FOGRT_IMAGE_STREAMS. */
 FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *rays, uint64_t *rejected,
-                                      uint64_t *samples)
+                                      uint64_t *samples, const volatile int *cancel)
 {
     fogrt_image *img = job->img;
     int x, width = img->width, height = img->height;
@@ -3441,9 +3444,9 @@ FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *ra
     for (x = 0; x < width; ++x) {
         size_t pix = (size_t)y * (size_t)width + (size_t)x;
         uint32_t k, spp = fogrt__pixel_spp(job, pix);
-        *samples += spp;
         for (k = 0; k < spp; ++k) {
             uint32_t index = img->count[pix] + k;
+            if (cancel && *cancel) { spp = k; x = width; break; }   /* stop here: what is done stays counted */
             size_t slot = (size_t)FOGRT_IMAGE_STREAMS * pix + index % FOGRT_IMAGE_STREAMS;
             fogrt__v3 Lr = fogrt__sample_pixel(job, width, height, x, y, index, rays);
             double lum;
@@ -3456,6 +3459,7 @@ FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *ra
             img->sum_sq[pix] += lum * lum;
             if (streams) img->stream_sum[slot] += lum;
         }
+        *samples += spp;
         img->count[pix] += spp;
     }
 }
@@ -3501,9 +3505,9 @@ FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render
 #ifdef _OPENMP
 #pragma omp atomic read
 #endif
-        stop = cancelled;
+        stop = cancelled || (d->cancel && *d->cancel);
         if (stop) continue;
-        fogrt__render_row(job, y, &rays, &rejected, &samples);
+        fogrt__render_row(job, y, &rays, &rejected, &samples, d->cancel);
 #ifdef _OPENMP
 #pragma omp atomic capture
 #endif
@@ -3521,7 +3525,7 @@ FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render
         }
     }
     *rays_out = rays; *rejected_out = rejected; *samples_out = samples;
-    if (cancelled) return false;
+    if (cancelled || (d->cancel && *d->cancel)) return false;
     return !(d->progress && last_report != height && !fogrt__report(d, height, height, job->spp));   /* the final report */
 }
 

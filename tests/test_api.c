@@ -199,6 +199,31 @@ static void test_rates_do_not_depend_on_batches(void)
 #endif
 }
 
+/* A render whose cancel flag is set stops at once: cancelled, no sample taken, nothing
+   counted; cleared, the same image renders as before. */
+static void test_cancel_flag_stops_a_render(void)
+{
+    fogrt_scene *s = NULL;
+    fogrt_image img;
+    fogrt_render_stats st;
+    fogrt_render_desc rd = fogrt_render_defaults();
+    volatile int flag = 1;
+    uint32_t i;
+    CHECK_OK(fogrt_scene_create(NULL, &s));
+    CHECK_OK(fogrt_scene_add_default(s));
+    CHECK_OK(fogrt_scene_build(s, NULL));
+    CHECK_OK(fogrt_image_alloc(&img, 16, 12, NULL));
+    rd.cancel = &flag;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_CANCELLED, fogrt_render(s, &rd, &img, 4, &st));
+    TEST_ASSERT_EQUAL_UINT64(0, st.camera_rays);
+    for (i = 0; i < 16 * 12; ++i) TEST_ASSERT_EQUAL_UINT32(0, img.count[i]);
+    flag = 0;
+    CHECK_OK(fogrt_render(s, &rd, &img, 4, &st));
+    TEST_ASSERT_EQUAL_UINT64(16 * 12 * 4, st.camera_rays);
+    fogrt_image_free(&img);
+    fogrt_scene_destroy(s);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -208,5 +233,6 @@ int main(void)
     RUN_TEST(test_rebuild_all_or_nothing);
     RUN_TEST(test_absurd_thread_count_is_cut);
     RUN_TEST(test_rates_do_not_depend_on_batches);
+    RUN_TEST(test_cancel_flag_stops_a_render);
     return UNITY_END();
 }
