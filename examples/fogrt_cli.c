@@ -975,6 +975,7 @@ static float *read_exr(const char *path, int *w, int *h)
     if ((r = ParseEXRHeaderFromFile(&hd, &ver, path, &err)) != TINYEXR_SUCCESS) {
         fprintf(stderr, "fogrt: -e %s: cannot read the OpenEXR header: %s\n", path, one_line(err, line, sizeof line));
         if (err) FreeEXRErrorMessage(err);
+        FreeEXRHeader(&hd);                     /* what it read before it failed */
         return NULL;
     }
     width = (double)hd.data_window.max_x - (double)hd.data_window.min_x + 1.0;
