@@ -291,6 +291,7 @@ static void draw_and_write(bool rejected, const char *path)
     snprintf(line, sizeof line, "Model: %s.", C.model);
     y = wrapped(&c, 10, y, line, chars, PF_GREY);
     bottom = C.rows > 1 ? draw_2d(&c, y + 14) : draw_1d(&c, y + 14);
+    if (bottom > c.h) bottom = c.h;   /* a caption longer than any today's: cut, not overrun */
     out = pf_canvas_make(width, bottom, PF_WHITE);   /* cropped to what was drawn */
     memcpy(out.rgb, c.rgb, (size_t)3 * (size_t)width * (size_t)bottom);
     if (!stbi_write_png(path, out.w, out.h, 3, out.rgb, out.w * 3)) {

@@ -594,13 +594,16 @@ fi
 
 # -- stopping: SIGTERM, SIGINT and SIGHUP stop every long loop within about a second; SIGHUP
 #    leaves no temporary file --
-# stop_latency NAME SIGNAL ARGS...: starts a render, signals it 1.5 s in, prints and checks
+# stop_latency NAME SIGNAL LIMIT ARGS...: starts a render, signals it a second after its
+# header line (the render has begun, whatever the build's speed), prints and checks
 stop_latency() {
     name=$1 sig=$2 limit=$3
     shift 3
     "$fogrt" "$@" 2>"$tmp/$name.err" &
     pid=$!
-    sleep 1.5
+    n=0
+    while [ $n -lt 1200 ] && ! grep -q '^fogrt: rendering' "$tmp/$name.err" 2>/dev/null; do sleep 0.05; n=$((n + 1)); done
+    sleep 1
     t_sig=$(now); kill -"$sig" "$pid"; wait "$pid"; st=$?; t_end=$(now)
     lat=$(echo "$t_end $t_sig" | awk '{ printf "%.2f", $1 - $2 }')
     echo "test_cli.sh: $name: stopped $lat s after SIG$sig (exit $st)"
@@ -610,7 +613,13 @@ mkdir "$tmp/hup"
 stop_latency stop_adaptive TERM 1.5 -a 1 1e-6 -s 100000 -r 16 12 -f "$tmp/hup/a.pfm"
 stop_latency stop_sighup HUP 1.5 -s 100000 -r 64 48 -f "$tmp/hup/h.pfm"
 check "pfm_ok '$tmp/hup/h.pfm' 64 48 && [ -z \"\$(ls -A '$tmp/hup' | grep tmp)\" ]" "stop_sighup: no image, or a temporary file left behind"
-stop_latency stop_light_samples TERM 15 -l 65536 -s 1 -r 16 12 -f "$tmp/hup/l.pfm"
+# -l 65536: fogrt_render is cancelled between rows, so a batch is rendered in slices of
+# columns (a slice's row holds about 25000 light samples), chosen from -l alone
+stop_latency stop_light_samples TERM 2.5 -l 65536 -s 1 -r 200 150 -f "$tmp/hup/l.pfm"
+check "pfm_ok '$tmp/hup/l.pfm' 200 150" "stop_light_samples: no 200x150 image written"
+"$fogrt" --quiet -l 4000 -s 9 -r 8 2 --seed 3 -t 1 -f "$tmp/slice1.pfm"
+"$fogrt" --quiet -l 4000 -s 9 -r 8 2 --seed 3 -t 2 -f "$tmp/slice2.pfm"
+check "cmp -s '$tmp/slice1.pfm' '$tmp/slice2.pfm'" "slices_deterministic: -l 4000 (two slices) differs between 1 and 2 threads"
 # a signal while the scene loads and builds (nothing rendered yet) quits at once: a fan of
 # 300000 slivers takes seconds to build (the roulette pilot)
 awk 'BEGIN { n = 300000; print "v 0 0.5 0"; for (i = 0; i <= n; i++) { a = 6.283185307 * i / n; printf "v %f 0.5 %f\n", 0.4 * cos(a), 0.4 * sin(a) }

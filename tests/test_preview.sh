@@ -200,6 +200,10 @@ check "[ -n '$png' ] && [ \"\$(head -c 2 '$tmp/saved/$pfm')\" = 'PF' ]" "the sav
 check "grep -q 'fog on / off' '$tmp/save.out'" "h did not print the key table"
 
 # ---- the flags shared with fogrt (examples/cli_common.h): one parser, one meaning ----
+src=$(dirname "$0")/..
+parser_flags=$(grep -ho 'cli_is(&\{0,1\}A, "[^"]*")' "$src/examples/preview.c" "$src/examples/cli_common.h" | sed 's/.*"\(.*\)")/\1/' | sort -u | tr '\n' ' ')
+help_flags=$("$preview" -h | sed -n 's/^  \(-[-a-zA-Z0-9]*\) .*/\1/p' | grep -v '^-$' | sort -u | tr '\n' ' ')
+check "[ -n '$parser_flags' ] && [ '$parser_flags' = '$help_flags' ]" "preview -h lists [$help_flags], the parser takes [$parser_flags]"
 run depthneg -m -1
 check "[ $rc -eq 2 ] && grep -q -- '-m' '$tmp/depthneg.err'" "-m -1: exit $rc, expected 2 as in fogrt (the ] key gives unlimited depth)" depthneg
 run misspelt --densty 0.5

@@ -13,7 +13,11 @@
 #include "fogrt.h"
 #include "unity.h"
 #include "stats.h"
-#include "footprint_case.h"
+#ifndef FOGRT_MINIMAL
+#include "footprint_case.h"   /* Part II's footprints (B) */
+#endif
+/* Under FOGRT_MINIMAL (Part I alone) a test of Part II skips with one line naming it. */
+#define PART_II_ONLY(what) TEST_IGNORE_MESSAGE("needs Part II of fogrt.h (" what "): built with FOGRT_MINIMAL")
 
 /* The private light samplers of fogrt.h (chapter 12) with their uniforms drawn here and the
    sample unpacked: the value (radiance / pdf for a point light, Le for an area light), the
@@ -366,6 +370,7 @@ static void test_hg_peak_resolved(void)
    ========================================================================================== */
 /* P(alpha' < alpha) for the density (pi - alpha) / (pi^3 sin alpha): 1 - (pi - alpha)^2 / pi^2,
    written as alpha (2 pi - alpha) / pi^2 so it keeps its digits at small angles. */
+#ifndef FOGRT_MINIMAL   /* helpers of Part II's test below */
 static double glow_cdf(double alpha) { return alpha * (2.0 * STATS_PI - alpha) / (STATS_PI * STATS_PI); }
 static double glow_wrong_cdf(double alpha) { return alpha / STATS_PI; }   /* uniform in alpha */
 /* Counts of the angle to the lamp direction p (log-spaced rows as in the HG peak test) and 4
@@ -402,12 +407,16 @@ static double glow_pdf_1d(double alpha, void *user)
     fogrt_vec3 w = fogrt__to_world(&f, v3((float)sin(alpha), 0.0f, (float)cos(alpha)));
     return 2.0 * STATS_PI * sin(alpha) * fogrt_glow_pdf(p, w);
 }
+#endif
 /* fogrt_sample_glow: the angle to the lamp follows the glow's CDF from 1e-6 rad to pi, the
    azimuth is uniform, the pdf it returns is fogrt_glow_pdf and the closed form, and
    fogrt_glow_pdf integrates to 1. Negative control: the same samples against a density
    uniform in the angle (the sin alpha Jacobian left out), which must be rejected. */
 static void test_glow_sampling(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("B: the glow of a lamp");
+#else
     static const float dirs[2][3] = {{0.0f, 0.0f, 1.0f}, {0.48f, -0.6f, 0.64f}};
     double edge[HG_PEAK_ROWS + 1], col_edge[HG_PEAK_COLS + 1], observed[HG_PEAK_ROWS * HG_PEAK_COLS],
            expected[HG_PEAK_ROWS * HG_PEAK_COLS], wrong[HG_PEAK_ROWS * HG_PEAK_COLS];
@@ -443,6 +452,7 @@ static void test_glow_sampling(void)
         TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-4, 1.0, integral, msg);
     }
     TALLY_ASSERT(t);
+#endif
 }
 
 /* ==========================================================================================
@@ -451,6 +461,7 @@ static void test_glow_sampling(void)
    ========================================================================================== */
 #define HGF_N 40000
 typedef struct hg_fine { double g, c[HGF_N + 1]; } hg_fine;   /* int_0^psi HG(cos x) dx, psi = pi i / N */
+#ifndef FOGRT_MINIMAL   /* helpers of Part II's test below */
 static double hg_angle_ref(double g, double psi)
 {
     double base = 1.0 + g * g - 2.0 * g * cos(psi);
@@ -481,6 +492,7 @@ static double eqhg_cdf(double t, void *user)
     if (m->plain) return (eqhg_psi(m, t) - eqhg_psi(m, m->a)) / (eqhg_psi(m, m->b) - eqhg_psi(m, m->a));
     return (hg_fine_at(m->f, eqhg_psi(m, t)) - m->ca) / (m->cb - m->ca);
 }
+#endif
 /* fogrt__sample_equiangular_hg draws t with density proportional to HG(mu(t)) / r(t)^2 (the
    single-scattering integrand of a point light): KS against the CDF integrated on a
    40000-point grid, for g = 0.6, 0.95 and -0.7, a light over the segment and an escaping
@@ -489,6 +501,9 @@ static double eqhg_cdf(double t, void *user)
    against plain equiangular (the phase function left out). */
 static void test_equiangular_hg_ks(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("B: equiangular sampling with HG");
+#else
     static const float gs[3] = {0.6f, 0.95f, -0.7f};
     static const float seg[2][4] = {{1.0f, 0.5f, 0.0f, 3.0f}, {-0.5f, 0.2f, 0.0f, INFINITY}};   /* delta, h, a, b */
     stats_tally t = {0, 0, ""};
@@ -536,11 +551,13 @@ static void test_equiangular_hg_ks(void)
     }
     free(x); free(f); free(T);
     TALLY_ASSERT(t);
+#endif
 }
 /* The glow with HG: the angle to the lamp has density G(alpha) = int_alpha^pi HG(cos x) dx
    (up to the table's bin averages): chi-square on the glow rows against the CDF of G from
    the fine grid, for g = 0.6 and -0.5; fogrt__glow_hg_pdf integrates to 1 over the sphere. */
 typedef struct glowhg_args { const hg_fine *f; double z; } glowhg_args;
+#ifndef FOGRT_MINIMAL   /* helpers of Part II's test below */
 static double glowhg_cdf(const glowhg_args *a, double alpha)   /* int_0^alpha G / int_0^pi G */
 {
     double sum = 0.0, top = a->f->c[HGF_N];
@@ -559,8 +576,12 @@ static double glowhg_pdf_1d(double alpha, void *user)
     fogrt_vec3 w = fogrt__to_world(&fr, v3((float)sin(alpha), 0.0f, (float)cos(alpha)));
     return 2.0 * STATS_PI * sin(alpha) * fogrt__glow_hg_pdf(a->T, a->p, w);
 }
+#endif
 static void test_glow_hg_sampling(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("B: the glow with HG");
+#else
     static const float gs[2] = {0.6f, -0.5f};
     double edge[HG_PEAK_ROWS + 1], col_edge[HG_PEAK_COLS + 1], observed[HG_PEAK_ROWS * HG_PEAK_COLS],
            expected[HG_PEAK_ROWS * HG_PEAK_COLS], cdf_edge[HG_PEAK_ROWS + 1];
@@ -626,6 +647,7 @@ static void test_glow_hg_sampling(void)
     }
     free(f); free(T);
     TALLY_ASSERT(t);
+#endif
 }
 
 /* ==========================================================================================
@@ -634,6 +656,7 @@ static void test_glow_hg_sampling(void)
 /* footprint_case(): tests/footprint_case.h, shared with the Mitsuba harness's shim */
 /* The sampler's map (u1, u2) -> wi, in double for the finite differences below (central,
    step h): the density it gives per steradian is 1 / |dwi/du1 x dwi/du2|. */
+#ifndef FOGRT_MINIMAL   /* helpers of Part II's test below */
 static double footprint_jacobian_pdf(const fogrt__footprint *F, fogrt_vec3 x, float u1, float u2, double h)
 {
     double d[2][3];
@@ -651,6 +674,7 @@ static double footprint_jacobian_pdf(const fogrt__footprint *F, fogrt_vec3 x, fl
         return 1.0 / sqrt(cx * cx + cy * cy + cz * cz);
     }
 }
+#endif
 /* fogrt__sample_footprint_cone and fogrt__footprint_cone_pdf (chapter 6: the footprint through the lamp's cone) for that lamp, seen from a
    point in the fog above the floor and from one below it:
    - the cone direction behind each direction drawn (from the point where it meets the
@@ -664,6 +688,9 @@ static double footprint_jacobian_pdf(const fogrt__footprint *F, fogrt_vec3 x, fl
      enters a cell's expected count (a sphere grid's quadrature would miss its slivers). */
 static void test_footprint_sampling(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("B: the footprint of a lamp");
+#else
     enum { ROWS = 10, COLS = 20 };
     static const float xs[2][3] = {{0.3f, 0.5f, 0.2f}, {-0.4f, -0.3f, 0.1f}};
     const fogrt__footprint F = footprint_case();
@@ -730,6 +757,7 @@ static void test_footprint_sampling(void)
         TEST_ASSERT_TRUE_MESSAGE(wrong_ok < checked / 2, msg);
     }
     TALLY_ASSERT(t);
+#endif
 }
 
 /* The footprint's second way (chapter 6): from a point outside the sphere around the lit
@@ -742,6 +770,7 @@ static void test_footprint_sampling(void)
    without the lamp's-cone part (a mixture that forgets a component) and with the two
    shares swapped the other way (0.3 / 0.7) must both miss. The build's bound holds every
    rim point. */
+#ifndef FOGRT_MINIMAL   /* helpers of Part II's test below */
 static void footprint_mixture_means(const fogrt__footprint *F, fogrt_vec3 x, int which, double *mean, double *se,
                                     double *target, uint64_t seed)
 {
@@ -773,8 +802,12 @@ static void footprint_mixture_means(const fogrt__footprint *F, fogrt_vec3 x, int
     target[0] = 2.0 * STATS_PI * omc;
     target[1] = STATS_PI * omc * (2.0 - (double)omc);
 }
+#endif
 static void test_footprint_mixture(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("B: the footprint of a lamp");
+#else
     static const float xs[2][3] = {{-1.2f, 1.1f, 1.0f}, {1.6f, 0.4f, -0.3f}};
     fogrt__footprint F = footprint_case();
     int k, j, which;
@@ -802,11 +835,13 @@ static void test_footprint_mixture(void)
             else TEST_ASSERT_TRUE_MESSAGE(z0 > 8.0 || z1 > 8.0, msg);
         }
     }
+#endif
 }
 
 /* ==========================================================================================
    The environment map: sampled directions follow the map's pdf
    ========================================================================================== */
+#ifndef FOGRT_MINIMAL   /* helpers of Part II's test below */
 static double env_pdf_callback(const double w[3], void *user)
 {
     return fogrt__env_pdf((const fogrt_scene *)user, fogrt__v((float)w[0], (float)w[1], (float)w[2]));
@@ -831,8 +866,12 @@ static double env_pdf_no_sin(const double w[3], void *user)
     double s = sqrt(fmax(0.0, 1.0 - w[1] * w[1]));
     return env_pdf_callback(w, user) * s;   /* wrong: drops the Jacobian's sin(theta) */
 }
+#endif
 static void test_env_map_sampling(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("C: environment-map sampling");
+#else
     enum { EW = 16, EH = 8 };
     static float map[EW * EH * 3];
     stats_tally t = {0, 0, ""};
@@ -866,6 +905,7 @@ static void test_env_map_sampling(void)
     free(observed); free(expected);
     fogrt_scene_destroy(scene);
     TALLY_ASSERT(t);
+#endif
 }
 
 /* fogrt_hg_pdf next to the peak at g = +-0.999: directions 1e-6 to 1e-2 rad from it, the
@@ -1946,6 +1986,7 @@ typedef struct eq_case {
 /* The KS cases. Negative controls: h doubled where the light is over the segment; where it
    lies beyond an end, the density there is about 1 / (t - delta)^2 whatever h is, so the
    control moves the light 10% farther along the ray instead. */
+#ifndef FOGRT_MINIMAL   /* cases and model of Part II's tests below */
 static const eq_case EQ_CASES[] = {
     {1.0f, 0.5f, 0.0f, 3.0f, 1.0f, 1.0f, "light over the segment"},
     {1.0f, 0.5f, 0.0f, INFINITY, 1.0f, 1.0f, "escaping ray, b = +inf"},
@@ -1981,6 +2022,7 @@ static double eq_cdf(double t, void *user)
     return (eq_theta(m, t) - m->theta_a) / m->range;
 }
 
+#endif
 /* fogrt_sample_equiangular draws t with the exact equiangular CDF, for a light over the
    segment, beyond either end, 1e-3 from the line, and for b = +inf (a ray escaping into open
    fog): a KS test on 2e5 distances per case. Every sample also returns the pdf that
@@ -1991,6 +2033,9 @@ static double eq_cdf(double t, void *user)
    or b = +inf is mishandled. */
 static void test_equiangular_ks(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("B: equiangular sampling");
+#else
     stats_tally t = {0, 0, ""};
     enum { N = 200000 };
     double *x = (double *)malloc(sizeof(double) * N);
@@ -2036,6 +2081,7 @@ static void test_equiangular_ks(void)
     }
     free(x);
     TALLY_ASSERT(t);
+#endif
 }
 
 /* fogrt_equiangular_pdf(t) dt integrated over [a, b] (through t = delta + h sinh v, which
@@ -2045,6 +2091,7 @@ static void test_equiangular_ks(void)
    1.2e-7 (|delta| / h + 2) for evaluating at float t; composite Simpson, 8192 panels). The
    pdf is 0 outside [a, b]. Fails on
    a missing h in the numerator, theta_b - theta_a taken wrongly or b = +inf mishandled. */
+#ifndef FOGRT_MINIMAL   /* helpers of Part II's test below */
 static double eq_pdf_in_v(const eq_case *c, double v)
 {
     float s = (float)(c->delta + (double)c->h * sinh(v));
@@ -2064,8 +2111,12 @@ static double eq_integrate_v(const eq_case *c, double va, double vb)
     return sum * step / 3.0;
 }
 
+#endif
 static void test_equiangular_pdf_normalised(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("B: equiangular sampling");
+#else
     char msg[300];
     for (int k = 0; k < EQ_CASE_COUNT; k++) {
         const eq_case *c = &EQ_CASES[k];
@@ -2082,6 +2133,7 @@ static void test_equiangular_pdf_normalised(void)
         if (!isinf(c->b))
             TEST_ASSERT_EQUAL_FLOAT_MESSAGE(0.0f, fogrt_equiangular_pdf(c->delta, c->h, c->a, c->b, c->b + 0.5f), msg);
     }
+#endif
 }
 
 /* fogrt_sample_equiangular is the inverse CDF to float accuracy, monotone, and inside
@@ -2096,6 +2148,9 @@ static void test_equiangular_pdf_normalised(void)
    from near b to a), or the formula loses the tail. */
 static void test_equiangular_inverse_cdf(void)
 {
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("B: equiangular sampling");
+#else
     static const eq_case extra[] = {
         {-5.0f, 1e-4f, 0.0f, INFINITY, 0, 0, "light far behind the start, 1e-4 from the line, b = +inf"},
         {-5.0f, 1e-4f, 0.0f, 10.0f, 0, 0, "light far behind the start, 1e-4 from the line"},
@@ -2146,6 +2201,7 @@ static void test_equiangular_inverse_cdf(void)
         snprintf(fail, sizeof fail, "%d of %d cases failed; first: %s", failed_cases, cases, first);
         TEST_FAIL_MESSAGE(fail);
     }
+#endif
 }
 
 /* ==========================================================================================
@@ -2240,12 +2296,14 @@ static void test_extreme_uniforms(void)
             TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf > 0.0f, msg);
             assert_unit(fogrt_sample_sphere_solid_angle(v3(0, 0, -100), 0.1f, v3(0, 0, 0), u1, u2, &pdf), msg);
             TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf > 0.0f, msg);
+#ifndef FOGRT_MINIMAL   /* the glow is Part II's (B) */
             for (int w = 0; w < HG_WO_COUNT; w++) {      /* the glow: u1 = 0 aims at the lamp itself */
                 fogrt_vec3 to = v3(HG_WO[w][0], HG_WO[w][1], HG_WO[w][2]), wi = fogrt_sample_glow(to, u1, u2, &pdf);
                 float pe = fogrt_glow_pdf(to, wi);
                 assert_unit(wi, msg);
                 TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf > 0.0f && isfinite(pe) && pe > 0.0f, msg);
             }
+#endif
             assert_unit(fogrt_sample_sphere_solid_angle(v3(0, 0, 0.5f), 1.0f, v3(0, 0, 0), u1, u2, &pdf), msg);
             TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf > 0.0f, msg);
             float b1 = -1.0f, b2 = -1.0f;

@@ -2072,7 +2072,7 @@ static inline const char *cw_step_title(int step)
     case 2: return "transmittance (section 3.2, eq. 7-8)";
     case 3: return "Henyey-Greenstein phase function (section 3.3, eq. 9-12)";
     case 4: return "BVH split: SAH and the volume heuristic (section 2.1, eq. 1-2)";
-    case 5: return "BSDF sampling: diffuse, mirror, glass with Schlick (sections 2.2, 4.2, eq. 3)";
+    case 5: return "BSDF sampling: diffuse, mirror, glass with Schlick (sections 2.2, 4.2)";
     case 9: return "equiangular sampling toward a point light (bonus)";
     default: return NULL;
     }
