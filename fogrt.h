@@ -3505,8 +3505,8 @@ FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render
 #ifdef _OPENMP
 #pragma omp atomic read
 #endif
-        stop = cancelled || (d->cancel && *d->cancel);
-        if (stop) continue;
+        stop = cancelled;
+        if (stop || (d->cancel && *d->cancel)) continue;
         fogrt__render_row(job, y, &rays, &rejected, &samples, d->cancel);
 #ifdef _OPENMP
 #pragma omp atomic capture
