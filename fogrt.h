@@ -6467,6 +6467,7 @@ FOGRT__PRIVATE bool fogrt__lamps_in_fog(const fogrt_scene *s)
    row order: the same k on every run, thread count and split of the samples. Cost: 12288
    paths a pass. Its gain: docs/benchmarks.md, table "Roulette pilot". */
 #define FOGRT__PILOT_W 64
+#define FOGRT__PILOT_MAX_SAH 1000.0f          /* no pilot in trees whose rays cost more */
 #define FOGRT__PILOT_H 48
 #define FOGRT__PILOT_SPP 16
 #define FOGRT__PILOT_K 31                       /* the k' tried: 1, 1.1, ..., 4 */
@@ -6626,7 +6627,12 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
     if (fogrt__lamps_in_fog(s) && !fogrt__find_footprints(s)) return false;   /* B */
 #endif
 #ifndef FOGRT_NO_ESTIMATION
-    x->rr_k = d->roulette_pilot ? fogrt__roulette_pilot(s) : 1.0f;          /* C */
+    /* The pilot's rays cost what the tree's do. Where the SAH cost says a ray visits some
+       thousand nodes (slivers that all overlap: a fan of a million triangles around one
+       vertex; 10 to 30 in ordinary scenes), its fixed number of paths would take minutes
+       before any of the render's own limits apply, so it is not run (k = 1). */
+    if (d->roulette_pilot && fogrt_bvh_sah_cost(s) <= FOGRT__PILOT_MAX_SAH)
+        x->rr_k = fogrt__roulette_pilot(s);                                 /* C */
 #endif
     return true;
 }

@@ -7,6 +7,7 @@
 #include "test_util.h"
 #include <stdlib.h>
 #include <string.h>
+#include <math.h>
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -224,6 +225,48 @@ static void test_cancel_flag_stops_a_render(void)
     fogrt_scene_destroy(s);
 }
 
+/* A fan of slivers around one vertex (every box overlaps every other there: a ray visits
+   thousands of nodes) builds without the roulette's pilot, whose fixed number of paths would
+   take minutes in it; an ordinary scene keeps it. */
+static void test_pilot_skipped_in_sliver_fans(void)
+{
+#ifdef FOGRT_NO_ESTIMATION
+    TEST_IGNORE_MESSAGE("needs Part II of fogrt.h (C: the roulette's pilot): built with FOGRT_MINIMAL or FOGRT_NO_ESTIMATION");
+#else
+    enum { N = 20000 };
+    static float v[3 * (N + 2)];
+    static uint32_t idx[3 * N];
+    fogrt_scene *s = NULL;
+    fogrt_mesh_desc md;
+    fogrt_light_desc l;
+    int i;
+    v[0] = v[1] = v[2] = 0.0f;
+    for (i = 0; i <= N; ++i) {
+        double a = 3.14159 * i / N;
+        v[3 * (i + 1)] = (float)(10.0 * cos(a)); v[3 * (i + 1) + 1] = (float)(10.0 * sin(a)); v[3 * (i + 1) + 2] = -5.0f;
+    }
+    for (i = 0; i < N; ++i) { idx[3 * i] = 0; idx[3 * i + 1] = (uint32_t)i + 1; idx[3 * i + 2] = (uint32_t)i + 2; }
+    CHECK_OK(fogrt_scene_create(NULL, &s));
+    memset(&md, 0, sizeof md);
+    md.positions = v; md.vertex_count = N + 2; md.indices = idx; md.triangle_count = N;
+    md.material = add_basic_material(s, FOGRT_BSDF_DIFFUSE, v3(0.5f, 0.5f, 0.5f), v3(0, 0, 0));
+    CHECK_OK(fogrt_scene_add_mesh(s, &md));
+    memset(&l, 0, sizeof l);
+    l.type = FOGRT_LIGHT_POINT; l.position = v3(0, 0, 5); l.intensity = v3(10, 10, 10);
+    CHECK_OK(fogrt_scene_add_light(s, &l));
+    CHECK_OK(fogrt_scene_build(s, NULL));
+    TEST_ASSERT_TRUE(fogrt_bvh_sah_cost(s) > FOGRT__PILOT_MAX_SAH);
+    TEST_ASSERT_EQUAL_FLOAT(1.0f, s->x->rr_k);
+    fogrt_scene_destroy(s);
+    CHECK_OK(fogrt_scene_create(NULL, &s));
+    CHECK_OK(fogrt_scene_add_default(s));
+    CHECK_OK(fogrt_scene_build(s, NULL));
+    TEST_ASSERT_TRUE(fogrt_bvh_sah_cost(s) < FOGRT__PILOT_MAX_SAH);
+    TEST_ASSERT_TRUE(s->x->rr_k > 1.0f);                 /* the default scene's pilot finds k > 1 */
+    fogrt_scene_destroy(s);
+#endif
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -234,5 +277,6 @@ int main(void)
     RUN_TEST(test_absurd_thread_count_is_cut);
     RUN_TEST(test_rates_do_not_depend_on_batches);
     RUN_TEST(test_cancel_flag_stops_a_render);
+    RUN_TEST(test_pilot_skipped_in_sliver_fans);
     return UNITY_END();
 }
