@@ -31,6 +31,7 @@
 #include <pthread.h>
 #include <sys/types.h>
 #include <sys/stat.h>
+#include <sys/resource.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -534,8 +535,24 @@ CLI_FN void cli_sane_omp_env(char **argv)
    processor); at most 4 per processor and CLI_MAX_THREADS; lowered, with a warning, to as
    many as the system can start. Returns >= 1, or 0 after a message (a stack too small to
    render on: exit 2). */
+/* The main thread renders too, and threads started without OMP_STACKSIZE get this much:
+   a stack limit (ulimit -s) below CLI_MIN_STACK_KIB is refused. Call it from a main whose
+   own frame is small (fogrt's main calls the rest of the program after it). Returns false
+   after a message. */
+CLI_FN bool cli_check_stack(void)
+{
+    struct rlimit rl;
+    if (getrlimit(RLIMIT_STACK, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && rl.rlim_cur < (rlim_t)CLI_MIN_STACK_KIB * 1024) {
+        fprintf(stderr, "%s: the stack limit (ulimit -s) is %lu KiB: rendering needs at least %d KiB (ulimit -s %d)\n",
+                cli_prog, (unsigned long)(rl.rlim_cur / 1024), CLI_MIN_STACK_KIB, CLI_MIN_STACK_KIB);
+        return false;
+    }
+    return true;
+}
+
 CLI_FN int cli_resolve_threads(int requested)
 {
+    {
 #ifdef _OPENMP
     int procs, want, cap, got, err;
     const char *name, *was = getenv("FOGRT_OMP_NUM_THREADS_WAS");
@@ -580,6 +597,7 @@ CLI_FN int cli_resolve_threads(int requested)
     (void)requested;
     return 1;
 #endif
+    }
 }
 
 /* ------------------------------------------------------------------------------------------

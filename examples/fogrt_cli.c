@@ -246,10 +246,10 @@ static void usage(FILE *f)
         "  --reference REF.pfm  measure the error against this image (same size as -r; a\n"
         "                   linear PFM, e.g. a long fogrt render) (default none)\n"
         "\n"
-        "Ctrl-C, SIGTERM or SIGHUP stops within about a second (with a large -l a batch is\n"
-        "rendered in slices of columns, so that no row in flight is long), writes the image so\n"
-        "far (and the --log row), prints the summary marked interrupted and exits 130; while the\n"
-        "scene loads it quits at once; a second signal quits at once without writing.\n"
+        "Ctrl-C, SIGTERM or SIGHUP stops within a sample (the render checks before each one),\n"
+        "writes the image so far (and the --log row), prints the summary marked interrupted and\n"
+        "exits 130; while the scene loads it quits at once; a second signal quits at once\n"
+        "without writing.\n"
         "No output (-f, the -a rate image, --log) may be an input (scene, -c, -e, --reference)\n"
         "or another output, also through a symlink or a hard link: refused before rendering.\n"
         "Exit status: 0 ok, 2 bad input (flag, value, scene/camera/environment/reference file,\n"
@@ -449,6 +449,11 @@ static int parse_args(int argc, char **argv, cli_options *o)
 /* ------------------------------------------------------------------------------------------
    The calls that follow the core's API (issue 13's fogrt_render_desc), kept in one place
    ------------------------------------------------------------------------------------------ */
+/* Set by the first SIGINT/SIGTERM/SIGHUP (see on_signal below). */
+static volatile sig_atomic_t cli_interrupted = 0;
+/* fogrt_render_desc.cancel reads it as an int before every sample (so that -l 65536 stops
+   within one sample, not one row): sig_atomic_t must be int, as it is on glibc and musl. */
+typedef char cli_sig_atomic_is_int[sizeof(sig_atomic_t) == sizeof(int) ? 1 : -1];
 static void fill_render_desc(const cli_options *o, int threads, fogrt_render_desc *rd)
 {
     *rd = fogrt_render_defaults();
@@ -467,6 +472,7 @@ static void fill_render_desc(const cli_options *o, int threads, fogrt_render_des
     rd->light_by_power = o->by_power;
     rd->seed = o->seed;
     rd->threads = threads;
+    rd->cancel = (const volatile int *)&cli_interrupted;
 }
 static void release_image(fogrt_image *img)
 {
@@ -477,7 +483,6 @@ static void release_image(fogrt_image *img)
    Signals: the first SIGINT/SIGTERM/SIGHUP asks the render to stop at the next row block
    and write what it has; the second quits at once (removing a half-written temporary file).
    ------------------------------------------------------------------------------------------ */
-static volatile sig_atomic_t cli_interrupted = 0;
 static volatile sig_atomic_t cli_tty = 0;     /* stderr is a terminal */
 static volatile sig_atomic_t cli_rendering = 0;   /* samples may exist: stop and write them */
 
@@ -1082,8 +1087,6 @@ typedef struct render_state {
     FILE *log; const char *log_path; bool log_failed;
     const float *ref; float *rgb; /* reference and scratch (resolved image) */
     float *rates;                 /* --pixel-rates: width x height, made once after the pilot */
-    float *mask;                  /* column slices (render_batch): width x height (the scratch rgb) */
-    int slices, slice;            /* the slices of a batch, and the one being rendered */
     measured m;
     uint64_t rays;
 } render_state;
@@ -1149,8 +1152,7 @@ static void print_progress(render_state *p, double spp_now, bool force)
 static bool on_progress(const fogrt_progress *pr, void *user)
 {
     render_state *p = (render_state *)user;
-    double rows = (double)pr->rows_done / (pr->rows_total > 0 ? pr->rows_total : 1);
-    double spp_now = (double)p->spp_done + (double)p->spp_batch * ((double)p->slice + rows) / (double)(p->slices > 1 ? p->slices : 1);
+    double spp_now = (double)p->spp_done + (double)p->spp_batch * pr->rows_done / (pr->rows_total > 0 ? pr->rows_total : 1);
     if (cli_interrupted) return false;    /* the rows already started finish; the rest wait */
     print_progress(p, spp_now, false);
     return true;
@@ -1206,50 +1208,6 @@ static void take_measurement(render_state *p, const fogrt_image *img, const char
 /* ------------------------------------------------------------------------------------------
    Rendering: progressive batches through fogrt_render, or CS184's per-pixel adaptive loop
    ------------------------------------------------------------------------------------------ */
-/* Light samples a column slice may hold per row (-l times its width): fogrt_render answers
-   a cancel between rows only, and a row of 800 pixels at -l 65536 takes minutes. About
-   4 microseconds a light sample, so a slice's row takes about 0.1 s at 1 spp. */
-#define CLI_SLICE_LIGHT_SAMPLES 25000
-/* Columns in a slice: from -l alone, never from timing, so that the image is a function of
-   the inputs (with pixel rates off, or before they are made, slices change nothing: a rate
-   of 1 is exactly spp samples, 0 none, and a sample's index is its pixel's count). */
-static int slice_count(const cli_options *o)
-{
-    int w = CLI_SLICE_LIGHT_SAMPLES / o->light_samples;
-    if (w < 1) w = 1;
-    return (o->width + w - 1) / w;
-}
-/* One batch: one fogrt_render call, or with slices one per slice of columns, each through
-   a sample-rate mask (the pixel rates inside the slice, 0 outside). */
-static fogrt_result render_batch(const fogrt_scene *scene, const fogrt_render_desc *rd, fogrt_image *img, int spp,
-                                 fogrt_render_stats *st, render_state *p)
-{
-    fogrt_render_desc sd;
-    fogrt_result r = FOGRT_RESULT_OK;
-    int W = img->width, H = img->height, k, x, y;
-    p->slice = 0;
-    if (p->slices <= 1 || !p->mask) return fogrt_render(scene, rd, img, spp, st);
-    memset(st, 0, sizeof *st);
-    sd = *rd;
-    sd.sample_rate = p->mask;
-    for (k = 0; k < p->slices && !cli_interrupted; ++k) {
-        fogrt_render_stats s1;
-        int x0 = (int)((long)k * W / p->slices), x1 = (int)((long)(k + 1) * W / p->slices);
-        for (y = 0; y < H; ++y)
-            for (x = 0; x < W; ++x) {
-                size_t i = (size_t)y * (size_t)W + (size_t)x;
-                p->mask[i] = x >= x0 && x < x1 ? (rd->sample_rate ? rd->sample_rate[i] : 1.0f) : 0.0f;
-            }
-        p->slice = k;
-        r = fogrt_render(scene, &sd, img, spp, &s1);
-        st->camera_rays += s1.camera_rays; st->rays += s1.rays; st->rejected += s1.rejected; st->black = s1.black;
-        if (r) break;
-    }
-    p->slice = 0;
-    if (!r && cli_interrupted) r = FOGRT_RESULT_CANCELLED;
-    return r;
-}
-
 /* Batches are sized from the measured speed to take about CLI_BATCH_SECONDS (1, 2, 4, ...
    samples per pixel at first), so the estimate updates and Ctrl-C is answered quickly. An
    interrupt cancels the batch through the progress callback: fogrt_render then skips the
@@ -1280,7 +1238,7 @@ static fogrt_result render_progressive(const fogrt_scene *scene, fogrt_render_de
             b = (uint64_t)fmax(1.0, floor((p->seconds_limit - elapsed) * rate));
         p->spp_done = done;
         p->spp_batch = (int)b;
-        r = render_batch(scene, rd, img, (int)b, &st, p);
+        r = fogrt_render(scene, rd, img, (int)b, &st);
         p->rays += st.rays;
         if (r == FOGRT_RESULT_CANCELLED) { r = FOGRT_RESULT_OK; break; }
         if (r) return r;
@@ -1481,7 +1439,12 @@ static void print_camera(const fogrt_camera_desc *c, int W, int H)
            horizontal_fov(c, W, H), vertical_fov(c, W, H), W, H, (double)c->lens_radius, (double)c->focal_distance);
 }
 
-int main(int argc, char **argv)
+/* The program; main only makes the process fit to run it first (its own frame is small, so
+   that a stack limit too small for this one is refused with a message, not a crash). */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static int run(int argc, char **argv)
 {
     cli_options o;
     cli_log logbuf;
@@ -1508,9 +1471,6 @@ int main(int argc, char **argv)
     double t0, t_load, elapsed, spp_mean;
     int status = 0, threads, frame_w, frame_h;
 
-    cli_std_streams();          /* before any file is opened: 0-2 are never an image */
-    cli_sane_omp_env(argv);
-    cli_prog = "fogrt";
     memset(&logbuf, 0, sizeof logbuf);
     memset(&ps, 0, sizeof ps);
     memset(&enc, 0, sizeof enc);
@@ -1716,8 +1676,6 @@ int main(int argc, char **argv)
     ps.ref = ref;
     ps.rgb = rgb;
     ps.rates = rates;
-    ps.slices = o.adaptive ? 1 : slice_count(&o);
-    ps.mask = rgb;           /* free while a batch renders: resolved into only between batches */
     ps.show_target = o.spp_set || (o.time_budget <= 0 && o.target_error <= 0);
     if (ps.show_target) ps.spp_target = (uint64_t)o.spp;
     else if (o.target_error > 0) ps.spp_target = CLI_CEILING_SPP;
@@ -1791,4 +1749,13 @@ done:
     release_image(&img);
     fogrt_scene_destroy(scene);
     return status;
+}
+
+int main(int argc, char **argv)
+{
+    cli_std_streams();          /* before any file is opened: 0-2 are never an image */
+    cli_sane_omp_env(argv);
+    cli_prog = "fogrt";
+    if (!cli_check_stack()) return 2;
+    return run(argc, argv);
 }

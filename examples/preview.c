@@ -1207,6 +1207,7 @@ int main(int argc, char **argv)
     cli_std_streams();          /* before any file is opened: 0-2 are never a saved image */
     cli_sane_omp_env(argv);
     cli_prog = "preview";
+    if (!cli_check_stack()) return 2;
     status = parse_flags(argc, argv, &a->opt);
     if (status == -1) return 0;
     if (status) return status;

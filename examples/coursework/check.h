@@ -142,7 +142,10 @@ static void cw_fmt(char *out, size_t size, const char *fmt, ...)
    Random numbers: fogrt's PCG32 (public API), one fixed stream per check
    ========================================================================================== */
 static float cw_u(fogrt_rng *r) { return fogrt_rng_float(r); }
-static void cw_seed(fogrt_rng *r, uint64_t check) { fogrt_rng_seed(r, 0xC0FFEE12345ull, check); }
+/* 0 for every verdict the kit gives; other values redraw every check's samples (used to
+   measure the checker's false-failure rate on the reference solutions, docs/coursework.md). */
+static uint64_t cw_seed_offset = 0;
+static void cw_seed(fogrt_rng *r, uint64_t check) { fogrt_rng_seed(r, 0xC0FFEE12345ull + cw_seed_offset, check); }
 #define CW_U_MAX (1.0f - 0x1p-24f)   /* the largest u the kit passes */
 
 /* ==========================================================================================
@@ -297,7 +300,7 @@ static void cw_save(const cw_run *run, const char *stem, pf_canvas *c, const cha
     if (!run->img_dir) return;
     lines[0] = verdict;
     out = pf_captioned(c->rgb, c->w, c->h, lines, 1, 1);
-    pf_rect(&out, 0, c->h, 6, out.h - c->h, pass ? PF_GREEN : PF_ORANGE);
+    pf_rect(&out, 0, c->h, out.w, 2, pass ? PF_GREEN : PF_ORANGE);   /* the verdict's colour, above the text */
     snprintf(path, size, "%s/%s.png", run->img_dir, stem);
     if (!stbi_write_png(path, out.w, out.h, 3, out.rgb, 3 * out.w)) path[0] = '\0';
     pf_canvas_free(&out);
@@ -508,8 +511,8 @@ static void cw_step1(const cw_fns *f, cw_run *run)
         cw_fmt(stem, sizeof stem, "step1_chi2_sigma%g", sigma);
         cw_fmt(name, sizeof name, "step1.chi2 sigma_t=%g", sigma);
         {
-            char verdict[700];
-            cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+            char verdict[1400];
+            cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
             cw_picture(run, stem, &p, verdict, pass, png, sizeof png);
         }
         cw_emit(run, name, pass, m, adv, png);
@@ -545,8 +548,8 @@ static void cw_step1(const cw_fns *f, cw_run *run)
             cw_fmt(stem, sizeof stem, "step1_pdf_vs_hist_sigma%g", sigma);
             cw_fmt(name, sizeof name, "step1.pdf_vs_hist sigma_t=%g", sigma);
             {
-                char verdict[700];
-                cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+                char verdict[1400];
+                cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
                 cw_picture(run, stem, &p, verdict, pass, png, sizeof png);
             }
             cw_emit(run, name, pass, m, adv, png);
@@ -749,7 +752,7 @@ static void cw_step2(const cw_fns *f, cw_run *run)
         int n = 40000, flipped = 0;
         fogrt_rng rng;
         cw_plot p;
-        char verdict[800];
+        char verdict[1400];
         for (j = 0; j < 6; ++j) {
             double s = 0.0, s2 = 0.0, mean, var, T = exp(-(double)ds[j]), z, pv;
             long bad = 0;
@@ -785,7 +788,7 @@ static void cw_step2(const cw_fns *f, cw_run *run)
             p.xlabel = "distance d"; p.ylabel = "transmittance"; p.bar_label = "mean of your estimates";
             p.line_label = "exp(-sigma_t d)"; p.n = 6; p.x0 = x0; p.x1 = x1; p.bar = bar; p.line = line;
             p.xmin = 0.0; p.xmax = 5.5; p.points = 1; p.logy = 0;
-            cw_fmt(verdict, sizeof verdict, "step2.estimator %s: %s", pass ? "PASS" : "FAIL", m);
+            cw_fmt(verdict, sizeof verdict, "step2.estimator %s: %s%s%s", pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
             cw_picture(run, "step2_estimator", &p, verdict, pass, png, sizeof png);
             cw_emit(run, "step2.estimator", pass, m, adv, png);
         }
@@ -827,7 +830,7 @@ static double cw__hg_student_mu(double mu, const void *user)
 static void cw_step3(const cw_fns *f, cw_run *run)
 {
     static const double gs_eq[6] = {-0.9, -0.5, 0.0, 0.3, 0.8, 0.99};
-    char name[64], m[600], adv[600], png[256], stem[64], title[160], verdict[900];
+    char name[64], m[600], adv[600], png[256], stem[64], title[160], verdict[1400];
     int i, k;
     /* eq. 9 pointwise */
     cw_begin(run);
@@ -931,7 +934,7 @@ static void cw_step3(const cw_fns *f, cw_run *run)
             p.bar = bar; p.line = line; p.xmin = -1.0; p.xmax = 1.0; p.logy = -1;
             cw_fmt(stem, sizeof stem, "step3_mu_chi2_g%g", g);
             cw_fmt(name, sizeof name, "step3.mu_chi2 g=%g", g);
-            cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+            cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
             cw_picture(run, stem, &p, verdict, pass, png, sizeof png);
             cw_emit(run, name, pass, m, adv, png);
 
@@ -960,7 +963,7 @@ static void cw_step3(const cw_fns *f, cw_run *run)
             p.line_label = "your eq. 9 (x 2 pi)";
             cw_fmt(stem, sizeof stem, "step3_pdf_vs_hist_g%g", g);
             cw_fmt(name, sizeof name, "step3.pdf_vs_hist g=%g", g);
-            cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+            cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
             cw_picture(run, stem, &p, verdict, pass, png, sizeof png);
             cw_emit(run, name, pass, m, adv, png);
         }
@@ -1047,7 +1050,7 @@ static void cw_step3(const cw_fns *f, cw_run *run)
                 b.line = bl; b.xmin = -CW_PI; b.xmax = CW_PI; b.logy = 0;
                 cw_fmt(stem, sizeof stem, "step3_direction_chi2_g%g", g);
                 cw_fmt(name, sizeof name, "step3.direction_chi2 g=%g", g);
-                cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+                cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
                 cw_picture2(run, stem, &a, &b, verdict, pass, png, sizeof png);
             }
             cw_emit(run, name, pass, m, adv, png);
@@ -1299,7 +1302,7 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
     static cw_node nd;
     fogrt_rng rng;
     int s, sets = 400, good = 0, first_bad = -1, only_x = 0, worst_pick = 0, empty_pick = 0;
-    char m[700], adv[700], png[256], title[200], verdict[900];
+    char m[700], adv[700], png[256], title[200], verdict[1400];
     cw_split bad_pick, bad_best;
     double bad_cost = 0.0, bad_best_cost = 0.0;
     int bad_n = 0, bad_kind = 0;
@@ -1402,8 +1405,8 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
         p.title = title; p.xlabel = "candidate plane: x1..x11, y1..y11, z1..z11"; p.ylabel = "cost of the split";
         p.bar_label = "your cw_split_cost"; p.line_label = heuristic == CW_SAH ? "SAH" : "eq. 1";
         p.n = np; p.x0 = x0; p.x1 = x1; p.bar = bar; p.line = line; p.xmin = 0.0; p.xmax = np; p.points = 1; p.logy = 0;
-        cw_fmt(verdict, sizeof verdict, "%s %s: %s", heuristic == CW_SAH ? "step4.sah_choice" : "step4.volume_choice",
-               good == sets ? "PASS" : "FAIL", m);
+        cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", heuristic == CW_SAH ? "step4.sah_choice" : "step4.volume_choice",
+               good == sets ? "PASS" : "FAIL", m, good == sets ? "" : " -- ", good == sets ? "" : adv);
         cw_picture(run, heuristic == CW_SAH ? "step4_sah_choice" : "step4_volume_choice", &p, verdict, good == sets, png,
                    sizeof png);
     } else png[0] = '\0';
@@ -1527,7 +1530,7 @@ static void cw_step5_diffuse(const cw_fns *f, cw_run *run)
     static stats_sphere_grid grid;
     static double obs[20 * 16], expd[20 * 16];
     static float sw[CW_N], sp[CW_N], sx[CW_N], sy[CW_N], sz[CW_N];
-    char name[64], m[600], adv[600], png[256], stem[64], title[160], verdict[900];
+    char name[64], m[600], adv[600], png[256], stem[64], title[160], verdict[1400];
     int k, i, j, nc = 20, np = 16;
     for (k = 0; k < 2; ++k) {
         fogrt_vec3 wo = cw_v3(wos[k][0], wos[k][1], wos[k][2]);
@@ -1601,7 +1604,7 @@ static void cw_step5_diffuse(const cw_fns *f, cw_run *run)
             b.xmin = -CW_PI; b.xmax = CW_PI;
             cw_fmt(stem, sizeof stem, "step5_diffuse_chi2_%s", side > 0 ? "above" : "below");
             cw_fmt(name, sizeof name, "step5.diffuse_chi2 wo.z=%.2f", wo.z);
-            cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+            cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
             cw_picture2(run, stem, &a, &b, verdict, pass, png, sizeof png);
         }
         cw_emit(run, name, pass, m, adv, png);
@@ -1673,7 +1676,7 @@ static void cw_step5_diffuse(const cw_fns *f, cw_run *run)
 static void cw_step5_specular(const cw_fns *f, cw_run *run)
 {
     fogrt_rng rng;
-    char m[600], adv[600] = "", png[256], verdict[900];
+    char m[600], adv[600] = "", png[256], verdict[1400];
     int i, k;
     /* mirror */
     cw_begin(run);
@@ -1727,7 +1730,7 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
                 }
                 if (i == 200 && fabs(v - ref) > 1e-4) r0_bad = 1;
             }
-        cw_fmt(m, sizeof m, "largest |F - Schlick| = %.3g at eta = %g, cos_i = %g (you: %.6f, Schlick: %.6f; tolerance 2e-5)",
+        cw_fmt(m, sizeof m, "largest |F - Schlick| = %.3g at eta = %g, cos_i = %g (you: %.6f, Schlick: %.6f; tolerance 1e-4)",
                worst, we, wc, wv, cw_schlick_ref(we, wc));
         if (inside_icos > inside_n * 9 / 10)
             cw_fmt(adv, sizeof adv, "from inside the glass (cos_i < 0) you used the incident cosine: Schlick needs the cosine on "
@@ -1739,7 +1742,7 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
             cw_fmt(adv, sizeof adv, "wrong from inside (cos_i < 0): use |cos_t| on the outside; total internal reflection gives 1");
         else
             cw_fmt(adv, sizeof adv, "Schlick: F = R0 + (1 - R0)(1 - cos)^5 with R0 = ((eta - 1)/(eta + 1))^2");
-        cw_emit(run, "step5.schlick", worst <= 2e-5, m, adv, NULL);
+        cw_emit(run, "step5.schlick", worst <= 1e-4, m, adv, NULL);
     }
     /* glass: how often it reflects, against Schlick (binomial, Bonferroni over 6 angles) */
     cw_begin(run);
@@ -1793,7 +1796,7 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
                             t = bar[a]; bar[a] = bar[b]; bar[b] = t; t = line[a]; line[a] = line[b]; line[b] = t;
                         }
             }
-            cw_fmt(verdict, sizeof verdict, "step5.glass_choice %s: %s", pass ? "PASS" : "FAIL", m);
+            cw_fmt(verdict, sizeof verdict, "step5.glass_choice %s: %s%s%s", pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
             cw_picture(run, "step5_glass_choice", &p, verdict, pass, png, sizeof png);
             cw_emit(run, "step5.glass_choice", pass, m, adv, png);
         }
@@ -1808,6 +1811,9 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
             double z = cw_rand_range(&rng, -1.0, 1.0), ph = cw_rand_range(&rng, 0.0, 2.0 * CW_PI), sz = sqrt(1.0 - z * z);
             fogrt_vec3 wo = cw_v3(sz * cos(ph), sz * sin(ph), fabs(z) < 0.02 ? 0.3 : z);
             float u = i % 50 == 0 ? CW_U_MAX : (i % 50 == 1 ? 0.0f : cw_u(&rng));
+            /* pdf tolerances below: 1e-3 relative plus 2e-4, because near the critical angle
+               F depends on cos_i through the square root of a small difference, and a correct
+               float Schlick is off by up to ~1e-4 there */
             double F = cw_schlick_ref(1.5, wo.z);
             cw_bsdf_sample s;
             int good = 1;
@@ -1822,7 +1828,7 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
                     good = 0;
                     cw_fmt(why, sizeof why, "reflection of wo = (%.3f, %.3f, %.3f) went to (%.3f, %.3f, %.3f), not (-wo.x, -wo.y, wo.z)",
                            wo.x, wo.y, wo.z, s.wi.x, s.wi.y, s.wi.z);
-                } else if (fabs(s.pdf - F) > 1e-3 * F + 1e-5 || fabs(s.weight - 1.0f) > 1e-3f) {
+                } else if (fabs(s.pdf - F) > 1e-3 * F + 2e-4 || fabs(s.weight - 1.0f) > 1e-3f) {
                     good = 0;
                     cw_fmt(why, sizeof why, "a reflection at cos_i = %.3f has pdf %g and weight %g; expected pdf F = %.5f and "
                            "weight F / F = 1%s", wo.z, s.pdf, s.weight, F,
@@ -1841,7 +1847,7 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
                     cw_fmt(why, sizeof why, "refraction of wo = (%.3f, %.3f, %.3f) gave wi = (%.3f, %.3f, %.3f): sin_t = %.4f but "
                            "Snell gives sin_i / eta = %.4f%s", wo.x, wo.y, wo.z, s.wi.x, s.wi.y, s.wi.z, st, si / eta,
                            fabs(st - si * eta) < 2e-3 ? " (eta is inverted: leaving the glass, divide by 1/eta)" : "");
-                } else if (fabs(s.pdf - (1.0 - F)) > 1e-3 * (1.0 - F) + 1e-5 || fabs(s.weight - 1.0f) > 1e-3f) {
+                } else if (fabs(s.pdf - (1.0 - F)) > 1e-3 * (1.0 - F) + 2e-4 || fabs(s.weight - 1.0f) > 1e-3f) {
                     good = 0;
                     cw_fmt(why, sizeof why, "a refraction at cos_i = %.3f has pdf %g and weight %g; expected pdf 1 - F = %.5f and "
                            "weight 1", wo.z, s.pdf, s.weight, 1.0 - F);
@@ -1926,7 +1932,7 @@ static double cw__eq_student_pdf(double t, const void *user)
 static void cw_step9(const cw_fns *f, cw_run *run)
 {
     static const double cases[4][4] = {{0.0, 1.0, -5.0, 5.0}, {2.0, 0.2, 0.0, HUGE_VAL}, {-1.0, 0.5, 0.0, 3.0}, {10.0, 0.05, 0.0, 4.0}};
-    char name[64], m[600], adv[600], png[256], stem[64], title[160], verdict[900];
+    char name[64], m[600], adv[600], png[256], stem[64], title[160], verdict[1400];
     int k, i;
     double pdf_worst = 0.0;
     char pdf_adv[600] = "";
@@ -1997,7 +2003,7 @@ static void cw_step9(const cw_fns *f, cw_run *run)
         p.bar = bar; p.line = line; p.xmin = e.a; p.xmax = tmax; p.logy = -1;
         cw_fmt(stem, sizeof stem, "step9_chi2_case%d", k + 1);
         cw_fmt(name, sizeof name, "step9.chi2 case %d", k + 1);
-        cw_fmt(verdict, sizeof verdict, "%s %s: %s", name, pass ? "PASS" : "FAIL", m);
+        cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
         cw_picture(run, stem, &p, verdict, pass, png, sizeof png);
         cw_emit(run, name, pass, m, adv, png);
     }

@@ -3,8 +3,11 @@
    Built by `make check-step STEP=N [SRC=their.c]` with -DCW_STEP=N and linked with the
    student's file, which defines that step's functions (coursework.h). Prints one line per
    check and writes the pictures into the directory given as the first argument (default
-   build/coursework). Exit status: 0 when every check passed, 1 otherwise.            */
+   build/coursework). A second argument N > 0 redraws every sampler check with another seed
+   (a third, any word, turns the pictures off): the verdicts the kit gives use seed 0.
+   Exit status: 0 when every check passed, 1 otherwise.                                      */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
@@ -22,6 +25,10 @@ int main(int argc, char **argv)
     memset(&f, 0, sizeof f);
     memset(&run, 0, sizeof run);
     run.img_dir = argc > 1 ? argv[1] : "build/coursework";
+    if (argc > 2) {                      /* another seed: a fresh draw of every sampler check */
+        cw_seed_offset = strtoull(argv[2], NULL, 10);
+        if (argc > 3) run.img_dir = NULL;   /* "-": no pictures */
+    }
 #if CW_STEP == 1
     f.sample_free_flight = cw_sample_free_flight;
     f.free_flight_pdf = cw_free_flight_pdf;
