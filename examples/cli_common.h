@@ -49,8 +49,13 @@
 /* The program's name in every message ("fogrt" or "preview"). */
 static const char *cli_prog = "fogrt";
 
-/* Threads: at most 4 per processor, and never more than this (OMP_NUM_THREADS included). */
+/* Threads: at most 4 per processor, and never more than this (OMP_NUM_THREADS included):
+   the library's own cap when it has one. */
+#ifdef FOGRT_MAX_THREADS
+#define CLI_MAX_THREADS FOGRT_MAX_THREADS
+#else
 #define CLI_MAX_THREADS 256
+#endif
 /* A render thread's stack: fogrt's traversal and integrator need about 32 KiB (measured:
    OMP_STACKSIZE=32K renders, 16K crashes); a smaller OMP_STACKSIZE than this is refused. */
 #define CLI_MIN_STACK_KIB 256
