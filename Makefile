@@ -28,8 +28,24 @@ UNITY_INC := -Itests/runner
 UNITY_SRC := tests/runner/unity.c
 endif
 
-.PHONY: all run test bench install clean deps-stb check-compile
+# Quiet by default: "CC target" instead of the compiler's command line, one line per test
+# program; `make V=1` (and `make test V=1`) shows the commands and every test's output.
+V ?= 0
+ifeq ($(V),1)
+QCC :=
+else
+QCC  = @echo "  CC      $@";
+endif
+NPROC := $(shell nproc 2>/dev/null || echo 2)
+
+.PHONY: all run test test-run bench install clean deps-stb check-compile FORCE
 all: $(BUILD)/fogrt
+
+# ---- tests: every tests/test_*.c is one Unity test program, run into $(BUILD)/tests/<name>.log ----
+# (listed before mk/*.mk, which add their suites to TEST_LOGS: mk/cli.mk the CLI's)
+TEST_SRCS := $(wildcard tests/test_*.c)
+TEST_BINS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRCS))
+TEST_LOGS := $(addsuffix .log,$(TEST_BINS))
 
 # ---- system packages: installed with apt-get when root, else one line naming the package ----
 STB_HEADER := /usr/include/stb/stb_image_write.h
@@ -46,26 +62,45 @@ run: deps-stb $(BUILD)/render_default
 	./$(BUILD)/render_default fog.png fog.pfm
 
 $(BUILD)/render_default: examples/render_default.c fogrt.h | $(BUILD)
-	$(CC) $(ALL_CFLAGS) -o $@ examples/render_default.c $(LDLIBS)
+	$(QCC)$(CC) $(ALL_CFLAGS) -o $@ examples/render_default.c $(LDLIBS)
 
 # ---- the README's program must keep compiling ----
 $(BUILD)/minimal: examples/minimal.c fogrt.h | $(BUILD)
-	$(CC) $(ALL_CFLAGS) -o $@ examples/minimal.c $(LDLIBS)
+	$(QCC)$(CC) $(ALL_CFLAGS) -o $@ examples/minimal.c $(LDLIBS)
 EXTRA_TEST_DEPS += $(BUILD)/minimal
-# ... as C++ too, as the README says it does
+# ... as C++ too, as the README says it does (in make check-compile, with the other C++ builds)
 $(BUILD)/minimal_cxx: examples/minimal.c fogrt.h | $(BUILD)
-	$(CXX) -std=c++11 -Wall -Wextra -pedantic -Wshadow $(CFLAGS) $(OMPFLAGS) -I. -x c++ -o $@ examples/minimal.c $(LDLIBS)
-EXTRA_TEST_DEPS += $(BUILD)/minimal_cxx
+	$(QCC)$(CXX) -std=c++11 -Wall -Wextra -pedantic -Wshadow $(CFLAGS) $(OMPFLAGS) -I. -x c++ -o $@ examples/minimal.c $(LDLIBS)
 
-# ---- tests: every tests/test_*.c is one Unity test program ----
-TEST_SRCS := $(wildcard tests/test_*.c)
-TEST_BINS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRCS))
+# ---- tests ----
+# unity.c (ours or the real one) is compiled once for every test program.
+UNITY_OBJ := $(BUILD)/tests/unity$(if $(UNITY_DIR),_real).o
+$(UNITY_OBJ): $(UNITY_SRC) | $(BUILD)
+	$(QCC)$(CC) $(ALL_CFLAGS) $(UNITY_INC) -c -o $@ $(UNITY_SRC)
 
-$(BUILD)/tests/%: tests/%.c fogrt.h $(wildcard fogrt_*.h) $(wildcard tests/*.h) $(UNITY_SRC) | $(BUILD)
-	$(CC) $(ALL_CFLAGS) $(UNITY_INC) -DFOGRT_SHARED_DIR='"$(SHARED)"' -o $@ $< $(UNITY_SRC) $(LDLIBS)
+$(BUILD)/tests/%: tests/%.c fogrt.h $(wildcard fogrt_*.h) $(wildcard tests/*.h) $(UNITY_OBJ) | $(BUILD)
+	$(QCC)$(CC) $(ALL_CFLAGS) $(UNITY_INC) -DFOGRT_SHARED_DIR='"$(SHARED)"' -o $@ $< $(UNITY_OBJ) $(LDLIBS)
 
-test: deps-stb $(TEST_BINS) $(EXTRA_TEST_DEPS)
-	@sh tests/run_tests.sh $(TEST_BINS)
+# Each program runs as soon as it is built, as many at a time as make runs jobs; its output
+# goes to its log (run_tests.sh --run never fails, so one failing program stops nothing).
+$(addsuffix .log,$(TEST_BINS)): %.log: % FORCE
+	@sh tests/run_tests.sh --run $@ $<
+
+# The slowest programs start first (names from timing make test; absent names are ignored),
+# so that the others fill the remaining cores around them.
+TEST_FIRST := $(foreach t,test_sampling test_extremes test_cli.sh test_load test_render,$(filter $(BUILD)/tests/$(t).log,$(TEST_LOGS)))
+
+# `make test` runs itself again with -j<cores> unless a -j was given, builds and runs the
+# programs in parallel, then reports them in a fixed order: one line each (the output of
+# failing ones in full; V=1: everything), and last "N passed, M failed, K skipped".
+test: deps-stb
+	@case " $(MAKEFLAGS) " in *" -j"*) j= ;; *) j=-j$(NPROC) ;; esac; \
+	  $(MAKE) --no-print-directory $$j test-run
+
+test-run: $(TEST_FIRST) $(filter-out $(TEST_FIRST),$(TEST_LOGS)) $(EXTRA_TEST_DEPS)
+	@sh tests/run_tests.sh --report $(if $(filter 1,$(V)),-v) $(TEST_LOGS)
+
+FORCE:
 
 install: $(BUILD)/fogrt
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/include

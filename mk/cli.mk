@@ -1,7 +1,7 @@
 # mk/cli.mk - the `fogrt` command-line renderer, its shell test, and libFuzzer targets for
 # the scene loaders in fogrt_load.h.
 #   make                 builds $(BUILD)/fogrt (the top Makefile's `all`)
-#   make cli-test        runs tests/test_cli.sh against $(BUILD)/fogrt (part of `make test`)
+#   make cli-test        runs tests/test_cli.sh against $(BUILD)/fogrt (also part of `make test`)
 #   make fuzz            fuzzes the .dae, .obj and .ply parsers, FUZZ_SECONDS each (default 600)
 #   make fuzz-dae ...    one parser
 
@@ -12,7 +12,7 @@ TINYEXR_HEADER := /usr/include/tinyexr.h
 # signed int past its range, which UBSan would abort on; the rest of UBSan stays on.
 CLI_SANITIZE := $(if $(filter 1,$(SANITIZE)),-fno-sanitize=shift)
 $(BUILD)/fogrt: examples/fogrt_cli.c examples/fogrt_cli_trace.c examples/cli_common.h examples/stb_write.h fogrt.h fogrt_load.h | deps-stb deps-exr $(BUILD)
-	$(CC) $(ALL_CFLAGS) $(CLI_SANITIZE) $$([ -e $(TINYEXR_HEADER) ] && echo -DFOGRT_CLI_EXR) -o $@ examples/fogrt_cli.c \
+	$(QCC)$(CC) $(ALL_CFLAGS) $(CLI_SANITIZE) $$([ -e $(TINYEXR_HEADER) ] && echo -DFOGRT_CLI_EXR) -o $@ examples/fogrt_cli.c \
 	  examples/fogrt_cli_trace.c $$([ -e $(TINYEXR_HEADER) ] && echo -ltinyexr) $(LDLIBS)
 
 .PHONY: deps-exr
@@ -23,7 +23,11 @@ deps-exr:
 .PHONY: cli-test fuzz fuzz-dae fuzz-obj fuzz-ply fuzz-build fuzz-deps
 cli-test: $(BUILD)/fogrt
 	@sh tests/test_cli.sh $(BUILD)/fogrt
-EXTRA_TEST_DEPS += cli-test
+# In make test: run beside the Unity programs, its "test_cli.sh: N passed, M failed" counted
+# in the final line.
+$(BUILD)/tests/test_cli.sh.log: $(BUILD)/fogrt FORCE
+	@sh tests/run_tests.sh --run $@ sh tests/test_cli.sh $(BUILD)/fogrt
+TEST_LOGS += $(BUILD)/tests/test_cli.sh.log
 
 # ---- fuzzing (clang + libFuzzer, from Debian: clang and libclang-rt-*-dev) ----
 FUZZ_SECONDS ?= 600
