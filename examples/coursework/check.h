@@ -357,12 +357,7 @@ static void cw_hist_add(cw_hist *h, double x, double u, double slack)
 {
     int lo = 0, hi = h->nb;
     h->n++;
-    if (isnan(x) || x < h->edge[0] - slack || x > h->edge[h->nb] + slack || (isinf(x) && !isinf(h->edge[h->nb]))
-        || (isinf(x) && x < 0)) {
-        if (h->invalid++ == 0) { h->first_invalid = x; h->first_invalid_u = u; }
-        return;
-    }
-    if (isinf(x)) {   /* +infinity with an infinite last edge: not a distance */
+    if (!isfinite(x) || x < h->edge[0] - slack || x > h->edge[h->nb] + slack) {
         if (h->invalid++ == 0) { h->first_invalid = x; h->first_invalid_u = u; }
         return;
     }
@@ -1222,11 +1217,12 @@ static const char *cw_kind_name(int kind)
 static void cw_step4_cost(const cw_fns *f, cw_run *run, int heuristic)
 {
     fogrt_rng rng;
-    int i, n = 20000, matches[6] = {0, 0, 0, 0, 0, 0}, worst_i = -1;
+    int i, n = 20000, matches[6] = {0, 0, 0, 0, 0, 0};
     double worst = 0.0;
     char m[600], adv[600];
     cw_aabb wl, wr, wp;
     int wnl = 0, wnr = 0;
+    memset(&wl, 0, sizeof wl); wr = wp = wl;
     float wgot = 0.0f;
     cw_begin(run);
     cw_seed(&rng, heuristic == CW_SAH ? 400 : 401);
@@ -1263,20 +1259,19 @@ static void cw_step4_cost(const cw_fns *f, cw_run *run, int heuristic)
         for (a = 0; a < 6; ++a) if (fabs(got - alt[a]) <= 1e-4 * fabs(alt[a])) matches[a]++;
         {
             double err = fabs(got - ref) / (1e-4 * fabs(ref) + 1e-12);
-            if (!(err <= worst)) { worst = err; worst_i = i; wl = l; wr = r; wp = p; wnl = nl; wnr = nr; wgot = (float)got; }
+            if (!(err <= worst)) { worst = err; wl = l; wr = r; wp = p; wnl = nl; wnr = nr; wgot = (float)got; }
         }
     }
     {
         int pass = worst <= 1.0, a, best = -1;
         const char *hname = heuristic == CW_SAH ? "SAH" : "volume heuristic";
         for (a = 0; a < 6; ++a) if (matches[a] > n * 9 / 10) { best = a; break; }
-        if (worst_i < 0) { wl = wr = wp; }
         cw_fmt(m, sizeof m, "%d random splits; worst: N_l = %d, N_r = %d, you gave %.7g, the %s gives %.7g (relative tolerance 1e-4)",
                n, wnl, wnr, wgot, hname, cw_ref_cost(heuristic, &wp, &wl, wnl, &wr, wnr));
         if (heuristic == CW_SAH) {
             static const char *why[5] = {
-                "you return N_l A_l + N_r A_r: divide by the parent's area A (a ray that hits the parent hits a child with "
-                "probability A_child / A) and add the traversal cost 1",
+                ("you return N_l A_l + N_r A_r: divide by the parent's area A (a ray that hits the parent hits a child with "
+                 "probability A_child / A) and add the traversal cost 1"),
                 "you return (N_l A_l + N_r A_r) / A: the SAH adds the traversal cost, 1 + ...",
                 "you used volumes; the SAH weighs each side by its surface area",
                 "each side's count must multiply its own area: N_l A_l + N_r A_r",
@@ -1284,8 +1279,8 @@ static void cw_step4_cost(const cw_fns *f, cw_run *run, int heuristic)
             cw_fmt(adv, sizeof adv, "%s", best >= 0 && best < 5 ? why[best] : "SAH: 1 + (N_l A_l + N_r A_r) / A, A = 2 (dx dy + dy dz + dz dx)");
         } else {
             static const char *why[5] = {
-                "the volume heuristic's product is summed the wrong way (N_l V_r + N_r V_l): eq. 1 pairs each side's count "
-                "with its own volume, H = N_l V_l + N_r V_r",
+                ("the volume heuristic's product is summed the wrong way (N_l V_r + N_r V_l): eq. 1 pairs each side's count "
+                 "with its own volume, H = N_l V_l + N_r V_r"),
                 "you multiply the sums, (N_l + N_r)(V_l + V_r): eq. 1 is a sum of products, N_l V_l + N_r V_r",
                 "you used surface areas: eq. 1 weighs each side by its volume V = dx dy dz",
                 "eq. 1 has no division by the parent's volume: H = N_l V_l + N_r V_r",
@@ -1454,7 +1449,7 @@ static void cw_step4_edges(const cw_fns *f, cw_run *run)
                    "on x and y all centroids sit in bin 0, so no plane there splits", h ? "volume" : "SAH", got.axis, got.plane, best.plane);
         /* every centroid in one place: nothing splits */
         nd.n = 5;
-        for (i = 0; i < 5; ++i) { int a; for (a = 0; a < 3; ++a) { nd.prim[i].lo[a] = 0.0f; nd.prim[i].hi[a] = 1.0f + 0.0f * i; } }
+        for (i = 0; i < 5; ++i) { int a; for (a = 0; a < 3; ++a) { nd.prim[i].lo[a] = 0.0f; nd.prim[i].hi[a] = 1.0f; } }
         cw_node_bin(&nd, 12);
         got = f->best_split(h, &nd.parent, &nd.bins);
         total++;
@@ -1656,7 +1651,7 @@ static void cw_step5_diffuse(const cw_fns *f, cw_run *run)
             }
             pass = nw > 0 && bad_w == 0 && bad_p == 0;
             cw_fmt(m, sizeof m, "mean weight %.5f (f |cos| / pdf = 1 for a white diffuse surface), %ld weights off by more than "
-                   "1e-4, %ld pdfs off cos/pi by more than 1e-4", nw ? wsum / nw : NAN, bad_w, bad_p);
+                   "1e-4 (largest error %.3g), %ld pdfs off cos/pi by more than 1e-4", nw ? wsum / nw : NAN, bad_w, werr, bad_p);
             if (nw == 0) cw_fmt(adv, sizeof adv, "no valid samples to weigh");
             else if (fcos > 0.9 * nw)
                 cw_fmt(adv, sizeof adv, "your weight is f |cos| = |cos|/pi: did you forget to divide by the pdf? With cosine-"
@@ -2006,10 +2001,44 @@ static void cw_step9(const cw_fns *f, cw_run *run)
         cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
         cw_picture(run, stem, &p, verdict, pass, png, sizeof png);
         cw_emit(run, name, pass, m, adv, png);
+
+        /* the student's pdf integrated over the same bins against the student's samples
+           (split at delta, where a narrow peak sits) */
+        cw_begin(run);
+        {
+            double total = 0.0, z;
+            int w;
+            for (i = 0; i < nb; ++i) {
+                double lo = h.edge[i], hi = isinf(h.edge[i + 1]) ? e.delta + 1e5 * e.h + fabs(lo) : h.edge[i + 1];
+                h.expd[i] = (double)h.n * ((e.delta > lo && e.delta < hi)
+                                           ? cw_integrate(cw__eq_student_pdf, &e, lo, e.delta) + cw_integrate(cw__eq_student_pdf, &e, e.delta, hi)
+                                           : cw_integrate(cw__eq_student_pdf, &e, lo, hi));
+                total += h.expd[i];
+            }
+            fit = cw_hist_fit(h.obs, h.expd, nb);
+            pass = h.invalid == 0 && fit.p >= CW_ALPHA;
+            w = cw_worst_bin(h.obs, h.expd, nb, &z);
+            cw_fmt(m, sizeof m, "chi2 = %.1f, dof %d, p = %.3g (fail if p < %g); your pdf's mass over [a, b] %.4g",
+                   fit.chi2, fit.dof, fit.p, CW_ALPHA, total / (double)h.n);
+            if (h.invalid) cw_fmt(adv, sizeof adv, "the sampler gave invalid t (see step9.chi2 case %d)", k + 1);
+            else if (fabs(total / (double)h.n - 1.0) > 0.01)
+                cw_fmt(adv, sizeof adv, "your pdf integrates to %.4g over [a, b], not 1 (see step9.pdf_integral)", total / (double)h.n);
+            else
+                cw_fmt(adv, sizeof adv, "your pdf and your sampler disagree most for t in [%.4g, %.4g): %.0f samples, your pdf "
+                       "predicts %.0f", h.edge[w], h.edge[w + 1], h.obs[w], h.expd[w]);
+            cw_hist_density(&h, tmax, x0, x1, bar, line);
+            cw_fmt(title, sizeof title, "Step 9: your pdf against your samples, delta = %g, h = %g", e.delta, e.h);
+            p.title = title; p.line_label = "your cw_equiangular_pdf";
+            cw_fmt(stem, sizeof stem, "step9_pdf_vs_hist_case%d", k + 1);
+            cw_fmt(name, sizeof name, "step9.pdf_vs_hist case %d", k + 1);
+            cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
+            cw_picture(run, stem, &p, verdict, pass, png, sizeof png);
+            cw_emit(run, name, pass, m, adv, png);
+        }
     }
     /* the pdf the sampler returns and the pdf function, at the samples */
     cw_begin(run);
-    cw_fmt(m, sizeof m, "%d samples: largest pdf error %.3g x the tolerance (relative 1e-3)", pdf_checked, pdf_worst / 1.0 * 1.0);
+    cw_fmt(m, sizeof m, "%d samples: largest pdf error %.3g x the tolerance (relative 1e-3)", pdf_checked, pdf_worst);
     cw_emit(run, "step9.pdf_at_samples", pdf_checked > 0 && pdf_worst <= 1.0, m,
             pdf_adv[0] ? pdf_adv : "the sampler's pdf and cw_equiangular_pdf must both be the density of t", NULL);
     /* the pdf integrates to one over [a, b] */
