@@ -13,6 +13,7 @@
 #   - FOGRT_STATIC (every function static: must not warn about unused functions)
 #   - all 16 combinations of FOGRT_NO_MEDIUM, FOGRT_NO_GLASS, FOGRT_NO_EXACT_FRESNEL and
 #     FOGRT_NO_STDIO (compile only), with gcc, and the full strip as C++
+#   - FOGRT_MINIMAL (Part I alone): gcc, linked and rendering the default scene; g++
 #   - what each strip macro claims to remove is gone from the object file (nm): the public
 #     functions of the feature are defined without the macro and absent with it
 #   - FOGRT_MINIMAL: no function defined in Part II of fogrt.h is left in the object file
@@ -207,6 +208,13 @@ if have "$GCC"; then
             done
         done
     done
+fi
+if have "$GCC"; then
+    run "$GCC FOGRT_MINIMAL: Part I alone, linked and rendering the default scene" \
+        sh -c "$GCC $CWARN -fopenmp -DFOGRT_MINIMAL -I'$ROOT' -c '$TMP/impl.c' -o '$TMP/min_impl.o' && $GCC $CWARN -DFOGRT_MINIMAL -I'$ROOT' -c '$TMP/user.c' -o '$TMP/min_user.o' && $GCC -fopenmp -o '$TMP/min_prog' '$TMP/min_impl.o' '$TMP/min_user.o' -lm && '$TMP/min_prog'"
+fi
+if have "$GXX"; then
+    run "$GXX FOGRT_MINIMAL" $GXX $XXWARN -DFOGRT_MINIMAL -I"$ROOT" -c "$TMP/impl.cc" -o "$TMP/min_cxx.o"
 fi
 if have "$GXX"; then
     run "$GXX strip: all four" $GXX $XXWARN -DFOGRT_NO_MEDIUM -DFOGRT_NO_GLASS -DFOGRT_NO_EXACT_FRESNEL \
