@@ -1123,8 +1123,10 @@ FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n
 #ifndef FOGRT_MINIMAL
 FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n);        /* 3 */
 FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s);                                             /* 4 */
+#ifndef FOGRT_NO_MEDIUM
 FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax,
-                                      float *a, float *b);                                        /* 6 (C) */
+                                  float *a, float *b);                                            /* 6 (C) */
+#endif
 FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const struct fogrt__settings *st);      /* 7 (E) */
 FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const struct fogrt__settings *st, fogrt__v3 o,
                                            fogrt__v3 d, fogrt_rng *rng, uint64_t *rays);
