@@ -216,6 +216,13 @@ fi
 if have "$GXX"; then
     run "$GXX FOGRT_MINIMAL" $GXX $XXWARN -DFOGRT_MINIMAL -I"$ROOT" -c "$TMP/impl.cc" -o "$TMP/min_cxx.o"
 fi
+if have "$GCC"; then
+    for defs in -DFOGRT_NO_WIDE_BVH -DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_NO_ESTIMATION \
+                "-DFOGRT_NO_WIDE_BVH -DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_NO_ESTIMATION" \
+                "-DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_NO_MEDIUM" "-DFOGRT_NO_ESTIMATION -DFOGRT_TRACE"; do
+        run "$GCC appendix removed: $defs" $GCC $CWARN -fopenmp $defs -I"$ROOT" -c "$TMP/impl.c" -o "$TMP/app.o"
+    done
+fi
 if have "$GXX"; then
     run "$GXX strip: all four" $GXX $XXWARN -DFOGRT_NO_MEDIUM -DFOGRT_NO_GLASS -DFOGRT_NO_EXACT_FRESNEL \
         -DFOGRT_NO_STDIO -I"$ROOT" -c "$TMP/impl.cc" -o "$TMP/strip_cxx.o"
@@ -270,6 +277,30 @@ if have "$GCC" && have nm; then
     run "nm: FOGRT_NO_STDIO removes the file writers" strip_nm FOGRT_NO_STDIO fogrt_write_pfm fogrt_write_ppm fopen
 else
     skip "nm checks: gcc or nm not installed"
+fi
+
+# ---- each FOGRT_NO_<appendix> leaves its appendix out (nm, every function visible) ----------
+appendix_nm() {
+    macro=$1
+    shift
+    flags="-std=c99 -O0 -fno-inline -fkeep-static-functions -I$ROOT"
+    $GCC $flags -c "$TMP/impl.c" -o "$TMP/app_full.o" || return 1
+    $GCC $flags -D"$macro" -c "$TMP/impl.c" -o "$TMP/app_cut.o" || return 1
+    for sym in "$@"; do
+        nm "$TMP/app_full.o" | grep -q " [tT] $sym\$" || { echo "$sym missing from the full build"; return 1; }
+        if nm "$TMP/app_cut.o" | grep -q " $sym\$"; then echo "$sym still in the $macro build"; return 1; fi
+    done
+}
+if have "$GCC" && have nm; then
+    run "nm: FOGRT_NO_WIDE_BVH removes appendix A" appendix_nm FOGRT_NO_WIDE_BVH \
+        fogrt__wbvh_build fogrt__wbvh_pack_leaf fogrt__x_leaf_keep fogrt__alloc_big
+    run "nm: FOGRT_NO_LAMPS_IN_FOG removes appendix B" appendix_nm FOGRT_NO_LAMPS_IN_FOG \
+        fogrt_sample_equiangular fogrt_sample_glow fogrt__hg_table_build fogrt__find_footprints fogrt__scatter_glow
+    run "nm: FOGRT_NO_ESTIMATION removes appendix C" appendix_nm FOGRT_NO_ESTIMATION \
+        fogrt_image_sample_rates fogrt_scene_set_environment_map fogrt_fresnel_dielectric fogrt__roulette_pilot \
+        fogrt__x_pixel_position fogrt__build_light_pick
+else
+    skip "appendix nm checks: gcc or nm not installed"
 fi
 
 # ---- FOGRT_MINIMAL leaves Part II out whole (nm) --------------------------------------------
