@@ -4,10 +4,11 @@
 #                   when present (else those panels are skipped with a message)
 #   make figures FIGURES_ARGS=--quick          a quarter of the samples (a smoke run)
 #   make figures FIGURES_ARGS="--only fig4"    one experiment (fig2 fig3 fig4 equiangular bvh fresnel)
-#   make figures-docs  the same run into docs/figures/ and docs/experiments.md, the committed
-#                   copy: run it on purpose after a change that alters the images, and commit
-#                   the result. The report holds CPU times and the equiangular ladder stops by
-#                   time, so two runs differ; that is why `make figures` writes to $(BUILD).
+#   make figures-docs  the same run with its images in docs/figures/ (committed: the PNGs are
+#                   the same on every run of one build, their captions hold no times; the
+#                   equiangular plot's times vary) and its report, which holds CPU times, in
+#                   $(BUILD)/experiments.md. Run it on purpose after a change that alters the
+#                   images, and commit them.
 .PHONY: figures figures-docs
 FIGURES_ARGS ?=
 FIGURES_OUT  ?= $(BUILD)/figures
@@ -25,4 +26,4 @@ figures: $(BUILD)/bin/figures
 	  --doc $$(case "$(FIGURES_ARGS)" in *--only*) echo $(BUILD)/experiments-partial.md ;; *) echo $(FIGURES_DOC) ;; esac) $(FIGURES_ARGS)
 
 figures-docs:
-	@$(MAKE) --no-print-directory figures FIGURES_OUT=docs/figures FIGURES_DOC=docs/experiments.md
+	@$(MAKE) --no-print-directory figures FIGURES_OUT=docs/figures FIGURES_DOC=$(BUILD)/experiments.md
