@@ -1389,7 +1389,7 @@ static int check_scene_kind(const char *path)
     return 0;
 }
 
-/* --log: a new file gets the header row now; an existing one must be a fogrt log (its first
+/* --log: a new file gets the header row at once; an existing one must be a fogrt log (its first
    line that header), else appending would damage a file that is something else. NULL with
    *status set (2 refused, 1 cannot write) after one message. */
 static FILE *open_log(const char *path, int *status)
@@ -1511,7 +1511,7 @@ static int run(int argc, char **argv)
         if (!cli_prepare_output(&out, "-f", o.output)) return 1;
         if (o.adaptive && !cli_prepare_output(&rate_out, "-a (the rate image)", rate_name)) return 1;
         if (o.reference && !(ref = read_reference(o.reference, o.width, o.height))) return 2;
-        if (o.log_path) {           /* created (or checked) now, not after the render */
+        if (o.log_path) {           /* created (or checked) before anything is loaded or rendered */
             ps.log = open_log(o.log_path, &status);
             if (!ps.log) { free(ref); return status; }
             ps.log_path = o.log_path;
