@@ -348,7 +348,7 @@ static void shot_free(shot *s) { fogrt_image_free(&s->img); }
 /* The reference of a scene: path NEE+MIS, its own seed. */
 static void render_reference(const fogrt_scene *scene, int spp, shot *ref)
 {
-    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_render_desc rd = fogrt_render_paper_defaults();
     rd.seed = 0xC0FFEE;
     shot_init(ref);
     shot_render(ref, scene, &rd, spp);
@@ -371,7 +371,7 @@ static void figure2_scene(scene_kind kind, const char *tag)
                 "Columns: %d and %d samples per pixel.\n\n| method | %d spp | %d spp |\n|---|---|---|\n",
             scene_title(kind), (int)ref.img.count[0], ref.seconds, estimated(&ref.img), mean_lum(&ref.img), lo, hi, lo, hi);
     for (c = 0; c < 4; ++c) {
-        fogrt_render_desc rd = fogrt_render_defaults();
+        fogrt_render_desc rd = fogrt_render_paper_defaults();
         shot s;
         char name[64], cell[2][700];
         int k;
@@ -445,14 +445,14 @@ static void figure3(void)
     {   /* the sweep's exposure comes from sigma_t = 0.2 */
         fogrt_scene *s2 = make_scene(kind, 0.2f, 0.9f, 0.0f, FOGRT_BVH_SAH);
         shot m2;
-        (void)render_halves(s2, fogrt_render_defaults(), spp_of(16), &m2);
+        (void)render_halves(s2, fogrt_render_paper_defaults(), spp_of(16), &m2);
         expo = exposure_for(&m2.img);
         shot_free(&m2);
         fogrt_scene_destroy(s2);
     }
     for (i = 0; i < 6; ++i) {
         fogrt_scene *scene = make_scene(kind, sig[i], 0.9f, 0.0f, FOGRT_BVH_SAH);
-        fogrt_render_desc rd = fogrt_render_defaults();
+        fogrt_render_desc rd = fogrt_render_paper_defaults();
         shot m;
         halves h;
         char name[64];
@@ -509,7 +509,7 @@ static void figure4(void)
     for (k = 0; k < nrows; ++k) {   /* exposures from the row's brightest image, so that its halo is not clipped */
         float g_expo = k == 0 ? 0.9f : k == 1 ? -0.9f : 0.0f;
         fogrt_scene *scene = make_scene(rows[k], rows[k] == SCENE_SPOT ? 0.5f : 0.3f, 0.9f, g_expo, FOGRT_BVH_SAH);
-        fogrt_render_desc rd = fogrt_render_defaults();
+        fogrt_render_desc rd = fogrt_render_paper_defaults();
         shot m;
         if (k < 2) rd.integrator = FOGRT_INTEGRATOR_DIRECT;
         (void)render_halves(scene, rd, spp_of(16), &m);
@@ -520,7 +520,7 @@ static void figure4(void)
     for (k = 0; k < nrows; ++k)
         for (i = 0; i < 5; ++i) {
             fogrt_scene *scene = make_scene(rows[k], rows[k] == SCENE_SPOT ? 0.5f : 0.3f, 0.9f, gs[i], FOGRT_BVH_SAH);
-            fogrt_render_desc rd = fogrt_render_defaults();
+            fogrt_render_desc rd = fogrt_render_paper_defaults();
             shot m;
             halves h;
             char name[64];

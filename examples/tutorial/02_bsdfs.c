@@ -22,7 +22,7 @@ int main(int argc, char **argv)
     const fogrt_bsdf_type type[4] = {FOGRT_BSDF_DIFFUSE, FOGRT_BSDF_MIRROR, FOGRT_BSDF_REFRACTION, FOGRT_BSDF_GLASS};
     fogrt_vec3 wo;                       /* local frame: the normal is +z; 45 degrees off it */
     fogrt_scene *scene;
-    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_render_desc rd = fogrt_render_paper_defaults();   /* the paper's method (Part I) */
     tut_strip strip = tut_strip_make(1,
         "Step 2, the BSDFs: diffuse, mirror, refraction and glass spheres (left to "
         "right) in the Cornell box under its ceiling lamp; path traced, no fog");

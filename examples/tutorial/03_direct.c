@@ -22,7 +22,7 @@ int main(int argc, char **argv)
     const char *png = argc > 1 ? argv[1] : "03_direct.png";
     int spp = argc > 2 ? atoi(argv[2]) : 32;
     fogrt_scene *scene;
-    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_render_desc rd = fogrt_render_paper_defaults();   /* the paper's method (Part I) */
     tut_strip strip = tut_strip_make(2,
         "Step 3, direct light (one bounce): the four spheres lit by the ceiling lamp, "
         "sampled two ways at the same samples per pixel");

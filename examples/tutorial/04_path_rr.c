@@ -23,7 +23,7 @@ int main(int argc, char **argv)
     const char *png = argc > 1 ? argv[1] : "04_path_rr.png";
     int spp = argc > 2 ? atoi(argv[2]) : 64;
     fogrt_scene *scene;
-    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_render_desc rd = fogrt_render_paper_defaults();   /* the paper's method (Part I) */
     tut_strip strip = tut_strip_make(3,
         "Step 4, path tracing and Russian roulette: the four spheres, direct light only "
         "against every bounce with roulette from bounce 3 or 1");

@@ -26,7 +26,7 @@ int main(int argc, char **argv)
     tut_strip strip = tut_strip_make(4,
         "Step 5, free flight: the Cornell box filled with absorbing fog (albedo 0) of "
         "rising density sigma_t [1 / scene unit]");
-    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_render_desc rd = fogrt_render_paper_defaults();   /* the paper's method (Part I) */
     fogrt_rng rng;
     int k, i, n = 1000000, reach = 0;
     double mean_t = 0.0;

@@ -23,7 +23,7 @@ int main(int argc, char **argv)
     tut_strip strip = tut_strip_make(4,
         "Step 6, the Henyey-Greenstein phase: scattering fog (sigma_t 0.3, albedo 0.9), "
         "a spot light on the back wall aimed at the camera, g from -0.5 to 0.9");
-    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_render_desc rd = fogrt_render_paper_defaults();   /* the paper's method (Part I) */
     fogrt_light_desc spot;
     fogrt_vec3 wo;
     fogrt_rng rng;

@@ -24,7 +24,7 @@ int main(int argc, char **argv)
         "Step 7, light sampling in fog: fog (sigma_t 0.3, albedo 0.9, g 0.5) lit only "
         "by the ceiling lamp, with and without next-event estimation at the fog "
         "collisions");
-    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_render_desc rd = fogrt_render_paper_defaults();   /* the paper's method (Part I) */
     fogrt_scene *scene;
     double t_on, t_off;
     if (spp < 1) { fprintf(stderr, "07_nee_fog: samples_per_pixel must be >= 1\n"); return 2; }

@@ -24,7 +24,7 @@ int main(int argc, char **argv)
     tut_strip strip = tut_strip_make(2,
         "Step 8, equiangular sampling: a point light in fog (sigma_t 0.3, albedo 0.9, g "
         "0.3), its light gathered along every fog segment or only at collisions");
-    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_render_desc rd = fogrt_render_paper_defaults();   /* the paper's method (Part I) */
     fogrt_light_desc point;
     fogrt_scene *scene;
     float pdf;
@@ -47,7 +47,7 @@ int main(int argc, char **argv)
     tut_fog(scene, 0.3f, 0.9f, 0.3f);
     tut_check(fogrt_scene_build(scene, NULL), "fogrt_scene_build");
 
-    rd.equiangular = true;                          /* the default */
+    rd.equiangular = true;                          /* Part II, B, switched on (the full defaults have it) */
     tut_render(scene, &rd, spp, "point light, equiangular", &strip, 0, 1.5f);
     rd.equiangular = false;                         /* NEE at fog collisions only */
     tut_render(scene, &rd, spp, "point light, collisions only", &strip, 1, 1.5f);

@@ -64,7 +64,7 @@ int main(int argc, char **argv)
     tut_strip strip = tut_strip_make(3,
         "Step 10, where the samples go: a spot light in fog (sigma_t 0.5, albedo 0.9, g "
         "0.6) over a diffuse sphere, every pixel alike against pixel rates");
-    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_render_desc rd = fogrt_render_paper_defaults();   /* the paper's method (Part I) */
     fogrt_light_desc spot;
     fogrt_scene *scene;
     float *rates = (float *)malloc(sizeof(float) * TUT_W * TUT_H), *map = (float *)malloc(sizeof(float) * 3 * TUT_W * TUT_H);
