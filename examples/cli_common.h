@@ -510,10 +510,13 @@ CLI_FN int cli_thread_cap(int *procs_out)
     return 4 * procs < CLI_MAX_THREADS ? 4 * procs : CLI_MAX_THREADS;
 }
 
-/* libgomp sizes stack arrays by OMP_NUM_THREADS when it starts a team, so a huge value
-   (100000) overflows the main thread's stack whatever the team size asked for later: when
-   it is above the cap, the program starts again with it lowered (before any OpenMP work),
-   and FOGRT_OMP_NUM_THREADS_WAS keeps the value given for the warning. Call first in main. */
+/* A parallel region without a thread count (the library's roulette pilot is one) takes
+   OMP_NUM_THREADS, and with 100000 libgomp overflows the stack starting that team.
+   omp_set_num_threads (cli_resolve_threads) mends it only for the thread that calls it: a
+   thread the program starts itself (the preview's render thread, which rebuilds the scene)
+   begins from the environment again. So when OMP_NUM_THREADS is above the cap the program
+   starts again with it lowered, before any OpenMP work; FOGRT_OMP_NUM_THREADS_WAS keeps the
+   value given, for the warning. Call first in main. */
 CLI_FN void cli_sane_omp_env(char **argv)
 {
 #if defined(_OPENMP) && defined(__linux__)
