@@ -877,7 +877,8 @@ typedef enum fogrt_tonemap {
     FOGRT_TONEMAP_NUM,
     FOGRT_TONEMAP_FORCE_U32 = 0x7FFFFFFF
 } fogrt_tonemap;
-/* Linear RGB floats to 8-bit RGB, with an exposure multiplier (0 = 1). NaN maps to 0. */
+/* Linear RGB floats to 8-bit RGB. exposure in stops (EV, as fogrt's and the preview's
+   --exposure): the image is multiplied by 2^exposure first (0: as it is). NaN maps to 0. */
 FOGRT_API void fogrt_tonemap_rgb8(const float *rgb, int width, int height, float exposure,
                                   fogrt_tonemap mode, unsigned char *out);
 #ifndef FOGRT_NO_STDIO
@@ -3564,7 +3565,7 @@ FOGRT__PUBLIC void fogrt_tonemap_rgb8(const float *rgb, int width, int height, f
                                       fogrt_tonemap mode, unsigned char *out)
 {
     size_t i, n = (size_t)FOGRT__MAX(width, 0) * (size_t)FOGRT__MAX(height, 0) * 3;
-    float e = FOGRT__DEF(exposure, 1.0f);
+    float e = exp2f(fogrt__finite(exposure) ? FOGRT__CLAMP(exposure, -64.0f, 64.0f) : 0.0f);
     for (i = 0; i < n; ++i) {
         float x = rgb[i] * e;
         if (!(x > 0.0f)) x = 0.0f;                   /* also NaN -> 0 */
@@ -6520,7 +6521,8 @@ FOGRT__PRIVATE float fogrt__pilot_pass(const fogrt_scene *s, const fogrt__settin
     double best = 0.0;
     int y, j, jbest = 0;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1)
+    int nthreads = FOGRT__MIN(omp_get_max_threads(), FOGRT__MIN(FOGRT_MAX_THREADS, 4 * omp_get_num_procs()));
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads)
 #endif
     for (y = 0; y < FOGRT__PILOT_H; ++y) row[y] = fogrt__pilot_row(s, st, xs, cam, y);
     memset(&a, 0, sizeof a);

@@ -313,7 +313,7 @@ static const char *save_png(const char *name, const fogrt_image *img, float expo
     int x, y;
     if (!rgb || !rgb8 || !big) { fprintf(stderr, "figures: out of memory\n"); exit(1); }
     fogrt_image_resolve(img, rgb);
-    fogrt_tonemap_rgb8(rgb, W, H, exposure, FOGRT_TONEMAP_SRGB, rgb8);
+    fogrt_tonemap_rgb8(rgb, W, H, log2f(exposure), FOGRT_TONEMAP_SRGB, rgb8);   /* a multiplier here, stops there */
     for (y = 0; y < H * zoom; ++y)
         for (x = 0; x < W * zoom; ++x) memcpy(big + 3 * ((size_t)y * W * zoom + x), rgb8 + 3 * ((size_t)(y / zoom) * W + x / zoom), 3);
     lines[0] = what; lines[1] = detail;

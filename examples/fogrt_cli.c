@@ -714,7 +714,7 @@ static bool encode_exr(int W, int H, const float *rgb, cli_membuf *out)
 #endif
 
 /* PFM or EXR (linear, unscaled), PPM, PNG or JPG by extension. */
-static bool encode_image(const char *path, int W, int H, const float *rgb, float exposure,
+static bool encode_image(const char *path, int W, int H, const float *rgb, float exposure_ev,
                          unsigned char *rgb8, cli_membuf *out)
 {
     char header[64];
@@ -723,7 +723,7 @@ static bool encode_image(const char *path, int W, int H, const float *rgb, float
 #ifdef FOGRT_CLI_EXR
     if (cli_ends_with(path, ".exr")) return encode_exr(W, H, rgb, out);
 #endif
-    if (rgb) fogrt_tonemap_rgb8(rgb, W, H, exposure, FOGRT_TONEMAP_SRGB, rgb8);
+    if (rgb) fogrt_tonemap_rgb8(rgb, W, H, exposure_ev, FOGRT_TONEMAP_SRGB, rgb8);
     if (cli_ends_with(path, ".ppm")) {
         n = snprintf(header, sizeof header, "P6\n%d %d\n255\n", W, H);
         cli_membuf_put(out, header, (size_t)n);
@@ -1705,7 +1705,7 @@ static int run(int argc, char **argv)
 
     /* Write: the image, then CS184's sampling-rate image */
     fogrt_image_resolve(&img, rgb);
-    if (!encode_image(o.output, o.width, o.height, rgb, exp2f(o.exposure_ev), rgb8, &enc)) {
+    if (!encode_image(o.output, o.width, o.height, rgb, o.exposure_ev, rgb8, &enc)) {
         fprintf(stderr, "fogrt: -f %s: could not encode the image (out of memory)\n", o.output);
         status = 1; goto done;
     }
@@ -1713,7 +1713,7 @@ static int run(int argc, char **argv)
     if (o.adaptive) {
         enc.size = 0;
         rate_image(&img, o.spp, rgb8);
-        if (!encode_image(rate_name, o.width, o.height, NULL, 1.0f, rgb8, &enc) || !cli_write_output(&rate_out, &enc)) {
+        if (!encode_image(rate_name, o.width, o.height, NULL, 0.0f, rgb8, &enc) || !cli_write_output(&rate_out, &enc)) {
             if (enc.failed) fprintf(stderr, "fogrt: -f %s: could not encode the image (out of memory)\n", rate_name);
             status = 1; goto done;
         }

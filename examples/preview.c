@@ -974,7 +974,7 @@ static void draw(app *a)
     glClear(GL_COLOR_BUFFER_BIT);
     if (a->rgb_w > 0) {
         float img_aspect = (float)a->rgb_w / (float)a->rgb_h, win_aspect = (float)fw / (float)(fh > 0 ? fh : 1);
-        fogrt_tonemap_rgb8(a->rgb, a->rgb_w, a->rgb_h, a->exposure, FOGRT_TONEMAP_SRGB, a->rgb8);
+        fogrt_tonemap_rgb8(a->rgb, a->rgb_w, a->rgb_h, log2f(a->exposure), FOGRT_TONEMAP_SRGB, a->rgb8);
         glBindTexture(GL_TEXTURE_2D, a->texture);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB, a->rgb_w, a->rgb_h, 0, GL_RGB, GL_UNSIGNED_BYTE, a->rgb8);
@@ -1055,7 +1055,7 @@ static void save_image(app *a)
     if (!ok) return;
     n = strlen(path);
     memcpy(path + n - 4, ".png", 4);
-    fogrt_tonemap_rgb8(a->rgb, a->rgb_w, a->rgb_h, a->exposure, FOGRT_TONEMAP_SRGB, a->rgb8);
+    fogrt_tonemap_rgb8(a->rgb, a->rgb_w, a->rgb_h, log2f(a->exposure), FOGRT_TONEMAP_SRGB, a->rgb8);
     memset(&b, 0, sizeof b);
     if (!stbi_write_png_to_func(cli_membuf_stb, &b, a->rgb_w, a->rgb_h, 3, a->rgb8, a->rgb_w * 3)) b.failed = true;
     ok = write_file(a, "s:", path, &b);

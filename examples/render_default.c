@@ -90,7 +90,7 @@ int main(int argc, char **argv)
     rgb8 = (unsigned char *)malloc(3 * (size_t)width * (size_t)height);
     if (!rgb || !rgb8) { fprintf(stderr, "render_default: out of memory\n"); return 1; }
     fogrt_image_resolve(&img, rgb);
-    fogrt_tonemap_rgb8(rgb, width, height, 1.0f, FOGRT_TONEMAP_SRGB, rgb8);
+    fogrt_tonemap_rgb8(rgb, width, height, 0.0f, FOGRT_TONEMAP_SRGB, rgb8);   /* 0 EV: as rendered */
     if (!stbi_write_png(png, width, height, 3, rgb8, width * 3))
         fprintf(stderr, "render_default: could not write %s\n", png);
     if (fogrt_write_pfm(pfm, width, height, rgb) != FOGRT_RESULT_OK)

@@ -958,14 +958,14 @@ static void test_tonemap(void)
         TEST_ASSERT_EQUAL_UINT(0, out[6]);
         TEST_ASSERT_EQUAL_UINT(mid, out[7]);
         if (mode != FOGRT_TONEMAP_GAMMA22) TEST_ASSERT_EQUAL_UINT(3, out[8]);
-        /* Exposure 2: 0.5 maps like 1, 0.25 like 0.5. */
-        fogrt_tonemap_rgb8(in, 2, 2, 2.0f, tm, out);
+        /* Exposure 1 stop (x2): 0.5 maps like 1, 0.25 like 0.5. */
+        fogrt_tonemap_rgb8(in, 2, 2, 1.0f, tm, out);
         TEST_ASSERT_EQUAL_UINT(255, out[7]);
         TEST_ASSERT_EQUAL_UINT(mid, out[9]);
         TEST_ASSERT_EQUAL_UINT(0, out[2]);      /* NaN stays 0 */
         /* A ramp maps monotonically and covers 0..255. */
         for (i = 0; i < 3 * 256; i++) ramp[i] = (float)i / (3 * 256 - 1.0f);
-        fogrt_tonemap_rgb8(ramp, 256, 1, 1.0f, tm, ramp_out);
+        fogrt_tonemap_rgb8(ramp, 256, 1, 0.0f, tm, ramp_out);
         for (i = 1; i < 3 * 256; i++) TEST_ASSERT_TRUE(ramp_out[i] >= ramp_out[i - 1]);
         TEST_ASSERT_EQUAL_UINT(0, ramp_out[0]);
         TEST_ASSERT_EQUAL_UINT(255, ramp_out[3 * 256 - 1]);

@@ -183,7 +183,7 @@ static inline void tut_strip_put(tut_strip *s, int k, const float *rgb, float ex
 {
     unsigned char panel[TUT_W * TUT_H * 3];
     int y;
-    fogrt_tonemap_rgb8(rgb, TUT_W, TUT_H, exposure, FOGRT_TONEMAP_SRGB, panel);
+    fogrt_tonemap_rgb8(rgb, TUT_W, TUT_H, log2f(exposure), FOGRT_TONEMAP_SRGB, panel);   /* a multiplier here, stops there */
     for (y = 0; y < TUT_H; ++y)
         memcpy(s->rgb8 + ((size_t)y * s->n * TUT_W + (size_t)k * TUT_W) * 3, panel + (size_t)y * TUT_W * 3, TUT_W * 3);
 }
