@@ -305,6 +305,9 @@ static int parse_args(int argc, char **argv, cli_options *o)
     o->spp = 64; o->accumulate = 1;
     o->output = "out.png";
     o->equiangular = true; o->mis = true; o->glow = true; o->footprint = true; o->expected = true; o->pixel_rates = true;
+#ifdef FOGRT_MINIMAL   /* built on Part I of fogrt.h alone: the paper's method is the default */
+    o->equiangular = o->glow = o->footprint = o->expected = o->pixel_rates = false;
+#endif
     o->bvh = FOGRT_BVH_SAH;
     A.argc = argc; A.argv = argv;
     for (i = 1; i < argc; i = A.i + 1) {
@@ -442,6 +445,16 @@ static int parse_args(int argc, char **argv, cli_options *o)
         return bad_flag("--trace", "pixel (%d, %d) is outside the %dx%d image (-r)", o->trace_x, o->trace_y, o->width, o->height);
     if (o->cs184_framing && o->fov_set)
         return bad_flag("--cs184-framing", "cannot be combined with --fov (--fov sets the view itself)");
+#ifdef FOGRT_MINIMAL
+    {   /* what needs Part II of fogrt.h, refused by a fogrt built on Part I alone */
+        const char *part2 = o->equiangular ? "--equiangular" : o->glow ? "--glow" : o->footprint ? "--footprint" :
+                            o->expected ? "--expected-emission" : o->pixel_rates ? "--pixel-rates" :
+                            o->by_power ? "--lights" : o->fresnel == FOGRT_FRESNEL_EXACT ? "--fresnel" :
+                            o->env_map ? "-e" : o->trace ? "--trace" :
+                            o->fog_where == CLI_FOG_SCENE || o->fog_where == CLI_FOG_BOX ? "--fog-bounds" : NULL;
+        if (part2) return bad_flag(part2, "needs Part II of fogrt.h: this fogrt was built with FOGRT_MINIMAL (Part I, the paper's method, alone)");
+    }
+#endif
 
     return 0;
 }
@@ -1246,8 +1259,11 @@ static fogrt_result render_progressive(const fogrt_scene *scene, fogrt_render_de
         p->spp_done = done; p->spp_batch = 0;
         /* --pixel-rates: once, after the pilot's spp taken alike; kept to the end (unbiased) */
         if (p->rates && !rd->sample_rate && done >= CLI_RATES_PILOT) {
+#ifndef FOGRT_MINIMAL
             if (fogrt_image_sample_rates(img, p->rates) == FOGRT_RESULT_OK) rd->sample_rate = p->rates;
-            else p->rates = NULL;    /* out of memory: every pixel alike, as without the flag */
+            else
+#endif
+            p->rates = NULL;    /* out of memory: every pixel alike, as without the flag */
         }
         rate = (double)done / fmax(now_seconds() - p->t0, 1e-6);
         take_measurement(p, img, "batch");
@@ -1564,7 +1580,11 @@ static int run(int argc, char **argv)
         if (check_input_file("-e ", o.env_map) != 0) { status = 2; goto done; }
         env = read_env_map(o.env_map, &ew, &eh);
         if (!env) { status = 2; goto done; }
+#ifndef FOGRT_MINIMAL
         r = fogrt_scene_set_environment_map(scene, ew, eh, env, 1.0f);
+#else
+        r = FOGRT_RESULT_UNSUPPORTED;                   /* refused with the flags above */
+#endif
         free(env);
         if (r) { snprintf(where, sizeof where, "-e %s", o.env_map); fail_line(&logbuf, where, r); status = r == FOGRT_RESULT_OUT_OF_MEMORY ? 1 : 2; goto done; }
     }

@@ -15,6 +15,7 @@ int cli_trace_path(const fogrt_scene *scene, const fogrt_render_desc *rd, int wi
 
 typedef struct trace_out { FILE *f; int events; } trace_out;
 
+#ifndef FOGRT_MINIMAL
 static void print_event(const fogrt_trace_event *e, void *user)
 {
     trace_out *t = (trace_out *)user;
@@ -27,15 +28,21 @@ static void print_event(const fogrt_trace_event *e, void *user)
                 (double)e->beta.x, (double)e->beta.y, (double)e->beta.z);
     t->events++;
 }
+#endif
 
 int cli_trace_path(const fogrt_scene *scene, const fogrt_render_desc *rd, int width, int height, int x, int y,
                    uint32_t sample, FILE *out)
 {
     trace_out t;
+#ifdef FOGRT_MINIMAL   /* the trace is Part II's (D): refused when the flags are read */
+    (void)scene; (void)rd; (void)width; (void)height; (void)x; (void)y; (void)sample; (void)out; (void)t;
+    return 1;
+#else
     t.f = out; t.events = 0;
     fprintf(out, "fogrt --trace: pixel (%d, %d) of %dx%d, sample %u, in the order of Algorithm 1\n",
             x, y, width, height, (unsigned)sample);
     (void)fogrt_trace_path(scene, rd, width, height, x, y, sample, print_event, &t);
     fprintf(out, "(%d events; every '+' line is added to the pixel, and they sum to the sample radiance)\n", t.events);
     return ferror(out) ? 1 : 0;
+#endif
 }
