@@ -3213,27 +3213,35 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void)
 /* The settings the integrators read, from a desc (NULL: the defaults). A desc must come
    from fogrt_render_defaults(): a zeroed one would silently mean "max depth 0, no light
    sampling", so it is refused with a message saying so. */
+/* What a desc asks of a build that left out the part of fogrt.h it needs. */
+FOGRT__PRIVATE fogrt_result fogrt__check_build_has(const fogrt_scene *s, const fogrt_render_desc *d)
+{
+#ifdef FOGRT_NO_EXACT_FRESNEL
+    if (d->fresnel == FOGRT_FRESNEL_EXACT)
+        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: fresnel exact needs a build without FOGRT_NO_EXACT_FRESNEL, FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
+#endif
+#ifdef FOGRT_NO_LAMPS_IN_FOG
+    if (d->equiangular || d->glow || d->footprint || d->expected_emission)
+        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: equiangular, glow, footprint and expected_emission need a build without FOGRT_NO_LAMPS_IN_FOG and FOGRT_MINIMAL (start from fogrt_render_paper_defaults())");
+#endif
+#ifdef FOGRT_NO_ESTIMATION
+    if (d->light_by_power || d->sample_rate)
+        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: light_by_power and sample_rate need a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
+#endif
+    (void)s; (void)d;
+    return FOGRT_RESULT_OK;
+}
 FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fogrt_render_desc *in,
                                                   fogrt__settings *st, fogrt_render_desc *out)
 {
     fogrt_render_desc d = in ? *in : fogrt_render_defaults();
+    fogrt_result r;
     if (!d.resolved)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: not from fogrt_render_defaults() (a zeroed desc would mean max_depth 0 and no light sampling)");
     if (d.max_depth < -1 || d.min_depth < 0 || d.rr_depth < 0 || d.light_samples < 1 ||
         (unsigned)d.integrator >= (unsigned)FOGRT_INTEGRATOR_NUM || (unsigned)d.fresnel >= (unsigned)FOGRT_FRESNEL_NUM)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: max_depth (>= -1), min_depth (>= 0), rr_depth (>= 0), light_samples (>= 1), integrator or fresnel out of range");
-#ifdef FOGRT_NO_EXACT_FRESNEL
-    if (d.fresnel == FOGRT_FRESNEL_EXACT)
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: fresnel exact needs a build without FOGRT_NO_EXACT_FRESNEL, FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
-#endif
-#ifdef FOGRT_NO_LAMPS_IN_FOG
-    if (d.equiangular || d.glow || d.footprint || d.expected_emission)
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: equiangular, glow, footprint and expected_emission need a build without FOGRT_NO_LAMPS_IN_FOG and FOGRT_MINIMAL (start from fogrt_render_paper_defaults())");
-#endif
-#ifdef FOGRT_NO_ESTIMATION
-    if (d.light_by_power || d.sample_rate)
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: light_by_power and sample_rate need a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
-#endif
+    if ((r = fogrt__check_build_has(s, &d)) != FOGRT_RESULT_OK) return r;
     st->max_depth = d.max_depth < 0 ? 0x7FFFFFFF : d.max_depth;
     st->min_depth = d.min_depth;
     st->rr_depth = d.rr_depth;
@@ -3492,6 +3500,16 @@ FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt
    progress callback runs on the calling thread (OpenMP thread 0) whenever another block of
    rows is done; if it asks to stop, the rows not yet started are skipped. Returns false
    when cancelled. */
+#ifdef _OPENMP
+/* The threads to render with: the desc's count, or OpenMP's, cut to FOGRT_MAX_THREADS and
+   4 per processor (an absurd OMP_NUM_THREADS would otherwise crash the runtime). */
+FOGRT__PRIVATE int fogrt__threads(int asked)
+{
+    int n = asked > 0 ? asked : omp_get_max_threads();
+    return FOGRT__MIN(n, FOGRT__MIN(FOGRT_MAX_THREADS, 4 * omp_get_num_procs()));
+}
+#endif
+FOGRT__PRIVATE bool fogrt__cancel_asked(const fogrt_render_desc *d) { return d->cancel && *d->cancel; }
 FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render_desc *d, uint64_t *rays_out,
                                        uint64_t *rejected_out, uint64_t *samples_out)
 {
@@ -3499,8 +3517,7 @@ FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render
     int y, height = job->img->height, block = height >= 32 ? height / 32 : 1;
     int rows_done = 0, cancelled = 0, last_report = 0;
 #ifdef _OPENMP
-    int nthreads = d->threads > 0 ? d->threads : omp_get_max_threads();
-    nthreads = FOGRT__MIN(nthreads, FOGRT__MIN(FOGRT_MAX_THREADS, 4 * omp_get_num_procs()));
+    int nthreads = fogrt__threads(d->threads);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) reduction(+ : rays, rejected, samples)
 #endif
     for (y = 0; y < height; ++y) {
@@ -3509,7 +3526,7 @@ FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render
 #pragma omp atomic read
 #endif
         stop = cancelled;
-        if (stop || (d->cancel && *d->cancel)) continue;
+        if (stop || fogrt__cancel_asked(d)) continue;
         fogrt__render_row(job, y, &rays, &rejected, &samples, d->cancel);
 #ifdef _OPENMP
 #pragma omp atomic capture
@@ -3528,7 +3545,7 @@ FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render
         }
     }
     *rays_out = rays; *rejected_out = rejected; *samples_out = samples;
-    if (cancelled || (d->cancel && *d->cancel)) return false;
+    if (cancelled || fogrt__cancel_asked(d)) return false;
     return !(d->progress && last_report != height && !fogrt__report(d, height, height, job->spp));   /* the final report */
 }
 
@@ -6521,7 +6538,7 @@ FOGRT__PRIVATE float fogrt__pilot_pass(const fogrt_scene *s, const fogrt__settin
     double best = 0.0;
     int y, j, jbest = 0;
 #ifdef _OPENMP
-    int nthreads = FOGRT__MIN(omp_get_max_threads(), FOGRT__MIN(FOGRT_MAX_THREADS, 4 * omp_get_num_procs()));
+    int nthreads = fogrt__threads(0);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads)
 #endif
     for (y = 0; y < FOGRT__PILOT_H; ++y) row[y] = fogrt__pilot_row(s, st, xs, cam, y);
