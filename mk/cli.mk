@@ -26,7 +26,7 @@ cli-test: $(BUILD)/fogrt
 # In make test: run beside the Unity programs, its "test_cli.sh: N passed, M failed" counted
 # in the final line.
 $(BUILD)/tests/test_cli.sh.log: $(BUILD)/fogrt FORCE
-	@sh tests/run_tests.sh --run $@ sh tests/test_cli.sh $(BUILD)/fogrt
+	@OMP_WAIT_POLICY=$${OMP_WAIT_POLICY:-passive} sh tests/run_tests.sh --run $@ sh tests/test_cli.sh $(BUILD)/fogrt
 TEST_LOGS += $(BUILD)/tests/test_cli.sh.log
 
 # ---- fuzzing (clang + libFuzzer, from Debian: clang and libclang-rt-*-dev) ----

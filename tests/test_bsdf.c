@@ -5,7 +5,11 @@
  * right side, that no sample gains energy, that the specular BSDFs follow the law of
  * reflection and Snell's law (with total internal reflection), that glass picks its lobe with
  * probability F, and that the Fresnel formulas give their textbook values. */
+/* Public API only: make test links this program with one shared build of the
+   implementation (compiled with FOGRT_TESTS_SHARED_IMPL) instead of compiling it again. */
+#ifndef FOGRT_TESTS_SHARED_IMPL
 #define FOGRT_IMPLEMENTATION
+#endif
 #include "fogrt.h"
 #include "unity.h"
 #include "test_util.h"

@@ -8,7 +8,11 @@
    reflectance, for both Fresnel modes, at several angles from outside and inside. Each
    statistical family has negative controls. tests/stats.h has the statistics;
    docs/testing.md explains how to read a failure.                                          */
+/* Public API only: make test links this program with one shared build of the
+   implementation (compiled with FOGRT_TESTS_SHARED_IMPL) instead of compiling it again. */
+#ifndef FOGRT_TESTS_SHARED_IMPL
 #define FOGRT_IMPLEMENTATION
+#endif
 #include "fogrt.h"
 #include "unity.h"
 #include "stats.h"

@@ -19,7 +19,11 @@
  *   - a biased image (the path integrator cut at BIASED_DEPTH bounces, against the full
  *     reference) has an error that stops falling at its bias, while its estimate keeps
  *     falling: the ratio leaves [1/2, 2] as the samples grow. */
+/* Public API only: make test links this program with one shared build of the
+   implementation (compiled with FOGRT_TESTS_SHARED_IMPL) instead of compiling it again. */
+#ifndef FOGRT_TESTS_SHARED_IMPL
 #define FOGRT_IMPLEMENTATION
+#endif
 #include "fogrt.h"
 #include "unity.h"
 #include "test_util.h"

@@ -8,7 +8,11 @@
    on or off), as long as it is unbiased. Variants: absorbing fog is darker; walls of albedo
    rho that also emit 1 give 1 / (1 - rho); a non-absorbing glass sphere is invisible.
    See docs/sampling-notes.md (f). */
+/* Public API only: make test links this program with one shared build of the
+   implementation (compiled with FOGRT_TESTS_SHARED_IMPL) instead of compiling it again. */
+#ifndef FOGRT_TESTS_SHARED_IMPL
 #define FOGRT_IMPLEMENTATION
+#endif
 #include "fogrt.h"
 #include "unity.h"
 #include "test_util.h"

@@ -435,7 +435,9 @@ static void test_glow_sampling(void)
     for (int k = 0; k < 2; k++) {
         fogrt_vec3 p = v3(dirs[k][0], dirs[k][1], dirs[k][2]);
         long bad_pdf, invalid = glow_counts(p, n, 4200 + (uint64_t)k, edge, observed, &bad_pdf);
-        double integral = stats_integrate_1d(glow_pdf_1d, &p, 1e-6, STATS_PI, 1e-9, 40);   /* below 1e-6 rad: 6e-7 of the mass */
+        /* below 1e-6 rad: 6e-7 of the mass; the tolerance 1e-8, 1e4 times under the check's,
+           gives the same integral to 7 digits as 1e-9 did, at a twentieth of its cost */
+        double integral = stats_integrate_1d(glow_pdf_1d, &p, 1e-6, STATS_PI, 1e-8, 40);
         char name[64], param[128];
         snprintf(name, sizeof name, "glow_dir%d", k);
         snprintf(param, sizeof param, "to_light=(%g,%g,%g), angle log-spaced from 1e-6 rad", (double)p.x, (double)p.y, (double)p.z);

@@ -5,7 +5,11 @@
  * medium with good and bad data, the result codes and their strings, the features found by
  * fogrt_scene_build, and the messages given to the logger. The header's promise tested
  * throughout: "Bad data returns an error and leaves the scene as it was". */
+/* Public API only: make test links this program with one shared build of the
+   implementation (compiled with FOGRT_TESTS_SHARED_IMPL) instead of compiling it again. */
+#ifndef FOGRT_TESTS_SHARED_IMPL
 #define FOGRT_IMPLEMENTATION
+#endif
 #include "fogrt.h"
 #include "unity.h"
 #include "test_util.h"
