@@ -159,6 +159,8 @@ typedef struct cw_plot {
     int logy;                             /* 1: log scale; -1: chosen from the data's range */
     int points;                           /* 1: the line joins the bars' centres (else steps) */
     int bars_signed;                      /* 1: bars may be negative (y range from the data) */
+    int cn;                               /* > 0: the model is this curve (cx, cy) instead of line */
+    const double *cx, *cy;
 } cw_plot;
 
 static const unsigned char CW_BAR[3] = {140, 185, 225};
@@ -202,6 +204,11 @@ static void cw_draw_plot(pf_canvas *c, int X, int Y, int W, int H, const cw_plot
             if (v[j] > 0.0 && v[j] < lmin) lmin = v[j];
         }
     }
+    for (i = 0; i < p->cn; ++i)
+        if (isfinite(p->cy[i])) {
+            if (p->cy[i] > ymax) ymax = p->cy[i];
+            if (p->cy[i] > 0.0 && p->cy[i] < lmin) lmin = p->cy[i];
+        }
     if (!p->bars_signed) ymin = 0.0;
     if (logy < 0) logy = (ymax > 0.0 && lmin < HUGE_VAL && ymax / lmin > 60.0) ? 1 : 0;
     if (logy) {
@@ -242,8 +249,25 @@ static void cw_draw_plot(pf_canvas *c, int X, int Y, int W, int H, const cw_plot
             if (xb <= xa) xb = xa + 1;
             pf_rect(c, xa, ya, xb - xa, yb - ya + 1, CW_BAR);
         }
-    /* the model */
-    if (p->line) {
+    /* the model: a curve ... */
+    if (p->cn > 0) {
+        int have = 0, lx = 0, ly = 0;
+        for (i = 0; i < p->cn; ++i) {
+            int x, y;
+            if (!isfinite(p->cy[i]) || p->cx[i] < p->xmin || p->cx[i] > p->xmax || (logy && !(p->cy[i] > 0.0))) {
+                have = 0;
+                continue;
+            }
+            x = CW_XPIX(p->cx[i]);
+            y = CW_YPIX(p->cy[i]);
+            if (y < py0) y = py0;
+            if (y > py0 + ph) y = py0 + ph;
+            if (have) cw_line(c, lx, ly, x, y, PF_ORANGE);
+            lx = x; ly = y; have = 1;
+        }
+    }
+    /* ... or a value per bar */
+    else if (p->line) {
         int have = 0, lx = 0, ly = 0;
         for (i = 0; i < p->n; ++i) {
             int xa, xb, y;
@@ -283,7 +307,7 @@ static void cw_draw_plot(pf_canvas *c, int X, int Y, int W, int H, const cw_plot
             pf_text(c, lx + 18, ly, p->bar_label, 1, PF_BLACK);
             ly += 14;
         }
-        if (p->line && p->line_label) {
+        if ((p->line || p->cn > 0) && p->line_label) {
             pf_line(c, lx, ly + 4, lx + 11, ly + 4, PF_ORANGE, 2, 0);
             pf_text(c, lx + 18, ly, p->line_label, 1, PF_BLACK);
         }
@@ -783,6 +807,11 @@ static void cw_step2(const cw_fns *f, cw_run *run)
             p.xlabel = "distance d"; p.ylabel = "transmittance"; p.bar_label = "mean of your estimates";
             p.line_label = "exp(-sigma_t d)"; p.n = 6; p.x0 = x0; p.x1 = x1; p.bar = bar; p.line = line;
             p.xmin = 0.0; p.xmax = 5.5; p.points = 1; p.logy = 0;
+            {
+                static double cx[111], cy[111];
+                for (i = 0; i < 111; ++i) { cx[i] = 0.05 * i; cy[i] = exp(-cx[i]); }
+                p.cn = 111; p.cx = cx; p.cy = cy;
+            }
             cw_fmt(verdict, sizeof verdict, "step2.estimator %s: %s%s%s", pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
             cw_picture(run, "step2_estimator", &p, verdict, pass, png, sizeof png);
             cw_emit(run, "step2.estimator", pass, m, adv, png);
@@ -1739,14 +1768,15 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
             cw_fmt(adv, sizeof adv, "Schlick: F = R0 + (1 - R0)(1 - cos)^5 with R0 = ((eta - 1)/(eta + 1))^2");
         cw_emit(run, "step5.schlick", worst <= 1e-4, m, adv, NULL);
     }
-    /* glass: how often it reflects, against Schlick (binomial, Bonferroni over 6 angles) */
+    /* glass: how often it reflects, against Schlick (binomial, Bonferroni over 7 angles; at
+       cos_i = -0.5 light inside the glass is past the critical angle and must always reflect) */
     cw_begin(run);
     {
-        static const float cs[6] = {0.95f, 0.5f, 0.1f, -0.95f, -0.8f, -0.76f};
-        double x0[6], x1[6], bar[6], line[6], worst_p = 1.0, wf = 0, wF = 0, wc = 0;
+        static const float cs[7] = {0.95f, 0.5f, 0.1f, -0.95f, -0.8f, -0.76f, -0.5f};
+        double x0[7], x1[7], bar[7], line[7], worst_p = 1.0, wf = 0, wF = 0, wc = 0;
         int n = 20000, flipped = 0, bad_dir = 0;
         cw_plot p;
-        for (k = 0; k < 6; ++k) {
+        for (k = 0; k < 7; ++k) {
             fogrt_vec3 wo = cw_v3(sqrt(1.0 - (double)cs[k] * cs[k]), 0.0, cs[k]);
             double F = cw_schlick_ref(1.5, wo.z), pv;
             long refl = 0;
@@ -1759,7 +1789,7 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
             }
             {
                 stats_binomial_result b = stats_binomial(refl, n, F);
-                pv = fmin(1.0, b.p_value * 6.0);
+                pv = fmin(1.0, b.p_value * 7.0);
                 if (fabs(b.frequency - (1.0 - F)) < 0.01 && fabs(F - 0.5) > 0.05) flipped++;
                 x0[k] = cs[k] - 0.03; x1[k] = cs[k] + 0.03; bar[k] = b.frequency; line[k] = F;
                 if (pv < worst_p || k == 0) { worst_p = pv; wf = b.frequency; wF = F; wc = cs[k]; }
@@ -1768,7 +1798,7 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
         {
             int pass = worst_p >= CW_ALPHA && bad_dir == 0;
             cw_fmt(m, sizeof m, "worst angle cos_i = %g: reflected %.4f of %d, Schlick F = %.4f, p = %.3g (binomial, Bonferroni "
-                   "over 6 angles; fail if p < %g)", wc, wf, n, wF, worst_p, CW_ALPHA);
+                   "over 7 angles; fail if p < %g)", wc, wf, n, wF, worst_p, CW_ALPHA);
             if (bad_dir) cw_fmt(adv, sizeof adv, "%d samples returned no direction or a non-finite one", bad_dir);
             else if (flipped >= 4)
                 cw_fmt(adv, sizeof adv, "you reflect with probability 1 - F: reflect when u_lobe < F, refract otherwise");
@@ -1778,13 +1808,18 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
             memset(&p, 0, sizeof p);
             p.title = "Step 5: how often glass (eta 1.5) reflects";
             p.xlabel = "cos_i = wo.z (< 0: from inside)"; p.ylabel = "fraction reflected"; p.bar_label = "your glass";
-            p.line_label = "Schlick's F"; p.n = 6; p.x0 = x0; p.x1 = x1; p.bar = bar; p.line = line; p.xmin = -1.0; p.xmax = 1.0;
+            p.line_label = "Schlick's F"; p.n = 7; p.x0 = x0; p.x1 = x1; p.bar = bar; p.line = line; p.xmin = -1.0; p.xmax = 1.0;
             p.points = 1;
             {
-                /* draw the six in order of cos for the joined line */
+                static double cx[401], cy[401];
+                for (i = 0; i < 401; ++i) { cx[i] = -1.0 + 2.0 * i / 400.0; cy[i] = cw_schlick_ref(1.5, cx[i]); }
+                p.cn = 401; p.cx = cx; p.cy = cy;
+            }
+            {
+                /* the six in order of cos */
                 int a, b;
-                for (a = 0; a < 6; ++a)
-                    for (b = a + 1; b < 6; ++b)
+                for (a = 0; a < 7; ++a)
+                    for (b = a + 1; b < 7; ++b)
                         if (x0[b] < x0[a]) {
                             double t;
                             t = x0[a]; x0[a] = x0[b]; x0[b] = t; t = x1[a]; x1[a] = x1[b]; x1[b] = t;
