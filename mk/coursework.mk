@@ -10,6 +10,8 @@
 .PHONY: check-step coursework-solutions
 COURSEWORK_STEPS := 1 2 3 4 5 9
 CW_DIR := examples/coursework
+# A student's endless loop stops after two minutes (the checks take well under a second).
+CW_TIMEOUT := $(shell command -v timeout >/dev/null 2>&1 && echo timeout 120)
 CW_DEPS := $(CW_DIR)/check_step.c $(CW_DIR)/check.h $(CW_DIR)/coursework.h fogrt.h tests/stats.h examples/plotfont.h examples/stb_write.h
 
 $(BUILD)/coursework/check_step%.o: $(CW_DEPS) | deps-stb $(BUILD)
@@ -17,13 +19,13 @@ $(BUILD)/coursework/check_step%.o: $(CW_DEPS) | deps-stb $(BUILD)
 	$(CC) $(ALL_CFLAGS) -DCW_STEP=$* -I$(CW_DIR) -c -o $@ $(CW_DIR)/check_step.c
 
 check-step:
-	@[ -n "$(STEP)" ] || { echo "usage: make check-step STEP=N [SRC=path/to/your.c]  (steps: $(COURSEWORK_STEPS))"; exit 2; }
+	@[ -n "$(filter $(COURSEWORK_STEPS),$(STEP))" ] || { echo "usage: make check-step STEP=N [SRC=path/to/your.c]  (steps: $(COURSEWORK_STEPS); 6-8 are coming, docs/coursework.md)"; exit 2; }
 	@$(MAKE) --no-print-directory $(BUILD)/coursework/check_step$(STEP).o
 	@src="$(if $(SRC),$(SRC),$(wildcard $(CW_DIR)/step$(STEP)_*.c))"; \
 	[ -n "$$src" ] && [ -f "$$src" ] || { echo "check-step: no source for step $(STEP) (SRC=$(SRC))"; exit 2; }; \
 	$(CC) $(ALL_CFLAGS) -I$(CW_DIR) -o $(BUILD)/coursework/step$(STEP) $(BUILD)/coursework/check_step$(STEP).o "$$src" $(LDLIBS) \
 	  || { echo "check-step: $$src does not compile against examples/coursework/coursework.h"; exit 2; }; \
-	./$(BUILD)/coursework/step$(STEP) $(BUILD)/coursework
+	$(CW_TIMEOUT) ./$(BUILD)/coursework/step$(STEP) $(BUILD)/coursework
 
 coursework-solutions: $(foreach s,$(COURSEWORK_STEPS),$(BUILD)/coursework/check_step$(s).o)
 	@mkdir -p $(BUILD)/coursework/solutions

@@ -1325,7 +1325,7 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
 {
     static cw_node nd;
     fogrt_rng rng;
-    int s, sets = 400, good = 0, first_bad = -1, only_x = 0, worst_pick = 0, empty_pick = 0;
+    int s, sets = 400, good = 0, first_bad = -1, only_x = 0, worst_pick = 0, empty_pick = 0, own_cheapest = 0;
     char m[700], adv[700], png[256], title[200], verdict[1400];
     cw_split bad_pick, bad_best;
     double bad_cost = 0.0, bad_best_cost = 0.0;
@@ -1366,19 +1366,28 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
                 cw_node_sides(&nd, got.axis, got.plane, &l, &nl, &r, &nr);
                 if (!nl || !nr) empty_pick = 1;
             }
+            /* the planes priced by the reference and by the student's own cw_split_cost: a
+               choice that is the cheapest under the student's cost points at the cost */
+            double own_min = HUGE_VAL, own_max = -HUGE_VAL, own_got = NAN;
             for (a = 0; a < 3; ++a)
                 for (k = 1; k < nd.bins.n_bins; ++k) {
                     cw_aabb l, r;
                     int nl, nr;
-                    double c;
+                    double c, o;
                     cw_node_sides(&nd, a, k, &l, &nl, &r, &nr);
                     if (!nl || !nr) continue;
                     c = cw_ref_cost(heuristic, &nd.parent, &l, nl, &r, nr);
+                    o = f->split_cost(heuristic, &nd.parent, &l, nl, &r, nr);
                     if (a == 0 && c < axis0_best) axis0_best = c;
                     if (c > worst) worst = c;
+                    if (o < own_min) own_min = o;
+                    if (o > own_max) own_max = o;
+                    if (a == got.axis && k == got.plane) own_got = o;
                 }
             if (got.axis == 0 && fabs(got_cost - axis0_best) <= 1e-6 * axis0_best + 1e-12) only_x = 1;
-            if (fabs(got_cost - worst) <= 1e-6 * worst + 1e-12) worst_pick = 1;
+            if (fabs(own_got - own_min) <= 1e-6 * fabs(own_min) + 1e-12) own_cheapest = 1;
+            else if (fabs(own_got - own_max) <= 1e-6 * fabs(own_max) + 1e-12 || fabs(got_cost - worst) <= 1e-6 * worst + 1e-12)
+                worst_pick = 1;
         }
     }
     {
@@ -1397,7 +1406,10 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
             cw_fmt(adv, sizeof adv, "node %d (%d primitives, %s): you chose axis %d plane %d (cost %.5g), the cheapest is axis %d "
                    "plane %d (%.5g)%s", first_bad, bad_n, cw_kind_name(bad_kind), bad_pick.axis, bad_pick.plane, bad_cost,
                    bad_best.axis, bad_best.plane, bad_best_cost,
-                   worst_pick ? ": you kept the most expensive plane, keep the smallest cost"
+                   own_cheapest ? (heuristic == CW_SAH ? ": it is the cheapest under your cw_split_cost, so the cost is what "
+                                   "differs (see step4.sah_cost)" : ": it is the cheapest under your cw_split_cost, so the "
+                                   "cost is what differs (see step4.volume_cost)")
+                   : worst_pick ? ": you kept the most expensive plane, keep the smallest cost"
                    : only_x ? ": you searched axis x only; eq. 2 takes the best over x, y and z"
                    : ": count each side from the bins' counts and grow each side's box from the bins' boxes");
     }
