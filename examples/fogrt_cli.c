@@ -235,7 +235,8 @@ static void usage(FILE *f)
         "                     samples_per_second\n"
         "                     est_rel_mse   the render's own estimate (fogrt_image_error):\n"
         "                                   sum_p Var[mean_p] / sum_p mean_p^2 (luminance)\n"
-        "                     est_rel_error sqrt(est_rel_mse)\n"
+        "                     est_rel_error sqrt(est_rel_mse) (both empty below 2 spp,\n"
+        "                                   where there is no estimate yet, and when black)\n"
         "                     ref_rel_mse   with --reference: sum_p (Y_p - Yref_p)^2 /\n"
         "                                   sum_p Yref_p^2, Y the luminance of a pixel (the\n"
         "                                   same ratio the estimate estimates)\n"
@@ -1202,8 +1203,8 @@ static void take_measurement(render_state *p, const fogrt_image *img, const char
         log_number(f, seconds, false);
         log_number(f, spp, false);
         log_number(f, seconds > 0 ? spp * p->pixels / seconds : nan(""), false);
-        log_number(f, est * est, false);
-        log_number(f, est, false);
+        if (est == est) { log_number(f, est * est, false); log_number(f, est, false); }
+        else fputs(",,", f);                    /* no estimate yet (under 2 spp) or a black image */
         if (p->ref) {
             log_number(f, p->m.rel_mse, false); log_number(f, p->m.rmse, false);
             log_number(f, p->m.ratio[0], false); log_number(f, p->m.ratio[1], false); log_number(f, p->m.ratio[2], false);

@@ -295,6 +295,7 @@ check "! grep -q \"\$(printf '\\r')\" '$tmp/p.err'" "progress_log_lines: a carri
 check "grep -Eq '^fogrt: .*spp [0-9]+ .*rel. error [0-9.]+%' '$tmp/p.err'" "progress_log_lines: no 5-second progress line with an integer spp: $(head -2 "$tmp/p.err")"
 check "[ \"\$(head -n 1 '$tmp/p.csv')\" = 'seconds,spp,samples_per_second,est_rel_mse,est_rel_error,ref_rel_mse,ref_rmse,ref_ratio_r,ref_ratio_g,ref_ratio_b,event' ]" "progress_log_lines: bad --log header"
 check "awk -F, 'NR > 1 { if (NR > 2 && \$1 - t > 3.0) exit 1; t = \$1; n++ } END { exit !(n >= 4 && t > 5) }' '$tmp/p.csv'" "progress_log_lines: --log rows more than 3 s apart or too few: $(wc -l <"$tmp/p.csv") lines"
+check "! grep -qi 'nan' '$tmp/p.csv' && awk -F, 'NR == 2 && \$2 < 2 && \$4 != \"\" { exit 1 }' '$tmp/p.csv'" "log_no_nan: a --log row holds nan, or an estimate below 2 spp: $(sed -n 2p "$tmp/p.csv")"
 if command -v script >/dev/null 2>&1; then
     # --time: long enough for the terminal's 0.25 s progress tick on any machine (-s 64 took 0.22 s on a fast one)
     script -qec "$fogrt_abs --time 1.5 -r 64 48 -f $tmp/tty.pfm" /dev/null >"$tmp/tty.out" 2>&1
