@@ -18,6 +18,13 @@ ifeq ($(SANITIZE),1)
 BUILD   := build-san
 CFLAGS  := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined
 endif
+# `make test MINIMAL=1`: the suite against Part I of fogrt.h alone (FOGRT_MINIMAL): the tests
+# of Part II are skipped, one line each naming the macro (the CLI's suite, whose flags are
+# the full build's, is left out: mk/minimal.mk; make fogrt-minimal builds that command).
+ifeq ($(MINIMAL),1)
+BUILD   := build-min
+CFLAGS  += -DFOGRT_MINIMAL
+endif
 
 # Unity: the real one when UNITY_DIR is given, else the small compatible runner in tests/runner.
 ifdef UNITY_DIR
@@ -107,9 +114,11 @@ TEST_FIRST := $(foreach t,test_sampling test_extremes test_cli.sh test_load test
 # `make test` runs itself again with -j<cores> unless a -j was given, builds and runs the
 # programs in parallel, then reports them in a fixed order: one line each (the output of
 # failing ones in full; V=1: everything), and last "N passed, M failed, K skipped".
+# unity.o first, on its own: every program waits for it, and make would otherwise start them
+# in whatever order they become ready instead of the slowest first.
 test: deps-stb
 	@case " $(MAKEFLAGS) " in *" -j"*) j= ;; *) j=-j$(NPROC) ;; esac; \
-	  $(MAKE) --no-print-directory $$j test-run
+	  $(MAKE) -s --no-print-directory $(UNITY_OBJ) && $(MAKE) --no-print-directory $$j test-run
 
 test-run: $(TEST_FIRST) $(filter-out $(TEST_FIRST),$(TEST_LOGS)) $(EXTRA_TEST_DEPS)
 	@sh tests/run_tests.sh --report $(if $(filter 1,$(V)),-v) $(TEST_LOGS)
