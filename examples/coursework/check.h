@@ -212,13 +212,13 @@ static void cw_draw_plot(pf_canvas *c, int X, int Y, int W, int H, const cw_plot
     if (!p->bars_signed) ymin = 0.0;
     if (logy < 0) logy = (ymax > 0.0 && lmin < HUGE_VAL && ymax / lmin > 60.0) ? 1 : 0;
     if (logy) {
-        ymax = log10(ymax > 0.0 ? ymax : 1.0) + 0.15;
+        ymax = log10(ymax > 0.0 ? ymax : 1.0) + 0.6;          /* room for the legend above the data */
         ymin = log10(lmin < HUGE_VAL ? lmin : 1e-3) - 0.3;
         if (ymax - ymin > 8.0) ymin = ymax - 8.0;
     } else {
         double span = ymax - ymin;
         if (!(span > 0.0)) span = 1.0;
-        ymax += 0.08 * span;
+        ymax += 0.25 * span;                                 /* room for the legend above the data */
         if (p->bars_signed && ymin < 0.0) ymin -= 0.08 * span;
     }
 #define CW_YPIX(v) (py0 + ph - (int)lround(((logy ? log10(fmax((v), 1e-300)) : (v)) - ymin) / (ymax - ymin) * ph))
@@ -302,6 +302,11 @@ static void cw_draw_plot(pf_canvas *c, int X, int Y, int W, int H, const cw_plot
     {
         int lx = px0 + pw - 8 - 12 - 6 * (int)fmax(strlen(p->bar_label ? p->bar_label : ""),
                                                    strlen(p->line_label ? p->line_label : "")) - 12, ly = py0 + 8;
+        int rows = (p->bar && p->bar_label) + ((p->line || p->cn > 0) && p->line_label);
+        if (rows) {                                   /* a white card, so bars do not run through it */
+            pf_rect(c, lx - 4, ly - 4, px0 + pw - lx, 14 * rows + 4, PF_WHITE);
+            pf_frame(c, lx - 4, ly - 4, px0 + pw - lx, 14 * rows + 4, PF_LIGHT);
+        }
         if (p->bar && p->bar_label) {
             pf_rect(c, lx, ly, 12, 9, CW_BAR);
             pf_text(c, lx + 18, ly, p->bar_label, 1, PF_BLACK);
@@ -355,6 +360,37 @@ static void cw_picture2(const cw_run *run, const char *stem, const cw_plot *a, c
     cw_draw_plot(&c, 620, 0, 620, 400, b);
     cw_save(run, stem, &c, verdict, pass, path, size);
     pf_canvas_free(&c);
+}
+
+/* A histogram on the sphere (stats.h's grid, nc x np cells) as its two marginals: the
+   density in cos theta and the density in phi, observed against expected. */
+static void cw_picture_sphere(const cw_run *run, const char *stem, const stats_sphere_grid *grid, const double *obs,
+                              const double *expd, const char *title_a, const char *xlabel_a, const char *line_a, int logy_a,
+                              const char *title_b, const char *line_b, const char *verdict, int pass, char *path, size_t size)
+{
+    double ax0[STATS_GRID_MAX_COS], ax1[STATS_GRID_MAX_COS], ab[STATS_GRID_MAX_COS], al[STATS_GRID_MAX_COS];
+    double bx0[64], bx1[64], bb[64], bl[64];
+    int nc = grid->n_cos, np = grid->n_phi > 64 ? 64 : grid->n_phi, i, j;
+    cw_plot a, b;
+    path[0] = '\0';
+    if (!run->img_dir) return;
+    for (i = 0; i < nc; ++i) {
+        double w = grid->cos_edge[i + 1] - grid->cos_edge[i], o = 0.0, e = 0.0;
+        for (j = 0; j < grid->n_phi; ++j) { o += obs[i * grid->n_phi + j]; e += expd[i * grid->n_phi + j]; }
+        ax0[i] = grid->cos_edge[i]; ax1[i] = grid->cos_edge[i + 1]; ab[i] = o / (CW_N * w); al[i] = e / (CW_N * w);
+    }
+    for (j = 0; j < np; ++j) {
+        double o = 0.0, e = 0.0, w = 2.0 * CW_PI / np;
+        for (i = 0; i < nc; ++i) { o += obs[i * grid->n_phi + j]; e += expd[i * grid->n_phi + j]; }
+        bx0[j] = -CW_PI + w * j; bx1[j] = bx0[j] + w; bb[j] = o / (CW_N * w); bl[j] = e / (CW_N * w);
+    }
+    memset(&a, 0, sizeof a); memset(&b, 0, sizeof b);
+    a.title = title_a; a.xlabel = xlabel_a; a.ylabel = "density per unit cos theta"; a.bar_label = "your directions";
+    a.line_label = line_a; a.n = nc; a.x0 = ax0; a.x1 = ax1; a.bar = ab; a.line = al; a.xmin = -1.0; a.xmax = 1.0;
+    a.logy = logy_a;
+    b.title = title_b; b.xlabel = "phi (radians)"; b.ylabel = "density per radian"; b.bar_label = "your directions";
+    b.line_label = line_b; b.n = np; b.x0 = bx0; b.x1 = bx1; b.bar = bb; b.line = bl; b.xmin = -CW_PI; b.xmax = CW_PI;
+    cw_picture2(run, stem, &a, &b, verdict, pass, path, size);
 }
 
 /* ==========================================================================================
@@ -1052,31 +1088,12 @@ static void cw_step3(const cw_fns *f, cw_run *run)
                     cw_fmt(adv, sizeof adv, "the angle to d does not follow HG: use your cw_sample_hg_mu for cos(theta) "
                            "and measure it from d = -wo");
             }
-            {
-                double ax0[20], ax1[20], ab[20], al[20], bx0[16], bx1[16], bb[16], bl[16];
-                cw_plot a, b;
-                for (i = 0; i < nc; ++i) {
-                    double w = grid.cos_edge[i + 1] - grid.cos_edge[i];
-                    ax0[i] = grid.cos_edge[i]; ax1[i] = grid.cos_edge[i + 1];
-                    ab[i] = mo[i] / (CW_N * w); al[i] = me[i] / (CW_N * w);
-                }
-                for (j = 0; j < np; ++j) {
-                    bx0[j] = -CW_PI + 2.0 * CW_PI * j / np; bx1[j] = bx0[j] + 2.0 * CW_PI / np;
-                    bb[j] = po[j] / (CW_N * 2.0 * CW_PI / np); bl[j] = pe[j] / (CW_N * 2.0 * CW_PI / np);
-                }
-                memset(&a, 0, sizeof a); memset(&b, 0, sizeof b);
-                cw_fmt(title, sizeof title, "Step 3: directions, g = %g: angle from d = -wo", g);
-                a.title = title; a.xlabel = "mu = cos(d, wi)"; a.ylabel = "density per unit mu"; a.bar_label = "your directions";
-                a.line_label = "HG"; a.n = nc; a.x0 = ax0; a.x1 = ax1; a.bar = ab; a.line = al; a.xmin = -1.0; a.xmax = 1.0;
-                a.logy = -1;
-                b.title = "... and azimuth phi around d (eq. 12)"; b.xlabel = "phi (radians)"; b.ylabel = "density per radian";
-                b.bar_label = "your directions"; b.line_label = "uniform"; b.n = np; b.x0 = bx0; b.x1 = bx1; b.bar = bb;
-                b.line = bl; b.xmin = -CW_PI; b.xmax = CW_PI; b.logy = 0;
-                cw_fmt(stem, sizeof stem, "step3_direction_chi2_g%g", g);
-                cw_fmt(name, sizeof name, "step3.direction_chi2 g=%g", g);
-                cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
-                cw_picture2(run, stem, &a, &b, verdict, pass, png, sizeof png);
-            }
+            cw_fmt(title, sizeof title, "Step 3: directions, g = %g: angle from d = -wo", g);
+            cw_fmt(stem, sizeof stem, "step3_direction_chi2_g%g", g);
+            cw_fmt(name, sizeof name, "step3.direction_chi2 g=%g", g);
+            cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
+            cw_picture_sphere(run, stem, &grid, obs, expd, title, "mu = cos(d, wi)", "HG", -1,
+                              "... and azimuth phi around d (eq. 12)", "uniform", verdict, pass, png, sizeof png);
             cw_emit(run, name, pass, m, adv, png);
         }
     }
@@ -1575,7 +1592,6 @@ static void cw_step5_diffuse(const cw_fns *f, cw_run *run)
         fogrt_rng rng;
         cw_fit fit;
         int pass;
-        double mo[20], me[20], po[16], pe[16];
         cw_begin(run);
         stats_grid_init(&grid, nc, np);
         memset(obs, 0, sizeof obs);
@@ -1617,32 +1633,12 @@ static void cw_step5_diffuse(const cw_fns *f, cw_run *run)
             else
                 cw_fmt(adv, sizeof adv, "the directions are not cosine-distributed around the normal (pdf cos(theta)/pi)");
         }
-        memset(mo, 0, sizeof mo); memset(me, 0, sizeof me); memset(po, 0, sizeof po); memset(pe, 0, sizeof pe);
-        for (i = 0; i < nc; ++i)
-            for (j = 0; j < np; ++j) { mo[i] += obs[i * np + j]; me[i] += expd[i * np + j]; po[j] += obs[i * np + j]; pe[j] += expd[i * np + j]; }
-        {
-            double ax0[20], ax1[20], ab[20], al[20], bx0[16], bx1[16], bb[16], bl[16];
-            cw_plot a, b;
-            for (i = 0; i < nc; ++i) {
-                double w = grid.cos_edge[i + 1] - grid.cos_edge[i];
-                ax0[i] = grid.cos_edge[i]; ax1[i] = grid.cos_edge[i + 1]; ab[i] = mo[i] / (CW_N * w); al[i] = me[i] / (CW_N * w);
-            }
-            for (j = 0; j < np; ++j) {
-                bx0[j] = -CW_PI + 2.0 * CW_PI * j / np; bx1[j] = bx0[j] + 2.0 * CW_PI / np;
-                bb[j] = po[j] / (CW_N * 2.0 * CW_PI / np); bl[j] = pe[j] / (CW_N * 2.0 * CW_PI / np);
-            }
-            memset(&a, 0, sizeof a); memset(&b, 0, sizeof b);
-            cw_fmt(title, sizeof title, "Step 5: diffuse samples, wo.z = %.2f: cos theta", wo.z);
-            a.title = title; a.xlabel = "cos theta = wi.z"; a.ylabel = "density per unit cos"; a.bar_label = "your directions";
-            a.line_label = "cosine-weighted"; a.n = nc; a.x0 = ax0; a.x1 = ax1; a.bar = ab; a.line = al; a.xmin = -1; a.xmax = 1;
-            b.title = "... and azimuth phi around the normal"; b.xlabel = "phi (radians)"; b.ylabel = "density per radian";
-            b.bar_label = "your directions"; b.line_label = "uniform"; b.n = np; b.x0 = bx0; b.x1 = bx1; b.bar = bb; b.line = bl;
-            b.xmin = -CW_PI; b.xmax = CW_PI;
-            cw_fmt(stem, sizeof stem, "step5_diffuse_chi2_%s", side > 0 ? "above" : "below");
-            cw_fmt(name, sizeof name, "step5.diffuse_chi2 wo.z=%.2f", wo.z);
-            cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
-            cw_picture2(run, stem, &a, &b, verdict, pass, png, sizeof png);
-        }
+        cw_fmt(title, sizeof title, "Step 5: diffuse samples, wo.z = %.2f: cos theta", wo.z);
+        cw_fmt(stem, sizeof stem, "step5_diffuse_chi2_%s", side > 0 ? "above" : "below");
+        cw_fmt(name, sizeof name, "step5.diffuse_chi2 wo.z=%.2f", wo.z);
+        cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
+        cw_picture_sphere(run, stem, &grid, obs, expd, title, "cos theta = wi.z", "cosine-weighted", 0,
+                          "... and azimuth phi around the normal", "uniform", verdict, pass, png, sizeof png);
         cw_emit(run, name, pass, m, adv, png);
 
         /* the student's pdf against the student's samples, and its integral */
@@ -1670,8 +1666,13 @@ static void cw_step5_diffuse(const cw_fns *f, cw_run *run)
             else
                 cw_fmt(adv, sizeof adv, "your pdf and your sampler disagree most at cos theta in [%.2f, %.2f): %.0f samples, your "
                        "pdf predicts %.0f", grid.cos_edge[w / np], grid.cos_edge[w / np + 1], obs[w], expd[w]);
+            cw_fmt(title, sizeof title, "Step 5: your pdf against your samples, wo.z = %.2f", wo.z);
+            cw_fmt(stem, sizeof stem, "step5_diffuse_pdf_%s", side > 0 ? "above" : "below");
             cw_fmt(name, sizeof name, "step5.diffuse_pdf wo.z=%.2f", wo.z);
-            cw_emit(run, name, pass, m, adv, NULL);
+            cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
+            cw_picture_sphere(run, stem, &grid, obs, expd, title, "cos theta = wi.z", "your cw_diffuse_pdf", 0,
+                              "... and azimuth phi around the normal", "your cw_diffuse_pdf", verdict, pass, png, sizeof png);
+            cw_emit(run, name, pass, m, adv, png);
         }
 
         /* each sample's weight and pdf */
