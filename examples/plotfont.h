@@ -174,8 +174,11 @@ static inline void pf_line(pf_canvas *c, int x0, int y0, int x1, int y1, const u
         }
         if (x0 == x1 && y0 == y1) break;
         ++step;
-        if (2 * err >= dy) { err += dy; x0 += sx; }
-        if (2 * err <= dx) { err += dx; y0 += sy; }
+        {   /* Bresenham: both tests read the error before either step changes it */
+            int e2 = 2 * err;
+            if (e2 >= dy) { err += dy; x0 += sx; }
+            if (e2 <= dx) { err += dx; y0 += sy; }
+        }
     }
 }
 
