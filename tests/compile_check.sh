@@ -255,18 +255,20 @@ if have "$GXX"; then
 fi
 
 # ---- the strip macros really strip (nm) -----------------------------------------------------
-# strip_nm MACRO SYMBOL...: each SYMBOL is defined (T) or called (U: fopen) in the normal
-# object file and absent from the one built with MACRO.
-strip_nm() {
-    macro=$1
-    shift
-    $GCC -std=c99 -O2 -I"$ROOT" -c "$TMP/impl.c" -o "$TMP/nm_normal.o" || return 1
-    $GCC -std=c99 -O2 -D"$macro" -I"$ROOT" -c "$TMP/impl.c" -o "$TMP/nm_stripped.o" || return 1
+# gone_nm FLAGS KINDS MACRO SYMBOL...: each SYMBOL is in the object built with FLAGS (as one
+# of the nm KINDS: T defined, t static, U called) and absent from the one built with MACRO too.
+gone_nm() {
+    flags=$1 kinds=$2 macro=$3
+    shift 3
+    $GCC $flags -I"$ROOT" -c "$TMP/impl.c" -o "$TMP/nm_normal.o" || return 1
+    $GCC $flags -D"$macro" -I"$ROOT" -c "$TMP/impl.c" -o "$TMP/nm_stripped.o" || return 1
     for sym in "$@"; do
-        nm "$TMP/nm_normal.o" | grep -q " [TU] $sym\$" || { echo "$sym missing from the normal build"; return 1; }
+        nm "$TMP/nm_normal.o" | grep -q " [$kinds] $sym\$" || { echo "$sym missing from the normal build"; return 1; }
         if nm "$TMP/nm_stripped.o" | grep -q " $sym\$"; then echo "$sym still in the $macro build"; return 1; fi
     done
 }
+# strip_nm MACRO SYMBOL...: the public functions (and fopen) at -O2.
+strip_nm() { gone_nm "-std=c99 -O2" TU "$@"; }
 if have "$GCC" && have nm; then
     run "nm: FOGRT_NO_MEDIUM removes free flight, transmittance, HG and equiangular" strip_nm FOGRT_NO_MEDIUM \
         fogrt_sample_exponential fogrt_exponential_pdf fogrt_invert_exponential fogrt_transmittance \
@@ -280,17 +282,8 @@ else
 fi
 
 # ---- each FOGRT_NO_<appendix> leaves its appendix out (nm, every function visible) ----------
-appendix_nm() {
-    macro=$1
-    shift
-    flags="-std=c99 -O0 -fno-inline -fkeep-static-functions -I$ROOT"
-    $GCC $flags -c "$TMP/impl.c" -o "$TMP/app_full.o" || return 1
-    $GCC $flags -D"$macro" -c "$TMP/impl.c" -o "$TMP/app_cut.o" || return 1
-    for sym in "$@"; do
-        nm "$TMP/app_full.o" | grep -q " [tT] $sym\$" || { echo "$sym missing from the full build"; return 1; }
-        if nm "$TMP/app_cut.o" | grep -q " $sym\$"; then echo "$sym still in the $macro build"; return 1; fi
-    done
-}
+# appendix_nm MACRO SYMBOL...: private functions too (nothing inlined, every static kept).
+appendix_nm() { gone_nm "-std=c99 -O0 -fno-inline -fkeep-static-functions" tT "$@"; }
 if have "$GCC" && have nm; then
     run "nm: FOGRT_NO_WIDE_BVH removes appendix A" appendix_nm FOGRT_NO_WIDE_BVH \
         fogrt__wbvh_build fogrt__wbvh_pack_leaf fogrt__x_leaf_keep fogrt__alloc_big
