@@ -3,6 +3,7 @@
    pixel), written to out.pfm. Every call's result is checked. Compiles as C99 and as C++. */
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
+#include "stb_write.h"   /* stb_image_write (Debian's libstb-dev) for the PNG; fogrt itself needs libc only */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -72,12 +73,15 @@ int main(void)
     if (status == 0) status = render(scene, &img);
     pixels = (float *)malloc(sizeof(float) * 3 * 320 * 240);
     if (status == 0 && !pixels) { fprintf(stderr, "out of memory\n"); status = 1; }
-    if (status == 0) {
+    if (status == 0) {                                      /* tone mapped (0 EV, sRGB) to a PNG */
+        unsigned char *rgb8 = (unsigned char *)malloc(3 * 320 * 240);
         fogrt_image_resolve(&img, pixels);
-        if (fogrt_write_pfm("out.pfm", 320, 240, pixels) != FOGRT_RESULT_OK) {
-            fprintf(stderr, "could not write out.pfm\n");
+        if (rgb8) fogrt_tonemap_rgb8(pixels, 320, 240, 0.0f, FOGRT_TONEMAP_SRGB, rgb8);
+        if (!rgb8 || !stbi_write_png("out.png", 320, 240, 3, rgb8, 3 * 320)) {
+            fprintf(stderr, "could not write out.png\n");
             status = 1;
         }
+        free(rgb8);
     }
     free(pixels);
     fogrt_image_free(&img);
