@@ -1908,42 +1908,26 @@ FOGRT__PUBLIC bool fogrt_intersect_sphere(fogrt_vec3 center, float radius, fogrt
    too small to invert) becomes +-infinity with the sign of the zero. */
 FOGRT__PRIVATE float fogrt__safe_rcp(float x) { return fabsf(x) > 1e-30f ? 1.0f / x : copysignf(INFINITY, x); }
 
-/* A ray prepared for the box tests: the reciprocal direction, and for each axis the byte
-   offsets of the near and far face in a node (bmin or bmax, chosen by the direction's sign),
-   so the slab test has no branch on the sign. */
-typedef struct fogrt__ray { fogrt__v3 o, d, inv; size_t near_off[3], far_off[3]; } fogrt__ray;
-FOGRT__PRIVATE void fogrt__ray_setup(fogrt__ray *r, fogrt__v3 o, fogrt__v3 d)
-{
-    int a;
-    r->o = o; r->d = d;
-    r->inv = fogrt__v(fogrt__safe_rcp(d.x), fogrt__safe_rcp(d.y), fogrt__safe_rcp(d.z));
-    for (a = 0; a < 3; ++a) {
-        size_t lo = offsetof(fogrt_bvh_node, bmin) + sizeof(float) * (size_t)a;
-        size_t hi = offsetof(fogrt_bvh_node, bmax) + sizeof(float) * (size_t)a;
-        bool negative = fogrt__comp(r->inv, a) < 0.0f;
-        r->near_off[a] = negative ? hi : lo;
-        r->far_off[a] = negative ? lo : hi;
-    }
-}
+/* A ray prepared for the box tests: its origin and reciprocal direction. */
+typedef struct fogrt__ray { fogrt__v3 o, inv; } fogrt__ray;
 
-/* Slab test: entry distance of the ray into the node's box, or FLT_MAX on a miss.
+/* Slab test: entry distance of the ray into the node's box, or FLT_MAX on a miss. On each
+   axis the near face is bmin where the direction is positive, bmax where it is negative.
    An axis-parallel ray whose origin lies exactly on a slab's face forms 0 * infinity = NaN
    for that face; every comparison below is written so that a NaN bound is ignored (the
    ray is inside that slab), as in pbrt. The exit distance is widened by 2 ulps so a ray
    grazing a face is not lost to rounding. */
-#define FOGRT__FACE(n, off) (*(const float *)((const char *)(n) + (off)))
-#define FOGRT__SLAB_AXIS(a, o, inv) do { \
-        float tn_ = (FOGRT__FACE(n, r->near_off[a]) - (o)) * (inv); \
-        float tf_ = (FOGRT__FACE(n, r->far_off[a]) - (o)) * (inv); \
-        t0 = tn_ > t0 ? tn_ : t0; \
-        t1 = tf_ < t1 ? tf_ : t1; \
-    } while (0)
 FOGRT__HOT float fogrt__slab(const fogrt_bvh_node *n, const fogrt__ray *r, float tmin, float tmax)
 {
     float t0 = tmin, t1 = tmax;
-    FOGRT__SLAB_AXIS(0, r->o.x, r->inv.x);
-    FOGRT__SLAB_AXIS(1, r->o.y, r->inv.y);
-    FOGRT__SLAB_AXIS(2, r->o.z, r->inv.z);
+    int a;
+    for (a = 0; a < 3; ++a) {
+        float inv = fogrt__comp(r->inv, a), o = fogrt__comp(r->o, a);
+        float tn = ((inv < 0.0f ? n->bmax[a] : n->bmin[a]) - o) * inv;
+        float tf = ((inv < 0.0f ? n->bmin[a] : n->bmax[a]) - o) * inv;
+        t0 = tn > t0 ? tn : t0;
+        t1 = tf < t1 ? tf : t1;
+    }
     return t0 <= t1 * 1.00000024f ? t0 : FLT_MAX;
 }
 
@@ -1972,7 +1956,8 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
     bool found = false;
     float cull = fogrt__cull(tmax);                      /* tmax with the slack, kept with it */
     if (!s->built || s->tri_count + s->sph_count == 0) return false;
-    fogrt__ray_setup(&r, o, d);
+    r.o = o;
+    r.inv = fogrt__v(fogrt__safe_rcp(d.x), fogrt__safe_rcp(d.y), fogrt__safe_rcp(d.z));
     node = &nodes[0];
     if (fogrt__slab(node, &r, tmin, tmax) == FLT_MAX) return false;
     for (;;) {
