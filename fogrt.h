@@ -3583,23 +3583,15 @@ FOGRT__PUBLIC fogrt_result fogrt_write_pfm(const char *path, int width, int heig
     FILE *f;
     int y;
     bool ok;
+    float one = 1.0f;
+    unsigned char first;
     if (!path || !rgb || width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
     f = fopen(path, "wb");
     if (!f) return FOGRT_RESULT_IO_ERROR;
-    ok = fprintf(f, "PF\n%d %d\n-1.0\n", width, height) > 0;   /* -1: little endian */
-    for (y = height - 1; y >= 0 && ok; --y) {                    /* PFM stores bottom row first */
-        const float *row = rgb + (size_t)y * (size_t)width * 3;
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-        int i;
-        for (i = 0; i < width * 3 && ok; ++i) {
-            unsigned char b[4], t; memcpy(b, &row[i], 4);
-            t = b[0]; b[0] = b[3]; b[3] = t; t = b[1]; b[1] = b[2]; b[2] = t;
-            ok = fwrite(b, 1, 4, f) == 4;
-        }
-#else
-        ok = fwrite(row, sizeof(float) * 3, (size_t)width, f) == (size_t)width;
-#endif
-    }
+    memcpy(&first, &one, 1);                                     /* 0 on a little-endian machine */
+    ok = fprintf(f, "PF\n%d %d\n%s\n", width, height, first == 0 ? "-1.0" : "1.0") > 0;   /* the scale's sign: the byte order */
+    for (y = height - 1; y >= 0 && ok; --y)                      /* PFM stores bottom row first */
+        ok = fwrite(rgb + (size_t)y * (size_t)width * 3, sizeof(float) * 3, (size_t)width, f) == (size_t)width;
     if (fclose(f) != 0) ok = false;
     return ok ? FOGRT_RESULT_OK : FOGRT_RESULT_IO_ERROR;
 }
