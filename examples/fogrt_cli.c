@@ -461,7 +461,7 @@ static int parse_args(int argc, char **argv, cli_options *o)
 }
 
 /* ------------------------------------------------------------------------------------------
-   The calls that follow the core's API (issue 13's fogrt_render_desc), kept in one place
+   The calls that follow the core's API (fogrt_render_desc), kept in one place
    ------------------------------------------------------------------------------------------ */
 /* Set by the first SIGINT/SIGTERM/SIGHUP (see on_signal below). */
 static volatile sig_atomic_t cli_interrupted = 0;

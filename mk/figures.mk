@@ -1,4 +1,4 @@
-# mk/figures.mk - the paper's experiments with numbers (issue 11, point 4).
+# mk/figures.mk - the paper's experiments with numbers.
 #   make figures    writes $(BUILD)/figures/*.png and *.svg and $(BUILD)/figures/experiments.md
 #                   (about 10 minutes on 2 cores); uses $(SHARED)/scenes/cs184/CBbunny_upSpot.dae
 #                   when present (else those panels are skipped with a message)

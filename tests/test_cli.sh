@@ -480,7 +480,7 @@ else
 fi
 # ==== end of fog bounds, environment maps, the path trace ====
 
-# ==== hostile runs, second round (issue 40): aliasing, closed streams, threads, values,
+# ==== hostile runs: aliasing, closed streams, threads, values,
 #      environment maps, stopping ====
 # -- alias_*: no output may be (or resolve to) an input or another output: exit 2 naming
 #    both, before rendering, every file as it was --
@@ -643,7 +643,7 @@ echo "test_cli.sh: stop_while_loading: stopped $lat s after SIGTERM (exit $st)"
 check "[ $st -eq 130 ] && grep -q 'before rendering' '$tmp/fan.err' && awk 'BEGIN { exit !($lat < 1.0) }' && [ ! -e '$tmp/hup/fan.pfm' ]" "stop_while_loading: exit $st, $lat s: $(cat "$tmp/fan.err")"
 # ==== end of hostile runs, second round ====
 
-# ==== what a new user trips over (issue 37): the fog's extent, -h, one meaning per flag,
+# ==== what a new user trips over: the fog's extent, -h, one meaning per flag,
 #      EXR output, friendlier parsing, the README's examples ====
 # -- flags_listed: the flags the parser takes, the flags -h lists and the README's table agree --
 parser_flags=$(grep -ho 'cli_is(&\{0,1\}A, "[^"]*")' examples/fogrt_cli.c examples/cli_common.h | sed 's/.*"\(.*\)")/\1/' | sort -u | tr '\n' ' ')
@@ -734,7 +734,7 @@ check "! LC_ALL=C grep -q '[^[:print:]]' '$tmp/err'" "wrong_kind: -c printed raw
 # -- readme_timing: every fogrt example in the README says how long it takes --
 untimed=$(sed -n '/^## The `fogrt` command/,/^## /p' README.md | grep '^build/fogrt' | grep -v '[0-9] s\b\|[0-9] s)\|minutes\|--time [0-9]' | head -3)
 check "[ -z \"\$untimed\" ]" "readme_timing: README examples without their time: $untimed"
-# ==== end of issue 37 ====
+# ==== end of the new-user checks ====
 
 echo "test_cli.sh: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
