@@ -509,6 +509,53 @@ FOGRT_API bool fogrt_scene_occluded(const fogrt_scene *scene, fogrt_vec3 o, fogr
 FOGRT_API bool fogrt_scene_intersect_brute(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d,
                                            float tmin, float tmax, fogrt_hit *hit);
 #endif
+
+/* ------------------------------------------------------------------------------------------
+   Building blocks of an integrator (after fogrt_scene_build): Part I's Algorithm 1 is made
+   of them, and with fogrt_render_desc.radiance an integrator of your own can be too.
+   ------------------------------------------------------------------------------------------ */
+/* The surface point a ray (o, unit d) hit, as a scattering vertex sees it. */
+typedef struct fogrt_surface {
+    fogrt_vec3 p;           /* the hit point */
+    fogrt_vec3 ng;          /* geometric normal: on the ray's side for reflective BSDFs, outward
+                               for refractive ones (then dot(-d, ng) < 0 means "from inside") */
+    fogrt_vec3 s, t, n;     /* shading frame, n the shading normal: the BSDF functions take a
+                               direction w as (dot(w, s), dot(w, t), dot(w, n)) */
+    fogrt_material_desc material;
+    bool front;             /* d arrived against the outward normal: emission counts only then */
+} fogrt_surface;
+FOGRT_API void fogrt_scene_surface(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d, const fogrt_hit *hit,
+                                   fogrt_surface *out);
+/* The origin of a ray leaving surface point sf along w: p pushed off the surface to w's side,
+   so that the new ray does not hit the surface it starts on. */
+FOGRT_API fogrt_vec3 fogrt_surface_offset(const fogrt_scene *scene, const fogrt_surface *sf, fogrt_vec3 w);
+
+/* A light sample seen from a point (paper eq. 3 with light sampling, section 2.3). */
+typedef struct fogrt_light_sample {
+    fogrt_vec3 wi;          /* unit direction toward the sampled point of the light */
+    float dist;             /* distance to that point */
+    fogrt_vec3 Le;          /* radiance arriving along -wi; for a point or spot light I / r^2 */
+    float pdf;              /* solid-angle density of wi; 1 for point and spot lights */
+    bool is_delta;          /* point or spot light: no other sampler can find it (no MIS) */
+} fogrt_light_sample;
+/* How many lights there are to sample: the point and spot lights, then the area lights
+   (emissive meshes and spheres), numbered in that order. */
+FOGRT_API uint32_t fogrt_scene_light_total(const fogrt_scene *scene);
+/* Samples light `light` (< fogrt_scene_light_total) as seen from p, with three uniforms in
+   [0, 1). False when p gets nothing from that sample (behind an emitter, outside a spot). */
+FOGRT_API bool fogrt_scene_sample_light(const fogrt_scene *scene, uint32_t light, fogrt_vec3 p, float u1,
+                                        float u2, float u3, fogrt_light_sample *out);
+/* The solid-angle density with which fogrt_scene_sample_light would have produced the point
+   that the ray from `from` hit (hit, sf from fogrt_scene_surface): MIS's partner of BSDF and
+   phase sampling. 0 when that surface is not an area light. */
+FOGRT_API float fogrt_scene_light_pdf(const fogrt_scene *scene, fogrt_vec3 from, const fogrt_hit *hit,
+                                      const fogrt_surface *sf);
+/* Whether nothing blocks the light sample ls taken from p: sf is the surface p lies on (for
+   the shadow ray's offset), NULL for a point in the fog. Visibility only: the fog's
+   transmittance (3.2) is the caller's to multiply. */
+FOGRT_API bool fogrt_scene_visible(const fogrt_scene *scene, const fogrt_surface *sf, fogrt_vec3 p,
+                                   const fogrt_light_sample *ls);
+
 /* Ray-triangle (Moller-Trumbore) and ray-sphere tests on their own. */
 FOGRT_API bool fogrt_intersect_triangle(fogrt_vec3 v0, fogrt_vec3 v1, fogrt_vec3 v2, fogrt_vec3 o,
                                         fogrt_vec3 d, float tmin, float tmax, float *t, float *u, float *v);
@@ -693,6 +740,11 @@ typedef struct fogrt_progress {
      progress          optional; called between row blocks; return false to cancel
      cancel            optional: the render stops within a sample (of every thread) once *cancel
                        is non-zero, as when cancelled (a signal handler's flag, say)
+     radiance          optional: an estimator of your own (docs/coursework.md, steps 6-8): the
+                       radiance one sample finds along the camera ray (o, unit d), drawing its
+                       random numbers from rng; fogrt_render calls it instead of its
+                       integrators (user_data is passed on), and keeps the image, the threads
+                       and the error estimate as always
      resolved          set by fogrt_render_defaults(): the fields hold their real values   */
 typedef struct fogrt_render_desc {
     int width, height;
@@ -716,6 +768,7 @@ typedef struct fogrt_render_desc {
     bool (*progress)(const fogrt_progress *progress, void *user_data);
     void *user_data;
     const volatile int *cancel;
+    fogrt_vec3 (*radiance)(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d, fogrt_rng *rng, void *user_data);
     bool resolved;
 } fogrt_render_desc;
 
@@ -2275,11 +2328,6 @@ FOGRT__PRIVATE float fogrt__spot_profile(const fogrt_light_desc *l, const float 
     if (cos_theta > cosines[1] + 1e-4f) return 1.0f;
     return fogrt_spot_falloff(l->cutoff_deg, l->beam_deg, cos_theta);
 }
-/* A light sample seen from a point: the direction and distance to the emitting point, the
-   radiance arriving from it and the solid-angle pdf of the sample. Point and spot lights
-   are deltas: Le is already the radiance divided by the pdf, and pdf is 1. */
-typedef struct fogrt__light_sample { fogrt__v3 wi, Le; float dist, pdf; bool delta; } fogrt__light_sample;
-
 FOGRT__PRIVATE float fogrt__power_heuristic(float a, float b)
 {
     float r;
@@ -2327,7 +2375,7 @@ FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *
    evaluated from the light's centre. Returns false when x gets nothing. (Forced inline:
    as calls, with Part II's second caller, they cost a fog-free render time.) */
 FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l, fogrt__v3 x,
-                                          const float *u, fogrt__light_sample *ls)
+                                          const float *u, fogrt_light_sample *ls)
 {
     fogrt__v3 to = fogrt__sub(l->position, x), I = l->intensity;
     float d2 = fogrt__dot(to, to), d, pdf, t;
@@ -2337,7 +2385,7 @@ FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_ligh
         I = fogrt__scale(I, fogrt__spot_profile(l, s->spot_cos + 2 * (l - s->lights), -fogrt__dot(to, l->direction) / d));
     if (fogrt__is_black(I)) return false;
     ls->pdf = 1.0f;
-    ls->delta = true;
+    ls->is_delta = true;
     if (!(l->radius > 0.0f)) {
         ls->wi = fogrt__scale(to, 1.0f / d);
         ls->dist = d;
@@ -2382,11 +2430,11 @@ FOGRT__HOT uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__
    by area (pdf 1/A, turned into solid angle). False when the sample is unusable: the back
    of a one-sided emitter, or p inside an emitting sphere. */
 FOGRT__HOT bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area_light *a, fogrt__v3 p,
-                                             const float *u, fogrt__light_sample *ls)
+                                             const float *u, fogrt_light_sample *ls)
 {
     fogrt__v3 y, ny, to;
     float d2, cos_l;
-    ls->delta = false;
+    ls->is_delta = false;
     if (a->sphere != UINT32_MAX) {
         fogrt__v3 c = s->sph_c[a->sphere];
         float r = s->sph_r[a->sphere], t;
@@ -2428,6 +2476,17 @@ FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, 
     d2 = fogrt__dot(to, to);
     cos_l = fabsf(fogrt__dot(fogrt__normalize(to), ny));
     return cos_l > 0.0f ? d2 / (cos_l * a->area) : 0.0f;
+}
+/* One numbering of all lights (point and spot, then area), so that one call samples any. */
+FOGRT__PUBLIC uint32_t fogrt_scene_light_total(const fogrt_scene *s) { return s->light_count + s->area_light_count; }
+FOGRT__PUBLIC bool fogrt_scene_sample_light(const fogrt_scene *s, uint32_t light, fogrt_vec3 p, float u1, float u2,
+                                            float u3, fogrt_light_sample *ls)
+{
+    float u[3];
+    FOGRT_ASSERT(s && s->built && ls && light < fogrt_scene_light_total(s));
+    u[0] = u1; u[1] = u2; u[2] = u3;
+    if (light < s->light_count) return fogrt__sample_point_light(s, &s->lights[light], p, u, ls);
+    return fogrt__sample_area_light(s, &s->area_lights[light - s->light_count], p, u, ls);
 }
 /* The environment's radiance in direction d (a constant; Part II, C, adds maps). */
 FOGRT__PRIVATE fogrt__v3 fogrt__env_radiance(const fogrt_scene *s, fogrt__v3 d)
@@ -2496,7 +2555,7 @@ FOGRT__HOT float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fog
 /* Visibility times transmittance (eq. 8) between the vertex and the light sample's point.
    The shadow ray starts at the offset origin and aims at the target itself, stopping a ray
    offset short of it (the target may lie on a surface: the emitter). */
-FOGRT__HOT float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, const fogrt__light_sample *ls,
+FOGRT__HOT float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, const fogrt_light_sample *ls,
                                    uint64_t *rays)
 {
     fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, ls->wi);
@@ -2687,6 +2746,40 @@ FOGRT__HOT bool fogrt__sample_surface(const fogrt__settings *st, const fogrt__ve
     side = fogrt__dot(*wi, v->ng) * fogrt__dot(v->wo, v->ng);
     return bs->is_transmission ? side < 0.0f : side > 0.0f;
 }
+/* The building blocks of an integrator, public (declared with fogrt_surface): Algorithm 1's
+   surface vertex, ray offset and shadow ray, as a caller of its own sees them. */
+FOGRT__PUBLIC void fogrt_scene_surface(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, const fogrt_hit *hit,
+                                       fogrt_surface *out)
+{
+    fogrt__vertex v;
+    fogrt__v3 p, ng, ns;
+    FOGRT_ASSERT(s && s->built && hit && out && hit->prim < s->tri_count + s->sph_count);
+    fogrt__surface_frame(s, o, d, hit, &p, &ng, &ns);
+    out->front = fogrt__surface_vertex_set(&v, &s->materials[fogrt_scene_get_prim_material(s, hit->prim)],
+                                           fogrt__neg(d), p, ng, ns, false);
+    out->p = p; out->ng = v.ng; out->material = *v.m;
+    out->s = v.frame.s; out->t = v.frame.t; out->n = v.frame.n;
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_surface_offset(const fogrt_scene *s, const fogrt_surface *sf, fogrt_vec3 w)
+{
+    return fogrt__offset(s, sf->p, sf->ng, w);
+}
+FOGRT__PUBLIC float fogrt_scene_light_pdf(const fogrt_scene *s, fogrt_vec3 from, const fogrt_hit *hit,
+                                          const fogrt_surface *sf)
+{
+    return fogrt__area_light_pdf(s, hit->prim, from, sf->p, sf->ng);
+}
+FOGRT__PUBLIC bool fogrt_scene_visible(const fogrt_scene *s, const fogrt_surface *sf, fogrt_vec3 p,
+                                       const fogrt_light_sample *ls)
+{
+    fogrt__vertex v;
+    uint64_t rays = 0;
+    memset(&v, 0, sizeof v);
+    v.p = p;
+    v.is_medium = sf == NULL;                 /* no offset in the fog; no transmittance either way */
+    if (sf) v.ng = sf->ng;
+    return fogrt__shadow(s, &v, ls, &rays) > 0.0f;
+}
 /* Lines 5-10: light sampling at a scattering vertex v, every light (area lights
    light_samples times), each sample f Le T w / (n pdf) with w the MIS weight (1 for a point
    or spot light, which BSDF sampling can never hit). */
@@ -2698,16 +2791,14 @@ FOGRT__PRIVATE fogrt__v3 fogrt__nee(const fogrt_scene *s, const fogrt__settings 
     for (i = 0; i < total; ++i) {
         int j, n = i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->light_samples;
         for (j = 0; j < n; ++j) {
-            fogrt__light_sample ls;
+            fogrt_light_sample ls;
             fogrt__v3 f;
             float u[3], pdf_b, tr, w;
             u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng); u[2] = fogrt_rng_float(rng);
-            if (!(i < s->light_count ? fogrt__sample_point_light(s, &s->lights[i], v->p, u, &ls)
-                                     : fogrt__sample_area_light(s, &s->area_lights[i - s->light_count], v->p, u, &ls)))
-                continue;
+            if (!fogrt_scene_sample_light(s, i, v->p, u[0], u[1], u[2], &ls)) continue;
             f = fogrt__vertex_f(s, v, ls.wi, &pdf_b);
             if (fogrt__is_black(f) || (tr = fogrt__shadow(s, v, &ls, rays)) == 0.0f) continue;
-            w = ls.delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
+            w = ls.is_delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
             L = fogrt__add(L, fogrt__scale(fogrt__mul(f, ls.Le), tr * w / (ls.pdf * (float)n)));
         }
     }
@@ -3189,7 +3280,7 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_paper_defaults(void)
         true, true, false, false, false, false, false,  /* nee, mis, equiangular, glow, footprint, light_by_power, expected_emission */
         1, 0, 0,                                        /* light_samples, seed, threads */
         NULL,                                           /* sample_rate: every pixel alike */
-        NULL, NULL, NULL,                               /* progress, user_data, cancel */
+        NULL, NULL, NULL, NULL,                         /* progress, user_data, cancel, radiance */
         true                                            /* resolved */
     };
     return d;
@@ -3251,6 +3342,7 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
 FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
                                          fogrt_rng *rng, uint64_t *rays)
 {
+    if (st->desc.radiance) return st->desc.radiance(s, o, d, rng, st->desc.user_data);   /* the caller's */
 #ifndef FOGRT_MINIMAL
     if (fogrt__x_wanted(s, st)) return fogrt__x_radiance(s, st, o, d, rng, rays);   /* SEAM 7 */
 #endif
@@ -5281,7 +5373,7 @@ FOGRT__PRIVATE float fogrt__env_pdf(const fogrt_scene *s, fogrt__v3 d)
     p = fogrt__env_pixel(s, d, &sin_t);
     return sin_t > 0.0f ? fogrt__env_cell_pdf(s, p) / (2.0f * FOGRT__PI * FOGRT__PI * sin_t) : 0.0f;
 }
-FOGRT__PRIVATE bool fogrt__sample_env(const fogrt_scene *s, const float *u, fogrt__light_sample *ls)
+FOGRT__PRIVATE bool fogrt__sample_env(const fogrt_scene *s, const float *u, fogrt_light_sample *ls)
 {
     float fy, fx, sin_t;
     int j = fogrt__cdf_find(s->x->env_cdf + (size_t)s->env_w * (size_t)s->env_h, s->env_h, u[0], &fy);
@@ -5289,7 +5381,7 @@ FOGRT__PRIVATE bool fogrt__sample_env(const fogrt_scene *s, const float *u, fogr
     size_t p = (size_t)j * (size_t)s->env_w + (size_t)i;
     ls->wi = fogrt__env_dir(((float)i + fx) / (float)s->env_w, ((float)j + fy) / (float)s->env_h, &sin_t);
     ls->dist = INFINITY;
-    ls->delta = false;
+    ls->is_delta = false;
     ls->pdf = sin_t > 0.0f ? fogrt__env_cell_pdf(s, p) / (2.0f * FOGRT__PI * FOGRT__PI * sin_t) : 0.0f;
     ls->Le = fogrt__v(s->env_map[3 * p], s->env_map[3 * p + 1], s->env_map[3 * p + 2]);
     return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
@@ -5439,7 +5531,7 @@ FOGRT__PRIVATE bool fogrt__build_light_pick(fogrt_scene *s)
     return true;
 }
 #endif
-FOGRT__PRIVATE int fogrt__light_sample_count(const fogrt_scene *s, const fogrt__settings *st, uint32_t i)
+FOGRT__PRIVATE int fogrt_light_sample_count(const fogrt_scene *s, const fogrt__settings *st, uint32_t i)
 {
     return i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->light_samples;
 }
@@ -5448,7 +5540,7 @@ FOGRT__PRIVATE void fogrt__draw(const fogrt_scene *s, uint32_t light, fogrt_rng 
     u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng);
     u[2] = light < s->light_count ? 0.0f : fogrt_rng_float(rng);
 }
-FOGRT__PRIVATE bool fogrt__sample_light(const fogrt_scene *s, uint32_t i, fogrt__v3 x, const float *u, fogrt__light_sample *ls)
+FOGRT__PRIVATE bool fogrt__sample_light(const fogrt_scene *s, uint32_t i, fogrt__v3 x, const float *u, fogrt_light_sample *ls)
 {
     if (i < s->light_count) return fogrt__sample_point_light(s, &s->lights[i], x, u, ls);
     if (i - s->light_count < s->area_light_count) return fogrt__sample_area_light(s, &s->area_lights[i - s->light_count], x, u, ls);
@@ -5772,7 +5864,7 @@ FOGRT__PRIVATE void fogrt__trace_simple(const fogrt__path *P, fogrt_trace_kind k
     fogrt__emit(P, &e);
 }
 FOGRT__PRIVATE void fogrt__trace_light(const fogrt__path *P, const fogrt__vertex *v,
-                                       uint32_t light, const fogrt__light_sample *ls, fogrt__v3 f, float pdf_b,
+                                       uint32_t light, const fogrt_light_sample *ls, fogrt__v3 f, float pdf_b,
                                        float tr, float w, fogrt__v3 value)
 {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_LIGHT_SAMPLE, P);
@@ -5948,12 +6040,12 @@ FOGRT__PRIVATE float fogrt__glow_mix(const fogrt_scene *s, const fogrt__vertex *
    with w the MIS weight (1 for a delta light, or with MIS off). */
 #ifdef FOGRT_TRACE
 FOGRT__PRIVATE void fogrt__trace_light(const fogrt__path *P, const fogrt__vertex *v,
-                                       uint32_t light, const fogrt__light_sample *ls, fogrt__v3 f, float pdf_b,
+                                       uint32_t light, const fogrt_light_sample *ls, fogrt__v3 f, float pdf_b,
                                        float tr, float w, fogrt__v3 value);
 #endif
 FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
                                                const fogrt__vertex *v, const fogrt__glow *g, uint32_t light,
-                                               const fogrt__light_sample *ls, float n)
+                                               const fogrt_light_sample *ls, float n)
     /* n: the samples taken of this light, times the probability it was picked (by power) */
 {
     fogrt__v3 f, c = fogrt__v(0.0f, 0.0f, 0.0f);
@@ -5962,11 +6054,11 @@ FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt
     if (!fogrt__is_black(f)) tr = fogrt__shadow(s, v, ls, P->rays);
     if (tr != 0.0f) {
 #ifdef FOGRT__LAMPS
-        if (g && g->n > 0 && !ls->delta && st->mis) pdf_b = fogrt__glow_mix(s, v, g, ls->wi, pdf_b);   /* how scattering picks wi */
+        if (g && g->n > 0 && !ls->is_delta && st->mis) pdf_b = fogrt__glow_mix(s, v, g, ls->wi, pdf_b);   /* how scattering picks wi */
 #else
         (void)g;
 #endif
-        w = ls->delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls->pdf, pdf_b);
+        w = ls->is_delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls->pdf, pdf_b);
         c = fogrt__scale(fogrt__mul(f, ls->Le), tr * w / (ls->pdf * (float)n));
     }
     FOGRT__HOOK(fogrt__trace_light(P, v, light, ls, f, pdf_b, tr, w, c));
@@ -5985,9 +6077,9 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_light_n(const fogrt_scene *s, const fogrt
                                                uint32_t i, float pick)
 {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
-    int j, n = fogrt__light_sample_count(s, st, i);
+    int j, n = fogrt_light_sample_count(s, st, i);
     for (j = 0; j < n; ++j) {
-        fogrt__light_sample ls;
+        fogrt_light_sample ls;
         float u[3];
         fogrt__draw(s, i, P->rng, u);
         if (fogrt__sample_light(s, i, P->v.p, u, &ls))
@@ -6053,10 +6145,10 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
     pick = fogrt__equiangular_lights(s, st, P, &i, &last);
     for (; i < last; ++i) {
         const fogrt_light_desc *l = &s->lights[i];
-        int j, n = fogrt__light_sample_count(s, st, i);
+        int j, n = fogrt_light_sample_count(s, st, i);
         for (j = 0; j < n; ++j) {
             fogrt__v3 oc = fogrt__sub(l->position, P->o);
-            fogrt__light_sample ls;
+            fogrt_light_sample ls;
             float u[3], t, pdf_t, t_lo = t_min, t_hi = t_max, h;
             u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
             if (l->type == FOGRT_LIGHT_SPOT && !fogrt__clip_to_cone(l, s->spot_cos[2 * i], P->o, P->d, &t_lo, &t_hi)) continue;
