@@ -946,6 +946,57 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #endif
 #endif /* FOGRT_H_INCLUDED */
 
+/* ------------------------------------------------------------------------------------------
+   The implementation's set-up: headers, the allocator and assertion hooks, and the compiler
+   glue (none of it is the method; Part I, the paper, starts below)
+   ------------------------------------------------------------------------------------------ */
+#ifdef FOGRT_IMPLEMENTATION
+#ifndef FOGRT_IMPLEMENTATION_INCLUDED
+#define FOGRT_IMPLEMENTATION_INCLUDED
+#include <math.h>
+#include <string.h>
+#include <float.h>
+#ifndef FOGRT_NO_STDIO
+#include <stdio.h>
+#endif
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#if defined(FOGRT_MALLOC) && !defined(FOGRT_FREE) || !defined(FOGRT_MALLOC) && defined(FOGRT_FREE)
+#error "fogrt: define both FOGRT_MALLOC and FOGRT_FREE, or neither"
+#endif
+#ifndef FOGRT_MALLOC
+#include <stdlib.h>
+#define FOGRT_MALLOC(size, user) ((void)(user), malloc(size))
+#define FOGRT_FREE(ptr, user) ((void)(user), free(ptr))
+#endif
+#ifndef FOGRT_ASSERT
+#include <assert.h>
+#define FOGRT_ASSERT(c) assert(c)
+#endif
+#ifndef FOGRT_MAX_PATH_VERTICES
+#define FOGRT_MAX_PATH_VERTICES 100000
+#endif
+/* Private functions are static and "maybe unused" (features stripped at compile time leave
+   no warnings). The few small functions of the BVH's inner loops and a few integrator steps
+   are forced inline: at -O2 gcc otherwise keeps them as calls, which costs about a quarter
+   of the traversal time, and made a fog-free render pay for the fog code of their callers
+   (docs/benchmarks.md, "Forced inlining"). */
+#if defined(__GNUC__) || defined(__clang__)
+#define FOGRT__UNUSED __attribute__((unused))
+#define FOGRT__INLINE __attribute__((always_inline, unused))
+#else
+#define FOGRT__UNUSED
+#define FOGRT__INLINE
+#endif
+#define FOGRT__PRIVATE static FOGRT__UNUSED
+#define FOGRT__HOT static inline FOGRT__INLINE
+#ifdef FOGRT_STATIC
+#define FOGRT__PUBLIC static FOGRT__UNUSED
+#else
+#define FOGRT__PUBLIC
+#endif
+
 /* ==========================================================================================
 
       IMPLEMENTATION, PART I: THE PAPER
@@ -982,63 +1033,9 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
      7. fogrt__radiance            the full integrator, for every setting beyond the paper (E)
      8. fogrt__pixel_ray           stratified pixel positions, and per-pixel rates (C)
    ========================================================================================== */
-#ifdef FOGRT_IMPLEMENTATION
-#ifndef FOGRT_IMPLEMENTATION_INCLUDED
-#define FOGRT_IMPLEMENTATION_INCLUDED
-
-#include <math.h>
-#include <string.h>
-#include <float.h>
-#ifndef FOGRT_NO_STDIO
-#include <stdio.h>
-#endif
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 /* ------------------------------------------------------------------------------------------
    I.1 Configuration, vectors, random numbers
    ------------------------------------------------------------------------------------------ */
-#if defined(FOGRT_MALLOC) && !defined(FOGRT_FREE) || !defined(FOGRT_MALLOC) && defined(FOGRT_FREE)
-#error "fogrt: define both FOGRT_MALLOC and FOGRT_FREE, or neither"
-#endif
-#ifndef FOGRT_MALLOC
-#include <stdlib.h>
-#define FOGRT_MALLOC(size, user) ((void)(user), malloc(size))
-#define FOGRT_FREE(ptr, user) ((void)(user), free(ptr))
-#endif
-#ifndef FOGRT_ASSERT
-#include <assert.h>
-#define FOGRT_ASSERT(c) assert(c)
-#endif
-#ifndef FOGRT_MAX_PATH_VERTICES
-#define FOGRT_MAX_PATH_VERTICES 100000
-#endif
-
-/* Every private function goes through this macro: static, and "maybe unused" on GCC/Clang so
-   that features stripped at compile time do not leave warnings behind. */
-#if defined(__GNUC__) || defined(__clang__)
-#define FOGRT__PRIVATE static __attribute__((unused))
-#else
-#define FOGRT__PRIVATE static
-#endif
-/* The few small functions in the BVH's inner loops are forced inline: at -O2 gcc otherwise
-   keeps them as calls, which costs about a quarter of the traversal time. So are a few of
-   the integrators' steps (2.3, 3.4, Part II E): as calls, with the fog code in their callers,
-   they made a fog-free render pay for that code (docs/benchmarks.md, "Forced inlining"). */
-#if defined(__GNUC__) || defined(__clang__)
-#define FOGRT__HOT static inline __attribute__((always_inline, unused))
-#else
-#define FOGRT__HOT static inline
-#endif
-#if defined(FOGRT_STATIC) && (defined(__GNUC__) || defined(__clang__))
-#define FOGRT__PUBLIC static __attribute__((unused))
-#elif defined(FOGRT_STATIC)
-#define FOGRT__PUBLIC static
-#else
-#define FOGRT__PUBLIC
-#endif
-
 #define FOGRT__PI      3.14159265358979323846f
 #define FOGRT__PI_D    3.14159265358979323846
 #define FOGRT__INV_PI  0.31830988618379067154f
@@ -1603,15 +1600,11 @@ FOGRT__PUBLIC void fogrt_scene_get_info(const fogrt_scene *s, fogrt_scene_info *
 {
     FOGRT_ASSERT(s && info);
     memset(info, 0, sizeof *info);
-    info->triangle_count = s->tri_count;
-    info->sphere_count = s->sph_count;
+    info->triangle_count = s->tri_count; info->sphere_count = s->sph_count;
     info->material_count = s->material_count;
-    info->light_count = s->light_count;
-    info->area_light_count = s->area_light_count;
-    info->bounds_min = s->bmin;
-    info->bounds_max = s->bmax;
-    info->has_environment = s->has_env;
-    info->built = s->built;
+    info->light_count = s->light_count; info->area_light_count = s->area_light_count;
+    info->bounds_min = s->bmin; info->bounds_max = s->bmax;
+    info->has_environment = s->has_env; info->built = s->built;
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_get_material(const fogrt_scene *s, uint32_t id, fogrt_material_desc *out)
 {
@@ -1627,16 +1620,8 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_get_light(const fogrt_scene *s, uint32_t 
     *out = s->lights[index];
     return FOGRT_RESULT_OK;
 }
-FOGRT__PUBLIC void fogrt_scene_get_camera(const fogrt_scene *s, fogrt_camera_desc *out)
-{
-    FOGRT_ASSERT(s && out);
-    *out = s->camera;
-}
-FOGRT__PUBLIC void fogrt_scene_get_medium(const fogrt_scene *s, fogrt_medium_desc *out)
-{
-    FOGRT_ASSERT(s && out);
-    *out = s->medium;
-}
+FOGRT__PUBLIC void fogrt_scene_get_camera(const fogrt_scene *s, fogrt_camera_desc *out) { FOGRT_ASSERT(s && out); *out = s->camera; }
+FOGRT__PUBLIC void fogrt_scene_get_medium(const fogrt_scene *s, fogrt_medium_desc *out) { FOGRT_ASSERT(s && out); *out = s->medium; }
 
 
 /* ------------------------------------------------------------------------------------------
@@ -1674,17 +1659,15 @@ FOGRT__HOT void fogrt__aabb_union(fogrt__aabb *b, const fogrt__aabb *o)   /* o m
     b->lo.x = FOGRT__MIN(b->lo.x, o->lo.x); b->lo.y = FOGRT__MIN(b->lo.y, o->lo.y); b->lo.z = FOGRT__MIN(b->lo.z, o->lo.z);
     b->hi.x = FOGRT__MAX(b->hi.x, o->hi.x); b->hi.y = FOGRT__MAX(b->hi.y, o->hi.y); b->hi.z = FOGRT__MAX(b->hi.z, o->hi.z);
 }
-FOGRT__PRIVATE float fogrt__aabb_area(const fogrt__aabb *b)
+FOGRT__PRIVATE float fogrt__aabb_area(const fogrt__aabb *b)     /* 0 for the empty box */
 {
     fogrt__v3 e = fogrt__sub(b->hi, b->lo);
-    if (e.x < 0.0f) return 0.0f;
-    return 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
+    return e.x < 0.0f ? 0.0f : 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
 }
 FOGRT__PRIVATE float fogrt__aabb_volume(const fogrt__aabb *b)
 {
     fogrt__v3 e = fogrt__sub(b->hi, b->lo);
-    if (e.x < 0.0f) return 0.0f;
-    return e.x * e.y * e.z;
+    return e.x < 0.0f ? 0.0f : e.x * e.y * e.z;
 }
 FOGRT__HOT fogrt__v3 fogrt__aabb_centre(const fogrt__aabb *b) { return fogrt__scale(fogrt__add(b->lo, b->hi), 0.5f); }
 
@@ -3713,18 +3696,6 @@ FOGRT__PUBLIC fogrt_result fogrt_write_ppm(const char *path, int width, int heig
 /* ------------------------------------------------------------------------------------------
    I.3 The default scene: the CS184 Cornell box, filled with fog
    ------------------------------------------------------------------------------------------ */
-FOGRT__PRIVATE fogrt_result fogrt__add_quad(fogrt_scene *s, fogrt__v3 a, fogrt__v3 b, fogrt__v3 c, fogrt__v3 d, uint32_t mat)
-{
-    /* a, b, c, d counter-clockwise seen from the front: triangles (a, b, c) and (a, c, d). */
-    float pos[12];
-    uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
-    fogrt_mesh_desc m;
-    pos[0] = a.x; pos[1] = a.y; pos[2] = a.z; pos[3] = b.x; pos[4] = b.y; pos[5] = b.z;
-    pos[6] = c.x; pos[7] = c.y; pos[8] = c.z; pos[9] = d.x; pos[10] = d.y; pos[11] = d.z;
-    memset(&m, 0, sizeof m);
-    m.positions = pos; m.vertex_count = 4; m.indices = idx; m.triangle_count = 2; m.material = mat;
-    return fogrt_scene_add_mesh(s, &m);
-}
 FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s);
 /* All of the default scene or nothing: a failure midway takes back what was added. */
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
@@ -3740,15 +3711,26 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
     }
     return r;
 }
+/* The box: x in [-1, 1], y in [0, 1.5], z in [-1, 1], open toward +z (the camera). Each quad
+   (a, b, c, d) is counter-clockwise seen from its front, two triangles (a, b, c), (a, c, d);
+   the lamp is a square just below the ceiling, facing down. */
+static const float fogrt__default_quads[6][12] = {
+    { -1, 0, -1,   -1, 0, 1,   1, 0, 1,   1, 0, -1 },                                    /* floor */
+    { -1, 1.5f, -1,   1, 1.5f, -1,   1, 1.5f, 1,   -1, 1.5f, 1 },                        /* ceiling */
+    { -1, 0, -1,   1, 0, -1,   1, 1.5f, -1,   -1, 1.5f, -1 },                            /* back */
+    { -1, 0, -1,   -1, 1.5f, -1,   -1, 1.5f, 1,   -1, 0, 1 },                            /* left */
+    { 1, 0, -1,   1, 0, 1,   1, 1.5f, 1,   1, 1.5f, -1 },                                /* right */
+    { -0.35f, 1.49f, -0.35f,   0.35f, 1.49f, -0.35f,   0.35f, 1.49f, 0.35f,   -0.35f, 1.49f, 0.35f } };   /* lamp */
 FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s)
 {
+    static const uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
     fogrt_material_desc md;
+    fogrt_mesh_desc mesh;
     fogrt_light_desc ld;
     fogrt_camera_desc cd;
     fogrt_medium_desc fd;
-    uint32_t white, red, blue, lamp, matte, glass;
+    uint32_t white, red, blue, lamp, matte, glass, i, wall[6];
     fogrt_result r = FOGRT_RESULT_OK;
-    FOGRT_ASSERT(s);
 #define FOGRT__TRY(call) do { r = (call); if (r != FOGRT_RESULT_OK) return r; } while (0)
     memset(&md, 0, sizeof md);
     md.type = FOGRT_BSDF_DIFFUSE;
@@ -3766,15 +3748,13 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s)
 #endif
     md.reflectance = fogrt__v(1.0f, 1.0f, 1.0f); md.transmittance = fogrt__v(1.0f, 1.0f, 1.0f);
     FOGRT__TRY(fogrt_scene_add_material(s, &md, &glass));
-    /* The box: x in [-1, 1], y in [0, 1.5], z in [-1, 1], open toward +z (the camera). */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 0, -1), fogrt__v(-1, 0, 1), fogrt__v(1, 0, 1), fogrt__v(1, 0, -1), white));          /* floor */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 1.5f, -1), fogrt__v(1, 1.5f, -1), fogrt__v(1, 1.5f, 1), fogrt__v(-1, 1.5f, 1), white)); /* ceiling */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 0, -1), fogrt__v(1, 0, -1), fogrt__v(1, 1.5f, -1), fogrt__v(-1, 1.5f, -1), white));   /* back */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 0, -1), fogrt__v(-1, 1.5f, -1), fogrt__v(-1, 1.5f, 1), fogrt__v(-1, 0, 1), red));     /* left */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(1, 0, -1), fogrt__v(1, 0, 1), fogrt__v(1, 1.5f, 1), fogrt__v(1, 1.5f, -1), blue));        /* right */
-    /* The ceiling lamp: a square just below the ceiling, wound to face down. */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-0.35f, 1.49f, -0.35f), fogrt__v(0.35f, 1.49f, -0.35f),
-                               fogrt__v(0.35f, 1.49f, 0.35f), fogrt__v(-0.35f, 1.49f, 0.35f), lamp));
+    wall[0] = wall[1] = wall[2] = white; wall[3] = red; wall[4] = blue; wall[5] = lamp;
+    memset(&mesh, 0, sizeof mesh);
+    mesh.vertex_count = 4; mesh.indices = idx; mesh.triangle_count = 2;
+    for (i = 0; i < 6; ++i) {
+        mesh.positions = fogrt__default_quads[i]; mesh.material = wall[i];
+        FOGRT__TRY(fogrt_scene_add_mesh(s, &mesh));
+    }
     FOGRT__TRY(fogrt_scene_add_sphere(s, fogrt__v(-0.45f, 0.35f, -0.35f), 0.35f, matte));
     FOGRT__TRY(fogrt_scene_add_sphere(s, fogrt__v(0.45f, 0.35f, 0.25f), 0.35f, glass));
     /* The spot light: high on the left, aimed at the floor right of centre; its cone shows in the fog. */
@@ -3786,9 +3766,7 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s)
     ld.cutoff_deg = 16.0f; ld.beam_deg = 11.0f; ld.radius = 0.02f;
     FOGRT__TRY(fogrt_scene_add_light(s, &ld));
     memset(&cd, 0, sizeof cd);
-    cd.position = fogrt__v(0.0f, 0.75f, 3.6f);
-    cd.look_at = fogrt__v(0.0f, 0.7f, 0.0f);
-    cd.fov_deg = 38.0f;
+    cd.position = fogrt__v(0.0f, 0.75f, 3.6f); cd.look_at = fogrt__v(0.0f, 0.7f, 0.0f); cd.fov_deg = 38.0f;
     FOGRT__TRY(fogrt_scene_set_camera(s, &cd));
 #ifndef FOGRT_NO_MEDIUM   /* a build without fog gets the same box, without fog */
     memset(&fd, 0, sizeof fd);
