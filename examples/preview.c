@@ -590,6 +590,7 @@ static void *worker_main(void *arg)
        a lower priority, so the input and drawing thread gets a core the moment it wakes. */
     setpriority(PRIO_PROCESS, (id_t)syscall(SYS_gettid), 5);
 #endif
+    cli_thread_default(o->threads);
     memset(&cur, 0, sizeof cur);
     memset(pass, 0, sizeof pass);
     while (first_pass < 2 && (o->width / pass_scale[first_pass] < 32 || o->height / pass_scale[first_pass] < 24)) first_pass++;
