@@ -132,6 +132,9 @@ check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/badkeys.err') -eq 1 ] && grep -q 'fram
       "--keys with a frame after the last: exit $rc, expected 2 and one line naming frame 9" badkeys
 run badkey --frames 5 --keys "3:k"
 check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/badkey.err') -eq 1 ]" "--keys with an unknown key: exit $rc, expected 2 and one line" badkey
+run hugeimage -r 16384 16384 --scale 1 --frames 1
+check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/hugeimage.err') -eq 1 ] && grep -q -- '-r 16384 16384' '$tmp/hugeimage.err'" \
+      "-r 16384 16384 --scale 1 (40 GiB of buffers): exit $rc, expected 2 and one line naming -r before allocating" hugeimage
 run badscene "$tmp/nothere.obj"
 check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/badscene.err') -eq 1 ]" "missing scene file: exit $rc, expected 2 and one line" badscene
 
