@@ -8,9 +8,9 @@
 # The checker (examples/coursework/check_step.c with fogrt's implementation) is compiled once
 # per step into an object; the student's file is compiled and linked with it on every run.
 .PHONY: check-step coursework-solutions
-COURSEWORK_STEPS := 1 2 3 4 5 9
+COURSEWORK_STEPS := 1 2 3 4 5 6 7 8 9
 CW_DIR := examples/coursework
-# A student's endless loop stops after two minutes (the checks take well under a second).
+# A student's endless loop stops after two minutes (a step's checks take at most a few seconds).
 CW_TIMEOUT := $(shell command -v timeout >/dev/null 2>&1 && echo timeout 120)
 CW_DEPS := $(CW_DIR)/check_step.c $(CW_DIR)/check.h $(CW_DIR)/coursework.h fogrt.h tests/stats.h examples/plotfont.h examples/stb_write.h
 
@@ -19,7 +19,7 @@ $(BUILD)/coursework/check_step%.o: $(CW_DEPS) | deps-stb $(BUILD)
 	$(CC) $(ALL_CFLAGS) -DCW_STEP=$* -I$(CW_DIR) -c -o $@ $(CW_DIR)/check_step.c
 
 check-step:
-	@[ -n "$(filter $(COURSEWORK_STEPS),$(STEP))" ] || { echo "usage: make check-step STEP=N [SRC=path/to/your.c]  (steps: $(COURSEWORK_STEPS); 6-8 are coming, docs/coursework.md)"; exit 2; }
+	@[ -n "$(filter $(COURSEWORK_STEPS),$(STEP))" ] || { echo "usage: make check-step STEP=N [SRC=path/to/your.c]  (steps: $(COURSEWORK_STEPS))"; exit 2; }
 	@$(MAKE) --no-print-directory $(BUILD)/coursework/check_step$(STEP).o
 	@src="$(if $(SRC),$(SRC),$(wildcard $(CW_DIR)/step$(STEP)_*.c))"; \
 	[ -n "$$src" ] && [ -f "$$src" ] || { echo "check-step: no source for step $(STEP) (SRC=$(SRC))"; exit 2; }; \
