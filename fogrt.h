@@ -1394,20 +1394,25 @@ FOGRT__PRIVATE fogrt_result fogrt__check_mesh(const fogrt_scene *s, const fogrt_
     }
     return FOGRT_RESULT_OK;
 }
-/* Room for n more triangles in every per-triangle array. */
-FOGRT__PRIVATE bool fogrt__reserve_triangles(fogrt_scene *s, uint32_t n)
+/* Room for n more triangles in every per-triangle array. The normals' array exists only
+   once a mesh has normals: without it a triangle takes 45 bytes instead of 81. */
+FOGRT__PRIVATE bool fogrt__reserve_triangles(fogrt_scene *s, uint32_t n, bool normals)
 {
-    if (s->tri_count + n > s->tri_cap) {
-        uint32_t cap = fogrt__grow_cap(s->tri_cap, s->tri_count + n), c = s->tri_count;
+    uint32_t c = s->tri_count;
+    if (c + n > s->tri_cap) {
+        uint32_t cap = fogrt__grow_cap(s->tri_cap, c + n);
+        /* On failure the arrays that did grow hold the old data; tri_cap is the smallest. */
         if (!fogrt__reserve(s, (void **)&s->tri_v, c * 3, cap * 3, sizeof(fogrt__v3)) ||
-            !fogrt__reserve(s, (void **)&s->tri_n, c * 3, cap * 3, sizeof(fogrt__v3)) ||
+            (s->tri_n && !fogrt__reserve(s, (void **)&s->tri_n, c * 3, cap * 3, sizeof(fogrt__v3))) ||
             !fogrt__reserve(s, (void **)&s->tri_has_n, c, cap, 1) ||
             !fogrt__reserve(s, (void **)&s->tri_material, c, cap, sizeof(uint32_t)) ||
-            !fogrt__reserve(s, (void **)&s->tri_mesh, c, cap, sizeof(uint32_t))) {
-            /* The arrays that did grow hold the old data; only tri_cap is the smaller of them. */
+            !fogrt__reserve(s, (void **)&s->tri_mesh, c, cap, sizeof(uint32_t)))
             return false;
-        }
         s->tri_cap = cap;
+    }
+    if (normals && !s->tri_n) {                         /* the first mesh with normals */
+        if (!fogrt__reserve(s, (void **)&s->tri_n, 0, s->tri_cap * 3, sizeof(fogrt__v3))) return false;
+        memset(s->tri_n, 0, sizeof(fogrt__v3) * 3 * (size_t)c);
     }
     return true;
 }
@@ -1419,7 +1424,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh
     n = desc->triangle_count;
     if (n == 0) return FOGRT_RESULT_OK;
     if ((r = fogrt__check_mesh(s, desc)) != FOGRT_RESULT_OK) return r;
-    if (!fogrt__reserve_triangles(s, n)) return FOGRT_RESULT_OUT_OF_MEMORY;
+    if (!fogrt__reserve_triangles(s, n, desc->normals != NULL)) return FOGRT_RESULT_OUT_OF_MEMORY;
     first = s->tri_count;
     for (i = 0; i < n; ++i) {
         uint32_t t = first + i;
@@ -1427,11 +1432,9 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh
             uint32_t vi = desc->indices ? desc->indices[3 * i + k] : 3 * i + k;
             const float *p = desc->positions + 3 * (size_t)vi;
             s->tri_v[3 * t + k] = fogrt__v(p[0], p[1], p[2]);
-            if (desc->normals) {
-                const float *q = desc->normals + 3 * (size_t)vi;
-                s->tri_n[3 * t + k] = fogrt__v(q[0], q[1], q[2]);
-            } else {
-                s->tri_n[3 * t + k] = fogrt__v(0.0f, 0.0f, 0.0f);
+            if (s->tri_n) {                                 /* zeros for a mesh without normals */
+                const float *q = desc->normals ? desc->normals + 3 * (size_t)vi : NULL;
+                s->tri_n[3 * t + k] = q ? fogrt__v(q[0], q[1], q[2]) : fogrt__v(0.0f, 0.0f, 0.0f);
             }
         }
         s->tri_has_n[t] = desc->normals != NULL;
@@ -6867,7 +6870,7 @@ FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
     t = s->tri_count;
     p = t + s->sph_count;
     b += sizeof(fogrt_material_desc) * s->material_count + sizeof(fogrt_light_desc) * s->light_count;
-    b += t * (6 * sizeof(fogrt__v3) + 1 + 2 * sizeof(uint32_t));   /* vertices, normals, flag, ids */
+    b += t * ((s->tri_n ? 6 : 3) * sizeof(fogrt__v3) + 1 + 2 * sizeof(uint32_t));   /* vertices, normals, flag, ids */
     b += (size_t)s->sph_count * (sizeof(fogrt__v3) + sizeof(float) + sizeof(uint32_t));
     if (s->env_map) b += sizeof(float) * 3 * (size_t)s->env_w * (size_t)s->env_h;
     if (s->nodes) b += sizeof(fogrt_bvh_node) * s->node_count + p * sizeof(uint32_t);
