@@ -5,6 +5,8 @@
 #                                        to $(BUILD)/coursework/. Exit status 1 if a check fails.
 #   make coursework-solutions            runs every step's checks on the reference solutions
 #                                        (examples/coursework/solutions/) and prints one table.
+# Steps 6-8 render with fogrt_render on every OpenMP thread; idle threads sleep instead of
+# spinning (OMP_WAIT_POLICY=passive), so the CPU time a check reports is the work it did.
 # The checker (examples/coursework/check_step.c with fogrt's implementation) is compiled once
 # per step into an object; the student's file is compiled and linked with it on every run.
 .PHONY: check-step coursework-solutions
@@ -25,7 +27,7 @@ check-step:
 	[ -n "$$src" ] && [ -f "$$src" ] || { echo "check-step: no source for step $(STEP) (SRC=$(SRC))"; exit 2; }; \
 	$(CC) $(ALL_CFLAGS) -I$(CW_DIR) -o $(BUILD)/coursework/step$(STEP) $(BUILD)/coursework/check_step$(STEP).o "$$src" $(LDLIBS) \
 	  || { echo "check-step: $$src does not compile against examples/coursework/coursework.h"; exit 2; }; \
-	$(CW_TIMEOUT) ./$(BUILD)/coursework/step$(STEP) $(BUILD)/coursework
+	OMP_WAIT_POLICY=$${OMP_WAIT_POLICY:-passive} $(CW_TIMEOUT) ./$(BUILD)/coursework/step$(STEP) $(BUILD)/coursework
 
 coursework-solutions: $(foreach s,$(COURSEWORK_STEPS),$(BUILD)/coursework/check_step$(s).o)
 	@mkdir -p $(BUILD)/coursework/solutions
@@ -33,7 +35,7 @@ coursework-solutions: $(foreach s,$(COURSEWORK_STEPS),$(BUILD)/coursework/check_
 	for s in $(COURSEWORK_STEPS); do \
 	  src=$$(ls $(CW_DIR)/solutions/step$${s}_*.c); \
 	  $(CC) $(ALL_CFLAGS) -I$(CW_DIR) -o $(BUILD)/coursework/solution$$s $(BUILD)/coursework/check_step$$s.o $$src $(LDLIBS) || exit 1; \
-	  ./$(BUILD)/coursework/solution$$s $(BUILD)/coursework/solutions > $(BUILD)/coursework/solution$$s.log 2>&1 || status=1; \
+	  OMP_WAIT_POLICY=$${OMP_WAIT_POLICY:-passive} ./$(BUILD)/coursework/solution$$s $(BUILD)/coursework/solutions > $(BUILD)/coursework/solution$$s.log 2>&1 || status=1; \
 	  title=$$(sed -n '1s/^step [0-9]*: //p' $(BUILD)/coursework/solution$$s.log); \
 	  summary=$$(sed -n 's/^step [0-9]*: \([0-9]*\) of \([0-9]*\) checks passed in \([0-9.]*\) s.*/\1\/\2 \3/p' $(BUILD)/coursework/solution$$s.log); \
 	  printf '%-6s %-74s %-8s %s s\n' $$s "$$title" $${summary% *} $${summary#* }; \

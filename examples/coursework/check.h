@@ -2516,7 +2516,7 @@ static void cw_render_picture(const cw_run *run, const char *stem, const char *t
         if (!isfinite(d)) { td[3 * i] = 0; td[3 * i + 1] = 0; td[3 * i + 2] = 0; continue; }
         td[3 * i] = d > 0.0 ? 255 : lo; td[3 * i + 1] = lo; td[3 * i + 2] = d < 0.0 ? 255 : lo;
     }
-    c = pf_canvas_make(X0 * 2 + 3 * pw + 2 * gap, top + ph + 60, PF_WHITE);
+    c = pf_canvas_make(X0 * 2 + 3 * pw + 2 * gap, top + ph + 66, PF_WHITE);
     pf_text_at(&c, c.w / 2, 10, title, pf_text_width(title, 2) <= c.w - 8 ? 2 : 1, PF_BLACK, 1);
     cw__blit_scaled(&c, X0, top, ta);
     cw__blit_scaled(&c, X0 + pw + gap, top, tb);
@@ -2526,6 +2526,7 @@ static void cw_render_picture(const cw_run *run, const char *stem, const char *t
     pf_text_at(&c, X0 + 2 * (pw + gap) + pw / 2, top + ph + 6, "difference", 2, PF_BLACK, 1);
     pf_text_at(&c, X0 + 2 * (pw + gap) + pw / 2, top + ph + 28, "red: yours brighter, blue: darker", 1, PF_GREY, 1);
     pf_text_at(&c, X0 + 2 * (pw + gap) + pw / 2, top + ph + 40, "(full colour at 50% of the mean)", 1, PF_GREY, 1);
+    pf_text_at(&c, X0 + 2 * (pw + gap) + pw / 2, top + ph + 52, "noise is expected; a pattern is not", 1, PF_GREY, 1);
     pf_text_at(&c, X0 + pw / 2, top + ph + 28, "same exposure as the reference", 1, PF_GREY, 1);
     cw_save(run, stem, &c, verdict, pass, path, size);
     pf_canvas_free(&c);
