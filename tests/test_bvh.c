@@ -927,6 +927,7 @@ static void test_bins_variants(void)
     free_soup(&s);
 }
 
+#ifndef FOGRT_MINIMAL   /* (with Part I alone there is one split to compare) */
 /* Part I's scalar binned split, from tests/bvh_paths.c compiled twice (mk/test_bvh.mk). */
 uint32_t bvh_paths_nosimd(const float *tri, uint32_t tri_count, const float *sph, uint32_t sph_count,
                           const fogrt_build_desc *desc, fogrt_bvh_node **nodes, uint32_t **prim_index);
@@ -995,6 +996,7 @@ static void split_paths_soup(soup *s, int kind)
         if (kind == 4) { s->center[i] = vscale(s->center[i], 1e29f); s->radius[i] *= 1e29f; }
     }
 }
+#endif
 
 /* The tree does not depend on the path of the binned split: appendix A's, in SSE lanes
    (this program), and Part I's scalar code (FOGRT_WBVH_NO_SIMD: the same build otherwise;
