@@ -305,13 +305,13 @@ static bool parse_script(const char *text, int frames, script_event **out, int *
         if (strncmp(p, "drag:", 5) == 0) {
             p += 5;
             e.key = PK_DRAG;
-            if (!read_number(&p, &e.dx) || *p != ',') { snprintf(msg, msg_size, "item '%.20s': expected drag:DX,DY", item); goto fail; }
+            if (!read_number(&p, &e.dx) || *p != ',') { snprintf(msg, msg_size, "item '%.20s': expected drag:DX,DY, each within +-1e6 pixels", item); goto fail; }
             p++;
-            if (!read_number(&p, &e.dy)) { snprintf(msg, msg_size, "item '%.20s': expected drag:DX,DY", item); goto fail; }
+            if (!read_number(&p, &e.dy)) { snprintf(msg, msg_size, "item '%.20s': expected drag:DX,DY, each within +-1e6 pixels", item); goto fail; }
         } else if (strncmp(p, "wheel:", 6) == 0) {
             p += 6;
             e.key = PK_WHEEL;
-            if (!read_number(&p, &e.dy)) { snprintf(msg, msg_size, "item '%.20s': expected wheel:N", item); goto fail; }
+            if (!read_number(&p, &e.dy)) { snprintf(msg, msg_size, "item '%.20s': expected wheel:N, N within +-1e6", item); goto fail; }
         } else if ((strncmp(p, "F1", 2) == 0 || strncmp(p, "f1", 2) == 0) && (p[2] == ',' || p[2] == '\0')) {
             e.key = PK_F1; p += 2;
         } else if (strncmp(p, "esc", 3) == 0 && (p[3] == ',' || p[3] == '\0')) {

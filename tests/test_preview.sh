@@ -135,6 +135,8 @@ check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/badkey.err') -eq 1 ]" "--keys with an 
 run hugeimage -r 16384 16384 --scale 1 --frames 1
 check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/hugeimage.err') -eq 1 ] && grep -q -- '-r 16384 16384' '$tmp/hugeimage.err'" \
       "-r 16384 16384 --scale 1 (40 GiB of buffers): exit $rc, expected 2 and one line naming -r before allocating" hugeimage
+run bigdrag --frames 5 --keys "3:drag:1e9,0"
+check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/bigdrag.err') -eq 1 ] && grep -q '1e6' '$tmp/bigdrag.err'" "--keys with a drag of 1e9 pixels: exit $rc, expected 2 and one line giving the range" bigdrag
 run badscene "$tmp/nothere.obj"
 check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/badscene.err') -eq 1 ]" "missing scene file: exit $rc, expected 2 and one line" badscene
 
