@@ -1025,7 +1025,7 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
    Part I reaches Part II only at these seams, each marked "SEAM n" where it stands:
      1. fogrt__traverse            the wide tree, when the build made one (A)
      2. fogrt_scene_build          how small a binary node may stay, for the wide tree (A);
-        fogrt__bins_fill           and the binning pass in SIMD lanes (A)
+        fogrt__bvh_split_binned    and a node's whole binned split in SIMD lanes (A)
      3. fogrt_scene_build          Part II's tables: wide tree, HG table, footprints, pilot
      4. fogrt__free_built          their release
      5. fogrt__fresnel             the exact dielectric Fresnel (C)
@@ -1171,9 +1171,9 @@ struct fogrt__job;
 FOGRT__HOT bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
                                       fogrt_hit *hit, bool any_hit, bool *done);                  /* 1 (A) */
 FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n);                /* 2 (A) */
-struct fogrt__bins;
-struct fogrt__aabb;
-FOGRT__PRIVATE bool fogrt__x_bins_fill(struct fogrt__bins *bins, const struct fogrt__aabb *box, uint32_t count);
+struct fogrt__build; struct fogrt__bjob;
+FOGRT__PRIVATE bool fogrt__x_split_binned(struct fogrt__build *b, const struct fogrt__bjob *job, fogrt_bvh_node *child,
+                                          struct fogrt__bjob *left, struct fogrt__bjob *right, bool *halve, uint32_t *left_count);
 #endif
 #ifndef FOGRT_MINIMAL
 FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n);        /* 3 */
@@ -1734,9 +1734,6 @@ FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt_build_desc *
     bins->nb = nb;
     bins->origin = cb->lo;
     bins->scale = fogrt__v(sc[0], sc[1], sc[2]);
-#ifndef FOGRT_NO_WIDE_BVH
-    if (fogrt__x_bins_fill(bins, box, count)) return;                      /* SEAM 2: in SIMD lanes */
-#endif
     for (i = 0; i < count; ++i) {
         fogrt__v3 c = fogrt__aabb_centre(&box[i]);
         for (ax = 0; ax < 3; ++ax) {
@@ -1824,6 +1821,10 @@ FOGRT__PRIVATE uint32_t fogrt__bvh_split_binned(fogrt__build *b, const fogrt__bj
     fogrt__bins bins;
     float best = FLT_MAX;
     int ax, best_ax = -1, best_k = 0;
+#ifndef FOGRT_NO_WIDE_BVH
+    uint32_t x_left;
+    if (fogrt__x_split_binned(b, job, child, left, right, halve, &x_left)) return x_left;   /* SEAM 2 */
+#endif
     fogrt__bins_fill(&bins, &b->desc, &job->cb, b->box + first, count);
     for (ax = 0; ax < 3; ++ax)
         if (fogrt__comp(bins.scale, ax) > 0.0f && fogrt__bins_sweep(&b->desc, &bins, ax, count, &best, &best_k)) best_ax = ax;
@@ -3810,7 +3811,8 @@ struct fogrt__x {
 /* ------------------------------------------------------------------------------------------
    A. The wide BVH
    What it adds: 8 (or 4) children per node, their boxes tested side by side in SIMD lanes
-   (SSE, AVX2 where the processor has it), and huge pages for the big arrays.
+   (SSE, AVX2 where the processor has it), huge pages for the big arrays, and 2.1's binned
+   split of a node in SSE lanes (the same tree as Part I's, built faster: seam 2).
    What it costs: nothing where the binary tree is chosen (fogrt_build_desc.layout).
    Its gain: docs/benchmarks.md, table "Wide BVH".
 
@@ -4639,45 +4641,251 @@ FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n
     if (!fogrt__wants_wide(d, n) || fogrt__wbvh_small_scene(n)) return 0;
     return FOGRT__MIN((uint32_t)d->max_leaf_size, (uint32_t)FOGRT__WBVH_LEAF);
 }
-/* Seam 2, too: Part I's binning pass (2.1) in SSE lanes, a box's corner in one register.
-   The same bins as the scalar pass (each lane's centre, bin number, minimum and maximum are
-   computed as it does them), in about half the time of the build. Lane 3 holds the next
-   float of the box array, never a coordinate (the array has a spare box at its end). */
-FOGRT__PRIVATE bool fogrt__x_bins_fill(fogrt__bins *bins, const fogrt__aabb *box, uint32_t count)
-{
+/* Seam 2, too: Part I's binned split of a node (2.1: binning, sweep, partition, child
+   boxes) in SSE lanes, a box's corner in one register. Part I keeps each box as six floats
+   and works one coordinate at a time; here a bin is two 4-float records, and a primitive's
+   centre, its three bin numbers, a bin's growth and a side's box are one instruction each
+   (docs/benchmarks.md, "Wide BVH": the build's instructions). The split is Part I's bit for
+   bit, so the trees are the same (tests/test_bvh.c compares them node for node): every lane
+   computes what Part I computes, in the same order and with the same operand first (min
+   and max of an equal pair keep the second, which decides the sign of a zero), and the
+   costs are Part I's expressions. Lane 3 of a box loaded at its lo and its hi holds the
+   next float of the box array, never a coordinate (the array has a spare box at its end);
+   it is never stored. */
 #ifdef FOGRT_WBVH_SSE
-    float lo[3][FOGRT__BVH_MAX_BINS][4], hi[3][FOGRT__BVH_MAX_BINS][4];
-    const __m128 org = _mm_setr_ps(bins->origin.x, bins->origin.y, bins->origin.z, 0.0f);
-    const __m128 sc = _mm_setr_ps(bins->scale.x, bins->scale.y, bins->scale.z, 0.0f);
-    const __m128 top = _mm_set1_ps((float)(bins->nb - 1)), zero = _mm_setzero_ps(), half = _mm_set1_ps(0.5f);
-    uint32_t i;
-    int ax, k;
-    for (ax = 0; ax < 3; ++ax)
-        for (k = 0; k < bins->nb; ++k) {
-            _mm_storeu_ps(lo[ax][k], _mm_set1_ps(FLT_MAX));
-            _mm_storeu_ps(hi[ax][k], _mm_set1_ps(-FLT_MAX));
-        }
-    for (i = 0; i < count; ++i) {
-        __m128 l = _mm_loadu_ps(&box[i].lo.x), h = _mm_loadu_ps(&box[i].hi.x);
-        __m128 f = _mm_mul_ps(_mm_sub_ps(_mm_mul_ps(_mm_add_ps(l, h), half), org), sc);
-        int32_t bin[4];
-        _mm_storeu_si128((__m128i *)(void *)bin, _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(f, zero), top)));
-        for (ax = 0; ax < 3; ++ax) {
-            float *bl = lo[ax][bin[ax]], *bh = hi[ax][bin[ax]];
-            _mm_storeu_ps(bl, _mm_min_ps(_mm_loadu_ps(bl), l));
-            _mm_storeu_ps(bh, _mm_max_ps(_mm_loadu_ps(bh), h));
-            bins->n[ax][bin[ax]]++;
+typedef struct fogrt__xbin { float lo[4], hi[4]; } fogrt__xbin;
+/* The bins of one node: axis ax's bin k at ax * FOGRT__BVH_MAX_BINS + k. */
+typedef struct fogrt__xbins {
+    fogrt__xbin bin[3 * FOGRT__BVH_MAX_BINS];
+    uint32_t n[3 * FOGRT__BVH_MAX_BINS];
+    float scale[4];
+    __m128 org, sc;
+    int nb;
+} fogrt__xbins;
+FOGRT__HOT __m128 fogrt__x_centre(const fogrt__aabb *b)
+{
+    return _mm_mul_ps(_mm_add_ps(_mm_loadu_ps(&b->lo.x), _mm_loadu_ps(&b->hi.x)), _mm_set1_ps(0.5f));
+}
+FOGRT__PRIVATE fogrt__aabb fogrt__x_box(__m128 lo, __m128 hi)
+{
+    fogrt__aabb b;
+    float l[4], h[4];
+    _mm_storeu_ps(l, lo); _mm_storeu_ps(h, hi);
+    b.lo = fogrt__v(l[0], l[1], l[2]);
+    b.hi = fogrt__v(h[0], h[1], h[2]);
+    return b;
+}
+/* fogrt__bins_fill's set-up: as many bins, the same scales. False when every axis has
+   scale 0 (all centroids coincide: no plane to try). */
+FOGRT__PRIVATE bool fogrt__xbins_init(fogrt__xbins *x, const fogrt_build_desc *d, const fogrt__aabb *cb, uint32_t count)
+{
+    int ax, k, nb = count < (uint32_t)d->bins ? (int)count : d->bins;
+    if (nb == 1) nb = 2;
+    x->scale[3] = 0.0f;
+    for (ax = 0; ax < 3; ++ax) {
+        float lo = fogrt__comp(cb->lo, ax), hi = fogrt__comp(cb->hi, ax);
+        x->scale[ax] = (float)nb / (hi - lo);
+        if (!(hi > lo && x->scale[ax] > 0.0f && x->scale[ax] < FLT_MAX)) x->scale[ax] = 0.0f;
+        for (k = ax * FOGRT__BVH_MAX_BINS; k < ax * FOGRT__BVH_MAX_BINS + nb; ++k) {
+            _mm_storeu_ps(x->bin[k].lo, _mm_set1_ps(FLT_MAX));
+            _mm_storeu_ps(x->bin[k].hi, _mm_set1_ps(-FLT_MAX));
+            x->n[k] = 0;
         }
     }
+    x->nb = nb;
+    x->org = _mm_setr_ps(cb->lo.x, cb->lo.y, cb->lo.z, 0.0f);
+    x->sc = _mm_loadu_ps(x->scale);
+    return x->scale[0] > 0.0f || x->scale[1] > 0.0f || x->scale[2] > 0.0f;
+}
+/* A box [l, h] into bin k (of the flat numbering). */
+FOGRT__HOT void fogrt__xbins_add(fogrt__xbin *bin, uint32_t *n, uint32_t k, __m128 l, __m128 h)
+{
+    _mm_storeu_ps(bin[k].lo, _mm_min_ps(_mm_loadu_ps(bin[k].lo), l));
+    _mm_storeu_ps(bin[k].hi, _mm_max_ps(_mm_loadu_ps(bin[k].hi), h));
+    n[k]++;
+}
+/* One primitive into its bin on each axis: fogrt__bin_of in three lanes (the clamps as
+   max then min with the operands in its order, so a NaN lands in bin 0 there too), each
+   lane's bin offset by its axis. The three axes are written out: a loop over them costs as
+   much as the binning itself. */
+FOGRT__HOT void fogrt__xbins_put(fogrt__xbins *x, const fogrt__aabb *b, __m128 org, __m128 sc, __m128 top)
+{
+    const __m128i axis = _mm_setr_epi32(0, FOGRT__BVH_MAX_BINS, 2 * FOGRT__BVH_MAX_BINS, 0);
+    __m128 l = _mm_loadu_ps(&b->lo.x), h = _mm_loadu_ps(&b->hi.x);
+    __m128 f = _mm_mul_ps(_mm_sub_ps(fogrt__x_centre(b), org), sc);
+    __m128i k = _mm_add_epi32(_mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), top)), axis);
+    fogrt__xbins_add(x->bin, x->n, (uint32_t)_mm_cvtsi128_si32(k), l, h);
+    fogrt__xbins_add(x->bin, x->n, (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 1)), l, h);
+    fogrt__xbins_add(x->bin, x->n, (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 2)), l, h);
+}
+/* Every primitive into its bins. Neighbouring primitives mostly share their bins, and each
+   update of a bin waits for the one before; so a big node bins its second half into a
+   second set, side by side with the first, and merges it in at the end. The same bins bit
+   for bit: min and max of the ordered list (an equal pair keeps the later one) may be taken
+   over its two halves and then of the two, because the first half comes first. The
+   lanes' constants live in locals, not reloaded after every store to the bins. */
+#define FOGRT__X_TWO_SETS 64
+FOGRT__PRIVATE void fogrt__xbins_fill(fogrt__xbins *x, const fogrt__aabb *box, uint32_t count)
+{
+    const __m128 org = x->org, sc = x->sc, top = _mm_set1_ps((float)(x->nb - 1));
+    fogrt__xbins y;
+    uint32_t i, half = count >= FOGRT__X_TWO_SETS ? count / 2 : 0;
+    int ax, k;
+    if (half == 0) {
+        for (i = 0; i < count; ++i) fogrt__xbins_put(x, &box[i], org, sc, top);
+        return;
+    }
     for (ax = 0; ax < 3; ++ax)
-        for (k = 0; k < bins->nb; ++k) {
-            bins->box[ax][k].lo = fogrt__v(lo[ax][k][0], lo[ax][k][1], lo[ax][k][2]);
-            bins->box[ax][k].hi = fogrt__v(hi[ax][k][0], hi[ax][k][1], hi[ax][k][2]);
+        for (k = ax * FOGRT__BVH_MAX_BINS; k < ax * FOGRT__BVH_MAX_BINS + x->nb; ++k) {
+            y.bin[k] = x->bin[k];                        /* empty */
+            y.n[k] = 0;
         }
+    for (i = 0; i < half; ++i) {
+        fogrt__xbins_put(x, &box[i], org, sc, top);
+        fogrt__xbins_put(&y, &box[half + i], org, sc, top);
+    }
+    if (count & 1) fogrt__xbins_put(&y, &box[count - 1], org, sc, top);
+    for (ax = 0; ax < 3; ++ax)
+        for (k = ax * FOGRT__BVH_MAX_BINS; k < ax * FOGRT__BVH_MAX_BINS + x->nb; ++k) {
+            _mm_storeu_ps(x->bin[k].lo, _mm_min_ps(_mm_loadu_ps(x->bin[k].lo), _mm_loadu_ps(y.bin[k].lo)));
+            _mm_storeu_ps(x->bin[k].hi, _mm_max_ps(_mm_loadu_ps(x->bin[k].hi), _mm_loadu_ps(y.bin[k].hi)));
+            x->n[k] += y.n[k];
+        }
+}
+/* fogrt__side_cost of n primitives in the box [lo, hi], with fogrt__aabb_area's and
+   fogrt__aabb_volume's expressions. */
+FOGRT__HOT float fogrt__x_side_cost(const fogrt_build_desc *d, uint32_t n, __m128 lo, __m128 hi)
+{
+    float e[4];
+    _mm_storeu_ps(e, _mm_sub_ps(hi, lo));
+    if (e[0] < 0.0f) return 0.0f;                        /* the empty box: n times 0 */
+    return (float)n * (d->heuristic == FOGRT_BVH_VOLUME ? e[0] * e[1] * e[2]
+                                                        : 2.0f * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]));
+}
+/* fogrt__bins_sweep on the lane records of axis ax. */
+FOGRT__PRIVATE bool fogrt__xbins_sweep(const fogrt_build_desc *d, const fogrt__xbins *x, int ax, uint32_t count,
+                                       float *best, int *best_k)
+{
+    const fogrt__xbin *bin = &x->bin[ax * FOGRT__BVH_MAX_BINS];
+    const uint32_t *n = &x->n[ax * FOGRT__BVH_MAX_BINS];
+    __m128 lo = _mm_set1_ps(FLT_MAX), hi = _mm_set1_ps(-FLT_MAX);
+    uint32_t left_n = 0, right_n = 0;
+    float left_cost[FOGRT__BVH_MAX_BINS];
+    bool improved = false;
+    int k;
+    for (k = 0; k < x->nb - 1; ++k) {
+        left_n += n[k];
+        lo = _mm_min_ps(lo, _mm_loadu_ps(bin[k].lo)); hi = _mm_max_ps(hi, _mm_loadu_ps(bin[k].hi));
+        left_cost[k] = fogrt__x_side_cost(d, left_n, lo, hi);
+    }
+    lo = _mm_set1_ps(FLT_MAX); hi = _mm_set1_ps(-FLT_MAX);
+    for (k = x->nb - 1; k > 0; --k) {
+        float cost;
+        right_n += n[k];
+        lo = _mm_min_ps(lo, _mm_loadu_ps(bin[k].lo)); hi = _mm_max_ps(hi, _mm_loadu_ps(bin[k].hi));
+        if (right_n == 0 || right_n == count) continue;
+        cost = left_cost[k - 1] + fogrt__x_side_cost(d, right_n, lo, hi);
+        if (cost < *best) { *best = cost; *best_k = k; improved = true; }
+    }
+    return improved;
+}
+/* The children's boxes: the unions of the bins of axis ax on either side of plane k, in
+   bin order (as fogrt__bins_partition forms them). */
+FOGRT__PRIVATE void fogrt__xbins_child_boxes(const fogrt__xbins *x, int ax, int k, fogrt_bvh_node *child)
+{
+    const fogrt__xbin *bin = &x->bin[ax * FOGRT__BVH_MAX_BINS];
+    __m128 lo = _mm_set1_ps(FLT_MAX), hi = _mm_set1_ps(-FLT_MAX);
+    fogrt__aabb b;
+    int j;
+    for (j = 0; j < x->nb; ++j) {
+        if (j == k) {
+            b = fogrt__x_box(lo, hi);
+            fogrt__node_set_box(&child[0], &b);
+            lo = _mm_set1_ps(FLT_MAX); hi = _mm_set1_ps(-FLT_MAX);
+        }
+        lo = _mm_min_ps(lo, _mm_loadu_ps(bin[j].lo)); hi = _mm_max_ps(hi, _mm_loadu_ps(bin[j].hi));
+    }
+    b = fogrt__x_box(lo, hi);
+    fogrt__node_set_box(&child[1], &b);
+}
+/* A box as two registers, its bytes 0-15 (lo, hi.x) and 8-23 (lo.z, hi): every load and
+   store stays inside its box, so a load after the partition's stores to the neighbouring
+   box is never held up by them (a load across two earlier stores must wait for both to
+   reach the cache). */
+FOGRT__HOT void fogrt__x_load(const fogrt__aabb *b, __m128 *a, __m128 *z)
+{
+    *a = _mm_loadu_ps(&b->lo.x);
+    *z = _mm_loadu_ps(&b->lo.z);
+}
+FOGRT__HOT void fogrt__x_store(fogrt__aabb *b, __m128 a, __m128 z)
+{
+    _mm_storeu_ps(&b->lo.x, a);
+    _mm_storeu_ps(&b->lo.z, z);
+}
+/* fogrt__bins_partition's pass on the lanes: the primitives of bins below k on axis ax to
+   the front, growing both sides' centroid bounds; the same moves as Part I's, with the box
+   under test kept in registers. A centroid's bin is below k exactly when its position,
+   clamped at 0, is (k is a whole number from 1 to nb - 1), so one comparison stands for
+   the bin number. count is at least 1. */
+FOGRT__PRIVATE uint32_t fogrt__xbins_partition(const fogrt__xbins *x, fogrt__aabb *box, uint32_t *id, uint32_t count,
+                                               int ax, int k, fogrt__bjob *left, fogrt__bjob *right)
+{
+    const __m128 org = x->org, sc = x->sc, kk = _mm_set1_ps((float)k), zero = _mm_setzero_ps(), half = _mm_set1_ps(0.5f);
+    __m128 llo = _mm_set1_ps(FLT_MAX), lhi = _mm_set1_ps(-FLT_MAX), rlo = llo, rhi = lhi, a, z;
+    uint32_t l = 0, r = count;
+    fogrt__x_load(&box[0], &a, &z);
+    for (;;) {
+        __m128 c = _mm_mul_ps(_mm_add_ps(a, _mm_shuffle_ps(z, z, _MM_SHUFFLE(0, 3, 2, 1))), half);
+        __m128 f = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(c, org), sc), zero);
+        if ((_mm_movemask_ps(_mm_cmplt_ps(f, kk)) >> ax) & 1) {
+            llo = _mm_min_ps(llo, c); lhi = _mm_max_ps(lhi, c);
+            if (++l == r) break;
+            fogrt__x_load(&box[l], &a, &z);
+        } else {
+            __m128 a2, z2;
+            uint32_t tid = id[l];
+            rlo = _mm_min_ps(rlo, c); rhi = _mm_max_ps(rhi, c);
+            if (--r == l) break;
+            fogrt__x_load(&box[r], &a2, &z2);
+            fogrt__x_store(&box[r], a, z);
+            fogrt__x_store(&box[l], a2, z2);
+            id[l] = id[r]; id[r] = tid;
+            a = a2; z = z2;
+        }
+    }
+    left->cb = fogrt__x_box(llo, lhi);
+    right->cb = fogrt__x_box(rlo, rhi);
+    return l;
+}
+#endif
+/* The seam: fogrt__bvh_split_binned's answer (*left_count, *halve) from the lanes, or false
+   without SSE (Part I's scalar split then runs). */
+FOGRT__PRIVATE bool fogrt__x_split_binned(fogrt__build *b, const fogrt__bjob *job, fogrt_bvh_node *child,
+                                          fogrt__bjob *left, fogrt__bjob *right, bool *halve, uint32_t *left_count)
+{
+#ifdef FOGRT_WBVH_SSE
+    const fogrt_bvh_node *node = &b->nodes[job->node];
+    uint32_t first = node->left_first, count = node->prim_count;
+    fogrt__xbins x;
+    float best = FLT_MAX;
+    int ax, best_ax = -1, best_k = 0;
+    *left_count = 0;
+    if (fogrt__xbins_init(&x, &b->desc, &job->cb, count)) {
+        fogrt__xbins_fill(&x, b->box + first, count);
+        for (ax = 0; ax < 3; ++ax)
+            if (x.scale[ax] > 0.0f && fogrt__xbins_sweep(&b->desc, &x, ax, count, &best, &best_k)) best_ax = ax;
+    }
+    if (best_ax < 0) {                                   /* all centroids coincide */
+        *halve = count > (uint32_t)b->desc.max_leaf_size;
+        return true;
+    }
+    if (!fogrt__split_pays(&b->desc, node, count, best)) return true;
+    fogrt__xbins_child_boxes(&x, best_ax, best_k, child);
+    *left_count = fogrt__xbins_partition(&x, b->box + first, b->idx + first, count, best_ax, best_k, left, right);
     return true;
 #else
-    (void)bins; (void)box; (void)count;
-    return false;                                       /* Part I's scalar pass */
+    (void)b; (void)job; (void)child; (void)left; (void)right; (void)halve; (void)left_count;
+    return false;                                       /* Part I's scalar split */
 #endif
 }
 /* Seam 1: the wide tree when there is one (*done), else Part I's binary tree. */

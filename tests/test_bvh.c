@@ -927,6 +927,114 @@ static void test_bins_variants(void)
     free_soup(&s);
 }
 
+#ifndef FOGRT_MINIMAL   /* (with Part I alone there is one split to compare) */
+/* Part I's scalar binned split, from tests/bvh_paths.c compiled twice (mk/test_bvh.mk). */
+uint32_t bvh_paths_nosimd(const float *tri, uint32_t tri_count, const float *sph, uint32_t sph_count,
+                          const fogrt_build_desc *desc, fogrt_bvh_node **nodes, uint32_t **prim_index);
+uint32_t bvh_paths_nowide(const float *tri, uint32_t tri_count, const float *sph, uint32_t sph_count,
+                          const fogrt_build_desc *desc, fogrt_bvh_node **nodes, uint32_t **prim_index);
+
+/* The spheres of a soup as x, y, z, radius. */
+static float *soup_spheres(const soup *s)
+{
+    float *sph = (float *)malloc(sizeof(float) * 4 * ((size_t)s->sphere_count + 1));
+    uint32_t i;
+    TEST_ASSERT_NOT_NULL(sph);
+    for (i = 0; i < s->sphere_count; i++) {
+        sph[4 * i] = s->center[i].x; sph[4 * i + 1] = s->center[i].y; sph[4 * i + 2] = s->center[i].z;
+        sph[4 * i + 3] = s->radius[i];
+    }
+    return sph;
+}
+/* This program's tree of the soup (the split in SSE lanes) against the other build's,
+   node for node (every byte: boxes, with the signs of zeros, links and counts) and in
+   primitive order. */
+static void compare_split_paths(const soup *s, const fogrt_build_desc *bd, bool nowide, const char *what)
+{
+    fogrt_scene *scene = soup_scene(s, bd);
+    fogrt_bvh_node *nodes = NULL;
+    uint32_t *prim_index = NULL, count, i;
+    float *sph = soup_spheres(s);
+    char msg[256];
+    count = (nowide ? bvh_paths_nowide : bvh_paths_nosimd)(&s->v[0].x, s->tri_count, sph, s->sphere_count, bd,
+                                                           &nodes, &prim_index);
+    snprintf(msg, sizeof msg, "%s against %s: %u nodes, Part I's %u", what,
+             nowide ? "FOGRT_NO_WIDE_BVH" : "FOGRT_WBVH_NO_SIMD", scene->node_count, count);
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(scene->node_count, count, msg);
+    for (i = 0; i < count; i++)
+        if (memcmp(&nodes[i], &scene->nodes[i], sizeof nodes[i]) != 0) {
+            snprintf(msg + strlen(msg), sizeof msg - strlen(msg), "; node %u differs", i);
+            TEST_FAIL_MESSAGE(msg);
+        }
+    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(prim_index, scene->prim_index,
+                                     sizeof(uint32_t) * (s->tri_count + s->sphere_count), msg);
+    free(nodes); free(prim_index); free(sph);
+    fogrt_scene_destroy(scene);
+}
+/* Soups of every kind for test_split_paths_agree: make_soup's (flat boxes, the 1/4 grid,
+   shared edges, degenerate triangles, spheres); its zeros given random signs (min and max of
+   +0 and -0 keep the later one, so the order of the binning shows in a box); every
+   centroid at one point; every centroid on a line (two flat axes); and a soup 1e29 times
+   as big, whose box areas overflow to infinity. */
+static void split_paths_soup(soup *s, int kind)
+{
+    static const uint32_t tris[6] = { 3000, 2001, 300, 500, 1500, 2 }, spheres[6] = { 120, 0, 7, 0, 40, 1 };
+    test_rng r;
+    uint32_t i, k;
+    make_soup(s, 700 + (uint64_t)kind, tris[kind], spheres[kind], 0.0f);
+    r.s = 900 + (uint64_t)kind;
+    for (i = 0; i < 3 * s->tri_count; i++) {
+        fogrt_vec3 *v = &s->v[i];
+        float size = 0.001f * (float)(1 + i / 3 % 13);
+        if (kind == 1) for (k = 0; k < 3; k++) if (vcomp(*v, (int)k) == 0.0f) vset(v, (int)k, signed_zero(&r));
+        if (kind == 2) *v = v3(0.25f + (i % 3 == 0 ? size : (i % 3 == 1 ? -size : 0.0f)), 0.5f, -0.0f);
+        if (kind == 3) *v = v3(vcomp(*v, 0), 0.5f, signed_zero(&r));
+        if (kind == 4) *v = vscale(*v, 1e29f);
+    }
+    for (i = 0; i < s->sphere_count; i++) {
+        if (kind == 2) { s->center[i] = v3(0.25f, 0.5f, 0.0f); s->radius[i] = 0.01f * (float)(i + 1); }
+        if (kind == 4) { s->center[i] = vscale(s->center[i], 1e29f); s->radius[i] *= 1e29f; }
+    }
+}
+#endif
+
+/* The tree does not depend on the path of the binned split: appendix A's, in SSE lanes
+   (this program), and Part I's scalar code (FOGRT_WBVH_NO_SIMD: the same build otherwise;
+   FOGRT_NO_WIDE_BVH: no appendix A), give the same nodes, byte for byte, with both
+   heuristics, 1 to 64 bins, leaf sizes from 1 to 16, large costs, both layouts (the wide
+   one keeps small binary nodes unsplit, seam 2), on every soup of split_paths_soup. */
+static void test_split_paths_agree(void)
+{
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("A: the split in SIMD lanes");
+#else
+    static const struct { fogrt_bvh_heuristic h; int bins, leaf; float c_trav; } v[] = {
+        { FOGRT_BVH_SAH, 0, 4, 1.0f }, { FOGRT_BVH_VOLUME, 0, 4, 1.0f }, { FOGRT_BVH_SAH, 1, 4, 1.0f },
+        { FOGRT_BVH_VOLUME, 1, 1, 1.0f }, { FOGRT_BVH_SAH, 2, 1, 1.0f }, { FOGRT_BVH_SAH, 3, 2, 1.0f },
+        { FOGRT_BVH_SAH, 64, 16, 1.0f }, { FOGRT_BVH_VOLUME, 64, 2, 1.0f }, { FOGRT_BVH_SAH, 16, 8, 40.0f } };
+    int kind, j, layout;
+    for (kind = 0; kind < 6; kind++) {
+        soup s;
+        split_paths_soup(&s, kind);
+        for (j = 0; j < (int)(sizeof v / sizeof v[0]); j++)
+            for (layout = 0; layout < 2; layout++) {
+                fogrt_build_desc bd = fogrt_build_defaults();
+                char what[128];
+                bd.heuristic = v[j].h; bd.max_leaf_size = v[j].leaf; bd.c_trav = v[j].c_trav;
+                if (v[j].bins) bd.bins = v[j].bins;
+                bd.layout = layout ? FOGRT_BVH_LAYOUT_DEFAULT : FOGRT_BVH_LAYOUT_BINARY;
+                bd.roulette_pilot = false;
+                snprintf(what, sizeof what, "soup %d (%u triangles, %u spheres), heuristic %d, %d bins, leaves %d, c_trav %g, layout %s",
+                         kind, s.tri_count, s.sphere_count, (int)v[j].h, bd.bins, v[j].leaf, (double)v[j].c_trav,
+                         layout ? "default" : "binary");
+                compare_split_paths(&s, &bd, false, what);
+                if (!layout) compare_split_paths(&s, &bd, true, what);
+            }
+        free_soup(&s);
+    }
+#endif
+}
+
 /* Expensive intersections (c_int large) or traversal (c_trav large) change the tree's shape
    but never its answers. */
 static void test_cost_parameters(void)
@@ -977,5 +1085,6 @@ int main(void)
     RUN_TEST(test_bins_variants);
     RUN_TEST(test_layouts_agree);
     RUN_TEST(test_cost_parameters);
+    RUN_TEST(test_split_paths_agree);
     return UNITY_END();
 }
