@@ -3162,8 +3162,9 @@ FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d,
     b.box = (fogrt__aabb *)fogrt__alloc(&s->allocator, sizeof(fogrt__aabb) * (n + 1));
     s->nodes = (fogrt_bvh_node *)fogrt__alloc(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
     s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
-    s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
-    ok = b.box && s->nodes && s->prim_index && s->prims;
+    if (!leaf_keep)    /* else Part II's wide tree (A) will hold the primitives itself */
+        s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
+    ok = b.box && s->nodes && s->prim_index && (leaf_keep || s->prims);
     if (ok) {
         memset(&b.box[n], 0, sizeof b.box[n]);          /* a spare box: lane loads may read past the last */
         fogrt__bounds(s, &b, n);
@@ -3173,7 +3174,7 @@ FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d,
         if (n > 0) fogrt__bvh_build(&b, n);
         else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
         s->node_count = b.node_count;
-        fogrt__pack_prims(s, n);
+        if (s->prims) fogrt__pack_prims(s, n);
     }
     fogrt__free(&s->allocator, b.box);
     return ok;
