@@ -26,7 +26,7 @@ static fogrt_vec3 sample_point_light_(const fogrt_scene *s, const fogrt_light_de
                                       float u2, fogrt_vec3 *wi, float *dist)
 {
     float u[2];
-    fogrt__light_sample ls;
+    fogrt_light_sample ls;
     u[0] = u1; u[1] = u2;
     *wi = fogrt__v(0.0f, 0.0f, 0.0f); *dist = 0.0f;
     if (!fogrt__sample_point_light(s, l, x, u, &ls)) return fogrt__v(0.0f, 0.0f, 0.0f);
@@ -37,7 +37,7 @@ static fogrt_vec3 sample_area_light_(const fogrt_scene *s, const fogrt__area_lig
                                      fogrt_vec3 *wi, float *dist, float *pdf)
 {
     float u[3];
-    fogrt__light_sample ls;
+    fogrt_light_sample ls;
     u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng); u[2] = fogrt_rng_float(rng);
     *pdf = 0.0f;
     if (!fogrt__sample_area_light(s, a, p, u, &ls)) return fogrt__v(0.0f, 0.0f, 0.0f);
@@ -877,7 +877,7 @@ static fogrt_vec3 env_sampler(void *user, float u1, float u2, bool *ok)
 {
     static fogrt_rng rng;
     static bool seeded = false;
-    fogrt__light_sample ls;
+    fogrt_light_sample ls;
     float u[3];
     if (!seeded) { fogrt_rng_seed(&rng, 555, 1); seeded = true; }
     u[0] = u1; u[1] = u2; u[2] = fogrt_rng_float(&rng);
