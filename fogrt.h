@@ -51,7 +51,8 @@
                            a box, lights by power, the roulette's pilot, stratified pixel
                            positions, per-pixel rates (fogrt_image_sample_rates)
     FOGRT_NO_MEDIA         leave out appendix G, media beyond the paper: the two-lobe HG and
-                           Rayleigh phase functions (a medium desc that asks for them fails)
+                           Rayleigh phase functions, emitting fog (a medium desc that asks
+                           for them fails)
     FOGRT_NO_MEDIUM        strip the fog: no free-flight, transmittance, phase or equiangular
                            code (fogrt_scene_set_medium with sigma_t > 0 fails; implies
                            FOGRT_NO_MEDIA)
@@ -174,7 +175,7 @@ extern "C" {
     X(INVALID_GEOMETRY,  "invalid geometry (non-finite position, index out of range, or radius <= 0)") \
     X(INVALID_LIGHT,     "invalid light (non-finite or negative intensity, or bad angles)") \
     X(INVALID_CAMERA,    "invalid camera (fov outside (0,180), eye equals target, or negative lens)") \
-    X(INVALID_MEDIUM,    "invalid medium (sigma_t negative or non-finite, albedo outside [0,1], |g| > 1, or a bad phase)") \
+    X(INVALID_MEDIUM,    "invalid medium (sigma_t negative or non-finite, albedo outside [0,1], |g| > 1, or a bad phase or emission)") \
     X(TOO_LARGE,         "too large (more primitives, lights or pixels than fogrt can index)") \
     X(NOT_BUILT,         "scene not built: call fogrt_scene_build after the last change") \
     X(EMPTY_SCENE,       "the scene has no geometry and no light") \
@@ -363,13 +364,16 @@ FOGRT_API fogrt_result fogrt_scene_set_camera(fogrt_scene *scene, const fogrt_ca
                may sit outside it. A scene with an environment light and unbounded fog gets
                the box of its geometry at fogrt_scene_build (logged), since fog filling all
                space would hide the sky completely.
-   Part II, G (zeroed: Henyey-Greenstein with g, the paper's medium):
+   Part II, G (zeroed: Henyey-Greenstein with g and no emission, the paper's medium):
      phase     FOGRT_PHASE_HG (0): HG(g); FOGRT_PHASE_HG2: two lobes, w HG(g) + (1 - w) HG(g2)
                (forward and back scattering of droplets); FOGRT_PHASE_RAYLEIGH:
                3 / (16 pi) (1 + mu^2), for haze (g, g2 and w unused)
      g2, w     the second lobe's asymmetry in [-1, 1] (clamped as g is) and the first lobe's
                weight in [0, 1]; validated whatever the phase, read by FOGRT_PHASE_HG2 only
-   Fog with another phase function is rendered by the full integrator (Part II,
+     emission  radiance Le the fog emits (linear RGB, >= 0), added as sigma_a Le per unit
+               length with sigma_a = sigma_t (1 - albedo): unbounded fog of any albedo below 1
+               seen from inside looks Le, an absorbing slab of optical depth tau Le (1 - e^-tau)
+   Fog with another phase function or emission is rendered by the full integrator (Part II,
    E) also under fogrt_render_paper_defaults(): Part I knows HG alone.                       */
 typedef enum fogrt_phase_type {
     FOGRT_PHASE_HG = 0,        /* Henyey-Greenstein (3.3) */
@@ -386,6 +390,7 @@ typedef struct fogrt_medium_desc {
     fogrt_vec3 bounds_min, bounds_max;
     fogrt_phase_type phase;    /* G */
     float g2, w;               /* G: FOGRT_PHASE_HG2's second lobe and the first lobe's weight */
+    fogrt_vec3 emission;       /* G: Le, radiance */
 } fogrt_medium_desc;
 
 #define FOGRT_HG_G_MAX 0.9999f
@@ -1628,10 +1633,10 @@ FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medi
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
     }
 #ifndef FOGRT_NO_MEDIA
-    return fogrt__x_check_media(s, m);                   /* SEAM 6: the phase functions of G */
+    return fogrt__x_check_media(s, m);                   /* SEAM 6: the phase and emission of G */
 #else
-    return m->phase || m->g2 != 0.0f || m->w != 0.0f ? fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED,
-           "medium.phase/g2/w: media beyond the paper need a build without FOGRT_NO_MEDIA, FOGRT_NO_MEDIUM and FOGRT_MINIMAL") : FOGRT_RESULT_OK;
+    return m->phase || m->g2 != 0.0f || m->w != 0.0f || !fogrt__is_black(m->emission) ? fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED,
+           "medium.phase/g2/w/emission: media beyond the paper need a build without FOGRT_NO_MEDIA, FOGRT_NO_MEDIUM and FOGRT_MINIMAL") : FOGRT_RESULT_OK;
 #endif
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_medium_desc *desc)
@@ -3875,7 +3880,7 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s)
      E. The full integrator: Algorithm 1 with B and C's steps added, as fogrt_render_defaults()
         runs it                                      (table "Strip cost")
      F. Inspecting a scene: its tree, the tree's cost, a brute-force query, its memory
-     G. Media beyond the paper: the two-lobe HG and Rayleigh phase functions
+     G. Media beyond the paper: the two-lobe HG and Rayleigh phase functions, emitting fog
                                                      (table "Strip cost")
    ========================================================================================== */
 #if !defined(FOGRT_NO_MEDIUM) && !defined(FOGRT_NO_LAMPS_IN_FOG)
@@ -3898,13 +3903,17 @@ struct fogrt__x {
     struct fogrt__footprint *footprints;   /* B: per point or spot light, the plane its cone lights most, or NULL */
     struct fogrt__hg_table *hg;   /* B: HG per unit angle for the medium's g, with lamps in fog */
 #ifndef FOGRT_NO_MEDIA
-    bool media;                /* G: the fog has another phase function than HG */
+    bool media;                /* G: the fog has another phase function than HG, or emits */
+    fogrt__v3 emit;            /* G: sigma_a Le / sigma_t = (1 - albedo) Le, per collision */
 #endif
 };
 #ifndef FOGRT_NO_MEDIA
 /* G's steps, which the full integrator (E) calls before their chapter. */
+struct fogrt__path;
 FOGRT__PRIVATE fogrt__v3 fogrt__media_sample(const fogrt_medium_desc *m, fogrt__v3 wo, float u1, float u2, float *pdf);
 FOGRT__PRIVATE float fogrt__media_pdf(const fogrt_medium_desc *m, fogrt__v3 wo, fogrt__v3 wi);
+FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
+                                          fogrt__v3 beta, float t_end, bool collided);
 FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s);
 #endif
 
@@ -5842,6 +5851,7 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix)
 typedef struct fogrt__xs {
     fogrt__settings base;
     bool equiangular, glow, footprint, by_power, expected_emission;
+    bool emits;                /* G: the fog emits (fogrt__media_emission on every fog segment) */
     float rr_k;                /* the roulette survives with min(0.95, rr_k x throughput) (e) */
     bool rr_probe;             /* the pilot (C): note each path's first roulette */
 #ifdef FOGRT_TRACE
@@ -6481,6 +6491,9 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
         float tr = 1.0f;                                /* the fog's transmittance to the end of the ray */
         bool collided = fogrt__free_flight(s, st, P, found ? hit.t : INFINITY, P->bounces < limit, &tr);
         P->seg_tr = tr;
+#ifndef FOGRT_NO_MEDIA
+        if (P->xs->emits) fogrt__media_emission(s, st, P, beta, found ? hit.t : INFINITY, collided);   /* G */
+#endif
         if (!P->xs->expected_emission) tr = collided ? 0.0f : 1.0f;   /* the paper's: Le when reached */
         if (collided) return fogrt__collided(s, st, P, found ? &hit : NULL, beta, tr, limit);
         return fogrt__ray_end(s, st, P, found, &hit, beta, tr, limit);
@@ -6817,6 +6830,11 @@ FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__setting
     xs->glow = d->glow && d->nee && d->equiangular && fogrt__lamps_in_fog(s);
     xs->footprint = xs->glow && d->footprint;
     xs->expected_emission = d->expected_emission;
+#ifndef FOGRT_NO_MEDIA
+    xs->emits = (s->features & FOGRT_FEATURE_MEDIUM) && !fogrt__is_black(s->x->emit);
+#else
+    xs->emits = false;
+#endif
     xs->by_power = d->light_by_power && s->x->light_pick && fogrt__light_total(s) > 1;
     xs->rr_k = FOGRT__MAX(s->x->rr_k, 1.0f);      /* 1 before the pilot has run */
     xs->rr_probe = false;
@@ -7105,7 +7123,7 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
 #ifndef FOGRT_NO_MEDIA
 /* ------------------------------------------------------------------------------------------
    G. Media beyond the paper
-   What it adds: two phase functions besides Henyey-Greenstein.
+   What it adds: two phase functions besides Henyey-Greenstein, and fog that emits light.
      - Two HG lobes, w HG(g) + (1 - w) HG(g2): a real droplet scatters mostly forward and a
        little backward, which one HG lobe cannot do at once. Rayleigh, 3 / (16 pi) (1 + mu^2):
        particles much smaller than the wavelength (haze). Each is sampled exactly (pdf =
@@ -7114,9 +7132,12 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
        equiangular and glow sampling. B's tables of HG per unit angle are HG's, so for these
        phases the build makes none and equiangular and glow sampling take their plain forms
        (the density 1 / r^2 and (pi - alpha) / sin alpha), with the phase function left in
-       the weight. They are rendered by the full integrator, also under the paper's render
-       desc (Part I knows HG alone: seam 7 sends such media to E).
-   What it costs: a scene with the paper's medium pays one compare per fog vertex, and renders bit for bit as before (make callgrind: the default scene
+       the weight.
+     - Emission: the fog adds sigma_a Le per unit length (sigma_a = sigma_t (1 - albedo),
+       pbrt-v4's convention), in the full integrator (also under the paper's render desc:
+       Part I knows neither, seam 7 sends such media to E).
+   What it costs: a scene with the paper's medium pays one compare per fog vertex and one
+   per fog segment, and renders bit for bit as before (make callgrind: the default scene
    against a FOGRT_NO_MEDIA build; docs/benchmarks.md, table "Strip cost"). Validation of
    the medium desc's fields is seam 6's second use.
    ------------------------------------------------------------------------------------------ */
@@ -7128,6 +7149,8 @@ FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_med
         return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.g2: outside [-1, 1] or not finite");
     if (!(m->w >= 0.0f && m->w <= 1.0f))
         return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.w: outside [0, 1] or not finite");
+    if (!fogrt__colour_ok(m->emission))
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.emission: negative or not finite");
     if (fabsf(m->g2) >= FOGRT_HG_G_MAX && fabsf(m->g2) != FOGRT_HG_G_MAX) {
         m->g2 = copysignf(FOGRT_HG_G_MAX, m->g2);
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g2: |g2| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
@@ -7231,10 +7254,33 @@ FOGRT__PUBLIC float fogrt_phase_pdf(const fogrt_medium_desc *m, fogrt_vec3 wo, f
     return fogrt__media_pdf(m, wo, wi);
 }
 
-/* What the full integrator needs of G, found at fogrt_scene_build. */
+/* Emission. Along a fog segment of the ray (from where it enters the fog, a, to where it
+   leaves it or meets the surface, b) the light the fog adds toward the ray's origin is
+     int_a^b T(t) sigma_a Le dt = (sigma_a / sigma_t) Le (1 - T(b - a)),   T(x) = exp(-sigma_t x),
+   whatever the free flight then does: the path goes on from the collision (weight albedo)
+   or the surface (weight 1), which estimate the rest of the radiance, not this part. So
+   with expected_emission (the default) each segment adds beta (1 - albedo) Le (1 - T),
+   with no noise of its own; in unbounded fog (b infinite) that is beta (1 - albedo) Le,
+   and summed over a path of collisions, sum_k albedo^k (1 - albedo) Le = Le: fog of any
+   albedo below 1 seen from inside looks Le. Without it (the paper's way, as for
+   emitters) the collision estimator: beta (1 - albedo) Le at each collision, nothing when
+   the ray gets through, whose mean over the free flight, with collision density
+   sigma_t T(t), is the same integral. beta is the weight before the collision's albedo. */
 FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s)
 {
-    s->x->media = (s->features & FOGRT_FEATURE_MEDIUM) && s->medium.phase != FOGRT_PHASE_HG;
+    const fogrt_medium_desc *m = &s->medium;
+    s->x->emit = fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), m->albedo), m->emission);
+    s->x->media = (s->features & FOGRT_FEATURE_MEDIUM) && (m->phase != FOGRT_PHASE_HG || !fogrt__is_black(s->x->emit));
+}
+FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                          fogrt__v3 beta, float t_end, bool collided)
+{
+    float a, b, w = collided ? 1.0f : 0.0f;
+    if (P->xs->expected_emission) {
+        if (!fogrt__x_fog_span(s, P->o, P->d, t_end, &a, &b)) return;   /* misses the fog's box */
+        w = b < INFINITY ? -expm1f(-s->medium.sigma_t * (b - a)) : 1.0f;
+    }
+    if (w > 0.0f) fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, s->x->emit), w), "fog emission");
 }
 #endif /* FOGRT_NO_MEDIA */
 #endif /* FOGRT_MINIMAL */

@@ -1,5 +1,5 @@
 /* test_media.c - appendix G of fogrt.h, media beyond the paper: the two-lobe HG and Rayleigh
-   phase functions and the medium desc's new fields.
+   phase functions, the medium desc's new fields, and emitting fog.
 
    Phase functions: chi-square tests of each sampler against its exact CDF (rows at the
    model's quantiles of cos theta around d = -wo) and against its own pdf (cubature on a
@@ -32,6 +32,7 @@ void tearDown(void) {}
 /* ==========================================================================================
    The models, in double
    ========================================================================================== */
+#ifndef FOGRT_NO_MEDIA
 enum { M_HG2, M_RAYLEIGH, M_ISO };
 typedef struct phase_model { int kind; double g1, g2, w; } phase_model;
 
@@ -52,7 +53,6 @@ static double model_cdf(const phase_model *m, double mu)
     return m->w * hg_cdf(m->g1, mu) + (1.0 - m->w) * hg_cdf(m->g2, mu);
 }
 
-#ifndef FOGRT_NO_MEDIA
 static fogrt_medium_desc desc_of(const phase_model *m)
 {
     fogrt_medium_desc d;
@@ -147,12 +147,14 @@ static stats_verdict exact_cdf_case(const char *name, const dir_source *src, con
 /* ==========================================================================================
    Chi-square: each sampler against its exact CDF
    ========================================================================================== */
+#ifndef FOGRT_NO_MEDIA
 static const phase_model HG2_CASES[] = {
     {M_HG2, 0.8, -0.4, 0.7}, {M_HG2, 0.95, -0.7, 0.5}, {M_HG2, -0.3, 0.6, 0.25}, {M_HG2, 0.5, 0.5, 0.4},
     {M_HG2, 0.9, -0.9, 0.0}, {M_HG2, 0.6, -0.3, 1.0}, {M_HG2, 0.99, -0.99, 0.5},
 };
 #define HG2_COUNT ((int)(sizeof HG2_CASES / sizeof HG2_CASES[0]))
 static const float WO[3][3] = {{-0.48f, 0.6f, 0.64f}, {0, 0, 1}, {0, 0, -1}};
+#endif
 
 /* fogrt_sample_phase with two lobes at 7 (g1, g2, w), including one lobe alone (w = 0 and
    1), equal lobes and peaked ones, from a generic wo and from +z, follows w F(g1) + (1 - w)
@@ -275,8 +277,10 @@ static void test_phase_chi2_against_pdf(void)
 /* ==========================================================================================
    Kolmogorov-Smirnov: Rayleigh's mu
    ========================================================================================== */
+#ifndef FOGRT_NO_MEDIA
 static double rayleigh_cdf_cb(double mu, void *user) { (void)user; return model_cdf(&(phase_model){M_RAYLEIGH, 0, 0, 0}, mu); }
 static double iso_cdf_cb(double mu, void *user) { (void)user; return mu <= -1.0 ? 0.0 : mu >= 1.0 ? 1.0 : 0.5 * (1.0 + mu); }
+#endif
 /* fogrt_sample_rayleigh_mu on 2e5 uniforms against F(mu) = (mu^3 + 3 mu + 4) / 8; negative
    control: against the uniform mu of isotropic scattering. */
 static void test_rayleigh_mu_ks(void)
@@ -479,6 +483,7 @@ static void test_medium_desc_validation(void)
     static const struct { const char *field; int what; float value; } bad[] = {
         {"medium.phase", 0, 3.0f}, {"medium.phase", 0, -1.0f}, {"medium.g2", 1, 1.5f}, {"medium.g2", 1, -1.01f},
         {"medium.g2", 1, NAN}, {"medium.w", 2, -0.1f}, {"medium.w", 2, 1.0001f}, {"medium.w", 2, NAN},
+        {"medium.emission", 3, -1.0f}, {"medium.emission", 3, INFINITY}, {"medium.emission", 3, NAN},
     };
     size_t i;
     CHECK_OK(fogrt_scene_set_medium(s, &m));
@@ -489,6 +494,7 @@ static void test_medium_desc_validation(void)
         if (bad[i].what == 0) b.phase = (fogrt_phase_type)(int)bad[i].value;
         if (bad[i].what == 1) b.g2 = bad[i].value;
         if (bad[i].what == 2) b.w = bad[i].value;
+        if (bad[i].what == 3) b.emission = v3(1.0f, bad[i].value, 1.0f);
         log.errors = 0;
         TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_MEDIUM, fogrt_scene_set_medium(s, &b));
         snprintf(msg, sizeof msg, "case %d: the message '%s' should name %s", (int)i, log.last, bad[i].field);
@@ -497,7 +503,7 @@ static void test_medium_desc_validation(void)
         fogrt_scene_get_medium(s, &got);
         TEST_ASSERT_TRUE_MESSAGE(memcmp(&got, &m, sizeof m) == 0, "a refused desc changed the medium");
     }
-    m.phase = FOGRT_PHASE_HG2; m.g2 = -1.0f; m.w = 0.0f;
+    m.phase = FOGRT_PHASE_HG2; m.g2 = -1.0f; m.w = 0.0f; m.emission = v3(0, 2, 0);
     CHECK_OK(fogrt_scene_set_medium(s, &m));
     fogrt_scene_get_medium(s, &got);
     TEST_ASSERT_EQUAL_FLOAT(-FOGRT_HG_G_MAX, got.g2);
@@ -508,7 +514,7 @@ static void test_medium_desc_validation(void)
     m.phase = FOGRT_PHASE_RAYLEIGH;
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_UNSUPPORTED, fogrt_scene_set_medium(s, &m));
     TEST_ASSERT_NOT_NULL(strstr(log.last, "FOGRT_NO_MEDIA"));
-    m = fog_desc(); m.w = 0.5f;
+    m = fog_desc(); m.emission = v3(1, 1, 1);
     TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_UNSUPPORTED, fogrt_scene_set_medium(s, &m));
     fogrt_scene_get_medium(s, &got);
     TEST_ASSERT_EQUAL_INT(FOGRT_PHASE_HG, got.phase);
@@ -543,7 +549,7 @@ static void render_mean(const fogrt_scene *s, const fogrt_render_desc *rd, int w
    fog point comes near a lamp: light sampling without MIS, and the paper's light sampling
    of a spot light, then have finite variance (next to a lamp their 1/r^2 has none, and
    their standard errors would mean nothing). */
-static fogrt_scene *phase_box(fogrt_phase_type phase, float lamp)
+static fogrt_scene *phase_box(fogrt_phase_type phase, float lamp, fogrt_vec3 emission)
 {
     fogrt_scene *s = NULL;
     fogrt_medium_desc m;
@@ -558,7 +564,7 @@ static fogrt_scene *phase_box(fogrt_phase_type phase, float lamp)
     }
     memset(&m, 0, sizeof m);
     m.sigma_t = 0.8f; m.albedo = v3(0.85f, 0.85f, 0.85f); m.phase = phase;
-    m.g = 0.8f; m.g2 = -0.4f; m.w = 0.7f;
+    m.g = 0.8f; m.g2 = -0.4f; m.w = 0.7f; m.emission = emission;
     m.bounded = true; m.bounds_min = v3(-1, 0, -1); m.bounds_max = v3(1, 1.5f, 1);
     CHECK_OK(fogrt_scene_set_medium(s, &m));
     set_camera(s, v3(0, 1.0f, 0.95f), v3(0, 0.9f, -1), 60.0f);
@@ -602,14 +608,156 @@ static void test_phase_estimators_agree(void)
     fogrt_phase_type phases[2] = {FOGRT_PHASE_HG2, FOGRT_PHASE_RAYLEIGH};
     int k;
     for (k = 0; k < 2; ++k) {
-        fogrt_scene *s = phase_box(phases[k], 6.0f);
+        fogrt_scene *s = phase_box(phases[k], 6.0f, v3(0, 0, 0));
         estimators_agree(k ? "Rayleigh, lamp" : "two lobes, lamp", s, lamp, 3);
         fogrt_scene_destroy(s);
-        s = phase_box(phases[k], 0.0f);
+        s = phase_box(phases[k], 0.0f, v3(0, 0, 0));
         TEST_ASSERT_NULL_MESSAGE(s->x->hg, "an HG table was built for another phase function");
         estimators_agree(k ? "Rayleigh, spot" : "two lobes, spot", s, spot, 2);
         fogrt_scene_destroy(s);
     }
+#endif
+}
+
+/* ==========================================================================================
+   Emitting fog
+   ========================================================================================== */
+#ifndef FOGRT_NO_MEDIA
+/* Fog that fills all space (or, bounded, the box lo..hi), a black sphere far away (a scene
+   needs geometry), no light, the camera at the origin looking along +z with a narrow view. */
+static fogrt_scene *emitting_fog(float sigma_t, fogrt_vec3 albedo, fogrt_phase_type phase, fogrt_vec3 le, bool bounded,
+                                 fogrt_vec3 lo, fogrt_vec3 hi)
+{
+    fogrt_scene *s = NULL;
+    fogrt_medium_desc m;
+    CHECK_OK(fogrt_scene_create(NULL, &s));
+    CHECK_OK(fogrt_scene_add_sphere(s, v3(1000, 0, 0), 1.0f, add_basic_material(s, FOGRT_BSDF_DIFFUSE, v3(0, 0, 0), v3(0, 0, 0))));
+    memset(&m, 0, sizeof m);
+    m.sigma_t = sigma_t; m.albedo = albedo; m.g = 0.5f; m.phase = phase; m.emission = le;
+    m.bounded = bounded; m.bounds_min = lo; m.bounds_max = hi;
+    CHECK_OK(fogrt_scene_set_medium(s, &m));
+    set_camera(s, v3(0, 0, 0), v3(0, 0, 1), 0.1f);
+    CHECK_OK(fogrt_scene_build(s, NULL));
+    return s;
+}
+/* The per-channel mean of n samples of one camera ray (fogrt_trace) and its standard error. */
+static void trace_mean(const fogrt_scene *s, const fogrt_render_desc *rd, int n, double mean[3], double se[3])
+{
+    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+    fogrt_rng rng;
+    int i, c;
+    fogrt_rng_seed(&rng, 4242, 0);
+    for (i = 0; i < n; ++i) {
+        fogrt_vec3 L = fogrt_trace(s, rd, v3(0, 0, 0), v3(0.1f, 0.2f, 1.0f), &rng, NULL);
+        double l[3] = {L.x, L.y, L.z};
+        for (c = 0; c < 3; ++c) { sum[c] += l[c]; sum2[c] += l[c] * l[c]; }
+    }
+    for (c = 0; c < 3; ++c) { mean[c] = sum[c] / n; se[c] = std_error_of_mean(sum[c], sum2[c], n); }
+}
+#endif
+
+/* Fog filling all space, seen from inside, looks exactly Le whatever its albedo (below 1)
+   and phase function: sum_k albedo^k (1 - albedo) Le = Le. Grey albedos 0, 0.5 and 0.9 in
+   a render, its image mean within 4 of the render's own standard errors (albedo 0: every
+   sample is Le, to float rounding); a chromatic albedo (0.2, 0.6, 0.95) with Rayleigh
+   scattering per channel, from samples of one ray. Both with the defaults (each segment's
+   emission in closed form) and the paper's settings (the collision estimator). */
+static void test_emission_unbounded_fog_is_le(void)
+{
+#ifdef FOGRT_NO_MEDIA
+    MEDIA_ONLY();
+#else
+    const fogrt_vec3 le = v3(0.5f, 1.0f, 2.0f);
+    const double le_lum = luminance(0.5, 1.0, 2.0);
+    static const float albedos[3] = {0.0f, 0.5f, 0.9f};
+    char msg[256];
+    int k, paper, c;
+    for (paper = 0; paper < 2; ++paper) {
+        fogrt_render_desc rd = paper ? fogrt_render_paper_defaults() : fogrt_render_defaults();
+        rd.max_depth = -1; rd.seed = 5;
+        for (k = 0; k < 3; ++k) {
+            fogrt_scene *s = emitting_fog(1.0f, v3(albedos[k], albedos[k], albedos[k]), FOGRT_PHASE_HG, le, false, le, le);
+            double m, se;
+            render_mean(s, &rd, 8, 8, 64, &m, &se);
+            snprintf(msg, sizeof msg, "%s, albedo %g: image mean luminance %.6f +- %.6f, Le's %.6f (%.2g s.e.)",
+                     paper ? "paper (collision estimator)" : "defaults", (double)albedos[k], m, se, le_lum,
+                     se > 0.0 ? fabs(m - le_lum) / se : 0.0);
+            TEST_MESSAGE(msg);
+            if (k == 0) TEST_ASSERT_TRUE_MESSAGE(fabs(m - le_lum) <= 1e-6 * le_lum, msg);
+            else TEST_ASSERT_TRUE_MESSAGE(se > 0.0 && fabs(m - le_lum) <= 4.0 * se, msg);
+            fogrt_scene_destroy(s);
+        }
+        {
+            fogrt_scene *s = emitting_fog(2.0f, v3(0.2f, 0.6f, 0.95f), FOGRT_PHASE_RAYLEIGH, le, false, le, le);
+            double mean[3], se[3], want[3] = {0.5, 1.0, 2.0};
+            trace_mean(s, &rd, 20000, mean, se);
+            for (c = 0; c < 3; ++c) {
+                snprintf(msg, sizeof msg, "%s, albedo (0.2, 0.6, 0.95), Rayleigh, channel %d: %.5f +- %.5f, Le %.1f (%.2f s.e.)",
+                         paper ? "paper" : "defaults", c, mean[c], se[c], want[c], fabs(mean[c] - want[c]) / se[c]);
+                TEST_MESSAGE(msg);
+                TEST_ASSERT_TRUE_MESSAGE(se[c] > 0.0 && fabs(mean[c] - want[c]) <= 4.0 * se[c], msg);
+            }
+            fogrt_scene_destroy(s);
+        }
+    }
+#endif
+}
+
+/* An absorbing slab (albedo 0) of optical depth 1.4 (sigma_t 2, thickness 0.7) seen from
+   vacuum in front of it gives Le (1 - exp(-1.4)) per channel: with the defaults in every
+   sample (to 2e-6), with the paper's collision estimator within 4 of the render's own
+   standard errors. The view is 0.1 degrees wide, so every ray crosses the slab within
+   1e-6 of its thickness. */
+static void test_emission_absorbing_slab(void)
+{
+#ifdef FOGRT_NO_MEDIA
+    MEDIA_ONLY();
+#else
+    const double tau = 2.0 * 0.7, f = -expm1(-tau), want[3] = {1.0 * f, 2.0 * f, 3.0 * f};
+    fogrt_scene *s = emitting_fog(2.0f, v3(0, 0, 0), FOGRT_PHASE_HG, v3(1, 2, 3), true, v3(-50, -50, 2.0f), v3(50, 50, 2.7f));
+    fogrt_render_desc rd = fogrt_render_defaults();
+    fogrt_image img;
+    float rgb[3 * 8 * 8];
+    double m, se;
+    char msg[256];
+    int p, c;
+    rd.seed = 6;
+    CHECK_OK(fogrt_image_alloc(&img, 8, 8, NULL));
+    CHECK_OK(fogrt_render(s, &rd, &img, 16, NULL));
+    fogrt_image_resolve(&img, rgb);
+    for (p = 0; p < 8 * 8; ++p)
+        for (c = 0; c < 3; ++c) {
+            snprintf(msg, sizeof msg, "defaults: pixel %d channel %d is %.7f, Le (1 - exp(-1.4)) = %.7f", p, c, (double)rgb[3 * p + c], want[c]);
+            TEST_ASSERT_TRUE_MESSAGE(fabs((double)rgb[3 * p + c] - want[c]) <= 2e-6 * want[c], msg);
+        }
+    fogrt_image_free(&img);
+    snprintf(msg, sizeof msg, "defaults: every sample Le (1 - exp(-1.4)) = (%.6f, %.6f, %.6f)", want[0], want[1], want[2]);
+    TEST_MESSAGE(msg);
+    rd = fogrt_render_paper_defaults();
+    rd.seed = 7;
+    render_mean(s, &rd, 8, 8, 256, &m, &se);
+    snprintf(msg, sizeof msg, "paper (collision estimator): image mean luminance %.5f +- %.5f, Le (1 - exp(-1.4)) %.5f (%.2f s.e.)",
+             m, se, luminance(want[0], want[1], want[2]), fabs(m - luminance(want[0], want[1], want[2])) / se);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(se > 0.0 && fabs(m - luminance(want[0], want[1], want[2])) <= 4.0 * se, msg);
+    fogrt_scene_destroy(s);
+#endif
+}
+
+/* Emitting fog with Rayleigh scattering in the lamp-lit box: next-event estimation with
+   MIS, without MIS and none, and the paper's settings (the collision estimator for the
+   fog's emission, and for the lamp seen through fog), give the same image mean. */
+static void test_emission_estimators_agree(void)
+{
+#ifdef FOGRT_NO_MEDIA
+    MEDIA_ONLY();
+#else
+    static const estimator e[4] = {
+        {"NEE+MIS", false, true, true, 64}, {"NEE, no MIS", false, true, false, 64}, {"no NEE", false, false, true, 256},
+        {"paper", true, true, true, 128}};
+    fogrt_scene *s = phase_box(FOGRT_PHASE_RAYLEIGH, 6.0f, v3(0.3f, 0.2f, 0.1f));
+    estimators_agree("Rayleigh, emitting (0.3, 0.2, 0.1), lamp", s, e, 4);
+    fogrt_scene_destroy(s);
 #endif
 }
 
@@ -636,6 +784,9 @@ int main(void)
     RUN_TEST(test_hg2_degenerate_is_hg);
     RUN_TEST(test_medium_desc_validation);
     RUN_TEST(test_phase_estimators_agree);
+    RUN_TEST(test_emission_unbounded_fog_is_le);
+    RUN_TEST(test_emission_absorbing_slab);
+    RUN_TEST(test_emission_estimators_agree);
     RUN_TEST(test_sidak_count_is_right);
     return UNITY_END();
 }
