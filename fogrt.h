@@ -998,6 +998,57 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #endif
 #endif /* FOGRT_H_INCLUDED */
 
+/* ------------------------------------------------------------------------------------------
+   The implementation's set-up: headers, the allocator and assertion hooks, and the compiler
+   glue (none of it is the method; Part I, the paper, starts below)
+   ------------------------------------------------------------------------------------------ */
+#ifdef FOGRT_IMPLEMENTATION
+#ifndef FOGRT_IMPLEMENTATION_INCLUDED
+#define FOGRT_IMPLEMENTATION_INCLUDED
+#include <math.h>
+#include <string.h>
+#include <float.h>
+#ifndef FOGRT_NO_STDIO
+#include <stdio.h>
+#endif
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#if defined(FOGRT_MALLOC) && !defined(FOGRT_FREE) || !defined(FOGRT_MALLOC) && defined(FOGRT_FREE)
+#error "fogrt: define both FOGRT_MALLOC and FOGRT_FREE, or neither"
+#endif
+#ifndef FOGRT_MALLOC
+#include <stdlib.h>
+#define FOGRT_MALLOC(size, user) ((void)(user), malloc(size))
+#define FOGRT_FREE(ptr, user) ((void)(user), free(ptr))
+#endif
+#ifndef FOGRT_ASSERT
+#include <assert.h>
+#define FOGRT_ASSERT(c) assert(c)
+#endif
+#ifndef FOGRT_MAX_PATH_VERTICES
+#define FOGRT_MAX_PATH_VERTICES 100000
+#endif
+/* Private functions are static and "maybe unused" (features stripped at compile time leave
+   no warnings). The few small functions of the BVH's inner loops and a few integrator steps
+   are forced inline: at -O2 gcc otherwise keeps them as calls, which costs about a quarter
+   of the traversal time, and made a fog-free render pay for the fog code of their callers
+   (docs/benchmarks.md, "Forced inlining"). */
+#if defined(__GNUC__) || defined(__clang__)
+#define FOGRT__UNUSED __attribute__((unused))
+#define FOGRT__INLINE __attribute__((always_inline, unused))
+#else
+#define FOGRT__UNUSED
+#define FOGRT__INLINE
+#endif
+#define FOGRT__PRIVATE static FOGRT__UNUSED
+#define FOGRT__HOT static inline FOGRT__INLINE
+#ifdef FOGRT_STATIC
+#define FOGRT__PUBLIC static FOGRT__UNUSED
+#else
+#define FOGRT__PUBLIC
+#endif
+
 /* ==========================================================================================
 
       IMPLEMENTATION, PART I: THE PAPER
@@ -1034,63 +1085,9 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
      7. fogrt__radiance            the full integrator, for every setting beyond the paper (E)
      8. fogrt__pixel_ray           stratified pixel positions, and per-pixel rates (C)
    ========================================================================================== */
-#ifdef FOGRT_IMPLEMENTATION
-#ifndef FOGRT_IMPLEMENTATION_INCLUDED
-#define FOGRT_IMPLEMENTATION_INCLUDED
-
-#include <math.h>
-#include <string.h>
-#include <float.h>
-#ifndef FOGRT_NO_STDIO
-#include <stdio.h>
-#endif
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 /* ------------------------------------------------------------------------------------------
    I.1 Configuration, vectors, random numbers
    ------------------------------------------------------------------------------------------ */
-#if defined(FOGRT_MALLOC) && !defined(FOGRT_FREE) || !defined(FOGRT_MALLOC) && defined(FOGRT_FREE)
-#error "fogrt: define both FOGRT_MALLOC and FOGRT_FREE, or neither"
-#endif
-#ifndef FOGRT_MALLOC
-#include <stdlib.h>
-#define FOGRT_MALLOC(size, user) ((void)(user), malloc(size))
-#define FOGRT_FREE(ptr, user) ((void)(user), free(ptr))
-#endif
-#ifndef FOGRT_ASSERT
-#include <assert.h>
-#define FOGRT_ASSERT(c) assert(c)
-#endif
-#ifndef FOGRT_MAX_PATH_VERTICES
-#define FOGRT_MAX_PATH_VERTICES 100000
-#endif
-
-/* Every private function goes through this macro: static, and "maybe unused" on GCC/Clang so
-   that features stripped at compile time do not leave warnings behind. */
-#if defined(__GNUC__) || defined(__clang__)
-#define FOGRT__PRIVATE static __attribute__((unused))
-#else
-#define FOGRT__PRIVATE static
-#endif
-/* The few small functions in the BVH's inner loops are forced inline: at -O2 gcc otherwise
-   keeps them as calls, which costs about a quarter of the traversal time. So are a few of
-   the integrators' steps (2.3, 3.4, Part II E): as calls, with the fog code in their callers,
-   they made a fog-free render pay for that code (docs/benchmarks.md, "Forced inlining"). */
-#if defined(__GNUC__) || defined(__clang__)
-#define FOGRT__HOT static inline __attribute__((always_inline, unused))
-#else
-#define FOGRT__HOT static inline
-#endif
-#if defined(FOGRT_STATIC) && (defined(__GNUC__) || defined(__clang__))
-#define FOGRT__PUBLIC static __attribute__((unused))
-#elif defined(FOGRT_STATIC)
-#define FOGRT__PUBLIC static
-#else
-#define FOGRT__PUBLIC
-#endif
-
 #define FOGRT__PI      3.14159265358979323846f
 #define FOGRT__PI_D    3.14159265358979323846
 #define FOGRT__INV_PI  0.31830988618379067154f
@@ -1321,6 +1318,9 @@ FOGRT__PRIVATE fogrt_result fogrt__fail(const fogrt_scene *s, fogrt_result r, co
     }
     return r;
 }
+/* A validation rule, in the manner of sokol_gfx's _SG_VALIDATE: if cond holds, the call
+   fails with FOGRT_RESULT_<result> and msg (in a function whose scene is named s). */
+#define FOGRT__REFUSE_IF(cond, result, msg) do { if (cond) return fogrt__fail(s, FOGRT_RESULT_##result, msg); } while (0)
 FOGRT__PUBLIC const char *fogrt_scene_last_error(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->error; }
 
 /* Move *ptr to a new array of new_cap elements, keeping its first used elements. Returns
@@ -1403,16 +1403,15 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_
     fogrt_material_desc m;
     FOGRT_ASSERT(s && desc);
     m = *desc;
-    if ((unsigned)m.type >= (unsigned)FOGRT_BSDF_NUM)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "material.type: unknown BSDF type");
-    if (!fogrt__colour_ok(m.reflectance) || !fogrt__colour_ok(m.transmittance) || !fogrt__colour_ok(m.emission))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "material.reflectance/transmittance/emission: negative or not finite");
-    if (!fogrt__finite(m.ior) || m.ior < 0.0f)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "material.ior: must be > 0 (0 means the default 1.5)");
+    FOGRT__REFUSE_IF((unsigned)m.type >= (unsigned)FOGRT_BSDF_NUM, INVALID_MATERIAL, "material.type: unknown BSDF type");
+    FOGRT__REFUSE_IF(!fogrt__colour_ok(m.reflectance) || !fogrt__colour_ok(m.transmittance) ||
+                     !fogrt__colour_ok(m.emission), INVALID_MATERIAL,
+                     "material.reflectance/transmittance/emission: negative or not finite");
+    FOGRT__REFUSE_IF(!fogrt__finite(m.ior) || m.ior < 0.0f, INVALID_MATERIAL, "material.ior: must be > 0 (0 means the default 1.5)");
     if (m.type == FOGRT_BSDF_DEFAULT) m.type = FOGRT_BSDF_DIFFUSE;
 #ifdef FOGRT_NO_GLASS
-    if (m.type == FOGRT_BSDF_REFRACTION || m.type == FOGRT_BSDF_GLASS)
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "material.type: refraction and glass need a build without FOGRT_NO_GLASS");
+    FOGRT__REFUSE_IF(m.type == FOGRT_BSDF_REFRACTION || m.type == FOGRT_BSDF_GLASS, UNSUPPORTED,
+                     "material.type: refraction and glass need a build without FOGRT_NO_GLASS");
 #endif
     m.ior = FOGRT__DEF(m.ior, 1.5f);
     if (s->material_count == 0xFFFFFFFEu) return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "too many materials");
@@ -1434,41 +1433,41 @@ FOGRT__PRIVATE fogrt_result fogrt__check_mesh(const fogrt_scene *s, const fogrt_
 {
     uint32_t i, n = desc->triangle_count;
     if (!desc->positions) return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "mesh.positions: NULL");
-    if ((uint64_t)s->tri_count + s->sph_count + n > FOGRT__MAX_PRIMS)
-        return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "mesh.triangle_count: too many triangles");
-    if (!desc->indices && (uint64_t)n * 3 > desc->vertex_count)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "mesh.vertex_count: fewer than 3 * triangle_count vertices and no indices");
+    FOGRT__REFUSE_IF((uint64_t)s->tri_count + s->sph_count + n > FOGRT__MAX_PRIMS, TOO_LARGE, "mesh.triangle_count: too many triangles");
+    FOGRT__REFUSE_IF(!desc->indices && (uint64_t)n * 3 > desc->vertex_count, INVALID_GEOMETRY,
+                     "mesh.vertex_count: fewer than 3 * triangle_count vertices and no indices");
     for (i = 0; i < (uint64_t)desc->vertex_count * 3; ++i) {
-        if (!fogrt__coord_ok(desc->positions[i]))
-            return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "mesh.positions: not finite or beyond +-1e30");
-        if (desc->normals && !fogrt__finite(desc->normals[i]))
-            return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "mesh.normals: not finite");
+        FOGRT__REFUSE_IF(!fogrt__coord_ok(desc->positions[i]), INVALID_GEOMETRY, "mesh.positions: not finite or beyond +-1e30");
+        FOGRT__REFUSE_IF(desc->normals && !fogrt__finite(desc->normals[i]), INVALID_GEOMETRY, "mesh.normals: not finite");
     }
     if (desc->indices)
         for (i = 0; i < (uint64_t)n * 3; ++i)
-            if (desc->indices[i] >= desc->vertex_count)
-                return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "mesh.indices: index out of range");
+            FOGRT__REFUSE_IF(desc->indices[i] >= desc->vertex_count, INVALID_GEOMETRY, "mesh.indices: index out of range");
     for (i = 0; i < n; ++i) {
         uint32_t mat = desc->triangle_materials ? desc->triangle_materials[i] : desc->material;
-        if (mat >= s->material_count)
-            return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "mesh.material: material id out of range");
+        FOGRT__REFUSE_IF(mat >= s->material_count, INVALID_MATERIAL, "mesh.material: material id out of range");
     }
     return FOGRT_RESULT_OK;
 }
-/* Room for n more triangles in every per-triangle array. */
-FOGRT__PRIVATE bool fogrt__reserve_triangles(fogrt_scene *s, uint32_t n)
+/* Room for n more triangles in every per-triangle array. The normals' array exists only
+   once a mesh has normals: without it a triangle takes 45 bytes instead of 81. */
+FOGRT__PRIVATE bool fogrt__reserve_triangles(fogrt_scene *s, uint32_t n, bool normals)
 {
-    if (s->tri_count + n > s->tri_cap) {
-        uint32_t cap = fogrt__grow_cap(s->tri_cap, s->tri_count + n), c = s->tri_count;
+    uint32_t c = s->tri_count;
+    if (c + n > s->tri_cap) {
+        uint32_t cap = fogrt__grow_cap(s->tri_cap, c + n);
+        /* On failure the arrays that did grow hold the old data; tri_cap is the smallest. */
         if (!fogrt__reserve(s, (void **)&s->tri_v, c * 3, cap * 3, sizeof(fogrt__v3)) ||
-            !fogrt__reserve(s, (void **)&s->tri_n, c * 3, cap * 3, sizeof(fogrt__v3)) ||
+            (s->tri_n && !fogrt__reserve(s, (void **)&s->tri_n, c * 3, cap * 3, sizeof(fogrt__v3))) ||
             !fogrt__reserve(s, (void **)&s->tri_has_n, c, cap, 1) ||
             !fogrt__reserve(s, (void **)&s->tri_material, c, cap, sizeof(uint32_t)) ||
-            !fogrt__reserve(s, (void **)&s->tri_mesh, c, cap, sizeof(uint32_t))) {
-            /* The arrays that did grow hold the old data; only tri_cap is the smaller of them. */
+            !fogrt__reserve(s, (void **)&s->tri_mesh, c, cap, sizeof(uint32_t)))
             return false;
-        }
         s->tri_cap = cap;
+    }
+    if (normals && !s->tri_n) {                         /* the first mesh with normals */
+        if (!fogrt__reserve(s, (void **)&s->tri_n, 0, s->tri_cap * 3, sizeof(fogrt__v3))) return false;
+        memset(s->tri_n, 0, sizeof(fogrt__v3) * 3 * (size_t)c);
     }
     return true;
 }
@@ -1480,7 +1479,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh
     n = desc->triangle_count;
     if (n == 0) return FOGRT_RESULT_OK;
     if ((r = fogrt__check_mesh(s, desc)) != FOGRT_RESULT_OK) return r;
-    if (!fogrt__reserve_triangles(s, n)) return FOGRT_RESULT_OUT_OF_MEMORY;
+    if (!fogrt__reserve_triangles(s, n, desc->normals != NULL)) return FOGRT_RESULT_OUT_OF_MEMORY;
     first = s->tri_count;
     for (i = 0; i < n; ++i) {
         uint32_t t = first + i;
@@ -1488,11 +1487,9 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh
             uint32_t vi = desc->indices ? desc->indices[3 * i + k] : 3 * i + k;
             const float *p = desc->positions + 3 * (size_t)vi;
             s->tri_v[3 * t + k] = fogrt__v(p[0], p[1], p[2]);
-            if (desc->normals) {
-                const float *q = desc->normals + 3 * (size_t)vi;
-                s->tri_n[3 * t + k] = fogrt__v(q[0], q[1], q[2]);
-            } else {
-                s->tri_n[3 * t + k] = fogrt__v(0.0f, 0.0f, 0.0f);
+            if (s->tri_n) {                                 /* zeros for a mesh without normals */
+                const float *q = desc->normals ? desc->normals + 3 * (size_t)vi : NULL;
+                s->tri_n[3 * t + k] = q ? fogrt__v(q[0], q[1], q[2]) : fogrt__v(0.0f, 0.0f, 0.0f);
             }
         }
         s->tri_has_n[t] = desc->normals != NULL;
@@ -1511,10 +1508,8 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 cen
     if (!fogrt__coord_ok(center.x) || !fogrt__coord_ok(center.y) || !fogrt__coord_ok(center.z) ||
         !fogrt__coord_ok(radius) || !(radius > 0.0f))
         return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "sphere.center or sphere.radius not finite or beyond 1e30, or sphere.radius <= 0");
-    if (material >= s->material_count)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MATERIAL, "sphere.material: material id out of range");
-    if ((uint64_t)s->tri_count + s->sph_count + 1 > FOGRT__MAX_PRIMS)
-        return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "too many spheres");
+    FOGRT__REFUSE_IF(material >= s->material_count, INVALID_MATERIAL, "sphere.material: material id out of range");
+    FOGRT__REFUSE_IF((uint64_t)s->tri_count + s->sph_count + 1 > FOGRT__MAX_PRIMS, TOO_LARGE, "too many spheres");
     if (s->sph_count + 1 > s->sph_cap) {
         uint32_t cap = fogrt__grow_cap(s->sph_cap, s->sph_count + 1), c = s->sph_count;
         if (!fogrt__reserve(s, (void **)&s->sph_c, c, cap, sizeof(fogrt__v3)) ||
@@ -1537,21 +1532,15 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_light(fogrt_scene *s, const fogrt_lig
     FOGRT_ASSERT(s && desc);
     l = *desc;
     if (l.type == FOGRT_LIGHT_DEFAULT) l.type = FOGRT_LIGHT_POINT;
-    if ((unsigned)l.type >= (unsigned)FOGRT_LIGHT_NUM)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.type: unknown light type");
-    if (!fogrt__v3_finite(l.position))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.position: not finite");
-    if (!fogrt__colour_ok(l.intensity))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.intensity: negative or not finite");
-    if (!fogrt__finite(l.radius) || l.radius < 0.0f)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.radius: negative or not finite");
+    FOGRT__REFUSE_IF((unsigned)l.type >= (unsigned)FOGRT_LIGHT_NUM, INVALID_LIGHT, "light.type: unknown light type");
+    FOGRT__REFUSE_IF(!fogrt__v3_finite(l.position), INVALID_LIGHT, "light.position: not finite");
+    FOGRT__REFUSE_IF(!fogrt__colour_ok(l.intensity), INVALID_LIGHT, "light.intensity: negative or not finite");
+    FOGRT__REFUSE_IF(!fogrt__finite(l.radius) || l.radius < 0.0f, INVALID_LIGHT, "light.radius: negative or not finite");
     if (l.type == FOGRT_LIGHT_SPOT) {
-        if (!fogrt__v3_finite(l.direction) || fogrt__dot(l.direction, l.direction) == 0.0f)
-            return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.direction: zero or not finite");
-        if (!(l.cutoff_deg >= 0.0f && l.cutoff_deg <= 180.0f))
-            return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.cutoff_deg: outside [0, 180]");
-        if (!(l.beam_deg >= 0.0f && l.beam_deg <= l.cutoff_deg))
-            return fogrt__fail(s, FOGRT_RESULT_INVALID_LIGHT, "light.beam_deg: outside [0, cutoff_deg]");
+        FOGRT__REFUSE_IF(!fogrt__v3_finite(l.direction) || fogrt__dot(l.direction, l.direction) == 0.0f, INVALID_LIGHT,
+                         "light.direction: zero or not finite");
+        FOGRT__REFUSE_IF(!(l.cutoff_deg >= 0.0f && l.cutoff_deg <= 180.0f), INVALID_LIGHT, "light.cutoff_deg: outside [0, 180]");
+        FOGRT__REFUSE_IF(!(l.beam_deg >= 0.0f && l.beam_deg <= l.cutoff_deg), INVALID_LIGHT, "light.beam_deg: outside [0, cutoff_deg]");
         l.direction = fogrt__normalize(l.direction);
     }
     if (s->light_count + 1 > s->light_cap) {
@@ -1567,8 +1556,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_light(fogrt_scene *s, const fogrt_lig
 FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment(fogrt_scene *s, fogrt_vec3 radiance, bool upper_only)
 {
     FOGRT_ASSERT(s);
-    if (!fogrt__colour_ok(radiance))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment radiance: negative or not finite");
+    FOGRT__REFUSE_IF(!fogrt__colour_ok(radiance), INVALID_ARGUMENT, "environment radiance: negative or not finite");
     s->env = radiance;
     s->env_upper_only = upper_only;
     s->has_env = !fogrt__is_black(radiance) || s->env_map;
@@ -1583,20 +1571,18 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_ca
     c = *desc;
     if (fogrt__is_black(c.up)) c.up = fogrt__v(0.0f, 1.0f, 0.0f);
     c.fov_deg = FOGRT__DEF(c.fov_deg, 45.0f);
-    if (!fogrt__v3_finite(c.position) || !fogrt__v3_finite(c.look_at) || !fogrt__v3_finite(c.up))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera.position/look_at/up: not finite");
+    FOGRT__REFUSE_IF(!fogrt__v3_finite(c.position) || !fogrt__v3_finite(c.look_at) || !fogrt__v3_finite(c.up), INVALID_CAMERA,
+                     "camera.position/look_at/up: not finite");
     fwd = fogrt__sub(c.look_at, c.position);
-    if (!fogrt__finite(fogrt__dot(fwd, fwd)) || !fogrt__finite(fogrt__dot(c.up, c.up)))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera: look_at - position (or up) too long for float: its squared length overflows");
-    if (fogrt__dot(fwd, fwd) == 0.0f)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera.look_at: equals camera.position");
+    FOGRT__REFUSE_IF(!fogrt__finite(fogrt__dot(fwd, fwd)) || !fogrt__finite(fogrt__dot(c.up, c.up)), INVALID_CAMERA,
+                     "camera: look_at - position (or up) too long for float: its squared length overflows");
+    FOGRT__REFUSE_IF(fogrt__dot(fwd, fwd) == 0.0f, INVALID_CAMERA, "camera.look_at: equals camera.position");
     up = fogrt__cross(fogrt__normalize(fwd), fogrt__normalize(c.up));
-    if (fogrt__dot(up, up) < 1e-12f)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera.up: parallel to the view direction");
-    if (!(c.fov_deg > 0.0f && c.fov_deg < 180.0f))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera.fov_deg: outside (0, 180)");
-    if (!fogrt__finite(c.lens_radius) || c.lens_radius < 0.0f || !fogrt__finite(c.focal_distance) || c.focal_distance < 0.0f)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_CAMERA, "camera.lens_radius/focal_distance: negative or not finite");
+    FOGRT__REFUSE_IF(fogrt__dot(up, up) < 1e-12f, INVALID_CAMERA, "camera.up: parallel to the view direction");
+    FOGRT__REFUSE_IF(!(c.fov_deg > 0.0f && c.fov_deg < 180.0f), INVALID_CAMERA, "camera.fov_deg: outside (0, 180)");
+    FOGRT__REFUSE_IF(!fogrt__finite(c.lens_radius) || c.lens_radius < 0.0f || !fogrt__finite(c.focal_distance) ||
+                     c.focal_distance < 0.0f, INVALID_CAMERA,
+                     "camera.lens_radius/focal_distance: negative or not finite");
     if (c.focal_distance == 0.0f) c.focal_distance = fogrt__length(fwd);
     s->camera = c;
     s->has_camera = true;
@@ -1612,21 +1598,17 @@ FOGRT__PRIVATE bool fogrt__box_ok(fogrt__v3 lo, fogrt__v3 hi)
 /* Checks a medium and clamps |g| to FOGRT_HG_G_MAX (with a warning). */
 FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medium_desc *m)
 {
-    if (!fogrt__finite(m->sigma_t) || m->sigma_t < 0.0f)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.sigma_t: negative or not finite");
-    if (!fogrt__colour_ok(m->albedo) || fogrt__max3(m->albedo) > 1.0f)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.albedo: outside [0, 1]");
-    if (!(m->g >= -1.0f && m->g <= 1.0f))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.g: outside [-1, 1]");
-    if (m->bounded && !fogrt__box_ok(m->bounds_min, m->bounds_max))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.bounds_min/bounds_max: not finite, beyond 1e30, or min not below max on every axis");
+    FOGRT__REFUSE_IF(!fogrt__finite(m->sigma_t) || m->sigma_t < 0.0f, INVALID_MEDIUM, "medium.sigma_t: negative or not finite");
+    FOGRT__REFUSE_IF(!fogrt__colour_ok(m->albedo) || fogrt__max3(m->albedo) > 1.0f, INVALID_MEDIUM, "medium.albedo: outside [0, 1]");
+    FOGRT__REFUSE_IF(!(m->g >= -1.0f && m->g <= 1.0f), INVALID_MEDIUM, "medium.g: outside [-1, 1]");
+    FOGRT__REFUSE_IF(m->bounded && !fogrt__box_ok(m->bounds_min, m->bounds_max), INVALID_MEDIUM,
+                     "medium.bounds_min/bounds_max: not finite, beyond 1e30, or min not below max on every axis");
 #ifdef FOGRT_NO_ESTIMATION
-    if (m->bounded && m->sigma_t > 0.0f)
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "medium.bounded: fog in a box needs a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
+    FOGRT__REFUSE_IF(m->bounded && m->sigma_t > 0.0f, UNSUPPORTED,
+                     "medium.bounded: fog in a box needs a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
 #endif
 #ifdef FOGRT_NO_MEDIUM
-    if (m->sigma_t > 0.0f)
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "medium: fogrt was compiled with FOGRT_NO_MEDIUM");
+    FOGRT__REFUSE_IF(m->sigma_t > 0.0f, UNSUPPORTED, "medium: fogrt was compiled with FOGRT_NO_MEDIUM");
 #endif
     if (fabsf(m->g) >= FOGRT_HG_G_MAX && fabsf(m->g) != FOGRT_HG_G_MAX) {
         m->g = copysignf(FOGRT_HG_G_MAX, m->g);
@@ -1663,15 +1645,11 @@ FOGRT__PUBLIC void fogrt_scene_get_info(const fogrt_scene *s, fogrt_scene_info *
 {
     FOGRT_ASSERT(s && info);
     memset(info, 0, sizeof *info);
-    info->triangle_count = s->tri_count;
-    info->sphere_count = s->sph_count;
+    info->triangle_count = s->tri_count; info->sphere_count = s->sph_count;
     info->material_count = s->material_count;
-    info->light_count = s->light_count;
-    info->area_light_count = s->area_light_count;
-    info->bounds_min = s->bmin;
-    info->bounds_max = s->bmax;
-    info->has_environment = s->has_env;
-    info->built = s->built;
+    info->light_count = s->light_count; info->area_light_count = s->area_light_count;
+    info->bounds_min = s->bmin; info->bounds_max = s->bmax;
+    info->has_environment = s->has_env; info->built = s->built;
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_get_material(const fogrt_scene *s, uint32_t id, fogrt_material_desc *out)
 {
@@ -1687,16 +1665,8 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_get_light(const fogrt_scene *s, uint32_t 
     *out = s->lights[index];
     return FOGRT_RESULT_OK;
 }
-FOGRT__PUBLIC void fogrt_scene_get_camera(const fogrt_scene *s, fogrt_camera_desc *out)
-{
-    FOGRT_ASSERT(s && out);
-    *out = s->camera;
-}
-FOGRT__PUBLIC void fogrt_scene_get_medium(const fogrt_scene *s, fogrt_medium_desc *out)
-{
-    FOGRT_ASSERT(s && out);
-    *out = s->medium;
-}
+FOGRT__PUBLIC void fogrt_scene_get_camera(const fogrt_scene *s, fogrt_camera_desc *out) { FOGRT_ASSERT(s && out); *out = s->camera; }
+FOGRT__PUBLIC void fogrt_scene_get_medium(const fogrt_scene *s, fogrt_medium_desc *out) { FOGRT_ASSERT(s && out); *out = s->medium; }
 
 
 /* ------------------------------------------------------------------------------------------
@@ -1734,17 +1704,15 @@ FOGRT__HOT void fogrt__aabb_union(fogrt__aabb *b, const fogrt__aabb *o)   /* o m
     b->lo.x = FOGRT__MIN(b->lo.x, o->lo.x); b->lo.y = FOGRT__MIN(b->lo.y, o->lo.y); b->lo.z = FOGRT__MIN(b->lo.z, o->lo.z);
     b->hi.x = FOGRT__MAX(b->hi.x, o->hi.x); b->hi.y = FOGRT__MAX(b->hi.y, o->hi.y); b->hi.z = FOGRT__MAX(b->hi.z, o->hi.z);
 }
-FOGRT__PRIVATE float fogrt__aabb_area(const fogrt__aabb *b)
+FOGRT__PRIVATE float fogrt__aabb_area(const fogrt__aabb *b)     /* 0 for the empty box */
 {
     fogrt__v3 e = fogrt__sub(b->hi, b->lo);
-    if (e.x < 0.0f) return 0.0f;
-    return 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
+    return e.x < 0.0f ? 0.0f : 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
 }
 FOGRT__PRIVATE float fogrt__aabb_volume(const fogrt__aabb *b)
 {
     fogrt__v3 e = fogrt__sub(b->hi, b->lo);
-    if (e.x < 0.0f) return 0.0f;
-    return e.x * e.y * e.z;
+    return e.x < 0.0f ? 0.0f : e.x * e.y * e.z;
 }
 FOGRT__HOT fogrt__v3 fogrt__aabb_centre(const fogrt__aabb *b) { return fogrt__scale(fogrt__add(b->lo, b->hi), 0.5f); }
 
@@ -3225,8 +3193,7 @@ FOGRT__PUBLIC fogrt_build_desc fogrt_build_defaults(void)
 FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fogrt_build_desc *in, fogrt_build_desc *d)
 {
     *d = in ? *in : fogrt_build_defaults();
-    if (!d->resolved)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: not from fogrt_build_defaults()");
+    FOGRT__REFUSE_IF(!d->resolved, INVALID_ARGUMENT, "build desc: not from fogrt_build_defaults()");
     if ((unsigned)d->heuristic >= (unsigned)FOGRT_BVH_NUM || (unsigned)d->layout >= (unsigned)FOGRT_BVH_LAYOUT_NUM ||
         d->bins < 1 || d->bins > 64 ||
         d->max_leaf_size < 1 || !(d->c_trav >= 0.0f) || !(d->c_int >= 0.0f) ||
@@ -3234,8 +3201,8 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fog
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: heuristic, layout, bins (1..64), max_leaf_size (>= 1), c_trav or c_int out of range");
     if (d->heuristic == FOGRT_BVH_DEFAULT) d->heuristic = FOGRT_BVH_SAH;
 #ifdef FOGRT_NO_WIDE_BVH
-    if (d->layout == FOGRT_BVH_LAYOUT_WIDE)
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "build desc: layout wide needs a build without FOGRT_NO_WIDE_BVH (and FOGRT_MINIMAL)");
+    FOGRT__REFUSE_IF(d->layout == FOGRT_BVH_LAYOUT_WIDE, UNSUPPORTED,
+                     "build desc: layout wide needs a build without FOGRT_NO_WIDE_BVH (and FOGRT_MINIMAL)");
 #endif
     return FOGRT_RESULT_OK;
 }
@@ -3305,8 +3272,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
     FOGRT_ASSERT(s);
     if ((r = fogrt__resolve_build(s, desc, &d)) != FOGRT_RESULT_OK) return r;
     n = s->tri_count + s->sph_count;
-    if (n == 0 && s->light_count == 0 && !s->has_env)
-        return fogrt__fail(s, FOGRT_RESULT_EMPTY_SCENE, "scene: no geometry and no light");
+    FOGRT__REFUSE_IF(n == 0 && s->light_count == 0 && !s->has_env, EMPTY_SCENE, "scene: no geometry and no light");
     old = *s;
     if (!fogrt__build_all(s, &d, n)) {
         fogrt__free_built(s);
@@ -3361,16 +3327,16 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void)
 FOGRT__PRIVATE fogrt_result fogrt__check_build_has(const fogrt_scene *s, const fogrt_render_desc *d)
 {
 #ifdef FOGRT_NO_EXACT_FRESNEL
-    if (d->fresnel == FOGRT_FRESNEL_EXACT)
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: fresnel exact needs a build without FOGRT_NO_EXACT_FRESNEL, FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
+    FOGRT__REFUSE_IF(d->fresnel == FOGRT_FRESNEL_EXACT, UNSUPPORTED,
+                     "render desc: fresnel exact needs a build without FOGRT_NO_EXACT_FRESNEL, FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
 #endif
 #ifdef FOGRT_NO_LAMPS_IN_FOG
-    if (d->equiangular || d->glow || d->footprint || d->expected_emission)
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: equiangular, glow, footprint and expected_emission need a build without FOGRT_NO_LAMPS_IN_FOG and FOGRT_MINIMAL (start from fogrt_render_paper_defaults())");
+    FOGRT__REFUSE_IF(d->equiangular || d->glow || d->footprint || d->expected_emission, UNSUPPORTED,
+                     "render desc: equiangular, glow, footprint and expected_emission need a build without FOGRT_NO_LAMPS_IN_FOG and FOGRT_MINIMAL (start from fogrt_render_paper_defaults())");
 #endif
 #ifdef FOGRT_NO_ESTIMATION
-    if (d->light_by_power || d->sample_rate)
-        return fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED, "render desc: light_by_power and sample_rate need a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
+    FOGRT__REFUSE_IF(d->light_by_power || d->sample_rate, UNSUPPORTED,
+                     "render desc: light_by_power and sample_rate need a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
 #endif
     (void)s; (void)d;
     return FOGRT_RESULT_OK;
@@ -3380,8 +3346,8 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
 {
     fogrt_render_desc d = in ? *in : fogrt_render_defaults();
     fogrt_result r;
-    if (!d.resolved)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: not from fogrt_render_defaults() (a zeroed desc would mean max_depth 0 and no light sampling)");
+    FOGRT__REFUSE_IF(!d.resolved, INVALID_ARGUMENT,
+                     "render desc: not from fogrt_render_defaults() (a zeroed desc would mean max_depth 0 and no light sampling)");
     if (d.max_depth < -1 || d.min_depth < 0 || d.rr_depth < 0 || d.light_samples < 1 ||
         (unsigned)d.integrator >= (unsigned)FOGRT_INTEGRATOR_NUM || (unsigned)d.fresnel >= (unsigned)FOGRT_FRESNEL_NUM)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: max_depth (>= -1), min_depth (>= 0), rr_depth (>= 0), light_samples (>= 1), integrator or fresnel out of range");
@@ -3635,8 +3601,8 @@ FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt
     if (d->sample_rate) {
         size_t i, n = (size_t)img->width * (size_t)img->height;
         for (i = 0; i < n; ++i)
-            if (!(d->sample_rate[i] >= 0.0f && d->sample_rate[i] <= FOGRT_MAX_SAMPLE_RATE))
-                return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: a sample_rate is NaN, negative or above FOGRT_MAX_SAMPLE_RATE (64)");
+            FOGRT__REFUSE_IF(!(d->sample_rate[i] >= 0.0f && d->sample_rate[i] <= FOGRT_MAX_SAMPLE_RATE), INVALID_ARGUMENT,
+                             "render desc: a sample_rate is NaN, negative or above FOGRT_MAX_SAMPLE_RATE (64)");
     }
     return FOGRT_RESULT_OK;
 }
@@ -3773,18 +3739,6 @@ FOGRT__PUBLIC fogrt_result fogrt_write_ppm(const char *path, int width, int heig
 /* ------------------------------------------------------------------------------------------
    I.3 The default scene: the CS184 Cornell box, filled with fog
    ------------------------------------------------------------------------------------------ */
-FOGRT__PRIVATE fogrt_result fogrt__add_quad(fogrt_scene *s, fogrt__v3 a, fogrt__v3 b, fogrt__v3 c, fogrt__v3 d, uint32_t mat)
-{
-    /* a, b, c, d counter-clockwise seen from the front: triangles (a, b, c) and (a, c, d). */
-    float pos[12];
-    uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
-    fogrt_mesh_desc m;
-    pos[0] = a.x; pos[1] = a.y; pos[2] = a.z; pos[3] = b.x; pos[4] = b.y; pos[5] = b.z;
-    pos[6] = c.x; pos[7] = c.y; pos[8] = c.z; pos[9] = d.x; pos[10] = d.y; pos[11] = d.z;
-    memset(&m, 0, sizeof m);
-    m.positions = pos; m.vertex_count = 4; m.indices = idx; m.triangle_count = 2; m.material = mat;
-    return fogrt_scene_add_mesh(s, &m);
-}
 FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s);
 /* All of the default scene or nothing: a failure midway takes back what was added. */
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
@@ -3800,15 +3754,26 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
     }
     return r;
 }
+/* The box: x in [-1, 1], y in [0, 1.5], z in [-1, 1], open toward +z (the camera). Each quad
+   (a, b, c, d) is counter-clockwise seen from its front, two triangles (a, b, c), (a, c, d);
+   the lamp is a square just below the ceiling, facing down. */
+static const float fogrt__default_quads[6][12] = {
+    { -1, 0, -1,   -1, 0, 1,   1, 0, 1,   1, 0, -1 },                                    /* floor */
+    { -1, 1.5f, -1,   1, 1.5f, -1,   1, 1.5f, 1,   -1, 1.5f, 1 },                        /* ceiling */
+    { -1, 0, -1,   1, 0, -1,   1, 1.5f, -1,   -1, 1.5f, -1 },                            /* back */
+    { -1, 0, -1,   -1, 1.5f, -1,   -1, 1.5f, 1,   -1, 0, 1 },                            /* left */
+    { 1, 0, -1,   1, 0, 1,   1, 1.5f, 1,   1, 1.5f, -1 },                                /* right */
+    { -0.35f, 1.49f, -0.35f,   0.35f, 1.49f, -0.35f,   0.35f, 1.49f, 0.35f,   -0.35f, 1.49f, 0.35f } };   /* lamp */
 FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s)
 {
+    static const uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
     fogrt_material_desc md;
+    fogrt_mesh_desc mesh;
     fogrt_light_desc ld;
     fogrt_camera_desc cd;
     fogrt_medium_desc fd;
-    uint32_t white, red, blue, lamp, matte, glass;
+    uint32_t white, red, blue, lamp, matte, glass, i, wall[6];
     fogrt_result r = FOGRT_RESULT_OK;
-    FOGRT_ASSERT(s);
 #define FOGRT__TRY(call) do { r = (call); if (r != FOGRT_RESULT_OK) return r; } while (0)
     memset(&md, 0, sizeof md);
     md.type = FOGRT_BSDF_DIFFUSE;
@@ -3826,15 +3791,13 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s)
 #endif
     md.reflectance = fogrt__v(1.0f, 1.0f, 1.0f); md.transmittance = fogrt__v(1.0f, 1.0f, 1.0f);
     FOGRT__TRY(fogrt_scene_add_material(s, &md, &glass));
-    /* The box: x in [-1, 1], y in [0, 1.5], z in [-1, 1], open toward +z (the camera). */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 0, -1), fogrt__v(-1, 0, 1), fogrt__v(1, 0, 1), fogrt__v(1, 0, -1), white));          /* floor */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 1.5f, -1), fogrt__v(1, 1.5f, -1), fogrt__v(1, 1.5f, 1), fogrt__v(-1, 1.5f, 1), white)); /* ceiling */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 0, -1), fogrt__v(1, 0, -1), fogrt__v(1, 1.5f, -1), fogrt__v(-1, 1.5f, -1), white));   /* back */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-1, 0, -1), fogrt__v(-1, 1.5f, -1), fogrt__v(-1, 1.5f, 1), fogrt__v(-1, 0, 1), red));     /* left */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(1, 0, -1), fogrt__v(1, 0, 1), fogrt__v(1, 1.5f, 1), fogrt__v(1, 1.5f, -1), blue));        /* right */
-    /* The ceiling lamp: a square just below the ceiling, wound to face down. */
-    FOGRT__TRY(fogrt__add_quad(s, fogrt__v(-0.35f, 1.49f, -0.35f), fogrt__v(0.35f, 1.49f, -0.35f),
-                               fogrt__v(0.35f, 1.49f, 0.35f), fogrt__v(-0.35f, 1.49f, 0.35f), lamp));
+    wall[0] = wall[1] = wall[2] = white; wall[3] = red; wall[4] = blue; wall[5] = lamp;
+    memset(&mesh, 0, sizeof mesh);
+    mesh.vertex_count = 4; mesh.indices = idx; mesh.triangle_count = 2;
+    for (i = 0; i < 6; ++i) {
+        mesh.positions = fogrt__default_quads[i]; mesh.material = wall[i];
+        FOGRT__TRY(fogrt_scene_add_mesh(s, &mesh));
+    }
     FOGRT__TRY(fogrt_scene_add_sphere(s, fogrt__v(-0.45f, 0.35f, -0.35f), 0.35f, matte));
     FOGRT__TRY(fogrt_scene_add_sphere(s, fogrt__v(0.45f, 0.35f, 0.25f), 0.35f, glass));
     /* The spot light: high on the left, aimed at the floor right of centre; its cone shows in the fog. */
@@ -3846,9 +3809,7 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s)
     ld.cutoff_deg = 16.0f; ld.beam_deg = 11.0f; ld.radius = 0.02f;
     FOGRT__TRY(fogrt_scene_add_light(s, &ld));
     memset(&cd, 0, sizeof cd);
-    cd.position = fogrt__v(0.0f, 0.75f, 3.6f);
-    cd.look_at = fogrt__v(0.0f, 0.7f, 0.0f);
-    cd.fov_deg = 38.0f;
+    cd.position = fogrt__v(0.0f, 0.75f, 3.6f); cd.look_at = fogrt__v(0.0f, 0.7f, 0.0f); cd.fov_deg = 38.0f;
     FOGRT__TRY(fogrt_scene_set_camera(s, &cd));
 #ifndef FOGRT_NO_MEDIUM   /* a build without fog gets the same box, without fog */
     memset(&fd, 0, sizeof fd);
@@ -7048,7 +7009,7 @@ FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
     t = s->tri_count;
     p = t + s->sph_count;
     b += sizeof(fogrt_material_desc) * s->material_count + sizeof(fogrt_light_desc) * s->light_count;
-    b += t * (6 * sizeof(fogrt__v3) + 1 + 2 * sizeof(uint32_t));   /* vertices, normals, flag, ids */
+    b += t * ((s->tri_n ? 6 : 3) * sizeof(fogrt__v3) + 1 + 2 * sizeof(uint32_t));   /* vertices, normals, flag, ids */
     b += (size_t)s->sph_count * (sizeof(fogrt__v3) + sizeof(float) + sizeof(uint32_t));
     if (s->env_map) b += sizeof(float) * 3 * (size_t)s->env_w * (size_t)s->env_h;
     if (s->nodes) b += sizeof(fogrt_bvh_node) * s->node_count + p * sizeof(uint32_t);

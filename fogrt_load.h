@@ -2628,6 +2628,18 @@ FOGRT__LD fogrt_result fogrt__obj_vertex(fogrt__ld *L, fogrt__obj *O, const char
     return FOGRT_RESULT_OK;
 }
 
+/* A signed index at *s (digits optional): false when it has a sign without digits or
+   passes 2^32. *any: whether digits were there. */
+FOGRT__LD bool fogrt__obj_index(const char **s, const char *le, long long *out, bool *any)
+{
+    bool neg = false;
+    long long val = 0;
+    *any = false;
+    if (*s < le && (**s == '-' || **s == '+')) { neg = **s == '-'; ++*s; }
+    for (; *s < le && **s >= '0' && **s <= '9' && val <= 0xFFFFFFFFLL; ++*s, *any = true) val = val * 10 + (**s - '0');
+    *out = neg ? -val : val;
+    return val <= 0xFFFFFFFFLL && (*any || !neg);
+}
 /* One face corner v[/[t][/n]] at *q: idx[0] = v, idx[2] = n (0: none), as written. */
 FOGRT__LD fogrt_result fogrt__obj_corner_text(fogrt__ld *L, const char **q, const char *le, int line, long long idx[3])
 {
@@ -2635,13 +2647,11 @@ FOGRT__LD fogrt_result fogrt__obj_corner_text(fogrt__ld *L, const char **q, cons
     const char *s = *q;
     idx[0] = idx[1] = idx[2] = 0;
     for (part = 0; part < 3; ++part) {
-        bool neg = false, any = false;
-        long long val = 0;
-        if (s < le && (*s == '-' || *s == '+')) { neg = *s == '-'; ++s; }
-        for (; s < le && *s >= '0' && *s <= '9' && val <= 0xFFFFFFFFLL; ++s, any = true) val = val * 10 + (*s - '0');
-        if (val > 0xFFFFFFFFLL || (!any && part == 0) || (!any && neg))
+        bool any;
+        long long val;
+        if (!fogrt__obj_index(&s, le, &val, &any) || (!any && part == 0))
             return fogrt__ld_fail(L, FOGRT__LD_PARSE, line, "bad face vertex '%.*s'", fogrt__ld_toklen(s, le), s);
-        if (any) idx[part] = neg ? -val : val;
+        if (any) idx[part] = val;
         if (!(s < le && *s == '/' && part < 2)) break;
         ++s;
     }

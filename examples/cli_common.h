@@ -683,6 +683,20 @@ CLI_FN int cli_resolve_threads(int requested)
     }
 }
 
+/* omp_set_num_threads holds only for the thread that calls it: a thread the program starts
+   itself (the preview's render thread) begins from the environment's count again, and a
+   parallel region there without a thread count (a rebuild's roulette pilot) would ask for
+   threads the system could not start (libgomp then exits: OMP_STACKSIZE=100000G). Such a
+   thread calls this first with cli_resolve_threads' count. */
+CLI_FN void cli_thread_default(int threads)
+{
+#ifdef _OPENMP
+    if (threads >= 1) omp_set_num_threads(threads);
+#else
+    (void)threads;
+#endif
+}
+
 /* ------------------------------------------------------------------------------------------
    Files: identity, kind, and writing outputs safely
    ------------------------------------------------------------------------------------------ */

@@ -73,9 +73,10 @@ int cli_trace_path(const fogrt_scene *scene, const fogrt_render_desc *rd, int wi
 #define CLI_CEILING_SPP 65536
 #define CLI_RATES_PILOT 8         /* --pixel-rates: spp taken alike before the rates are made */
 #define CLI_CEILING_SECONDS 3600.0
-/* Progressive batches are sized to take about this long, so the error estimate updates
-   and an interrupt is answered within a second. */
-#define CLI_BATCH_SECONDS 0.5
+/* A progressive batch takes at most this many camera samples (divided by -l): a --log row
+   and a new error estimate about every 0.2 to 0.4 s for the default scene on 2 cores. A
+   count, not a time, so that the rows are the same on any machine and thread count. */
+#define CLI_BATCH_SAMPLES 65536.0
 /* Without a terminal, the progress line is printed every this many seconds. */
 #define CLI_LOG_PROGRESS_SECONDS 5.0
 /* Camera coordinates, lens radius and focal distance beyond this overflow float ray maths. */
@@ -216,9 +217,10 @@ static void usage(FILE *f)
         "  --bvh H          sah or volume (the paper's volume heuristic) (default sah)\n"
         "  --time SECONDS   stop after about this long (default: no limit; without -s the\n"
         "                   sample count is then unlimited)\n"
-        "  --target-error E stop when the estimated relative RMS error is <= E (default: none);\n"
-        "                   without -s the render also stops at %d spp or after %.0f s,\n"
-        "                   whichever comes first, even if the estimate never gets there\n"
+        "  --target-error E stop when the estimated relative RMS error is <= E (default: none;\n"
+        "                   E >= 1.2e-7, float's precision); without -s the render also stops\n"
+        "                   at %d spp or after %.0f s, whichever comes first, even if the\n"
+        "                   estimate never gets there\n"
         "  --quiet          no progress line and no summary (errors and warnings still shown)\n"
         "                   (default off)\n"
         "  --trace X,Y[,S]  print the events of sample S (default 0) of pixel (X, Y), column and\n"
@@ -387,6 +389,11 @@ static int parse_args(int argc, char **argv, cli_options *o)
             float e;
             NEED(1); v = cli_next(&A);
             if (!cli_parse_float(v, &e) || !(e > 0)) return bad_flag(a, "target error must be a number > 0, got '%s'", v);
+            /* The image is kept and written in 32-bit floats, each rounded to 2^-24 of itself:
+               an error below float's epsilon is not one the image can show, and the
+               estimate would fall toward it for hours (an hour's ceiling at 800x600) */
+            if (e < FLT_EPSILON)
+                return bad_flag(a, "target error %s is below %.2g (FLT_EPSILON): no 32-bit float image resolves a smaller relative error", v, (double)FLT_EPSILON);
             o->target_error = (double)e;
         }
         else if (cli_is(&A, "--quiet")) o->quiet = true;
@@ -1223,10 +1230,28 @@ static void take_measurement(render_state *p, const fogrt_image *img, const char
 /* ------------------------------------------------------------------------------------------
    Rendering: progressive batches through fogrt_render, or CS184's per-pixel adaptive loop
    ------------------------------------------------------------------------------------------ */
-/* Batches are sized from the measured speed to take about CLI_BATCH_SECONDS (1, 2, 4, ...
-   samples per pixel at first), so the estimate updates and Ctrl-C is answered quickly. An
-   interrupt cancels the batch through the progress callback: fogrt_render then skips the
-   rows not yet started and every finished row keeps its samples. */
+/* The spp of the next batch, from the inputs alone (never the clock), so that with a seed
+   --log's rows, the estimate in them and the image are the same on every run and thread
+   count: doubling at first (1, 1, 2, 4, ... spp: early error points), the --pixel-rates
+   pilot ended exactly at its spp, then at most CLI_BATCH_SAMPLES samples per batch (at
+   least 1 spp), and never past the goal. */
+static uint64_t batch_spp(const render_state *p, uint64_t done, bool rates_pending)
+{
+    double cap = floor(CLI_BATCH_SAMPLES / (p->pixels * (double)(p->o->light_samples > 0 ? p->o->light_samples : 1)));
+    uint64_t b = done > 0 ? done : 1;
+    if (cap < (double)b) b = cap >= 1.0 ? (uint64_t)cap : 1;
+    if (rates_pending && b > CLI_RATES_PILOT - done) b = CLI_RATES_PILOT - done;
+    if (b > ((uint64_t)1 << 20)) b = (uint64_t)1 << 20;
+    if (b < 1) b = 1;
+    if (p->spp_target && b > p->spp_target - done) b = p->spp_target - done;
+    return b;
+}
+
+/* Batches of batch_spp, so the estimate updates and the log gets a row often. A time limit
+   (--time, or --target-error's ceiling) is the one input read from the clock: it stops the
+   render between batches, and the last batch is cut to the time left at the speed measured
+   so far (a run that a time limit stops depends on time; any other does not). An interrupt
+   cancels the batch through the render's cancel flag: every sample taken stays counted. */
 static fogrt_result render_progressive(const fogrt_scene *scene, fogrt_render_desc *rd, fogrt_image *img,
                                        render_state *p, const char **stopped_by)
 {
@@ -1243,12 +1268,7 @@ static fogrt_result render_progressive(const fogrt_scene *scene, fogrt_render_de
         if (cli_interrupted) break;
         if (p->spp_target && done >= p->spp_target) { *stopped_by = "samples"; break; }
         if (p->seconds_limit > 0 && elapsed >= p->seconds_limit && done > 0) { *stopped_by = "time"; break; }
-        b = rate > 0 ? (uint64_t)(rate * CLI_BATCH_SECONDS) : 1;
-        if (b > done) b = done > 0 ? done : 1;      /* doubling at first: early error points */
-        if (p->rates && !rd->sample_rate && b > CLI_RATES_PILOT - done) b = CLI_RATES_PILOT - done;
-        if (b > ((uint64_t)1 << 20)) b = (uint64_t)1 << 20;
-        if (b < 1) b = 1;
-        if (p->spp_target && b > p->spp_target - done) b = p->spp_target - done;
+        b = batch_spp(p, done, p->rates && !rd->sample_rate);
         if (p->seconds_limit > 0 && rate > 0 && (double)b > (p->seconds_limit - elapsed) * rate)
             b = (uint64_t)fmax(1.0, floor((p->seconds_limit - elapsed) * rate));
         p->spp_done = done;
@@ -1271,6 +1291,8 @@ static fogrt_result render_progressive(const fogrt_scene *scene, fogrt_render_de
         take_measurement(p, img, "batch");
         print_progress(p, (double)done, false);
         if (p->o->target_error > 0 && p->est_error >= 0 && p->est_error <= p->o->target_error) { *stopped_by = "error"; break; }
+        /* nothing can light the scene: every sample is 0, the estimate stays n/a for ever */
+        if (p->o->target_error > 0 && p->black) { *stopped_by = "black"; break; }
     }
     if (cli_interrupted) take_measurement(p, img, "interrupted");
     return r;
@@ -1721,7 +1743,10 @@ static int run(int argc, char **argv)
         fprintf(stderr, "fogrt: warning: every pixel is black: nothing the camera sees is lit\n");
         ps.black = true;
     }
-    if (!o.adaptive && !cli_interrupted && o.target_error > 0 && stopped_by && strcmp(stopped_by, "error") != 0)
+    if (!o.adaptive && !cli_interrupted && o.target_error > 0 && stopped_by && strcmp(stopped_by, "black") == 0)
+        fprintf(stderr, "fogrt: warning: --target-error %g cannot be reached: a black image has no error estimate: stopped at %llu spp\n",
+                o.target_error, (unsigned long long)ps.spp_done);
+    else if (!o.adaptive && !cli_interrupted && o.target_error > 0 && stopped_by && strcmp(stopped_by, "error") != 0)
         fprintf(stderr, "fogrt: warning: --target-error %g not reached (estimate %s): stopped at the %s ceiling (%llu spp, %.0f s)\n",
                 o.target_error, (format_error(&ps, ps.est_error, err_a, sizeof err_a), err_a), stopped_by,
                 (unsigned long long)ps.spp_target, ps.seconds_limit);

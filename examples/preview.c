@@ -54,6 +54,12 @@
 /* ------------------------------------------------------------------------------------------
    What the user can change, and the program's options
    ------------------------------------------------------------------------------------------ */
+/* The image's buffers, checked against a limit before anything is allocated (as fogrt
+   checks its own): the shown, resolved and 8-bit images (27 bytes per pixel), the full,
+   1/2 and 1/4 resolution passes' accumulation (84 x (1 + 1/4 + 1/16)), an `s` save's
+   PFM and PNG (16): 160 per pixel. Without it -r 16384 16384 --scale 1 asked for 40 GiB. */
+#define PREVIEW_BYTES_PER_PIXEL 160.0
+#define PREVIEW_MAX_IMAGE_BYTES (2.0 * 1024.0 * 1024.0 * 1024.0)
 typedef struct view_params {
     bool fog;                 /* off: sigma_t 0, density kept for when it comes back on */
     float density;            /* sigma_t, the paper's lambda */
@@ -120,7 +126,8 @@ static void usage(FILE *f)
         "Flags shared with fogrt (the same meanings and limits in both):\n");
     cli_common_usage(f, 320, 240);
     fprintf(f,
-        "  (-r: the window is --scale times it; -m: the ] key goes on to unlimited depth)\n"
+        "  (-r: the window is --scale times it, and the image's buffers, 160 bytes per pixel,\n"
+        "  may take at most 2 GiB; -m: the ] key goes on to unlimited depth)\n"
         "(fogrt's other flags, -s, -f, -a, --time, --target-error and the rest, do not apply:\n"
         "the preview refines until you quit.)\n"
         "\n"
@@ -251,6 +258,15 @@ static int parse_flags(int argc, char **argv, preview_options *o)
     if (o->keys && o->frames == 0) return bad_flag("--keys", "needs --frames (scripted mode)");
     if (o->width * o->scale > 16384 || o->height * o->scale > 16384)
         return bad_flag("--scale", "window of %dx%d pixels is too large (at most 16384 on a side)", o->width * o->scale, o->height * o->scale);
+    {
+        double bytes = (double)o->width * (double)o->height * PREVIEW_BYTES_PER_PIXEL;
+        if (bytes > PREVIEW_MAX_IMAGE_BYTES) {
+            char flag[64];
+            snprintf(flag, sizeof flag, "-r %d %d", o->width, o->height);
+            return bad_flag(flag, "the image buffers would need %.1f GiB (%.0f bytes per pixel), above the limit of %.1f GiB",
+                            bytes / (1024.0 * 1024.0 * 1024.0), PREVIEW_BYTES_PER_PIXEL, PREVIEW_MAX_IMAGE_BYTES / (1024.0 * 1024.0 * 1024.0));
+        }
+    }
     return 0;
 }
 
@@ -292,13 +308,13 @@ static bool parse_script(const char *text, int frames, script_event **out, int *
         if (strncmp(p, "drag:", 5) == 0) {
             p += 5;
             e.key = PK_DRAG;
-            if (!read_number(&p, &e.dx) || *p != ',') { snprintf(msg, msg_size, "item '%.20s': expected drag:DX,DY", item); goto fail; }
+            if (!read_number(&p, &e.dx) || *p != ',') { snprintf(msg, msg_size, "item '%.20s': expected drag:DX,DY, each within +-1e6 pixels", item); goto fail; }
             p++;
-            if (!read_number(&p, &e.dy)) { snprintf(msg, msg_size, "item '%.20s': expected drag:DX,DY", item); goto fail; }
+            if (!read_number(&p, &e.dy)) { snprintf(msg, msg_size, "item '%.20s': expected drag:DX,DY, each within +-1e6 pixels", item); goto fail; }
         } else if (strncmp(p, "wheel:", 6) == 0) {
             p += 6;
             e.key = PK_WHEEL;
-            if (!read_number(&p, &e.dy)) { snprintf(msg, msg_size, "item '%.20s': expected wheel:N", item); goto fail; }
+            if (!read_number(&p, &e.dy)) { snprintf(msg, msg_size, "item '%.20s': expected wheel:N, N within +-1e6", item); goto fail; }
         } else if ((strncmp(p, "F1", 2) == 0 || strncmp(p, "f1", 2) == 0) && (p[2] == ',' || p[2] == '\0')) {
             e.key = PK_F1; p += 2;
         } else if (strncmp(p, "esc", 3) == 0 && (p[3] == ',' || p[3] == '\0')) {
@@ -594,6 +610,7 @@ static void *worker_main(void *arg)
        a lower priority, so the input and drawing thread gets a core the moment it wakes. */
     setpriority(PRIO_PROCESS, (id_t)syscall(SYS_gettid), 5);
 #endif
+    cli_thread_default(o->threads);
     memset(&cur, 0, sizeof cur);
     memset(pass, 0, sizeof pass);
     while (first_pass < 2 && (o->width / pass_scale[first_pass] < 32 || o->height / pass_scale[first_pass] < 24)) first_pass++;

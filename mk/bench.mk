@@ -4,6 +4,7 @@
 #                    BENCH_ARGS=--quick for a short, noisy run
 #   make bench-spot  the paper's spot-lit fog at equal time, this tree against the header of
 #                    commit SPOT_BASE in the same run (default 7a4a5f3, the goal's reference)
+#   make bench-base  make bench's figures against the header of commit BENCH_BASE, same run
 #   make callgrind   instructions a scene pays for features it does not use (fails above +1%)
 #   make variance-sources  which samples carry an image's noise (VS_ARGS: scene and flags)
 #
@@ -14,7 +15,7 @@
 #     (fogrt's figures alone, no ratios).
 #   - the CS184 bunny: when fogrt_load.h declares fogrt_load_dae and $(SHARED) has CBbunny.dae
 #     (otherwise bench.c uses a synthetic mesh of the same size).
-.PHONY: bench callgrind bench-levers deps-embree bench-spot variance-sources
+.PHONY: bench bench-base callgrind bench-levers deps-embree bench-spot variance-sources
 
 BENCH_EMBREE        ?= 1
 BENCH_EMBREE_HEADER := /usr/include/embree3/rtcore.h
@@ -50,6 +51,14 @@ SPOT_BASE ?= 7a4a5f3
 SPOT_GOAL ?= 25
 bench-spot: $(BUILD)/fogrt
 	sh bench/spot_goal.sh $(BUILD)/fogrt $(SHARED) $(SPOT_RUNS) $(SPOT_BASE) $(SPOT_GOAL)
+
+# make bench's figures, this tree against the header of commit BENCH_BASE in the same run:
+# both bench programs alternately, BENCH_RUNS rounds, each figure's median ratio
+# (bench/same_run.sh; about two minutes a round, BENCH_ARGS=--quick for a short one).
+BENCH_BASE ?= HEAD~1
+BENCH_RUNS ?= 3
+bench-base:
+	sh bench/same_run.sh $(BENCH_BASE) $(BENCH_RUNS) "$(BENCH_ARGS)" $(SHARED)
 
 # No OpenMP here on purpose: one thread, a deterministic instruction count.
 callgrind:

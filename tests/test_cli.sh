@@ -320,11 +320,24 @@ check "[ \"\$(head -n 1 '$tmp/p.csv')\" = 'seconds,spp,samples_per_second,est_re
 check "awk -F, 'NR > 1 { if (NR > 2 && \$1 - t > 3.0) exit 1; t = \$1; n++ } END { exit !(n >= 4 && t > 5) }' '$tmp/p.csv'" "progress_log_lines: --log rows more than 3 s apart or too few: $(wc -l <"$tmp/p.csv") lines"
 check "! grep -qi 'nan' '$tmp/p.csv' && awk -F, 'NR == 2 && \$2 < 2 && \$4 != \"\" { exit 1 }' '$tmp/p.csv'" "log_no_nan: a --log row holds nan, or an estimate below 2 spp: $(sed -n 2p "$tmp/p.csv")"
 
-# -- same_seed_same_image: with a seed, the image is a function of the inputs alone: the
-#    default (pixel rates on) on 1 and on 2 threads --
-"$fogrt" -s 48 -r 48 36 -t 1 --seed 7 --log "$tmp/det1.csv" -f "$tmp/det1.pfm" 2>/dev/null
-"$fogrt" -s 48 -r 48 36 -t 2 --seed 7 --log "$tmp/det2.csv" -f "$tmp/det2.pfm" 2>/dev/null
+# -- same_seed_same_image: with a seed and no time limit, the image and every --log column but
+#    the times (seconds, samples_per_second) are functions of the inputs alone: the default
+#    (pixel rates on) on 1 thread, on 2, and on 2 again; the comparison sees a different seed --
+log_cols() { cut -d, -f2,4- "$1"; }
+"$fogrt" -s 64 -r 64 48 -t 1 --seed 7 --log "$tmp/det1.csv" -f "$tmp/det1.pfm" 2>/dev/null
+"$fogrt" -s 64 -r 64 48 -t 2 --seed 7 --log "$tmp/det2.csv" -f "$tmp/det2.pfm" 2>/dev/null
+"$fogrt" -s 64 -r 64 48 -t 2 --seed 7 --log "$tmp/det3.csv" -f "$tmp/det3.pfm" 2>/dev/null
+"$fogrt" -s 64 -r 64 48 -t 2 --seed 8 --log "$tmp/det4.csv" -f "$tmp/det4.pfm" 2>/dev/null
 check "cmp -s '$tmp/det1.pfm' '$tmp/det2.pfm'" "same_seed_same_image: 1 and 2 threads give different images"
+check "cmp -s '$tmp/det2.pfm' '$tmp/det3.pfm'" "same_seed_same_image: two runs on 2 threads give different images"
+check "[ \"\$(log_cols '$tmp/det1.csv')\" = \"\$(log_cols '$tmp/det2.csv')\" ]" "same_seed_same_image: --log rows differ between 1 and 2 threads: $(log_cols "$tmp/det1.csv" | tr '\n' ' ') / $(log_cols "$tmp/det2.csv" | tr '\n' ' ')"
+check "[ \"\$(log_cols '$tmp/det2.csv')\" = \"\$(log_cols '$tmp/det3.csv')\" ]" "same_seed_same_image: --log rows differ between two runs: $(log_cols "$tmp/det2.csv" | tr '\n' ' ') / $(log_cols "$tmp/det3.csv" | tr '\n' ' ')"
+check "[ \$(wc -l <'$tmp/det1.csv') -ge 6 ]" "same_seed_same_image: too few --log rows to compare: $(wc -l <"$tmp/det1.csv")"
+check "! cmp -s '$tmp/det3.pfm' '$tmp/det4.pfm' && [ \"\$(log_cols '$tmp/det3.csv')\" != \"\$(log_cols '$tmp/det4.csv')\" ]" "same_seed_same_image: --seed 8 gives the same image or log as --seed 7 (the comparison sees nothing)"
+# a run whose batches are capped by the samples per batch (1 spp at 160x120 with -l 4)
+"$fogrt" -s 3 -r 160 120 -l 4 -t 1 --seed 3 --log "$tmp/det5.csv" -f "$tmp/det5.pfm" 2>/dev/null
+"$fogrt" -s 3 -r 160 120 -l 4 -t 2 --seed 3 --log "$tmp/det6.csv" -f "$tmp/det6.pfm" 2>/dev/null
+check "cmp -s '$tmp/det5.pfm' '$tmp/det6.pfm' && [ \"\$(log_cols '$tmp/det5.csv')\" = \"\$(log_cols '$tmp/det6.csv')\" ]" "same_seed_same_image: -r 160 120 -l 4 differs between 1 and 2 threads: $(log_cols "$tmp/det5.csv" | tr '\n' ' ') / $(log_cols "$tmp/det6.csv" | tr '\n' ' ')"
 if command -v script >/dev/null 2>&1; then
     # --time: long enough for the terminal's 0.25 s progress tick on any machine (-s 64 took 0.22 s on a fast one)
     script -qec "$fogrt_abs --time 1.5 -r 64 48 -f $tmp/tty.pfm" /dev/null >"$tmp/tty.out" 2>&1
@@ -371,11 +384,19 @@ expect 2 "--expected-emission" "estimator_switches: bad value" -- --expected-emi
 check "! cmp -s '$tmp/eq1.pfm' '$tmp/power.pfm'" "estimator_switches: --lights power changed nothing in the default scene (two lights)"
 expect 2 "--lights" "estimator_switches: bad value" -- --lights some -f "$out"
 
-# -- target_error_ceiling: --target-error that can never be met stops at the stated ceiling --
-expect 0 "not reached" "target_error_ceiling: --target-error 1e-30 without -s" -- -r 2 2 --target-error 1e-30 -f "$tmp/te.pfm"
+# -- target_error_ceiling: --target-error that can never be met stops at the stated ceiling;
+#    one below float's precision is refused at once (it ran to the hour's ceiling), and a
+#    black scene, whose estimate never exists, stops after its first batch --
+expect 0 "not reached" "target_error_ceiling: --target-error 1e-6 without -s" -- -r 2 2 --target-error 1e-6 -f "$tmp/te.pfm"
 check "grep -q '65536 spp' '$tmp/err'" "target_error_ceiling: the ceiling is not stated: $(cat "$tmp/err")"
+t_te=$(now)
+expect 2 "--target-error" "target_error_floor: --target-error 1e-30" -- --target-error 1e-30 -f "$out"; one_line_no_image "target_error_floor"
+expect 2 "--target-error" "target_error_floor: --target-error 1e-7 (below FLT_EPSILON)" -- -r 32 24 --target-error 1e-7 -f "$out"
+check "awk -v a=$t_te -v b=$(now) 'BEGIN { exit !(b - a < 5) }'" "target_error_floor: the refusals took more than 5 s"
+expect 0 "cannot be reached" "target_error_black: --target-error on a scene nothing lights" -- -r 320 240 --target-error 0.1 -f "$tmp/teb.pfm" tests/data/dae_minimal_yup.dae
+check "grep -q 'stopped at 1 spp' '$tmp/err'" "target_error_black: did not stop after the first batch: $(cat "$tmp/err")"
 sed 's|<radiance>3 3 3</radiance>|<radiance>1e20 1e20 1e20</radiance>|' tests/data/dae_area_with_emitter.dae >"$tmp/hot.dae"
-expect 0 "not reached" "target_error_ceiling: emission 1e20, --target-error 1e-30" -- -r 4 3 --target-error 1e-30 -f "$tmp/hot.pfm" "$tmp/hot.dae"
+expect 0 "not reached" "target_error_ceiling: emission 1e20, --target-error 1e-6" -- -r 4 3 --target-error 1e-6 -f "$tmp/hot.pfm" "$tmp/hot.dae"
 sed 's|<radiance>3 3 3</radiance>|<radiance>3e38 3e38 3e38</radiance>|' tests/data/dae_area_with_emitter.dae >"$tmp/hot38.dae"
 expect 0 "" "target_error_ceiling: emission 3e38" -- -s 4 -r 16 12 -f "$tmp/hot38.pfm" "$tmp/hot38.dae"
 check "! grep -Eqi 'nan|inf' '$tmp/err' && ! pfm_stats '$tmp/hot38.pfm' | grep -Eqi 'nan|inf'" "target_error_ceiling: emission 3e38 gives a non-finite image or summary: $(cat "$tmp/err")"

@@ -455,6 +455,175 @@ static cw_fns w5_uniform_fns(void)
     return f;
 }
 
+/* examples/coursework/solutions/step6_direct.c */
+#define cw_direct_surface ref6_direct_surface
+#define cw_direct_fog ref6_direct_fog
+#include "examples/coursework/solutions/step6_direct.c"
+#undef cw_direct_surface
+#undef cw_direct_fog
+static cw_fns ref6_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.direct_surface = ref6_direct_surface;
+    f.direct_fog = ref6_direct_fog;
+    return f;
+}
+
+/* examples/coursework/step6_direct.c */
+#define cw_direct_surface skel6_direct_surface
+#define cw_direct_fog skel6_direct_fog
+#include "examples/coursework/step6_direct.c"
+#undef cw_direct_surface
+#undef cw_direct_fog
+static cw_fns skel6_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.direct_surface = skel6_direct_surface;
+    f.direct_fog = skel6_direct_fog;
+    return f;
+}
+
+/* tests/coursework/wrong/step6_no_cos.c */
+#define cw_direct_surface w6_no_cos_direct_surface
+#define cw_direct_fog w6_no_cos_direct_fog
+#include "tests/coursework/wrong/step6_no_cos.c"
+#undef cw_direct_surface
+#undef cw_direct_fog
+static cw_fns w6_no_cos_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.direct_surface = w6_no_cos_direct_surface;
+    f.direct_fog = w6_no_cos_direct_fog;
+    return f;
+}
+
+/* tests/coursework/wrong/step6_no_pdf.c */
+#define cw_direct_surface w6_no_pdf_direct_surface
+#define cw_direct_fog w6_no_pdf_direct_fog
+#include "tests/coursework/wrong/step6_no_pdf.c"
+#undef cw_direct_surface
+#undef cw_direct_fog
+static cw_fns w6_no_pdf_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.direct_surface = w6_no_pdf_direct_surface;
+    f.direct_fog = w6_no_pdf_direct_fog;
+    return f;
+}
+
+/* tests/coursework/wrong/step6_no_transmittance.c */
+#define cw_direct_surface w6_no_transmittance_direct_surface
+#define cw_direct_fog w6_no_transmittance_direct_fog
+#include "tests/coursework/wrong/step6_no_transmittance.c"
+#undef cw_direct_surface
+#undef cw_direct_fog
+static cw_fns w6_no_transmittance_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.direct_surface = w6_no_transmittance_direct_surface;
+    f.direct_fog = w6_no_transmittance_direct_fog;
+    return f;
+}
+
+/* examples/coursework/solutions/step7_path.c: also the test that fogrt's public blocks reproduce its own
+   Algorithm 1 (the checks compare with fogrt's image) */
+#define cw_path_radiance ref7_path_radiance
+#include "examples/coursework/solutions/step7_path.c"
+#undef cw_path_radiance
+static cw_fns ref7_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = ref7_path_radiance;
+    return f;
+}
+
+/* examples/coursework/step7_path.c */
+#define cw_path_radiance skel7_path_radiance
+#include "examples/coursework/step7_path.c"
+#undef cw_path_radiance
+static cw_fns skel7_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = skel7_path_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step7_no_q.c */
+#define cw_path_radiance w7_no_q_path_radiance
+#include "tests/coursework/wrong/step7_no_q.c"
+#undef cw_path_radiance
+static cw_fns w7_no_q_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = w7_no_q_path_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step7_no_albedo.c */
+#define cw_path_radiance w7_no_albedo_path_radiance
+#include "tests/coursework/wrong/step7_no_albedo.c"
+#undef cw_path_radiance
+static cw_fns w7_no_albedo_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = w7_no_albedo_path_radiance;
+    return f;
+}
+
+/* examples/coursework/solutions/step8_mis.c */
+#define cw_mis_weight ref8_mis_weight
+#define cw_mis_radiance ref8_mis_radiance
+#include "examples/coursework/solutions/step8_mis.c"
+#undef cw_mis_weight
+#undef cw_mis_radiance
+static cw_fns ref8_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.mis_weight = ref8_mis_weight;
+    f.mis_radiance = ref8_mis_radiance;
+    return f;
+}
+
+/* examples/coursework/step8_mis.c */
+#define cw_mis_weight skel8_mis_weight
+#define cw_mis_radiance skel8_mis_radiance
+#include "examples/coursework/step8_mis.c"
+#undef cw_mis_weight
+#undef cw_mis_radiance
+static cw_fns skel8_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.mis_weight = skel8_mis_weight;
+    f.mis_radiance = skel8_mis_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step8_emission_full_weight.c */
+#define cw_mis_weight w8_full_mis_weight
+#define cw_mis_radiance w8_full_mis_radiance
+#include "tests/coursework/wrong/step8_emission_full_weight.c"
+#undef cw_mis_weight
+#undef cw_mis_radiance
+static cw_fns w8_full_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.mis_weight = w8_full_mis_weight;
+    f.mis_radiance = w8_full_mis_radiance;
+    return f;
+}
+
 /* examples/coursework/solutions/step9_equiangular.c: fogrt's equiangular sampler, which is
    Part II's (B); the skeleton and the wrong twins below use none of Part II */
 #ifndef FOGRT_MINIMAL
@@ -654,6 +823,41 @@ static void test_step5_wrong_uniform(void)
     expect_caught(5, "tests/coursework/wrong/step5_uniform.c", w5_uniform_fns(), "step5.diffuse_chi2",
                   "looks like uniform hemisphere sampling");
 }
+static void test_step6_reference_passes(void) { expect_all_pass(6, ref6_fns()); }
+static void test_step6_skeleton_fails(void) { expect_skeleton_fails(6, skel6_fns()); }
+static void test_step6_wrong_no_cos(void)
+{
+    expect_caught(6, "tests/coursework/wrong/step6_no_cos.c", w6_no_cos_fns(), "step6.surface_formula",
+                  "cosine between wi and the normal");
+}
+static void test_step6_wrong_no_pdf(void)
+{
+    expect_caught(6, "tests/coursework/wrong/step6_no_pdf.c", w6_no_pdf_fns(), "step6.area_estimate",
+                  "missing 1/pdf?");
+}
+static void test_step6_wrong_no_transmittance(void)
+{
+    expect_caught(6, "tests/coursework/wrong/step6_no_transmittance.c", w6_no_transmittance_fns(), "step6.fog_formula",
+                  "transmittance exp(-sigma_t dist) of the shadow ray");
+}
+static void test_step7_reference_passes(void) { expect_all_pass(7, ref7_fns()); }
+static void test_step7_skeleton_fails(void) { expect_skeleton_fails(7, skel7_fns()); }
+static void test_step7_wrong_no_q(void)
+{
+    expect_caught(7, "tests/coursework/wrong/step7_no_q.c", w7_no_q_fns(), "step7.roulette", "missing 1/q?");
+}
+static void test_step7_wrong_no_albedo(void)
+{
+    expect_caught(7, "tests/coursework/wrong/step7_no_albedo.c", w7_no_albedo_fns(), "step7.direct",
+                  "Is the albedo applied at fog collisions?");
+}
+static void test_step8_reference_passes(void) { expect_all_pass(8, ref8_fns()); }
+static void test_step8_skeleton_fails(void) { expect_skeleton_fails(8, skel8_fns()); }
+static void test_step8_wrong_emission_full_weight(void)
+{
+    expect_caught(8, "tests/coursework/wrong/step8_emission_full_weight.c", w8_full_fns(), "step8.box",
+                  "emission counted at full weight?");
+}
 static void test_step9_reference_passes(void)
 {
 #ifdef FOGRT_MINIMAL
@@ -706,6 +910,18 @@ int main(void)
     RUN_TEST(test_step5_wrong_missing_pdf);
     RUN_TEST(test_step5_wrong_schlick_cos_i);
     RUN_TEST(test_step5_wrong_uniform);
+    RUN_TEST(test_step6_reference_passes);
+    RUN_TEST(test_step6_skeleton_fails);
+    RUN_TEST(test_step6_wrong_no_cos);
+    RUN_TEST(test_step6_wrong_no_pdf);
+    RUN_TEST(test_step6_wrong_no_transmittance);
+    RUN_TEST(test_step7_reference_passes);
+    RUN_TEST(test_step7_skeleton_fails);
+    RUN_TEST(test_step7_wrong_no_q);
+    RUN_TEST(test_step7_wrong_no_albedo);
+    RUN_TEST(test_step8_reference_passes);
+    RUN_TEST(test_step8_skeleton_fails);
+    RUN_TEST(test_step8_wrong_emission_full_weight);
     RUN_TEST(test_step9_reference_passes);
     RUN_TEST(test_step9_skeleton_fails);
     RUN_TEST(test_step9_wrong_no_delta);

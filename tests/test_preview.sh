@@ -132,6 +132,11 @@ check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/badkeys.err') -eq 1 ] && grep -q 'fram
       "--keys with a frame after the last: exit $rc, expected 2 and one line naming frame 9" badkeys
 run badkey --frames 5 --keys "3:k"
 check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/badkey.err') -eq 1 ]" "--keys with an unknown key: exit $rc, expected 2 and one line" badkey
+run hugeimage -r 16384 16384 --scale 1 --frames 1
+check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/hugeimage.err') -eq 1 ] && grep -q -- '-r 16384 16384' '$tmp/hugeimage.err'" \
+      "-r 16384 16384 --scale 1 (40 GiB of buffers): exit $rc, expected 2 and one line naming -r before allocating" hugeimage
+run bigdrag --frames 5 --keys "3:drag:1e9,0"
+check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/bigdrag.err') -eq 1 ] && grep -q '1e6' '$tmp/bigdrag.err'" "--keys with a drag of 1e9 pixels: exit $rc, expected 2 and one line giving the range" bigdrag
 run badscene "$tmp/nothere.obj"
 check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/badscene.err') -eq 1 ]" "missing scene file: exit $rc, expected 2 and one line" badscene
 
@@ -226,6 +231,10 @@ OMP_NUM_THREADS=100000 "$preview" $common --screenshot "$tmp/omp.png" >"$tmp/omp
 check "[ $rc -eq 0 ] && grep -q 'OMP_NUM_THREADS=100000: using' '$tmp/omp.err'" "OMP_NUM_THREADS=100000: exit $rc" omp
 OMP_STACKSIZE=16K "$preview" $common --screenshot "$tmp/stk.png" >"$tmp/stk.out" 2>"$tmp/stk.err"; rc=$?
 check "[ $rc -eq 2 ] && grep -q 'OMP_STACKSIZE' '$tmp/stk.err'" "OMP_STACKSIZE=16K: exit $rc, expected 2 naming it" stk
+# threads the system cannot start (stacks of 100000G): fewer threads with a warning, in the
+# render thread too (which builds the scene, the roulette pilot's parallel region included)
+OMP_STACKSIZE=100000G "$preview" $common --keys "4:f" --screenshot "$tmp/bigstk.png" >"$tmp/bigstk.out" 2>"$tmp/bigstk.err"; rc=$?
+check "[ $rc -eq 0 ] && [ -s '$tmp/bigstk.png' ] && ! grep -q 'libgomp' '$tmp/bigstk.err'" "OMP_STACKSIZE=100000G: exit $rc, expected 0 with fewer threads" bigstk
 
 # ---- --screenshot and s write as fogrt does: temporary file, checked writes, rename ----
 ln -s /dev/full "$tmp/full.png"

@@ -67,6 +67,11 @@ typedef struct cw_fns {
     int (*sample_glass)(float eta, fogrt_vec3 wo, float u_lobe, cw_bsdf_sample *s);
     float (*sample_equiangular)(float delta, float h, float a, float b, float u, float *pdf);
     float (*equiangular_pdf)(float delta, float h, float a, float b, float t);
+    fogrt_vec3 (*direct_surface)(const fogrt_scene *scene, const fogrt_surface *sf, fogrt_vec3 wo, fogrt_rng *rng);
+    fogrt_vec3 (*direct_fog)(const fogrt_scene *scene, fogrt_vec3 p, fogrt_vec3 wo, fogrt_rng *rng);
+    fogrt_vec3 (*path_radiance)(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d, fogrt_rng *rng, void *user);
+    float (*mis_weight)(float pdf_this, float pdf_other);
+    fogrt_vec3 (*mis_radiance)(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d, fogrt_rng *rng, void *user);
 } cw_fns;
 
 typedef struct cw_result {
@@ -2146,6 +2151,866 @@ static void cw_step9(const cw_fns *f, cw_run *run)
 }
 
 /* ==========================================================================================
+   Steps 6-8: renders. The student's estimator renders a small scene through fogrt_render
+   (desc.radiance: fogrt's threads, pixel streams and error estimate), and fogrt renders the
+   same scene with its own Algorithm 1 (fogrt_render_paper_defaults() with the same
+   settings, an independent seed). The two images are compared by their means: the
+   difference of the mean luminance over the image, and over each of 12 regions, divided by
+   its standard error, which comes from both images' per-pixel variance estimates
+   (fogrt_image_pixel_variance: the spread of each pixel's four independent streams).
+   A check fails when the whole image is off by more than CW_Z_IMAGE standard errors or a
+   region by more than CW_Z_REGION (the level 1e-4 split over 12 regions): a correct
+   estimator fails with probability about 1.5e-4 per check. Furnaces compare with the exact
+   value 1 the same way (plus a tolerance of CW_FURNACE_TOL for the faceted sphere).
+   The scenes are built here in code; every reference image is rendered at check time.
+   ========================================================================================== */
+#define CW_W 48
+#define CW_H 36
+#define CW_RX 4                 /* regions across and down */
+#define CW_RY 3
+#define CW_Z_IMAGE 4.0          /* two-sided p = 6.3e-5 */
+#define CW_Z_REGION 4.46        /* two-sided p = 8.2e-6 = 1e-4 / 12 regions */
+#define CW_FURNACE_TOL 0.004
+#define CW_SCALE 5              /* picture pixels per image pixel */
+
+enum {
+    CW_SC_BOX,                  /* Cornell-like box, no fog: ceiling area light and a point light */
+    CW_SC_FOG,                  /* the box in fog: an emissive sphere and a point light with a radius */
+    CW_SC_FOG_AREA,             /* the box in fog: the ceiling area light and a point light with a radius */
+    CW_SC_FURNACE_1,            /* closed sphere, reflectance 1, emission 0.5, no fog */
+    CW_SC_FURNACE_H,            /* closed sphere, reflectance 0.5, emission 0.5, no fog */
+    CW_SC_FURNACE_FOG,          /* the same filled with fog of albedo 1 */
+    CW_SC_FLOOR,                /* a floor, a point light and a small blocker (step 6 formulas) */
+    CW_SC_FLOOR_FOG,            /* the same in fog */
+    CW_SC_POINT_FOG_A,          /* a point light in fog, g = 0.6 */
+    CW_SC_POINT_FOG_B,          /* a point light in fog, g = -0.3 */
+    CW_SC_AREA_FLOOR,           /* a floor under a square area light */
+    CW_SC_COUNT
+};
+static const char *const cw_scene_name[CW_SC_COUNT] = {
+    "box", "fog", "fog_area", "furnace", "furnace", "furnace_fog", "floor", "floor_fog", "point_fog", "point_fog",
+    "area_floor"};
+
+static fogrt_vec3 cw_f3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
+static uint32_t cw__material(fogrt_scene *s, float r, float g, float b, float e)
+{
+    fogrt_material_desc m;
+    uint32_t id = 0;
+    memset(&m, 0, sizeof m);
+    m.type = FOGRT_BSDF_DIFFUSE;
+    m.reflectance = cw_f3(r, g, b);
+    m.emission = cw_f3(e, e, e);
+    fogrt_scene_add_material(s, &m, &id);
+    return id;
+}
+/* The parallelogram p, p + e1, p + e1 + e2, p + e2; its front faces along e1 x e2. */
+static void cw__quad(fogrt_scene *s, fogrt_vec3 p, fogrt_vec3 e1, fogrt_vec3 e2, uint32_t mat)
+{
+    float v[12];
+    static const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    fogrt_mesh_desc m;
+    v[0] = p.x; v[1] = p.y; v[2] = p.z;
+    v[3] = p.x + e1.x; v[4] = p.y + e1.y; v[5] = p.z + e1.z;
+    v[6] = p.x + e1.x + e2.x; v[7] = p.y + e1.y + e2.y; v[8] = p.z + e1.z + e2.z;
+    v[9] = p.x + e2.x; v[10] = p.y + e2.y; v[11] = p.z + e2.z;
+    memset(&m, 0, sizeof m);
+    m.positions = v; m.vertex_count = 4; m.indices = idx; m.triangle_count = 2; m.material = mat;
+    fogrt_scene_add_mesh(s, &m);
+}
+static void cw__point_light(fogrt_scene *s, fogrt_vec3 p, fogrt_vec3 I, float radius)
+{
+    fogrt_light_desc l;
+    memset(&l, 0, sizeof l);
+    l.type = FOGRT_LIGHT_POINT; l.position = p; l.intensity = I; l.radius = radius;
+    fogrt_scene_add_light(s, &l);
+}
+static void cw__medium(fogrt_scene *s, float sigma_t, float albedo, float g)
+{
+    fogrt_medium_desc m;
+    memset(&m, 0, sizeof m);
+    m.sigma_t = sigma_t; m.albedo = cw_f3(albedo, albedo, albedo); m.g = g;
+    fogrt_scene_set_medium(s, &m);
+}
+static void cw__camera(fogrt_scene *s, fogrt_vec3 eye, fogrt_vec3 at, float fov)
+{
+    fogrt_camera_desc c;
+    memset(&c, 0, sizeof c);
+    c.position = eye; c.look_at = at; c.fov_deg = fov;
+    fogrt_scene_set_camera(s, &c);
+}
+/* The box: x and z in [-1, 1], y in [0, 2], open toward the camera (+z); red left wall,
+   green right wall, a white sphere on the floor. */
+static void cw__box(fogrt_scene *s)
+{
+    uint32_t white = cw__material(s, 0.7f, 0.7f, 0.7f, 0.0f), red = cw__material(s, 0.7f, 0.15f, 0.1f, 0.0f);
+    uint32_t green = cw__material(s, 0.15f, 0.6f, 0.15f, 0.0f);
+    cw__quad(s, cw_f3(-1, 0, -1), cw_f3(0, 0, 2), cw_f3(2, 0, 0), white);   /* floor, facing +y */
+    cw__quad(s, cw_f3(-1, 2, -1), cw_f3(2, 0, 0), cw_f3(0, 0, 2), white);   /* ceiling */
+    cw__quad(s, cw_f3(-1, 0, -1), cw_f3(2, 0, 0), cw_f3(0, 2, 0), white);   /* back */
+    cw__quad(s, cw_f3(-1, 0, -1), cw_f3(0, 2, 0), cw_f3(0, 0, 2), red);     /* left */
+    cw__quad(s, cw_f3(1, 0, -1), cw_f3(0, 0, 2), cw_f3(0, 2, 0), green);    /* right */
+    fogrt_scene_add_sphere(s, cw_f3(0.4f, 0.35f, -0.3f), 0.35f, white);
+    cw__camera(s, cw_f3(0.0f, 1.0f, 3.6f), cw_f3(0.0f, 1.0f, 0.0f), 38.0f);
+}
+static void cw__ceiling_light(fogrt_scene *s, float half, float le)
+{
+    uint32_t m = cw__material(s, 0.0f, 0.0f, 0.0f, le);
+    cw__quad(s, cw_f3(-half, 1.995f, -half), cw_f3(2 * half, 0, 0), cw_f3(0, 0, 2 * half), m);   /* facing down */
+}
+/* A closed sphere of radius 1 around the origin in 24 x 48 facets, facing inward. */
+static void cw__enclosure(fogrt_scene *s, float rho, float le)
+{
+    enum { NT = 24, NP = 48 };
+    static float v[NT * NP * 2 * 9];
+    uint32_t mat = cw__material(s, rho, rho, rho, le), nt = 0;
+    int i, j, k;
+    fogrt_mesh_desc m;
+    for (i = 0; i < NT; ++i)
+        for (j = 0; j < NP; ++j) {
+            double t0 = CW_PI * i / NT, t1 = CW_PI * (i + 1) / NT, p0 = 2 * CW_PI * j / NP, p1 = 2 * CW_PI * (j + 1) / NP;
+            double c[4][3];
+            static const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
+            c[0][0] = sin(t0) * cos(p0); c[0][1] = cos(t0); c[0][2] = sin(t0) * sin(p0);
+            c[1][0] = sin(t1) * cos(p0); c[1][1] = cos(t1); c[1][2] = sin(t1) * sin(p0);
+            c[2][0] = sin(t1) * cos(p1); c[2][1] = cos(t1); c[2][2] = sin(t1) * sin(p1);
+            c[3][0] = sin(t0) * cos(p1); c[3][1] = cos(t0); c[3][2] = sin(t0) * sin(p1);
+            for (k = 0; k < 2; ++k) {
+                const double *a = c[tri[k][0]], *b = c[tri[k][1]], *d = c[tri[k][2]];
+                double e1[3], e2[3], n[3], mid[3];
+                int q;
+                for (q = 0; q < 3; ++q) { e1[q] = b[q] - a[q]; e2[q] = d[q] - a[q]; mid[q] = a[q] + b[q] + d[q]; }
+                n[0] = e1[1] * e2[2] - e1[2] * e2[1]; n[1] = e1[2] * e2[0] - e1[0] * e2[2]; n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+                if (n[0] * n[0] + n[1] * n[1] + n[2] * n[2] < 1e-14) continue;          /* at a pole */
+                if (n[0] * mid[0] + n[1] * mid[1] + n[2] * mid[2] > 0.0) { const double *t = b; b = d; d = t; }   /* inward */
+                for (q = 0; q < 3; ++q) {
+                    v[nt * 9 + q] = (float)a[q]; v[nt * 9 + 3 + q] = (float)b[q]; v[nt * 9 + 6 + q] = (float)d[q];
+                }
+                nt++;
+            }
+        }
+    memset(&m, 0, sizeof m);
+    m.positions = v; m.vertex_count = 3 * nt; m.triangle_count = nt; m.material = mat;
+    fogrt_scene_add_mesh(s, &m);
+    cw__camera(s, cw_f3(0.0f, 0.0f, 0.0f), cw_f3(0.3f, -0.2f, -1.0f), 60.0f);
+}
+
+static fogrt_scene *cw_scene_cache[CW_SC_COUNT];
+/* The scene, built once per program (the checks only read it). NULL if fogrt refused it. */
+static const fogrt_scene *cw_scene(int which)
+{
+    fogrt_scene *s = NULL;
+    if (cw_scene_cache[which]) return cw_scene_cache[which];
+    if (fogrt_scene_create(NULL, &s) != FOGRT_RESULT_OK) return NULL;
+    switch (which) {
+    case CW_SC_BOX:
+        cw__box(s);
+        cw__ceiling_light(s, 0.3f, 9.0f);
+        cw__point_light(s, cw_f3(-0.5f, 1.4f, 0.3f), cw_f3(0.6f, 0.6f, 0.6f), 0.0f);
+        break;
+    case CW_SC_FOG:
+        cw__box(s);
+        cw__medium(s, 0.5f, 0.85f, 0.5f);
+        fogrt_scene_add_sphere(s, cw_f3(-0.4f, 1.45f, -0.3f), 0.15f, cw__material(s, 0.0f, 0.0f, 0.0f, 9.0f));
+        cw__point_light(s, cw_f3(0.45f, 1.3f, 0.3f), cw_f3(0.8f, 0.8f, 0.8f), 0.08f);
+        break;
+    case CW_SC_FOG_AREA:
+        cw__box(s);
+        cw__medium(s, 0.5f, 0.85f, 0.5f);
+        cw__ceiling_light(s, 0.3f, 9.0f);
+        cw__point_light(s, cw_f3(0.45f, 1.3f, 0.3f), cw_f3(0.8f, 0.8f, 0.8f), 0.08f);
+        break;
+    case CW_SC_FURNACE_1: cw__enclosure(s, 1.0f, 0.5f); break;
+    case CW_SC_FURNACE_H: cw__enclosure(s, 0.5f, 0.5f); break;
+    case CW_SC_FURNACE_FOG:
+        cw__enclosure(s, 0.5f, 0.5f);
+        cw__medium(s, 1.0f, 1.0f, 0.3f);
+        break;
+    case CW_SC_FLOOR:
+    case CW_SC_FLOOR_FOG:
+        cw__quad(s, cw_f3(-5, 0, -5), cw_f3(0, 0, 10), cw_f3(10, 0, 0), cw__material(s, 0.6f, 0.6f, 0.6f, 0.0f));
+        /* a small blocker halfway between the light and the floor point (-1.2, 0, 0.8) */
+        cw__quad(s, cw_f3(-0.55f, 0.6f, 0.2f), cw_f3(0, 0, 0.2f), cw_f3(0.2f, 0, 0), cw__material(s, 0.5f, 0.5f, 0.5f, 0.0f));
+        cw__point_light(s, cw_f3(0.3f, 1.2f, -0.2f), cw_f3(2.0f, 1.5f, 1.0f), 0.0f);
+        if (which == CW_SC_FLOOR_FOG) cw__medium(s, 0.7f, 0.9f, 0.4f);
+        break;
+    case CW_SC_POINT_FOG_A:
+    case CW_SC_POINT_FOG_B:
+        cw__quad(s, cw_f3(-5, -10, -5), cw_f3(0, 0, 10), cw_f3(10, 0, 0), cw__material(s, 0.5f, 0.5f, 0.5f, 0.0f));
+        cw__point_light(s, cw_f3(0.2f, 1.0f, -0.3f), cw_f3(1.0f, 2.0f, 3.0f), 0.0f);
+        cw__medium(s, 0.4f, 0.8f, which == CW_SC_POINT_FOG_A ? 0.6f : -0.3f);
+        break;
+    case CW_SC_AREA_FLOOR:
+        cw__quad(s, cw_f3(-5, 0, -5), cw_f3(0, 0, 10), cw_f3(10, 0, 0), cw__material(s, 0.6f, 0.6f, 0.6f, 0.0f));
+        cw__quad(s, cw_f3(-0.4f, 1.0f, -0.4f), cw_f3(0.8f, 0, 0), cw_f3(0, 0, 0.8f), cw__material(s, 0.0f, 0.0f, 0.0f, 4.0f));
+        break;
+    default: break;
+    }
+    {
+        fogrt_build_desc b = fogrt_build_defaults();
+        b.roulette_pilot = false;      /* Part II's pilot sets nothing that the paper's renderer uses */
+        if (fogrt_scene_build(s, &b) != FOGRT_RESULT_OK) { fogrt_scene_destroy(s); return NULL; }
+    }
+    cw_scene_cache[which] = s;
+    return s;
+}
+
+/* ---- rendering ---------------------------------------------------------------------------- */
+typedef struct cw_img {
+    float rgb[3 * CW_W * CW_H];
+    double lum[CW_W * CW_H], var[CW_W * CW_H];
+    double rel_err;             /* fogrt_image_error */
+    uint64_t rejected;          /* non-finite samples */
+    int ok;
+} cw_img;
+
+/* Renders spp samples per pixel of scene with desc (its radiance, seed and settings). */
+static void cw_render(int scene, fogrt_render_desc desc, int spp, cw_img *out)
+{
+    fogrt_image img;
+    fogrt_error_estimate e;
+    const fogrt_scene *s = cw_scene(scene);
+    int i;
+    memset(out, 0, sizeof *out);
+    if (!s || fogrt_image_alloc(&img, CW_W, CW_H, NULL) != FOGRT_RESULT_OK) return;
+    desc.width = CW_W; desc.height = CW_H;
+    if (fogrt_render(s, &desc, &img, spp, NULL) == FOGRT_RESULT_OK) {
+        fogrt_image_resolve(&img, out->rgb);
+        for (i = 0; i < CW_W * CW_H; ++i) {
+            out->lum[i] = 0.2126 * out->rgb[3 * i] + 0.7152 * out->rgb[3 * i + 1] + 0.0722 * out->rgb[3 * i + 2];
+            out->var[i] = fogrt_image_pixel_variance(&img, (size_t)i);
+        }
+        fogrt_image_error(&img, &e);
+        out->rel_err = e.relative_error;
+        out->rejected = img.rejected;
+        out->ok = 1;
+    }
+    fogrt_image_free(&img);
+}
+
+/* fogrt's own images, rendered once per program and settings (a test program judges many
+   solutions against the same references). */
+typedef struct cw_ref_key { int scene, integrator, mis, max_depth, rr_depth, spp; uint64_t seed; } cw_ref_key;
+#define CW_REF_CACHE 16
+static struct { cw_ref_key key; cw_img *img; } cw_ref_cache[CW_REF_CACHE];
+static const cw_img *cw_reference(int scene, int integrator, int mis, int max_depth, int rr_depth, int spp)
+{
+    cw_ref_key k;
+    fogrt_render_desc d = fogrt_render_paper_defaults();
+    int i;
+    memset(&k, 0, sizeof k);
+    k.scene = scene; k.integrator = integrator; k.mis = mis; k.max_depth = max_depth; k.rr_depth = rr_depth;
+    k.spp = spp; k.seed = 0x5EED0000ull + cw_seed_offset;
+    for (i = 0; i < CW_REF_CACHE && cw_ref_cache[i].img; ++i)
+        if (memcmp(&cw_ref_cache[i].key, &k, sizeof k) == 0) return cw_ref_cache[i].img;
+    if (i == CW_REF_CACHE) { free(cw_ref_cache[0].img); i = 0; }    /* full: reuse the first slot */
+    cw_ref_cache[i].key = k;
+    cw_ref_cache[i].img = (cw_img *)malloc(sizeof(cw_img));
+    if (!cw_ref_cache[i].img) return NULL;
+    d.integrator = (fogrt_integrator)integrator; d.mis = mis != 0;
+    d.max_depth = max_depth; d.rr_depth = rr_depth; d.seed = k.seed;
+    cw_render(scene, d, spp, cw_ref_cache[i].img);
+    return cw_ref_cache[i].img;
+}
+
+/* ---- comparing two images ------------------------------------------------------------------ */
+typedef struct cw_cmp {
+    double mean_a, mean_b;      /* mean luminance of the student's image and the reference */
+    double z;                   /* (mean_a - mean_b) / its standard error */
+    double se_rel;              /* that standard error relative to mean_b */
+    double zreg;                /* the region farthest off, in standard errors (signed) */
+    int reg;                    /* which region (row-major, CW_RX x CW_RY) */
+    double reg_ratio;           /* its mean ratio */
+} cw_cmp;
+
+/* b NULL: the reference is the constant `value` with no error (a furnace). tol: a relative
+   difference that is not counted (added to the standard error as a floor). */
+static cw_cmp cw_compare(const cw_img *a, const cw_img *b, double value, double tol)
+{
+    cw_cmp c;
+    int rx, ry, x, y;
+    double sa = 0.0, sb = 0.0, v = 0.0, best = -1.0;
+    memset(&c, 0, sizeof c);
+    for (ry = 0; ry < CW_RY; ++ry)
+        for (rx = 0; rx < CW_RX; ++rx) {
+            double ra = 0.0, rb = 0.0, rv = 0.0, n = 0.0, z;
+            for (y = ry * CW_H / CW_RY; y < (ry + 1) * CW_H / CW_RY; ++y)
+                for (x = rx * CW_W / CW_RX; x < (rx + 1) * CW_W / CW_RX; ++x) {
+                    int i = y * CW_W + x;
+                    ra += a->lum[i]; rv += a->var[i];
+                    if (b) { rb += b->lum[i]; rv += b->var[i]; } else rb += value;
+                    n += 1.0;
+                }
+            sa += ra; sb += rb; v += rv;
+            {
+                double den = sqrt(rv + (tol * rb) * (tol * rb));
+                z = den > 0.0 ? (ra - rb) / den : (ra == rb ? 0.0 : HUGE_VAL);
+            }
+            if (!(fabs(z) <= best)) { best = fabs(z); c.zreg = z; c.reg = ry * CW_RX + rx; c.reg_ratio = rb > 0.0 ? ra / rb : NAN; }
+            (void)n;
+        }
+    c.mean_a = sa / (CW_W * CW_H);
+    c.mean_b = sb / (CW_W * CW_H);
+    {
+        double den = sqrt(v + (tol * sb) * (tol * sb));
+        c.z = den > 0.0 ? (sa - sb) / den : (sa == sb ? 0.0 : HUGE_VAL);
+        c.se_rel = sb > 0.0 ? den / sb : 0.0;
+    }
+    return c;
+}
+static int cw_cmp_pass(const cw_cmp *c) { return fabs(c->z) <= CW_Z_IMAGE && fabs(c->zreg) <= CW_Z_REGION; }
+static const char *cw_region_name(int r)
+{
+    static const char *const names[CW_RX * CW_RY] = {
+        "top left", "top, left of centre", "top, right of centre", "top right",
+        "middle left", "middle, left of centre", "middle, right of centre", "middle right",
+        "bottom left", "bottom, left of centre", "bottom, right of centre", "bottom right"};
+    return r >= 0 && r < CW_RX * CW_RY ? names[r] : "?";
+}
+
+/* ---- the picture: the student's image, the reference, the difference -------------------- */
+static void cw__tonemap(const cw_img *im, double exposure_scale, unsigned char *out)
+{
+    float buf[3 * CW_W * CW_H];
+    int i;
+    for (i = 0; i < 3 * CW_W * CW_H; ++i) buf[i] = (float)(im->rgb[i] * exposure_scale);
+    fogrt_tonemap_rgb8(buf, CW_W, CW_H, 0.0f, FOGRT_TONEMAP_SRGB, out);
+}
+static void cw__blit_scaled(pf_canvas *c, int X, int Y, const unsigned char *rgb)
+{
+    int x, y, i, j;
+    for (y = 0; y < CW_H; ++y)
+        for (x = 0; x < CW_W; ++x)
+            for (j = 0; j < CW_SCALE; ++j)
+                for (i = 0; i < CW_SCALE; ++i) pf_put(c, X + x * CW_SCALE + i, Y + y * CW_SCALE + j, rgb + 3 * (y * CW_W + x));
+}
+/* a: the student's image; b: the reference (NULL: the constant value of a furnace). */
+static void cw_render_picture(const cw_run *run, const char *stem, const char *title, const char *label_b,
+                              const cw_img *a, const cw_img *b, double value, const char *verdict, int pass,
+                              char *path, size_t size)
+{
+    unsigned char ta[3 * CW_W * CW_H], tb[3 * CW_W * CW_H], td[3 * CW_W * CW_H];
+    double lums[CW_W * CW_H], p95, scale, meanb = 0.0;
+    int i, j, pw = CW_W * CW_SCALE, ph = CW_H * CW_SCALE, X0 = 16, gap = 24, top = 40;
+    pf_canvas c;
+    path[0] = '\0';
+    if (!run->img_dir) return;
+    for (i = 0; i < CW_W * CW_H; ++i) { lums[i] = b ? b->lum[i] : value; meanb += lums[i]; }
+    meanb /= CW_W * CW_H;
+    for (i = 1; i < CW_W * CW_H; ++i) {              /* insertion sort: 1728 numbers, once */
+        double t = lums[i];
+        for (j = i - 1; j >= 0 && lums[j] > t; --j) lums[j + 1] = lums[j];
+        lums[j + 1] = t;
+    }
+    p95 = lums[(int)(0.95 * (CW_W * CW_H - 1))];
+    scale = p95 > 0.0 ? 0.8 / p95 : 1.0;
+    cw__tonemap(a, scale, ta);
+    if (b) cw__tonemap(b, scale, tb);
+    else {
+        cw_img flat;
+        for (i = 0; i < 3 * CW_W * CW_H; ++i) flat.rgb[i] = (float)value;
+        cw__tonemap(&flat, scale, tb);
+    }
+    for (i = 0; i < CW_W * CW_H; ++i) {     /* difference / the reference's mean: blue darker, red brighter */
+        double d = meanb > 0.0 ? (a->lum[i] - (b ? b->lum[i] : value)) / meanb : 0.0, t = fmin(fabs(d) / 0.5, 1.0);
+        unsigned char lo = (unsigned char)lround(255.0 * (1.0 - t));
+        if (!isfinite(d)) { td[3 * i] = 0; td[3 * i + 1] = 0; td[3 * i + 2] = 0; continue; }
+        td[3 * i] = d > 0.0 ? 255 : lo; td[3 * i + 1] = lo; td[3 * i + 2] = d < 0.0 ? 255 : lo;
+    }
+    c = pf_canvas_make(X0 * 2 + 3 * pw + 2 * gap, top + ph + 66, PF_WHITE);
+    pf_text_at(&c, c.w / 2, 10, title, pf_text_width(title, 2) <= c.w - 8 ? 2 : 1, PF_BLACK, 1);
+    cw__blit_scaled(&c, X0, top, ta);
+    cw__blit_scaled(&c, X0 + pw + gap, top, tb);
+    cw__blit_scaled(&c, X0 + 2 * (pw + gap), top, td);
+    pf_text_at(&c, X0 + pw / 2, top + ph + 6, "your estimator", 2, PF_BLACK, 1);
+    pf_text_at(&c, X0 + pw + gap + pw / 2, top + ph + 6, label_b, 2, PF_BLACK, 1);
+    pf_text_at(&c, X0 + 2 * (pw + gap) + pw / 2, top + ph + 6, "difference", 2, PF_BLACK, 1);
+    pf_text_at(&c, X0 + 2 * (pw + gap) + pw / 2, top + ph + 28, "red: yours brighter, blue: darker", 1, PF_GREY, 1);
+    pf_text_at(&c, X0 + 2 * (pw + gap) + pw / 2, top + ph + 40, "(full colour at 50% of the mean)", 1, PF_GREY, 1);
+    pf_text_at(&c, X0 + 2 * (pw + gap) + pw / 2, top + ph + 52, "noise is expected; a pattern is not", 1, PF_GREY, 1);
+    pf_text_at(&c, X0 + pw / 2, top + ph + 28, "same exposure as the reference", 1, PF_GREY, 1);
+    cw_save(run, stem, &c, verdict, pass, path, size);
+    pf_canvas_free(&c);
+}
+
+/* One render check: the student's image (desc with its radiance and user data) against
+   fogrt's (ref NULL: a furnace of constant value). hint_dark / hint_bright: what a too dark
+   or too bright image usually means in this step. Returns whether it passed; *cmp gets the
+   statistics (for the caller's own diagnosis). */
+static int cw_render_check(cw_run *run, const char *name, const char *stem, const char *title, int scene,
+                           fogrt_render_desc desc, int spp, const cw_img *ref, double value,
+                           const char *hint_dark, const char *hint_bright, cw_cmp *out)
+{
+    static cw_img img;
+    cw_cmp c;
+    char m[600], adv[900], png[256], verdict[1600];
+    int pass;
+    desc.seed = 0xC0DE0000ull + cw_seed_offset;
+    cw_render(scene, desc, spp, &img);
+    if (!img.ok || (ref && !ref->ok)) {
+        cw_emit(run, name, 0, "fogrt_render failed (scene or reference)", "", NULL);
+        if (out) memset(out, 0, sizeof *out);
+        return 0;
+    }
+    c = cw_compare(&img, ref, value, ref ? 0.0 : CW_FURNACE_TOL);
+    pass = cw_cmp_pass(&c) && img.rejected == 0;
+    if (ref)
+        cw_fmt(m, sizeof m, "mean %.5g vs fogrt's %.5g (ratio %.4f, relative error of the difference %.2g%%): z = %.2f "
+               "(fail if |z| > %g); worst region %s z = %.2f (fail if > %g)", c.mean_a, c.mean_b,
+               c.mean_b > 0.0 ? c.mean_a / c.mean_b : NAN, 100.0 * c.se_rel, c.z, CW_Z_IMAGE, cw_region_name(c.reg),
+               c.zreg, CW_Z_REGION);
+    else
+        cw_fmt(m, sizeof m, "mean %.5g, exact %.5g (standard error %.2g%% + tolerance %.2g%%): z = %.2f (fail if |z| > %g); "
+               "worst region %s z = %.2f (fail if > %g)", c.mean_a, value, 100.0 * sqrt(fmax(c.se_rel * c.se_rel -
+               CW_FURNACE_TOL * CW_FURNACE_TOL, 0.0)), 100.0 * CW_FURNACE_TOL, c.z, CW_Z_IMAGE, cw_region_name(c.reg), c.zreg, CW_Z_REGION);
+    if (img.rejected)
+        cw_fmt(adv, sizeof adv, "%llu samples were NaN or infinite (fogrt dropped them): a division by a zero pdf, or "
+               "a direction that is not unit length?", (unsigned long long)img.rejected);
+    else if (!(c.mean_a > 0.0))
+        cw_fmt(adv, sizeof adv, "your image is black: nothing is returned yet (is the TODO still there?)");
+    else if (c.z < -CW_Z_IMAGE || (fabs(c.z) <= CW_Z_IMAGE && c.zreg < 0.0))
+        cw_fmt(adv, sizeof adv, "too dark%s by a factor ~%.3g%s: %s", fabs(c.z) <= CW_Z_IMAGE ? " in one region" : "",
+               fabs(c.z) <= CW_Z_IMAGE ? 1.0 / c.reg_ratio : c.mean_b / c.mean_a,
+               fabs(c.z) <= CW_Z_IMAGE ? "" : " overall", hint_dark);
+    else
+        cw_fmt(adv, sizeof adv, "too bright%s by a factor ~%.3g%s: %s", fabs(c.z) <= CW_Z_IMAGE ? " in one region" : "",
+               fabs(c.z) <= CW_Z_IMAGE ? c.reg_ratio : c.mean_a / c.mean_b,
+               fabs(c.z) <= CW_Z_IMAGE ? "" : " overall", hint_bright);
+    cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
+    {
+        char t2[200];
+        if (ref) cw_fmt(t2, sizeof t2, "%s (relative error of yours %.2g%%, of fogrt's %.2g%%)", title, 100.0 * img.rel_err,
+                        100.0 * ref->rel_err);
+        else cw_fmt(t2, sizeof t2, "%s (relative error of yours %.2g%%)", title, 100.0 * img.rel_err);
+        cw_render_picture(run, stem, t2, ref ? "fogrt (reference)" : "exact: 1 everywhere", &img, ref, value, verdict, pass,
+                          png, sizeof png);
+    }
+    cw_emit(run, name, pass, m, adv, png);
+    if (out) *out = c;
+    return pass;
+}
+
+/* ==========================================================================================
+   Step 6: direct lighting by light sampling (eq. 3)
+   ========================================================================================== */
+/* The direct-lighting image with the student's functions: the camera ray's emission, then
+   at the first vertex (the nearer of the surface and the fog collision, eq. 6) the
+   student's light sampling, times the fog's albedo at a collision. fogrt's
+   FOGRT_INTEGRATOR_DIRECT without MIS renders the same quantity. */
+static fogrt_vec3 cw__direct_radiance(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, fogrt_rng *rng, void *user)
+{
+    const cw_fns *f = (const cw_fns *)user;
+    fogrt_medium_desc m;
+    fogrt_hit hit;
+    fogrt_surface sf;
+    fogrt_vec3 L = {0.0f, 0.0f, 0.0f}, wo, Ld;
+    float t_fog = INFINITY;
+    int found = fogrt_scene_intersect(s, o, d, 0.0f, INFINITY, &hit);
+    fogrt_scene_get_medium(s, &m);
+    wo = cw_f3(-d.x, -d.y, -d.z);
+    if (m.sigma_t > 0.0f) t_fog = fogrt_sample_exponential(m.sigma_t, fogrt_rng_float(rng));
+    if (t_fog < (found ? hit.t : INFINITY)) {
+        Ld = f->direct_fog(s, cw_f3(o.x + d.x * t_fog, o.y + d.y * t_fog, o.z + d.z * t_fog), wo, rng);
+        return cw_f3(Ld.x * m.albedo.x, Ld.y * m.albedo.y, Ld.z * m.albedo.z);
+    }
+    if (!found) return L;
+    fogrt_scene_surface(s, o, d, &hit, &sf);
+    if (sf.front) L = sf.material.emission;
+    if (sf.material.reflectance.x + sf.material.reflectance.y + sf.material.reflectance.z > 0.0f) {
+        Ld = f->direct_surface(s, &sf, wo, rng);
+        L.x += Ld.x; L.y += Ld.y; L.z += Ld.z;
+    }
+    return L;
+}
+
+static double cw_lum3(fogrt_vec3 v) { return 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z; }
+static double cw_lumd(const double *v) { return 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2]; }
+/* Whether all ratios r[i] (n of them) equal the model m[i] within tol (relative). */
+static int cw_ratios_match(const double *r, const double *model, int n, double tol)
+{
+    int i, k = 0;
+    for (i = 0; i < n; ++i) {
+        if (!(model[i] > 0.0) || !isfinite(r[i])) continue;
+        if (fabs(r[i] / model[i] - 1.0) > tol) return 0;
+        k++;
+    }
+    return k > 0;
+}
+
+/* The surface formula: a point light over a floor, at 7 floor points (one behind a
+   blocker, one seen from under the floor), without and with fog: one sample is exact. */
+static void cw_step6_surface_formula(const cw_fns *f, cw_run *run)
+{
+    static const float pts[7][6] = {   /* floor point, eye */
+        {0.0f, 0, 0.0f, 0.0f, 2.0f, 3.0f}, {0.9f, 0, -0.6f, -1.0f, 1.5f, 2.0f}, {2.0f, 0, 1.5f, 0.0f, 3.0f, 0.0f},
+        {-0.4f, 0, -1.3f, 2.0f, 0.5f, 1.0f}, {0.3f, 0, -0.2f, 0.3f, 3.0f, 2.0f},
+        {-1.2f, 0, 0.8f, 0.0f, 2.0f, 3.0f},     /* the blocker hides the light */
+        {0.5f, 0, 0.5f, 0.5f, -1.0f, 1.0f}};    /* seen from below: the light is behind the surface */
+    const fogrt_vec3 I = {2.0f, 1.5f, 1.0f}, lp = {0.3f, 1.2f, -0.2f};
+    char m[600], adv[700];
+    double worst = 0.0, r_cos[14], m_cos[14], r_t[14], m_t[14], r_pi[14], m_pi[14], ratio[14];
+    int sc, k, nr = 0, nt = 0, bad_blocked = 0, bad_behind = 0, bad_nan = 0, worst_k = 0, worst_sc = 0;
+    double got_w = 0.0, exp_w = 0.0;
+    cw_begin(run);
+    for (sc = 0; sc < 2; ++sc) {
+        const fogrt_scene *s = cw_scene(sc ? CW_SC_FLOOR_FOG : CW_SC_FLOOR);
+        fogrt_medium_desc med;
+        if (!s) continue;
+        fogrt_scene_get_medium(s, &med);
+        for (k = 0; k < 7; ++k) {
+            fogrt_vec3 e = cw_f3(pts[k][3], pts[k][4], pts[k][5]), q = cw_f3(pts[k][0], pts[k][1], pts[k][2]), d, L;
+            fogrt_hit hit;
+            fogrt_surface sf;
+            fogrt_rng rng;
+            double wi[3], r, cosv, T, expd[3], nside, err;
+            int c;
+            d = cw_v3(q.x - e.x, q.y - e.y, q.z - e.z);
+            if (!fogrt_scene_intersect(s, e, d, 0.0f, INFINITY, &hit)) continue;
+            fogrt_scene_surface(s, e, d, &hit, &sf);
+            wi[0] = lp.x - sf.p.x; wi[1] = lp.y - sf.p.y; wi[2] = lp.z - sf.p.z;
+            r = sqrt(wi[0] * wi[0] + wi[1] * wi[1] + wi[2] * wi[2]);
+            nside = e.y > 0.0f ? 1.0 : -1.0;           /* the normal on the viewer's side */
+            cosv = nside * wi[1] / r;
+            T = med.sigma_t > 0.0f ? exp(-(double)med.sigma_t * r) : 1.0;
+            for (c = 0; c < 3; ++c) expd[c] = (k == 5 || cosv <= 0.0) ? 0.0 : 0.6 / CW_PI * cosv * (&I.x)[c] / (r * r) * T;
+            cw_seed(&rng, 600 + 10 * sc + k);
+            L = f->direct_surface(s, &sf, cw_f3(-d.x, -d.y, -d.z), &rng);
+            if (!cw_finite3(L)) { bad_nan++; err = HUGE_VAL; }
+            else {
+                err = 0.0;
+                for (c = 0; c < 3; ++c) err = fmax(err, fabs((&L.x)[c] - expd[c]) / (1e-4 * expd[c] + 1e-7));
+            }
+            if (k == 5 && cw_lum3(L) > 1e-6) bad_blocked++;
+            if (k == 6 && cw_lum3(L) > 1e-6) bad_behind++;
+            if (!(err <= worst)) { worst = err; worst_k = k; worst_sc = sc; got_w = cw_lum3(L); exp_w = cw_lumd(expd); }
+            if (k < 5 && cw_lumd(expd) > 0.0 && nr < 14) {
+                ratio[nr] = cw_lum3(L) / cw_lumd(expd);
+                r_cos[nr] = ratio[nr]; m_cos[nr] = 1.0 / cosv;
+                r_pi[nr] = ratio[nr]; m_pi[nr] = CW_PI;
+                if (sc) { r_t[nt] = ratio[nr]; m_t[nt] = 1.0 / T; nt++; }
+                nr++;
+            }
+        }
+    }
+    {
+        int pass = worst <= 1.0;
+        int nofog_ok = 1, i;
+        for (i = 0; i < nr - nt && i < 5; ++i) if (fabs(ratio[i] - 1.0) > 1e-3) nofog_ok = 0;
+        cw_fmt(m, sizeof m, "largest error at floor point %d%s: %.6g, expected %.6g (rho/pi cos I/r^2%s; tolerance 1e-4 "
+               "relative); 14 points, a point light, one sample is exact", worst_k, worst_sc ? " in fog" : "", got_w, exp_w,
+               worst_sc ? " T" : "");
+        if (bad_nan)
+            cw_fmt(adv, sizeof adv, "%d results were NaN or infinite", bad_nan);
+        else if (cw_ratios_match(r_cos, m_cos, nr, 2e-3))
+            cw_fmt(adv, sizeof adv, "your light is off by 1/cos(theta) at every point: the cosine between wi and the normal "
+                   "(eq. 3's cos theta_i) is missing from the light sample");
+        else if (cw_ratios_match(r_pi, m_pi, nr, 2e-3))
+            cw_fmt(adv, sizeof adv, "pi times too bright everywhere: the diffuse BSDF is reflectance / pi, not the reflectance");
+        else if (nofog_ok && nt > 0 && cw_ratios_match(r_t, m_t, nt, 2e-3))
+            cw_fmt(adv, sizeof adv, "right without fog, too bright in fog by 1/T: the shadow ray through the fog loses "
+                   "exp(-sigma_t dist) (eq. 8); multiply by the transmittance over ls.dist");
+        else if (bad_blocked)
+            cw_fmt(adv, sizeof adv, "light reaches the floor point behind the blocker: test the shadow ray with "
+                   "fogrt_scene_visible before adding a light sample");
+        else if (bad_behind)
+            cw_fmt(adv, sizeof adv, "seen from under the floor, the light above it still shines: f is 0 when wi and wo are on "
+                   "opposite sides of the surface (use |cos| only with that test, or fogrt_bsdf_eval)");
+        else
+            cw_fmt(adv, sizeof adv, "eq. 3 with one point light: f Le |cos| T / pdf = (rho/pi) |cos theta| (I/r^2) T / 1, "
+                   "cos theta between wi and sf->n");
+        cw_emit(run, "step6.surface_formula", pass, m, adv, NULL);
+    }
+}
+
+/* The fog formula: a point light in fog of g = 0.6 and g = -0.3, at 5 points and 3 wo. */
+static void cw_step6_fog_formula(const cw_fns *f, cw_run *run)
+{
+    static const float pts[5][3] = {{0, 0, 0}, {1, 1, 1}, {0.2f, 0.5f, -0.3f}, {-2, 0.3f, 0.5f}, {0.5f, 1.5f, -1}};
+    static const float wos[3][3] = {{1, 0.2f, 0.3f}, {-0.3f, -1, 0.2f}, {0.1f, 0.6f, -0.8f}};
+    const fogrt_vec3 I = {1.0f, 2.0f, 3.0f}, lp = {0.2f, 1.0f, -0.3f};
+    char m[600], adv[700];
+    double worst = 0.0, ratio[30], m_ph[30], m_t[30], m_flip[30], m_al[30], m_4pi[30], got_w = 0.0, exp_w = 0.0;
+    int sc, k, j, n = 0, bad_nan = 0;
+    float wg = 0.0f;
+    cw_begin(run);
+    for (sc = 0; sc < 2; ++sc) {
+        const fogrt_scene *s = cw_scene(sc ? CW_SC_POINT_FOG_B : CW_SC_POINT_FOG_A);
+        fogrt_medium_desc med;
+        if (!s) continue;
+        fogrt_scene_get_medium(s, &med);
+        for (k = 0; k < 5; ++k)
+            for (j = 0; j < 3; ++j) {
+                fogrt_vec3 p = cw_f3(pts[k][0], pts[k][1], pts[k][2]), wo = cw_v3(wos[j][0], wos[j][1], wos[j][2]), L;
+                fogrt_rng rng;
+                double wi[3], r, mu, T, ph, expd[3], err = 0.0;
+                int c;
+                wi[0] = lp.x - p.x; wi[1] = lp.y - p.y; wi[2] = lp.z - p.z;
+                r = sqrt(wi[0] * wi[0] + wi[1] * wi[1] + wi[2] * wi[2]);
+                mu = -(wo.x * wi[0] + wo.y * wi[1] + wo.z * wi[2]) / r;
+                T = exp(-(double)med.sigma_t * r);
+                ph = cw_hg_ref(med.g, mu);
+                for (c = 0; c < 3; ++c) expd[c] = ph * (&I.x)[c] / (r * r) * T;
+                cw_seed(&rng, 700 + 100 * sc + 3 * k + j);
+                L = f->direct_fog(s, p, wo, &rng);
+                if (!cw_finite3(L)) { bad_nan++; err = HUGE_VAL; }
+                else for (c = 0; c < 3; ++c) err = fmax(err, fabs((&L.x)[c] - expd[c]) / (2e-4 * expd[c] + 1e-7));
+                if (!(err <= worst)) { worst = err; got_w = cw_lum3(L); exp_w = cw_lumd(expd); wg = med.g; }
+                ratio[n] = cw_lum3(L) / cw_lumd(expd);
+                m_ph[n] = 1.0 / ph; m_t[n] = 1.0 / T; m_flip[n] = cw_hg_ref(-med.g, mu) / ph;
+                m_al[n] = med.albedo.x; m_4pi[n] = 4.0 * CW_PI;
+                n++;
+            }
+    }
+    {
+        int pass = worst <= 1.0;
+        cw_fmt(m, sizeof m, "largest error (g = %g): %.6g, expected %.6g (p_HG(mu) I/r^2 T; tolerance 2e-4 relative); "
+               "30 cases, a point light in fog, g = 0.6 and -0.3", wg, got_w, exp_w);
+        if (bad_nan) cw_fmt(adv, sizeof adv, "%d results were NaN or infinite", bad_nan);
+        else if (cw_ratios_match(ratio, m_t, n, 2e-3))
+            cw_fmt(adv, sizeof adv, "too bright by exactly 1/T: the transmittance exp(-sigma_t dist) of the shadow ray "
+                   "(eq. 8) is missing");
+        else if (cw_ratios_match(ratio, m_flip, n, 2e-3))
+            cw_fmt(adv, sizeof adv, "you evaluate HG with the wrong angle: mu is the cosine between the propagation "
+                   "direction -wo and wi (fogrt_hg_pdf(g, wo, wi) does it), or g's sign is flipped");
+        else if (cw_ratios_match(ratio, m_ph, n, 2e-3))
+            cw_fmt(adv, sizeof adv, "the phase function is missing: in fog f is p_HG(mu) (eq. 9), not 1");
+        else if (cw_ratios_match(ratio, m_4pi, n, 2e-3))
+            cw_fmt(adv, sizeof adv, "4 pi too bright: the phase function is a density per steradian, with 1/(4 pi)");
+        else if (cw_ratios_match(ratio, m_al, n, 2e-3))
+            cw_fmt(adv, sizeof adv, "off by the albedo: cw_direct_fog returns the in-scattered light without the albedo "
+                   "(the caller applies it at the collision)");
+        else
+            cw_fmt(adv, sizeof adv, "eq. 3 in fog with one point light: p_HG(mu) (I/r^2) T / 1, mu = dot(-wo, wi), "
+                   "T = exp(-sigma_t r)");
+        cw_emit(run, "step6.fog_formula", pass, m, adv, NULL);
+    }
+}
+
+/* The area light's estimate at floor points against the integral (quadrature in double),
+   and against what the usual mistakes would average to. */
+static void cw_step6_area_estimate(const cw_fns *f, cw_run *run)
+{
+    static const float pts[6][2] = {{0, 0}, {0.4f, 0.4f}, {0.8f, 0}, {1.5f, -1}, {-2.5f, 0.5f}, {0.1f, -0.3f}};
+    const int N = 4000, Q = 200;
+    const double rho = 0.6, Le = 4.0, h = 1.0, A = 0.64, zc = 4.31;   /* z: two-sided 1e-4 / 6 */
+    const fogrt_scene *s = cw_scene(CW_SC_AREA_FLOOR);
+    char m[600], adv[700];
+    double worst = 0.0, wz = 0.0, wmean = 0.0, wexp = 0.0, lr[3] = {0, 0, 0};
+    int k, i, j, wk = 0, bad = 0;
+    cw_begin(run);
+    if (!s) { cw_emit(run, "step6.area_estimate", 0, "scene failed", "", NULL); return; }
+    for (k = 0; k < 6; ++k) {
+        fogrt_vec3 q = cw_f3(pts[k][0], 0.0f, pts[k][1]), e = cw_f3(pts[k][0] + 0.2f, 0.5f, pts[k][1] + 1.5f), d;
+        fogrt_hit hit;
+        fogrt_surface sf;
+        fogrt_rng rng;
+        double sum = 0.0, sum2 = 0.0, mean, se, z, ic = 0.0, inp = 0.0, inc = 0.0;
+        d = cw_v3(q.x - e.x, q.y - e.y, q.z - e.z);
+        if (!fogrt_scene_intersect(s, e, d, 0.0f, INFINITY, &hit)) continue;
+        fogrt_scene_surface(s, e, d, &hit, &sf);
+        cw_seed(&rng, 800 + k);
+        for (i = 0; i < N; ++i) {
+            double v = cw_lum3(f->direct_surface(s, &sf, cw_f3(-d.x, -d.y, -d.z), &rng));
+            if (!isfinite(v)) { bad++; continue; }
+            sum += v; sum2 += v * v;
+        }
+        for (i = 0; i < Q; ++i)                 /* midpoint rule over the light */
+            for (j = 0; j < Q; ++j) {
+                double x = -0.4 + 0.8 * (i + 0.5) / Q - sf.p.x, z2 = -0.4 + 0.8 * (j + 0.5) / Q - sf.p.z;
+                double dd = sqrt(x * x + h * h + z2 * z2), dA = A / ((double)Q * Q);
+                ic += h * h / (dd * dd * dd * dd) * dA;      /* cos cos' / d^2 */
+                inp += h / dd * dA / A;                       /* cos, averaged over the light's area */
+                inc += h / (dd * dd * dd) * dA;               /* cos' / d^2 */
+            }
+        ic *= rho / CW_PI * Le; inp *= rho / CW_PI * Le; inc *= rho / CW_PI * Le;
+        mean = sum / N;
+        se = sqrt(fmax(sum2 / N - mean * mean, 0.0) / (N - 1)) + 1e-6 * ic;
+        z = (mean - ic) / se;
+        lr[0] += fabs(log(mean / ic)); lr[1] += fabs(log(mean / inp)); lr[2] += fabs(log(mean / inc));
+        if (!(fabs(z) <= worst)) { worst = fabs(z); wz = z; wk = k; wmean = mean; wexp = ic; }
+    }
+    {
+        int pass = worst <= zc && !bad;
+        cw_fmt(m, sizeof m, "6 floor points under a square light, %d estimates each: worst at point %d: mean %.5g, the "
+               "integral is %.5g, z = %.2f (fail if |z| > %.2f: 1e-4 over 6 points)", N, wk, wmean, wexp, wz, zc);
+        if (bad) cw_fmt(adv, sizeof adv, "%d estimates were NaN or infinite", bad);
+        else if (lr[1] < 0.05 * 6 && lr[1] < lr[0])
+            cw_fmt(adv, sizeof adv, "your means match f Le cos without the division by the pdf (the light's average "
+                   "over its area): missing 1/pdf? eq. 3 divides every sample by the density it was drawn with, ls.pdf");
+        else if (lr[2] < 0.05 * 6 && lr[2] < lr[0])
+            cw_fmt(adv, sizeof adv, "your means match the estimate without the cosine at the floor: the cos theta of "
+                   "eq. 3 is missing");
+        else
+            cw_fmt(adv, sizeof adv, "%s by a factor ~%.3g at point %d: each sample is f Le |cos| T / ls.pdf, summed over "
+                   "the lights", wz < 0 ? "too dark" : "too bright", wz < 0 ? wexp / wmean : wmean / wexp, wk);
+        cw_emit(run, "step6.area_estimate", pass, m, adv, NULL);
+    }
+}
+
+static void cw_step6(const cw_fns *f, cw_run *run)
+{
+    fogrt_render_desc d = fogrt_render_paper_defaults();
+    cw_step6_surface_formula(f, run);
+    cw_step6_fog_formula(f, run);
+    cw_step6_area_estimate(f, run);
+    d.radiance = cw__direct_radiance;
+    d.user_data = (void *)f;
+    cw_begin(run);
+    cw_render_check(run, "step6.render box", "step6_render_box", "Step 6: direct light in the box (area and point light)",
+                    CW_SC_BOX, d, 128, cw_reference(CW_SC_BOX, FOGRT_INTEGRATOR_DIRECT, 0, 1, 3, 128), 0.0,
+                    "compare step6.surface_formula and step6.area_estimate, which name the usual causes (a missing 1/pdf, "
+                    "a missing cosine)", "compare step6.surface_formula and step6.area_estimate; is every light sampled once?", NULL);
+    cw_begin(run);
+    cw_render_check(run, "step6.render fog", "step6_render_fog", "Step 6: direct light in fog (sphere light, point light)",
+                    CW_SC_FOG, d, 256, cw_reference(CW_SC_FOG, FOGRT_INTEGRATOR_DIRECT, 0, 1, 3, 256), 0.0,
+                    "in fog: the phase function (eq. 9) and the transmittance (eq. 8) of each shadow ray; see step6.fog_formula",
+                    "in fog: a shadow ray loses exp(-sigma_t dist) (eq. 8) at a fog point and at a surface in fog too", NULL);
+    cw_begin(run);
+    cw_render_check(run, "step6.furnace", "step6_furnace", "Step 6: furnace: a closed white sphere emitting 0.5",
+                    CW_SC_FURNACE_1, d, 16, NULL, 1.0,
+                    "a closed sphere that emits 0.5 and reflects everything sees 0.5 + 0.5 = 1 in direct light: light is "
+                    "lost (a missing 1/pdf, or a cosine too many?)",
+                    "a closed sphere that emits 0.5 and reflects everything sees 0.5 + 0.5 = 1 in direct light: light is "
+                    "made (the 1/pi of the diffuse BSDF missing, or the emission counted in the light sample too?)", NULL);
+}
+
+
+/* ==========================================================================================
+   Step 7: Algorithm 1 with eq. 13 and Russian roulette
+   ========================================================================================== */
+static const cw_img *cw_path_reference(int scene, int mis, const cw_path_settings *set, int spp)
+{
+    return cw_reference(scene, FOGRT_INTEGRATOR_PATH, mis, set->max_depth, set->rr_depth, spp);
+}
+
+static void cw_step7(const cw_fns *f, cw_run *run)
+{
+    static cw_path_settings set;
+    fogrt_render_desc d = fogrt_render_paper_defaults();
+    char dark[600], bright[600];
+    int direct_ok, bounces_ok;
+    d.radiance = f->path_radiance;
+    d.user_data = &set;
+
+    set.max_depth = 1; set.rr_depth = 1000;
+    cw_begin(run);
+    direct_ok = cw_render_check(run, "step7.direct", "step7_direct", "Step 7: max_depth 1 in fog: camera ray and direct light",
+        CW_SC_FOG, d, 256, cw_path_reference(CW_SC_FOG, 0, &set, 256), 0.0,
+        "with max_depth = 1 the image is the camera ray's emission plus light sampling at the first vertex (your step 6 "
+        "code), times the fog's albedo at a collision: is light sampling done at the first vertex, and the albedo applied once?",
+        "with max_depth = 1 the image is the camera ray's emission plus light sampling at the first vertex: is emission "
+        "counted on rays after a bounce too (light sampling already counts it)? Is the albedo applied at fog collisions?", NULL);
+
+    set.max_depth = 6; set.rr_depth = 1000;
+    cw_begin(run);
+    cw_fmt(dark, sizeof dark, "without the roulette (rr_depth = 1000), up to 6 bounces, light is lost: %s",
+           direct_ok ? "the first vertex is right (step7.direct), so look at what a bounce multiplies the throughput by: eq. 13's "
+           "f cos / pdf at a surface (the sample's weight, with the pdf divided once), 1 after HG sampling, the albedo at a "
+           "fog collision (once); and max_depth counted as scattering events" : "start with step7.direct");
+    cw_fmt(bright, sizeof bright, "without the roulette (rr_depth = 1000), up to 6 bounces, light is made: %s",
+           direct_ok ? "is emission counted on rays after a bounce (light sampling already counts it)? Is the albedo "
+           "forgotten at a fog collision, or the pdf not divided?" : "start with step7.direct");
+    bounces_ok = cw_render_check(run, "step7.bounces", "step7_bounces", "Step 7: up to 6 bounces in fog, no roulette",
+        CW_SC_FOG, d, 128, cw_path_reference(CW_SC_FOG, 0, &set, 128), 0.0, dark, bright, NULL);
+
+    set.max_depth = -1; set.rr_depth = 0;
+    cw_begin(run);
+    cw_fmt(dark, sizeof dark, "%s", bounces_ok ? "right without the roulette (step7.bounces), too dark with it from the "
+           "first bounce on: after surviving the coin flip with probability q, divide the throughput by q (missing 1/q?), "
+           "so that the path's expected value is unchanged" : "start with step7.bounces");
+    cw_fmt(bright, sizeof bright, "%s", bounces_ok ? "right without the roulette (step7.bounces), too bright with it: is "
+           "the throughput divided by q when the path does not survive the coin flip, or by q twice?" : "start with step7.bounces");
+    cw_render_check(run, "step7.roulette", "step7_roulette", "Step 7: no depth limit, roulette from the first bounce (fog)",
+        CW_SC_FOG, d, 128, cw_path_reference(CW_SC_FOG, 0, &set, 128), 0.0, dark, bright, NULL);
+
+    set.max_depth = -1; set.rr_depth = 3;
+    cw_begin(run);
+    cw_render_check(run, "step7.box", "step7_box", "Step 7: global illumination in the box, no fog",
+        CW_SC_BOX, d, 64, cw_path_reference(CW_SC_BOX, 0, &set, 64), 0.0,
+        "light is lost at the bounces between the walls: eq. 13's weight f cos / pdf (for the diffuse BSDF it is the "
+        "reflectance), and 1/q after the roulette",
+        "light is made at the bounces: emission counted on bounced rays as well as by light sampling, or the pdf not divided", NULL);
+
+    set.max_depth = -1; set.rr_depth = 1;
+    cw_begin(run);
+    cw_render_check(run, "step7.furnace", "step7_furnace", "Step 7: furnace: a closed sphere emitting 0.5, reflecting half",
+        CW_SC_FURNACE_H, d, 32, NULL, 1.0,
+        "walls that emit 0.5 and reflect half are seen at 0.5 (1 + 1/2 + 1/4 + ...) = 1: light is lost over long paths "
+        "(missing 1/q after the roulette? the reflectance applied twice?)",
+        "walls that emit 0.5 and reflect half are seen at 0.5 (1 + 1/2 + 1/4 + ...) = 1: light is made (emission counted "
+        "by bounced rays and by light sampling both? a missing 1/pi?)", NULL);
+}
+
+
+/* ==========================================================================================
+   Step 8: next-event estimation with MIS (power heuristic)
+   ========================================================================================== */
+static void cw_step8_weights(const cw_fns *f, cw_run *run)
+{
+    static const float p[9] = {1e-6f, 0.01f, 0.1f, 0.3f, 1.0f, 2.5f, 10.0f, 300.0f, 1e5f};
+    char m[400], adv[500];
+    double worst = 0.0, wa = 0.0, wb = 0.0, got = 0.0, sum_bad = 0.0, balance = 0.0;
+    int i, j, n = 0, nbal = 0, edge_bad = 0;
+    cw_begin(run);
+    for (i = 0; i < 9; ++i)
+        for (j = 0; j < 9; ++j) {
+            double a = p[i], b = p[j], ref = a * a / (a * a + b * b), w = f->mis_weight(p[i], p[j]);
+            double w2 = f->mis_weight(p[j], p[i]), err = fabs(w - ref) / (1e-5 + 1e-5 * ref);
+            if (!isfinite(w)) err = HUGE_VAL;
+            if (!(err <= worst)) { worst = err; wa = a; wb = b; got = w; }
+            sum_bad = fmax(sum_bad, fabs(w + w2 - 1.0));
+            if (fabs(w - a / (a + b)) < 1e-4) nbal++;
+            n++;
+        }
+    balance = (double)nbal / n;
+    if (!(f->mis_weight(0.0f, 1.0f) == 0.0f) || !(fabs(f->mis_weight(1.0f, 0.0f) - 1.0) < 1e-6)) edge_bad = 1;
+    {
+        int pass = worst <= 1.0 && !edge_bad;
+        cw_fmt(m, sizeof m, "81 pairs of pdfs from 1e-6 to 1e5: largest error at (%g, %g): %.7g, power heuristic %.7g "
+               "(tolerance 1e-5); w(a, b) + w(b, a) - 1 at most %.2g; w(0, 1) = %g, w(1, 0) = %g", wa, wb, got,
+               wa * wa / (wa * wa + wb * wb), sum_bad, f->mis_weight(0.0f, 1.0f), f->mis_weight(1.0f, 0.0f));
+        if (sum_bad > 1e-4)
+            cw_fmt(adv, sizeof adv, "the two weights of one direction do not sum to one (up to %.3g off): MIS is then "
+                   "biased; the power heuristic is a^2 / (a^2 + b^2)", sum_bad);
+        else if (balance > 0.9)
+            cw_fmt(adv, sizeof adv, "this is the balance heuristic a / (a + b): unbiased too, but the kit asks for the "
+                   "power heuristic a^2 / (a^2 + b^2), as fogrt uses");
+        else if (edge_bad)
+            cw_fmt(adv, sizeof adv, "a strategy that cannot produce the direction (pdf_this = 0) gets weight 0, and the only "
+                   "one that can (pdf_other = 0) gets 1 (no NaN from 0/0)");
+        else
+            cw_fmt(adv, sizeof adv, "the power heuristic: pdf_this^2 / (pdf_this^2 + pdf_other^2), written so that a "
+                   "pdf of 1e5 does not overflow when squared in float");
+        cw_emit(run, "step8.weights", pass, m, adv, NULL);
+    }
+}
+
+static void cw_step8(const cw_fns *f, cw_run *run)
+{
+    static cw_path_settings set;
+    fogrt_render_desc d = fogrt_render_paper_defaults();
+    const char *bright = "light is counted more than once: each area light is found by light sampling AND by rays that hit "
+        "it; weight the light sample with w(ls.pdf, pdf of the BSDF/phase for wi) and the emission a bounced ray finds "
+        "with w(pdf of that ray's direction, fogrt_scene_light_pdf(scene, x, hit, sf)), so that the two weights sum to one "
+        "(emission counted at full weight?)";
+    const char *dark = "light is missing: a weight applied on one side only (the light sample weighted but the emission "
+        "bounced rays find not counted?), or the two weights computed from different pdfs; point lights take weight 1";
+    cw_step8_weights(f, run);
+    d.radiance = f->mis_radiance;
+    d.user_data = &set;
+    set.max_depth = -1; set.rr_depth = 3;
+    cw_begin(run);
+    cw_render_check(run, "step8.box", "step8_box", "Step 8: MIS in the box, no fog (area and point light)",
+        CW_SC_BOX, d, 64, cw_path_reference(CW_SC_BOX, 1, &set, 64), 0.0, dark, bright, NULL);
+    cw_begin(run);
+    cw_render_check(run, "step8.fog", "step8_fog", "Step 8: MIS in fog (area light, point light)",
+        CW_SC_FOG_AREA, d, 128, cw_path_reference(CW_SC_FOG_AREA, 1, &set, 128), 0.0, dark, bright, NULL);
+    set.max_depth = -1; set.rr_depth = 1;
+    cw_begin(run);
+    cw_render_check(run, "step8.furnace", "step8_furnace", "Step 8: furnace: a sphere emitting 0.5, reflecting half, fog of albedo 1",
+        CW_SC_FURNACE_FOG, d, 32, NULL, 1.0, dark, bright, NULL);
+}
+
+/* ==========================================================================================
    Dispatch
    ========================================================================================== */
 static inline const char *cw_step_title(int step)
@@ -2156,6 +3021,9 @@ static inline const char *cw_step_title(int step)
     case 3: return "Henyey-Greenstein phase function (section 3.3, eq. 9-12)";
     case 4: return "BVH split: SAH and the volume heuristic (section 2.1, eq. 1-2)";
     case 5: return "BSDF sampling: diffuse, mirror, glass with Schlick (sections 2.2, 4.2)";
+    case 6: return "direct lighting by light sampling, surface and fog (section 2.3, eq. 3)";
+    case 7: return "Algorithm 1 with eq. 13 and Russian roulette (section 3.4)";
+    case 8: return "next-event estimation with MIS, surfaces and fog (sections 2.3, 3.4)";
     case 9: return "equiangular sampling toward a point light (bonus)";
     default: return NULL;
     }
@@ -2171,6 +3039,9 @@ static int cw_run_step(int step, const cw_fns *f, cw_run *run)
     case 3: cw_step3(f, run); break;
     case 4: cw_step4(f, run); break;
     case 5: cw_step5(f, run); break;
+    case 6: cw_step6(f, run); break;
+    case 7: cw_step7(f, run); break;
+    case 8: cw_step8(f, run); break;
     case 9: cw_step9(f, run); break;
     default: return -1;
     }

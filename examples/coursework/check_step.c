@@ -48,11 +48,19 @@ int main(int argc, char **argv)
     f.sample_mirror = cw_sample_mirror;
     f.fresnel_schlick = cw_fresnel_schlick;
     f.sample_glass = cw_sample_glass;
+#elif CW_STEP == 6
+    f.direct_surface = cw_direct_surface;
+    f.direct_fog = cw_direct_fog;
+#elif CW_STEP == 7
+    f.path_radiance = cw_path_radiance;
+#elif CW_STEP == 8
+    f.mis_weight = cw_mis_weight;
+    f.mis_radiance = cw_mis_radiance;
 #elif CW_STEP == 9
     f.sample_equiangular = cw_sample_equiangular;
     f.equiangular_pdf = cw_equiangular_pdf;
 #else
-#error "steps 1-5 and 9 exist (6-8 need a render hook fogrt.h does not have yet)"
+#error "steps 1-9 exist"
 #endif
     printf("step %d: %s\n", CW_STEP, cw_step_title(CW_STEP));
     failed = cw_run_step(CW_STEP, &f, &run);

@@ -102,6 +102,73 @@ int cw_sample_mirror(fogrt_vec3 wo, cw_bsdf_sample *s);
 float cw_fresnel_schlick(float eta, float cos_i);
 int cw_sample_glass(float eta, fogrt_vec3 wo, float u_lobe, cw_bsdf_sample *s);
 
+/* ---- Steps 6-8 work on a built scene with fogrt's public building blocks (fogrt.h, "Building
+   blocks of an integrator"): fogrt_scene_intersect, fogrt_scene_surface, fogrt_surface_offset,
+   fogrt_scene_light_total, fogrt_scene_sample_light, fogrt_scene_light_pdf,
+   fogrt_scene_visible, fogrt_scene_get_medium; and for sampling your own steps 1, 3 and 5 or
+   fogrt's (fogrt_sample_exponential, fogrt_sample_hg, fogrt_hg_pdf, fogrt_sample_bsdf,
+   fogrt_bsdf_eval, fogrt_bsdf_pdf, fogrt_transmittance). Random numbers come from the rng
+   the checker passes (fogrt_rng_float). The checker's scenes have diffuse surfaces only (no
+   mirrors or glass), no environment light, and fog (when there is any) fills all space, so
+   a camera ray starts in the fog exactly when the medium's sigma_t > 0.
+   A surface from fogrt_scene_surface gives the BSDF's local frame (s, t, n): a world
+   direction w is (dot(w, s), dot(w, t), dot(w, n)) there; n is on the side the ray came from.
+
+   ---- Step 6: direct lighting at a vertex by light sampling (paper section 2.3, eq. 3) -----
+   The light that comes straight from the lights to a scattering vertex and leaves it toward
+   wo (unit, pointing back along the ray that arrived there), estimated with ONE sample of
+   EVERY light (lights 0 .. fogrt_scene_light_total() - 1; three numbers from rng for each):
+        sum over the lights of   f(wo, wi) Le T / pdf    (0 when the sample fails or is blocked)
+   with wi, Le, pdf and dist from fogrt_scene_sample_light, visibility from
+   fogrt_scene_visible, T the transmittance of eq. 8 over dist (1 without fog), and
+     cw_direct_surface  at the surface point sf: f = BSDF x |cos| between wi and sf->n (the
+                        checker's surfaces are diffuse: reflectance / pi on wo's side of the
+                        surface, 0 behind it);
+     cw_direct_fog      at the point p in the fog: f = the HG phase function (eq. 9) of the
+                        scene's medium at the angle between the propagation direction -wo and
+                        wi; no cosine. The fog's albedo is not yours to apply here: the caller
+                        multiplies by it at the collision, as Algorithm 1 does.
+   A point or spot light (ls.is_delta) has pdf 1 and Le = I / r^2.                          */
+fogrt_vec3 cw_direct_surface(const fogrt_scene *scene, const fogrt_surface *sf, fogrt_vec3 wo, fogrt_rng *rng);
+fogrt_vec3 cw_direct_fog(const fogrt_scene *scene, fogrt_vec3 p, fogrt_vec3 wo, fogrt_rng *rng);
+
+/* ---- Steps 7 and 8: a path tracer of your own, plugged into fogrt_render ------------------
+   The function is a fogrt_render_desc.radiance: one sample of the radiance arriving at o
+   along -d (d unit), drawing every random number from rng. fogrt_render runs it on its
+   threads, for every pixel sample, and keeps the image and its error estimate. user points
+   to the checker's settings, which your function must follow (fogrt's render desc has the
+   same two fields, and its image is the reference):
+     max_depth  the most scattering events (fog collisions and surface bounces) after the
+                camera ray; light sampling happens at a vertex only while fewer than
+                max_depth events came before it; -1: no limit (the roulette ends paths)
+     rr_depth   Russian roulette after each scattering event once more than rr_depth have
+                happened: continue with a probability q of your choice (fogrt's is
+                min(0.95, the largest component of the throughput)).
+   Algorithm 1 (section 3.4): from the camera ray on, the nearer of the surface hit and the
+   fog collision (free flight, eq. 6) is the next vertex; at a fog collision the throughput
+   is multiplied by the medium's albedo; light sampling there (step 6), then a new direction
+   (HG in fog, the BSDF on a surface) with the weight of eq. 13, f cos / pdf; then the
+   roulette. A path ends when the ray leaves the scene.
+   Emission: a surface with non-zero material.emission emits from its front only
+   (fogrt_surface.front).
+     Step 7 (cw_path_radiance): without MIS. Light sampling finds every light at every vertex,
+       so emission reached by a ray counts only when that ray is the camera ray: otherwise the
+       same light would be counted twice.
+     Step 8 (cw_mis_radiance): with MIS, power heuristic (cw_mis_weight(pdf_this, pdf_other)
+       = pdf_this^2 / (pdf_this^2 + pdf_other^2), 0 when pdf_this is 0). A light sample from
+       an area light is weighted with pdf_this = ls.pdf against the density with which the
+       BSDF or phase sampling would have picked wi (point and spot lights: weight 1); emission
+       reached by a ray that BSDF or phase sampling chose with density pdf from the vertex x
+       is weighted with pdf_this = pdf against fogrt_scene_light_pdf(scene, x, hit, sf)
+       (the camera ray's emission: weight 1).                                               */
+typedef struct cw_path_settings {
+    int max_depth;
+    int rr_depth;
+} cw_path_settings;
+fogrt_vec3 cw_path_radiance(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d, fogrt_rng *rng, void *user);
+float cw_mis_weight(float pdf_this, float pdf_other);
+fogrt_vec3 cw_mis_radiance(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d, fogrt_rng *rng, void *user);
+
 /* ---- Step 9 (bonus): equiangular sampling toward a point light ----------------------------
    A ray segment t in [a, b] (b may be +infinity) passes a point light; the light's closest
    approach to the ray's line is at t = delta, at distance h > 0. Sample t with density

@@ -63,14 +63,15 @@ int main(int argc, char **argv)
     int spp = argc > 2 ? atoi(argv[2]) : 64;
     tut_strip strip = tut_strip_make(3,
         "Step 10, where the samples go: a spot light in fog (sigma_t 0.5, albedo 0.9, g "
-        "0.6) over a diffuse sphere, every pixel alike against pixel rates");
-    fogrt_render_desc rd = fogrt_render_paper_defaults();   /* the paper's method (Part I) */
+        "0.6, equiangular sampling as in step 8) over a diffuse sphere, every pixel alike against pixel rates");
+    fogrt_render_desc rd = fogrt_render_paper_defaults();   /* the paper's method (Part I), */
     fogrt_light_desc spot;
     fogrt_scene *scene;
     float *rates = (float *)malloc(sizeof(float) * TUT_W * TUT_H), *map = (float *)malloc(sizeof(float) * 3 * TUT_W * TUT_H);
     float lo = 1e30f, hi = 0.0f;
     double even, adaptive;
     size_t i;
+    rd.equiangular = true;                                  /* with step 8's lamp sampling (Part II, B) */
     if (spp <= PILOT_SPP) { fprintf(stderr, "10_pixel_rates: samples_per_pixel must be > %d\n", PILOT_SPP); return 2; }
     if (!rates || !map) { fprintf(stderr, "10_pixel_rates: out of memory\n"); return 1; }
 

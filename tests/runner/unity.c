@@ -7,7 +7,9 @@
  * and at the end a "N Tests M Failures K Ignored" summary. */
 #include "unity.h"
 
+#include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 UnityState Unity;
 
@@ -95,11 +97,18 @@ void UnityDefaultTestRun(void (*fn)(void), const char *name, int line)
 {
     /* Keep everything in globals: locals may be clobbered by longjmp. */
     static void (*current)(void);
+    static clock_t cpu0;
+    static int timed = -1;
+    if (timed < 0) {
+        const char *e = getenv("UNITY_CPU_TIMES");
+        timed = e != NULL && *e != '\0' && *e != '0';
+    }
     current = fn;
     Unity.test_name = name;
     Unity.test_line = line;
     Unity.tests++;
 
+    cpu0 = clock();
     if (setjmp(Unity.abort_frame) == 0) {
         setUp();
         current();
@@ -116,6 +125,11 @@ void UnityDefaultTestRun(void (*fn)(void), const char *name, int line)
         fputs("PASS", stdout);
     }
     putchar('\n');
+    /* UNITY_CPU_TIMES=1: the CPU seconds of each test (all its threads), to find the slow ones */
+    if (timed) {
+        put_location(Unity.test_line);
+        printf("CPU %.3f s\n", (double)(clock() - cpu0) / CLOCKS_PER_SEC);
+    }
     fflush(stdout);
     Unity.cur_failed = Unity.cur_ignored = 0;
 }
