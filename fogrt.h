@@ -1614,11 +1614,12 @@ FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medi
         m->g = copysignf(FOGRT_HG_G_MAX, m->g);
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
     }
-#ifndef FOGRT_NO_MEDIA
-    return fogrt__x_check_media(s, m);                   /* SEAM 6: the phase and emission of G */
+#ifdef FOGRT_NO_MEDIA
+    FOGRT__REFUSE_IF(m->phase || m->g2 != 0.0f || m->w != 0.0f || !fogrt__is_black(m->emission), UNSUPPORTED,
+                     "medium.phase/g2/w/emission: media beyond the paper need a build without FOGRT_NO_MEDIA, FOGRT_NO_MEDIUM and FOGRT_MINIMAL");
+    return FOGRT_RESULT_OK;
 #else
-    return m->phase || m->g2 != 0.0f || m->w != 0.0f || !fogrt__is_black(m->emission) ? fogrt__fail(s, FOGRT_RESULT_UNSUPPORTED,
-           "medium.phase/g2/w/emission: media beyond the paper need a build without FOGRT_NO_MEDIA, FOGRT_NO_MEDIUM and FOGRT_MINIMAL") : FOGRT_RESULT_OK;
+    return fogrt__x_check_media(s, m);                   /* SEAM 6: the phase and emission of G */
 #endif
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_medium_desc *desc)
@@ -3865,6 +3866,7 @@ struct fogrt__x {
     struct fogrt__hg_table *hg;   /* B: HG per unit angle for the medium's g, with lamps in fog */
 #ifndef FOGRT_NO_MEDIA
     bool media;                /* G: the fog has another phase function than HG, or emits */
+    bool emits;                /* G: the fog emits */
     fogrt__v3 emit;            /* G: sigma_a Le / sigma_t = (1 - albedo) Le, per collision */
 #endif
 };
@@ -5812,7 +5814,9 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix)
 typedef struct fogrt__xs {
     fogrt__settings base;
     bool equiangular, glow, footprint, by_power, expected_emission;
+#ifndef FOGRT_NO_MEDIA
     bool emits;                /* G: the fog emits (fogrt__media_emission on every fog segment) */
+#endif
     float rr_k;                /* the roulette survives with min(0.95, rr_k x throughput) (e) */
     bool rr_probe;             /* the pilot (C): note each path's first roulette */
 #ifdef FOGRT_TRACE
@@ -5997,10 +6001,8 @@ FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__path *P, fogrt__v3 c, bool 
    The one-bounce baseline (fogrt__radiance_direct) uses the same steps.
    ------------------------------------------------------------------------------------------ */
 /* The fog's phase function where E samples or evaluates it: Henyey-Greenstein (3.3), or
-   with another phase (G) G's; B's tables of HG per unit angle exist for HG alone (the build
-   makes none for another phase), so equiangular and glow sampling then take their plain
-   forms, the phase function left in the weight. In a build without G these are 3.3's and
-   B's calls as they were; with it, one compare where fog is sampled (make callgrind). */
+   with another phase (G) G's. In a build without G these are 3.3's calls as they were; with
+   it, one compare where a fog vertex samples or evaluates (make callgrind). */
 FOGRT__HOT fogrt__v3 fogrt__fog_vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf)
 {
 #ifndef FOGRT_NO_MEDIA
@@ -6020,29 +6022,6 @@ FOGRT__HOT fogrt__v3 fogrt__fog_phase_sample(const fogrt_scene *s, fogrt__v3 wo,
 #endif
     return fogrt__sample_hg_unit(s->medium.g, wo, u1, u2, pdf);
 }
-#ifdef FOGRT__LAMPS
-FOGRT__HOT float fogrt__lamp_equiangular(const fogrt_scene *s, float delta, float h, float a, float b, float u, float *pdf)
-{
-#ifndef FOGRT_NO_MEDIA
-    if (!s->x->hg) return fogrt_sample_equiangular(delta, h, a, b, u, pdf);
-#endif
-    return fogrt__sample_equiangular_hg(s->x->hg, delta, h, a, b, u, pdf);
-}
-FOGRT__HOT fogrt__v3 fogrt__lamp_glow_sample(const fogrt_scene *s, fogrt__v3 to_light, float u1, float u2, float *pdf)
-{
-#ifndef FOGRT_NO_MEDIA
-    if (!s->x->hg) return fogrt_sample_glow(to_light, u1, u2, pdf);
-#endif
-    return fogrt__sample_glow_hg(s->x->hg, to_light, u1, u2, pdf);
-}
-FOGRT__HOT float fogrt__lamp_glow_pdf(const fogrt_scene *s, fogrt__v3 to_light, fogrt__v3 wi)
-{
-#ifndef FOGRT_NO_MEDIA
-    if (!s->x->hg) return fogrt_glow_pdf(to_light, wi);
-#endif
-    return fogrt__glow_hg_pdf(s->x->hg, to_light, wi);
-}
-#endif
 #endif
 FOGRT__PRIVATE void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fogrt__xs *xs, fogrt__v3 o,
                                       fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
@@ -6107,7 +6086,7 @@ FOGRT__PRIVATE float fogrt__glow_mix_known(const fogrt_scene *s, const fogrt__ve
     int k;
 #ifndef FOGRT_NO_MEDIUM
     for (k = 0; k < g->n; ++k) {
-        float pg = k == known ? pdf_known : fogrt__lamp_glow_pdf(s, g->dir[k], wi);
+        float pg = k == known ? pdf_known : fogrt__glow_hg_pdf(s->x->hg, g->dir[k], wi);
         if (g->fp & (1u << k))                      /* part of the lamp's share: its footprint */
             pg = (1.0f - FOGRT__FOOTPRINT_SHARE) * pg + FOGRT__FOOTPRINT_SHARE * fogrt__footprint_pdf(&s->x->footprints[g->lamp[k]], v->p, wi);
         sum += pg;
@@ -6239,7 +6218,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
             u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
             if (l->type == FOGRT_LIGHT_SPOT && !fogrt__clip_to_cone(l, s->spot_cos[2 * i], P->o, P->d, &t_lo, &t_hi)) continue;
             h = FOGRT__MAX(fogrt__length(fogrt__cross(oc, P->d)), sqrtf(s->r2_min));  /* ray through the light */
-            t = fogrt__lamp_equiangular(s, fogrt__dot(oc, P->d), h, t_lo, t_hi, u[0], &pdf_t);
+            t = fogrt__sample_equiangular_hg(s->x->hg, fogrt__dot(oc, P->d), h, t_lo, t_hi, u[0], &pdf_t);
             if (!(pdf_t > 0.0f)) continue;
             v.p = fogrt__madd(P->o, P->d, t);
             FOGRT__HOOK(fogrt__trace_equiangular(P, i, u[0], t, pdf_t, sigma_t * fogrt_transmittance(sigma_t, t - t_min) / pdf_t));
@@ -6536,9 +6515,9 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
         if ((P->glow.fp & (1u << k)) && uk - (float)k < FOGRT__FOOTPRINT_SHARE) {   /* its footprint */
             footprint = true;
             if (!fogrt__sample_footprint(&s->x->footprints[light], P->v.p, u[1], u[2], &wi)) return false;
-            pdf_k = fogrt__lamp_glow_pdf(s, P->glow.dir[k], wi);
+            pdf_k = fogrt__glow_hg_pdf(s->x->hg, P->glow.dir[k], wi);
         } else {
-            wi = fogrt__lamp_glow_sample(s, P->glow.dir[k], u[1], u[2], &pdf_k);
+            wi = fogrt__sample_glow_hg(s->x->hg, P->glow.dir[k], u[1], u[2], &pdf_k);
         }
     } else if (P->v.is_medium) {                        /* the phase function at the angle drawn */
         wi = fogrt__fog_phase_sample(s, P->v.wo, u[1], u[2], &pdf_b);
@@ -6792,9 +6771,7 @@ FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__setting
     xs->footprint = xs->glow && d->footprint;
     xs->expected_emission = d->expected_emission;
 #ifndef FOGRT_NO_MEDIA
-    xs->emits = (s->features & FOGRT_FEATURE_MEDIUM) && !fogrt__is_black(s->x->emit);
-#else
-    xs->emits = false;
+    xs->emits = s->x->emits;
 #endif
     xs->by_power = d->light_by_power && s->x->light_pick && fogrt__light_total(s) > 1;
     xs->rr_k = FOGRT__MAX(s->x->rr_k, 1.0f);      /* 1 before the pilot has run */
@@ -6856,10 +6833,10 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
 #endif
 #ifdef FOGRT__LAMPS
     x->glow_share = fogrt__glow_share_of(s);
-    if (fogrt__lamps_in_fog(s) && s->medium.phase == FOGRT_PHASE_HG) {   /* B (HG alone: G) */
+    if (fogrt__lamps_in_fog(s)) {                       /* B (for another phase than HG, G: g = 0) */
         x->hg = (fogrt__hg_table *)fogrt__alloc(&s->allocator, sizeof *x->hg);
         if (!x->hg) return false;
-        fogrt__hg_table_build(x->hg, s->medium.g);
+        fogrt__hg_table_build(x->hg, s->medium.phase == FOGRT_PHASE_HG ? s->medium.g : 0.0f);
     }
 #endif
 #ifndef FOGRT_NO_ESTIMATION
@@ -7090,10 +7067,12 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
        particles much smaller than the wavelength (haze). Each is sampled exactly (pdf =
        phase function, sample weight 1) and used wherever the full integrator (E) samples or
        evaluates the phase function: scattering, next-event estimation and its MIS weights,
-       equiangular and glow sampling. B's tables of HG per unit angle are HG's, so for these
-       phases the build makes none and equiangular and glow sampling take their plain forms
-       (the density 1 / r^2 and (pi - alpha) / sin alpha), with the phase function left in
-       the weight.
+       equiangular and glow sampling. B's table of HG per unit angle is HG's, so for these
+       phases the build makes it for g = 0: equiangular and glow sampling then take their
+       plain forms (the densities 1 / r^2 and (pi - alpha) / sin alpha, to the table's
+       resolution, exactly as in isotropic fog), with the phase function left in the weight
+       (a table of the phase function itself would be the next step). This keeps E free of
+       a test of the phase in B's inner loops.
      - Emission: the fog adds sigma_a Le per unit length (sigma_a = sigma_t (1 - albedo),
        pbrt-v4's convention), in the full integrator (also under the paper's render desc:
        Part I knows neither, seam 7 sends such media to E).
@@ -7104,14 +7083,11 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
    ------------------------------------------------------------------------------------------ */
 FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_medium_desc *m)
 {
-    if ((unsigned)m->phase >= (unsigned)FOGRT_PHASE_NUM)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.phase: not FOGRT_PHASE_HG, FOGRT_PHASE_HG2 or FOGRT_PHASE_RAYLEIGH");
-    if (!(m->g2 >= -1.0f && m->g2 <= 1.0f))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.g2: outside [-1, 1] or not finite");
-    if (!(m->w >= 0.0f && m->w <= 1.0f))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.w: outside [0, 1] or not finite");
-    if (!fogrt__colour_ok(m->emission))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_MEDIUM, "medium.emission: negative or not finite");
+    FOGRT__REFUSE_IF((unsigned)m->phase >= (unsigned)FOGRT_PHASE_NUM, INVALID_MEDIUM,
+                     "medium.phase: not FOGRT_PHASE_HG, FOGRT_PHASE_HG2 or FOGRT_PHASE_RAYLEIGH");
+    FOGRT__REFUSE_IF(!(m->g2 >= -1.0f && m->g2 <= 1.0f), INVALID_MEDIUM, "medium.g2: outside [-1, 1] or not finite");
+    FOGRT__REFUSE_IF(!(m->w >= 0.0f && m->w <= 1.0f), INVALID_MEDIUM, "medium.w: outside [0, 1] or not finite");
+    FOGRT__REFUSE_IF(!fogrt__colour_ok(m->emission), INVALID_MEDIUM, "medium.emission: negative or not finite");
     if (fabsf(m->g2) >= FOGRT_HG_G_MAX && fabsf(m->g2) != FOGRT_HG_G_MAX) {
         m->g2 = copysignf(FOGRT_HG_G_MAX, m->g2);
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g2: |g2| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
@@ -7231,7 +7207,8 @@ FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s)
 {
     const fogrt_medium_desc *m = &s->medium;
     s->x->emit = fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), m->albedo), m->emission);
-    s->x->media = (s->features & FOGRT_FEATURE_MEDIUM) && (m->phase != FOGRT_PHASE_HG || !fogrt__is_black(s->x->emit));
+    s->x->emits = (s->features & FOGRT_FEATURE_MEDIUM) && !fogrt__is_black(s->x->emit);
+    s->x->media = (s->features & FOGRT_FEATURE_MEDIUM) && (m->phase != FOGRT_PHASE_HG || s->x->emits);
 }
 FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                           fogrt__v3 beta, float t_end, bool collided)
