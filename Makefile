@@ -80,13 +80,16 @@ $(BUILD)/minimal_cxx: examples/minimal.c fogrt.h | $(BUILD)
 	$(QCC)$(CXX) -std=c++11 -Wall -Wextra -pedantic -Wshadow $(CFLAGS) $(OMPFLAGS) -I. -x c++ -o $@ examples/minimal.c $(LDLIBS)
 
 # ---- tests ----
+# Under SANITIZE=1 the test programs run reduced variants of their heaviest statistical loops
+# (SAN_REDUCED in tests/test_util.h); the plain make test runs them at full size.
+TEST_DEFS := $(if $(filter 1,$(SANITIZE)),-DFOGRT_TESTS_SANITIZE)
 # unity.c (ours or the real one) is compiled once for every test program.
 UNITY_OBJ := $(BUILD)/tests/unity$(if $(UNITY_DIR),_real).o
 $(UNITY_OBJ): $(UNITY_SRC) | $(BUILD)
 	$(QCC)$(CC) $(ALL_CFLAGS) $(UNITY_INC) -c -o $@ $(UNITY_SRC)
 
 $(BUILD)/tests/%: tests/%.c fogrt.h $(wildcard fogrt_*.h) $(wildcard tests/*.h) $(UNITY_OBJ) | $(BUILD)
-	$(QCC)$(CC) $(ALL_CFLAGS) $(UNITY_INC) -DFOGRT_SHARED_DIR='"$(SHARED)"' -o $@ $< $(UNITY_OBJ) $(LDLIBS)
+	$(QCC)$(CC) $(ALL_CFLAGS) $(UNITY_INC) $(TEST_DEFS) -DFOGRT_SHARED_DIR='"$(SHARED)"' -o $@ $< $(UNITY_OBJ) $(LDLIBS)
 
 # A program that uses the public API only says so by defining FOGRT_IMPLEMENTATION under
 # #ifndef FOGRT_TESTS_SHARED_IMPL: it is linked with one build of the implementation instead
@@ -98,7 +101,7 @@ $(TEST_IMPL_OBJ): fogrt.h | $(BUILD)
 	@printf '#define FOGRT_IMPLEMENTATION\n#include "fogrt.h"\n' >$(BUILD)/tests/fogrt_impl.c
 	$(QCC)$(CC) $(ALL_CFLAGS) -c -o $@ $(BUILD)/tests/fogrt_impl.c
 $(TEST_SHARED_IMPL): $(BUILD)/tests/%: tests/%.c fogrt.h $(wildcard tests/*.h) $(UNITY_OBJ) $(TEST_IMPL_OBJ) | $(BUILD)
-	$(QCC)$(CC) $(ALL_CFLAGS) $(UNITY_INC) -DFOGRT_TESTS_SHARED_IMPL -DFOGRT_SHARED_DIR='"$(SHARED)"' -o $@ $< \
+	$(QCC)$(CC) $(ALL_CFLAGS) $(UNITY_INC) $(TEST_DEFS) -DFOGRT_TESTS_SHARED_IMPL -DFOGRT_SHARED_DIR='"$(SHARED)"' -o $@ $< \
 	  $(TEST_IMPL_OBJ) $(UNITY_OBJ) $(LDLIBS)
 
 # Each program runs as soon as it is built, as many at a time as make runs jobs; its output
@@ -107,9 +110,11 @@ $(TEST_SHARED_IMPL): $(BUILD)/tests/%: tests/%.c fogrt.h $(wildcard tests/*.h) $
 $(addsuffix .log,$(TEST_BINS)): %.log: % FORCE
 	@OMP_WAIT_POLICY=$${OMP_WAIT_POLICY:-passive} sh tests/run_tests.sh --run $@ $<
 
-# The slowest programs start first (names from timing make test; absent names are ignored),
-# so that the others fill the remaining cores around them.
-TEST_FIRST := $(foreach t,test_sampling test_extremes test_cli.sh test_load test_render,$(filter $(BUILD)/tests/$(t).log,$(TEST_LOGS)))
+# The slowest programs start first (names from timing make test and make test SANITIZE=1,
+# UNITY_CPU_TIMES=1 for the tests inside them; absent names are ignored), so that the others
+# fill the remaining cores around them. test_cli.sh also waits on clocks (an interrupt, a
+# progress log), which the programs beside it use.
+TEST_FIRST := $(foreach t,test_cli.sh test_extremes test_render test_furnace test_scene test_convergence,$(filter $(BUILD)/tests/$(t).log,$(TEST_LOGS)))
 
 # `make test` runs itself again with -j<cores> unless a -j was given, builds and runs the
 # programs in parallel, then reports them in a fixed order: one line each (the output of

@@ -1567,15 +1567,18 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_ca
 {
     fogrt_camera_desc c;
     fogrt__v3 fwd, up;
+    float m;
     FOGRT_ASSERT(s && desc);
     c = *desc;
     if (fogrt__is_black(c.up)) c.up = fogrt__v(0.0f, 1.0f, 0.0f);
     c.fov_deg = FOGRT__DEF(c.fov_deg, 45.0f);
     FOGRT__REFUSE_IF(!fogrt__v3_finite(c.position) || !fogrt__v3_finite(c.look_at) || !fogrt__v3_finite(c.up), INVALID_CAMERA,
                      "camera.position/look_at/up: not finite");
+    m = FOGRT__MAX(fabsf(c.up.x), FOGRT__MAX(fabsf(c.up.y), fabsf(c.up.z)));
+    c.up = fogrt__normalize(fogrt__scale(c.up, 1.0f / m));   /* any length: its direction */
     fwd = fogrt__sub(c.look_at, c.position);
-    FOGRT__REFUSE_IF(!fogrt__finite(fogrt__dot(fwd, fwd)) || !fogrt__finite(fogrt__dot(c.up, c.up)), INVALID_CAMERA,
-                     "camera: look_at - position (or up) too long for float: its squared length overflows");
+    FOGRT__REFUSE_IF(!fogrt__finite(fogrt__dot(fwd, fwd)), INVALID_CAMERA,
+                     "camera: look_at - position too long for float: its squared length overflows");
     FOGRT__REFUSE_IF(fogrt__dot(fwd, fwd) == 0.0f, INVALID_CAMERA, "camera.look_at: equals camera.position");
     up = fogrt__cross(fogrt__normalize(fwd), fogrt__normalize(c.up));
     FOGRT__REFUSE_IF(fogrt__dot(up, up) < 1e-12f, INVALID_CAMERA, "camera.up: parallel to the view direction");

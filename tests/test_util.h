@@ -23,6 +23,18 @@
                                       fogrt_result_string(check_ok_r_));        \
     } while (0)
 
+/* make test SANITIZE=1 builds the tests with FOGRT_TESTS_SANITIZE. The sanitizers look for
+   memory errors and undefined behaviour, which a smaller run reaches through the same code,
+   at 3 to 10 times the cost of -O2; so there the heaviest statistical loops run a reduced
+   variant, SAN_REDUCED(n, d) = n / d (at least 1), and the full size, whose statistics the
+   test is about, runs in the plain make test. A reduced variant must still pass on its own
+   (its tolerances follow its own standard errors). */
+#ifdef FOGRT_TESTS_SANITIZE
+#define SAN_REDUCED(n, d) ((n) / (d) > 0 ? (n) / (d) : 1)
+#else
+#define SAN_REDUCED(n, d) (n)
+#endif
+
 /* Under FOGRT_MINIMAL (fogrt.h's Part I alone) a test of Part II skips with one line naming
    the appendix it needs: put PART_II_ONLY("...") first in its body, inside #ifdef
    FOGRT_MINIMAL, and the Part II code under #else. */
