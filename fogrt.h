@@ -50,8 +50,12 @@
     FOGRT_NO_ESTIMATION    leave out appendix C: environment-map sampling, exact Fresnel, fog in
                            a box, lights by power, the roulette's pilot, stratified pixel
                            positions, per-pixel rates (fogrt_image_sample_rates)
+    FOGRT_NO_MEDIA         leave out appendix G, media beyond the paper: the two-lobe HG and
+                           Rayleigh phase functions, emitting fog (a medium desc that asks
+                           for them fails)
     FOGRT_NO_MEDIUM        strip the fog: no free-flight, transmittance, phase or equiangular
-                           code (fogrt_scene_set_medium with sigma_t > 0 fails)
+                           code (fogrt_scene_set_medium with sigma_t > 0 fails; implies
+                           FOGRT_NO_MEDIA)
     FOGRT_NO_GLASS         strip the refraction and glass BSDFs, Fresnel and refraction
                            (fogrt_scene_add_material of those types fails)
     FOGRT_NO_EXACT_FRESNEL strip the exact dielectric Fresnel (a render asking for
@@ -131,6 +135,12 @@
 #ifndef FOGRT_NO_ESTIMATION
 #define FOGRT_NO_ESTIMATION
 #endif
+#ifndef FOGRT_NO_MEDIA
+#define FOGRT_NO_MEDIA
+#endif
+#endif
+#if defined(FOGRT_NO_MEDIUM) && !defined(FOGRT_NO_MEDIA)
+#define FOGRT_NO_MEDIA           /* media beyond the paper (G) need the fog */
 #endif
 #if defined(FOGRT_NO_ESTIMATION) && !defined(FOGRT_NO_EXACT_FRESNEL)
 #define FOGRT_NO_EXACT_FRESNEL   /* the exact Fresnel is Part II's (C) */
@@ -165,7 +175,7 @@ extern "C" {
     X(INVALID_GEOMETRY,  "invalid geometry (non-finite position, index out of range, or radius <= 0)") \
     X(INVALID_LIGHT,     "invalid light (non-finite or negative intensity, or bad angles)") \
     X(INVALID_CAMERA,    "invalid camera (fov outside (0,180), eye equals target, or negative lens)") \
-    X(INVALID_MEDIUM,    "invalid medium (sigma_t negative or non-finite, albedo outside [0,1], or |g| > 1)") \
+    X(INVALID_MEDIUM,    "invalid medium (sigma_t negative or non-finite, albedo outside [0,1], |g| > 1, or a bad phase or emission)") \
     X(TOO_LARGE,         "too large (more primitives, lights or pixels than fogrt can index)") \
     X(NOT_BUILT,         "scene not built: call fogrt_scene_build after the last change") \
     X(EMPTY_SCENE,       "the scene has no geometry and no light") \
@@ -353,13 +363,34 @@ FOGRT_API fogrt_result fogrt_scene_set_camera(fogrt_scene *scene, const fogrt_ca
                reach the environment with the transmittance of their path inside; the camera
                may sit outside it. A scene with an environment light and unbounded fog gets
                the box of its geometry at fogrt_scene_build (logged), since fog filling all
-               space would hide the sky completely.                                      */
+               space would hide the sky completely.
+   Part II, G (zeroed: Henyey-Greenstein with g and no emission, the paper's medium):
+     phase     FOGRT_PHASE_HG (0): HG(g); FOGRT_PHASE_HG2: two lobes, w HG(g) + (1 - w) HG(g2)
+               (forward and back scattering of droplets); FOGRT_PHASE_RAYLEIGH:
+               3 / (16 pi) (1 + mu^2), for haze (g, g2 and w unused)
+     g2, w     the second lobe's asymmetry in [-1, 1] (clamped as g is) and the first lobe's
+               weight in [0, 1]; validated whatever the phase, read by FOGRT_PHASE_HG2 only
+     emission  radiance Le the fog emits (linear RGB, >= 0), added as sigma_a Le per unit
+               length with sigma_a = sigma_t (1 - albedo): unbounded fog of any albedo below 1
+               seen from inside looks Le, an absorbing slab of optical depth tau Le (1 - e^-tau)
+   Fog with another phase function or emission is rendered by the full integrator (Part II,
+   E) also under fogrt_render_paper_defaults(): Part I knows HG alone.                       */
+typedef enum fogrt_phase_type {
+    FOGRT_PHASE_HG = 0,        /* Henyey-Greenstein (3.3) */
+    FOGRT_PHASE_HG2,           /* two HG lobes (G) */
+    FOGRT_PHASE_RAYLEIGH,      /* Rayleigh (G) */
+    FOGRT_PHASE_NUM,
+    FOGRT_PHASE_FORCE_U32 = 0x7FFFFFFF
+} fogrt_phase_type;
 typedef struct fogrt_medium_desc {
     float sigma_t;
     fogrt_vec3 albedo;
     float g;
     bool bounded;
     fogrt_vec3 bounds_min, bounds_max;
+    fogrt_phase_type phase;    /* G */
+    float g2, w;               /* G: FOGRT_PHASE_HG2's second lobe and the first lobe's weight */
+    fogrt_vec3 emission;       /* G: Le, radiance */
 } fogrt_medium_desc;
 
 #define FOGRT_HG_G_MAX 0.9999f
@@ -605,6 +636,27 @@ FOGRT_API float fogrt_equiangular_pdf(float delta, float h, float a, float b, fl
    finite number there).                                                                    */
 FOGRT_API fogrt_vec3 fogrt_sample_glow(fogrt_vec3 to_light, float u1, float u2, float *pdf);
 FOGRT_API float fogrt_glow_pdf(fogrt_vec3 to_light, fogrt_vec3 wi);
+#endif
+#ifndef FOGRT_NO_MEDIA
+/* Part II, G. The phase functions beyond HG, in 3.3's conventions (mu = cos(d, wi) with
+   d = -wo; p per steradian; each sampler returns wi with pdf equal to p, so its sample
+   weight is exactly 1).
+   Two HG lobes: p(mu) = w HG(g1, mu) + (1 - w) HG(g2, mu), w in [0, 1]. The sampler picks
+   lobe 1 when u1 < w and reuses u1, rescaled, for that lobe's mu.                          */
+FOGRT_API float fogrt_hg2_phase(float g1, float g2, float w, float mu);
+FOGRT_API fogrt_vec3 fogrt_sample_hg2(float g1, float g2, float w, fogrt_vec3 wo, float u1, float u2, float *pdf);
+FOGRT_API float fogrt_hg2_pdf(float g1, float g2, float w, fogrt_vec3 wo, fogrt_vec3 wi);
+/* Rayleigh: p(mu) = 3 / (16 pi) (1 + mu^2). Its CDF (mu^3 + 3 mu + 4) / 8 = u is a cubic
+   with one real root, mu = 2 sinh(asinh(4u - 2) / 3): exact at u = 0 (-1), 1/2 (0) and 1
+   (1), odd about u = 1/2.                                                                  */
+FOGRT_API float fogrt_rayleigh_phase(float mu);
+FOGRT_API float fogrt_sample_rayleigh_mu(float u);
+FOGRT_API fogrt_vec3 fogrt_sample_rayleigh(fogrt_vec3 wo, float u1, float u2, float *pdf);
+FOGRT_API float fogrt_rayleigh_pdf(fogrt_vec3 wo, fogrt_vec3 wi);
+/* The phase function of a medium desc (its phase, g, g2 and w), as the renderer uses it. */
+FOGRT_API float fogrt_phase(const fogrt_medium_desc *medium, float mu);
+FOGRT_API fogrt_vec3 fogrt_sample_phase(const fogrt_medium_desc *medium, fogrt_vec3 wo, float u1, float u2, float *pdf);
+FOGRT_API float fogrt_phase_pdf(const fogrt_medium_desc *medium, fogrt_vec3 wo, fogrt_vec3 wi);
 #endif
 #endif
 
@@ -1029,7 +1081,7 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
      3. fogrt_scene_build          Part II's tables: wide tree, HG table, footprints, pilot
      4. fogrt__free_built          their release
      5. fogrt__fresnel             the exact dielectric Fresnel (C)
-     6. fogrt__fog_transmittance   fog bounded by a box (C)
+     6. fogrt__fog_transmittance   fog bounded by a box (C); fogrt__check_medium: G's medium fields
      7. fogrt__radiance            the full integrator, for every setting beyond the paper (E)
      8. fogrt__pixel_ray           stratified pixel positions, and per-pixel rates (C)
    ========================================================================================== */
@@ -1181,6 +1233,9 @@ FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s);                           
 #ifndef FOGRT_NO_MEDIUM
 FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax,
                                   float *a, float *b);                                            /* 6 (C) */
+#endif
+#ifndef FOGRT_NO_MEDIA
+FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_medium_desc *m);    /* 6 (G) */
 #endif
 FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const struct fogrt__settings *st);      /* 7 (E) */
 FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const struct fogrt__settings *st, fogrt__v3 o,
@@ -1562,7 +1617,13 @@ FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medi
         m->g = copysignf(FOGRT_HG_G_MAX, m->g);
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
     }
+#ifdef FOGRT_NO_MEDIA
+    FOGRT__REFUSE_IF(m->phase || m->g2 != 0.0f || m->w != 0.0f || !fogrt__is_black(m->emission), UNSUPPORTED,
+                     "medium.phase/g2/w/emission: media beyond the paper need a build without FOGRT_NO_MEDIA, FOGRT_NO_MEDIUM and FOGRT_MINIMAL");
     return FOGRT_RESULT_OK;
+#else
+    return fogrt__x_check_media(s, m);                   /* SEAM 6: the phase and emission of G */
+#endif
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_medium_desc *desc)
 {
@@ -3786,6 +3847,8 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s)
      E. The full integrator: Algorithm 1 with B and C's steps added, as fogrt_render_defaults()
         runs it                                      (table "Strip cost")
      F. Inspecting a scene: its tree, the tree's cost, a brute-force query, its memory
+     G. Media beyond the paper: the two-lobe HG and Rayleigh phase functions, emitting fog
+                                                     (table "Strip cost")
    ========================================================================================== */
 #if !defined(FOGRT_NO_MEDIUM) && !defined(FOGRT_NO_LAMPS_IN_FOG)
 #define FOGRT__LAMPS 1             /* appendix B is compiled */
@@ -3806,7 +3869,21 @@ struct fogrt__x {
     float glow_share;          /* B: the share of scattered directions aimed at the glow (E d') */
     struct fogrt__footprint *footprints;   /* B: per point or spot light, the plane its cone lights most, or NULL */
     struct fogrt__hg_table *hg;   /* B: HG per unit angle for the medium's g, with lamps in fog */
+#ifndef FOGRT_NO_MEDIA
+    bool media;                /* G: the fog has another phase function than HG, or emits */
+    bool emits;                /* G: the fog emits */
+    fogrt__v3 emit;            /* G: sigma_a Le / sigma_t = (1 - albedo) Le, per collision */
+#endif
 };
+#ifndef FOGRT_NO_MEDIA
+/* G's steps, which the full integrator (E) calls before their chapter. */
+struct fogrt__path;
+FOGRT__PRIVATE fogrt__v3 fogrt__media_sample(const fogrt_medium_desc *m, fogrt__v3 wo, float u1, float u2, float *pdf);
+FOGRT__PRIVATE float fogrt__media_pdf(const fogrt_medium_desc *m, fogrt__v3 wo, fogrt__v3 wi);
+FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
+                                          fogrt__v3 beta, float t_end, bool collided);
+FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s);
+#endif
 
 #ifndef FOGRT_NO_WIDE_BVH
 /* ------------------------------------------------------------------------------------------
@@ -5949,6 +6026,9 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix)
 typedef struct fogrt__xs {
     fogrt__settings base;
     bool equiangular, glow, footprint, by_power, expected_emission;
+#ifndef FOGRT_NO_MEDIA
+    bool emits;                /* G: the fog emits (fogrt__media_emission on every fog segment) */
+#endif
     float rr_k;                /* the roulette survives with min(0.95, rr_k x throughput) (e) */
     bool rr_probe;             /* the pilot (C): note each path's first roulette */
 #ifdef FOGRT_TRACE
@@ -6053,10 +6133,11 @@ FOGRT__PRIVATE void fogrt__trace_equiangular(const fogrt__path *P, uint32_t ligh
     fogrt__emit(P, &e);
 }
 #ifndef FOGRT_NO_MEDIUM
-FOGRT__PRIVATE void fogrt__trace_phase(const fogrt__path *P, float g, float u1, float u2)
+FOGRT__PRIVATE void fogrt__trace_phase(const fogrt__path *P, const fogrt_medium_desc *m, float u1, float u2)
 {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_PHASE_SAMPLE, P);
-    e.u[0] = u1; e.u[1] = u2; e.cos_theta = fogrt_sample_hg_mu(g, u1); e.phi = 2.0f * FOGRT__PI * u2;
+    e.u[0] = u1; e.u[1] = u2; e.cos_theta = fogrt_sample_hg_mu(m->g, u1); e.phi = 2.0f * FOGRT__PI * u2;
+    if (m->phase != FOGRT_PHASE_HG) e.cos_theta = -fogrt__dot(P->v.wo, P->d);   /* G's phases: the angle drawn */
     e.pdf = P->prev_pdf;
     fogrt__emit(P, &e);
 }
@@ -6131,6 +6212,29 @@ FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__path *P, fogrt__v3 c, bool 
    A scene without fog never enters step a: it pays one well-predicted branch per bounce.
    The one-bounce baseline (fogrt__radiance_direct) uses the same steps.
    ------------------------------------------------------------------------------------------ */
+/* The fog's phase function where E samples or evaluates it: Henyey-Greenstein (3.3), or
+   with another phase (G) G's. In a build without G these are 3.3's calls as they were; with
+   it, one compare where a fog vertex samples or evaluates (make callgrind). */
+FOGRT__HOT fogrt__v3 fogrt__fog_vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf)
+{
+#ifndef FOGRT_NO_MEDIA
+    if (v->is_medium && s->medium.phase != FOGRT_PHASE_HG) {
+        float p = fogrt__media_pdf(&s->medium, v->wo, wi);
+        *pdf = p;
+        return fogrt__v(p, p, p);
+    }
+#endif
+    return fogrt__vertex_f(s, v, wi, pdf);
+}
+#ifndef FOGRT_NO_MEDIUM
+FOGRT__HOT fogrt__v3 fogrt__fog_phase_sample(const fogrt_scene *s, fogrt__v3 wo, float u1, float u2, float *pdf)
+{
+#ifndef FOGRT_NO_MEDIA
+    if (s->medium.phase != FOGRT_PHASE_HG) return fogrt__media_sample(&s->medium, wo, u1, u2, pdf);
+#endif
+    return fogrt__sample_hg_unit(s->medium.g, wo, u1, u2, pdf);
+}
+#endif
 FOGRT__PRIVATE void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fogrt__xs *xs, fogrt__v3 o,
                                       fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
 {
@@ -6223,7 +6327,7 @@ FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt
 {
     fogrt__v3 f, c = fogrt__v(0.0f, 0.0f, 0.0f);
     float pdf_b, tr = 0.0f, w = 0.0f;
-    f = fogrt__vertex_f(s, v, ls->wi, &pdf_b);
+    f = fogrt__fog_vertex_f(s, v, ls->wi, &pdf_b);
     if (!fogrt__is_black(f)) tr = fogrt__shadow(s, v, ls, P->rays);
     if (tr != 0.0f) {
 #ifdef FOGRT__LAMPS
@@ -6539,6 +6643,9 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
         float tr = 1.0f;                                /* the fog's transmittance to the end of the ray */
         bool collided = fogrt__free_flight(s, st, P, found ? hit.t : INFINITY, P->bounces < limit, &tr);
         P->seg_tr = tr;
+#ifndef FOGRT_NO_MEDIA
+        if (P->xs->emits) fogrt__media_emission(s, st, P, beta, found ? hit.t : INFINITY, collided);   /* G */
+#endif
         if (!P->xs->expected_emission) tr = collided ? 0.0f : 1.0f;   /* the paper's: Le when reached */
         if (collided) return fogrt__collided(s, st, P, found ? &hit : NULL, beta, tr, limit);
         return fogrt__ray_end(s, st, P, found, &hit, beta, tr, limit);
@@ -6625,14 +6732,14 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
             wi = fogrt__sample_glow_hg(s->x->hg, P->glow.dir[k], u[1], u[2], &pdf_k);
         }
     } else if (P->v.is_medium) {                        /* the phase function at the angle drawn */
-        wi = fogrt__sample_hg_unit(s->medium.g, P->v.wo, u[1], u[2], &pdf_b);
+        wi = fogrt__fog_phase_sample(s, P->v.wo, u[1], u[2], &pdf_b);
     } else {
         wo_l = fogrt__to_local(&P->v.frame, P->v.wo);
         if (!fogrt_sample_bsdf(P->v.m, st->fresnel, wo_l, 0.5f, u[1], u[2], &bs)) return false;
         wi = fogrt__normalize(fogrt__to_world(&P->v.frame, bs.wi));
     }
     if (!glow && P->v.is_medium) f = fogrt__v(pdf_b, pdf_b, pdf_b);
-    else f = fogrt__vertex_f(s, &P->v, wi, &pdf_b);     /* phase, or f |cos| (0 through the surface) */
+    else f = fogrt__fog_vertex_f(s, &P->v, wi, &pdf_b);   /* phase, or f |cos| (0 through the surface) */
     if (fogrt__is_black(f)) return false;
     pdf = fogrt__glow_mix_known(s, &P->v, &P->glow, wi, pdf_b, k, pdf_k);
     if (!(pdf > 0.0f)) return false;
@@ -6659,10 +6766,10 @@ FOGRT__HOT bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *st, 
 #endif
     if (P->v.is_medium) {
         float u1 = fogrt_rng_float(P->rng), u2 = fogrt_rng_float(P->rng);
-        P->d = fogrt__sample_hg_unit(s->medium.g, P->v.wo, u1, u2, &P->prev_pdf);
+        P->d = fogrt__fog_phase_sample(s, P->v.wo, u1, u2, &P->prev_pdf);
         P->prev_delta = false;
         P->o = P->v.p;
-        FOGRT__HOOK(fogrt__trace_phase(P, s->medium.g, u1, u2));
+        FOGRT__HOOK(fogrt__trace_phase(P, &s->medium, u1, u2));
         return true;
     }
 #endif
@@ -6875,6 +6982,9 @@ FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__setting
     xs->glow = d->glow && d->nee && d->equiangular && fogrt__lamps_in_fog(s);
     xs->footprint = xs->glow && d->footprint;
     xs->expected_emission = d->expected_emission;
+#ifndef FOGRT_NO_MEDIA
+    xs->emits = s->x->emits;
+#endif
     xs->by_power = d->light_by_power && s->x->light_pick && fogrt__light_total(s) > 1;
     xs->rr_k = FOGRT__MAX(s->x->rr_k, 1.0f);      /* 1 before the pilot has run */
     xs->rr_probe = false;
@@ -6883,10 +6993,13 @@ FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__setting
 #endif
 }
 /* Seam 7: the full integrator for every desc that asks for more than the paper, and for
-   fog in a box (which Part I does not know). */
+   fog in a box or G's media (which Part I does not know). */
 FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const fogrt__settings *st)
 {
     const fogrt_render_desc *d = &st->desc;
+#ifndef FOGRT_NO_MEDIA
+    if (s->x->media) return true;
+#endif
     return d->equiangular || d->glow || d->footprint || d->light_by_power || d->expected_emission ||
            s->x->fog_bounded || s->env_map;
 }
@@ -6913,6 +7026,9 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
     memset(x, 0, sizeof *x);
     s->x = x;
     x->rr_k = 1.0f;
+#ifndef FOGRT_NO_MEDIA
+    fogrt__media_build(s);                              /* G */
+#endif
 #ifndef FOGRT_NO_WIDE_BVH
     if (fogrt__wants_wide(d, n)) {                      /* A: the wide tree replaces the packed primitives */
         if (!fogrt__wide_build(s)) return false;
@@ -6929,10 +7045,10 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
 #endif
 #ifdef FOGRT__LAMPS
     x->glow_share = fogrt__glow_share_of(s);
-    if (fogrt__lamps_in_fog(s)) {                       /* B */
+    if (fogrt__lamps_in_fog(s)) {                       /* B (for another phase than HG, G: g = 0) */
         x->hg = (fogrt__hg_table *)fogrt__alloc(&s->allocator, sizeof *x->hg);
         if (!x->hg) return false;
-        fogrt__hg_table_build(x->hg, s->medium.g);
+        fogrt__hg_table_build(x->hg, s->medium.phase == FOGRT_PHASE_HG ? s->medium.g : 0.0f);
     }
 #endif
 #ifndef FOGRT_NO_ESTIMATION
@@ -7154,6 +7270,169 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
     return found;
 }
 
+#ifndef FOGRT_NO_MEDIA
+/* ------------------------------------------------------------------------------------------
+   G. Media beyond the paper
+   What it adds: two phase functions besides Henyey-Greenstein, and fog that emits light.
+     - Two HG lobes, w HG(g) + (1 - w) HG(g2): a real droplet scatters mostly forward and a
+       little backward, which one HG lobe cannot do at once. Rayleigh, 3 / (16 pi) (1 + mu^2):
+       particles much smaller than the wavelength (haze). Each is sampled exactly (pdf =
+       phase function, sample weight 1) and used wherever the full integrator (E) samples or
+       evaluates the phase function: scattering, next-event estimation and its MIS weights,
+       equiangular and glow sampling. B's table of HG per unit angle is HG's, so for these
+       phases the build makes it for g = 0: equiangular and glow sampling then take their
+       plain forms (the densities 1 / r^2 and (pi - alpha) / sin alpha, to the table's
+       resolution, exactly as in isotropic fog), with the phase function left in the weight
+       (a table of the phase function itself would be the next step). This keeps E free of
+       a test of the phase in B's inner loops.
+     - Emission: the fog adds sigma_a Le per unit length (sigma_a = sigma_t (1 - albedo),
+       pbrt-v4's convention), in the full integrator (also under the paper's render desc:
+       Part I knows neither, seam 7 sends such media to E).
+   What it costs: a scene with the paper's medium pays one compare per fog vertex and one
+   per fog segment, and renders bit for bit as before (make callgrind: the default scene
+   against a FOGRT_NO_MEDIA build; docs/benchmarks.md, table "Strip cost"). Validation of
+   the medium desc's fields is seam 6's second use.
+   ------------------------------------------------------------------------------------------ */
+FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_medium_desc *m)
+{
+    FOGRT__REFUSE_IF((unsigned)m->phase >= (unsigned)FOGRT_PHASE_NUM, INVALID_MEDIUM,
+                     "medium.phase: not FOGRT_PHASE_HG, FOGRT_PHASE_HG2 or FOGRT_PHASE_RAYLEIGH");
+    FOGRT__REFUSE_IF(!(m->g2 >= -1.0f && m->g2 <= 1.0f), INVALID_MEDIUM, "medium.g2: outside [-1, 1] or not finite");
+    FOGRT__REFUSE_IF(!(m->w >= 0.0f && m->w <= 1.0f), INVALID_MEDIUM, "medium.w: outside [0, 1] or not finite");
+    FOGRT__REFUSE_IF(!fogrt__colour_ok(m->emission), INVALID_MEDIUM, "medium.emission: negative or not finite");
+    if (fabsf(m->g2) >= FOGRT_HG_G_MAX && fabsf(m->g2) != FOGRT_HG_G_MAX) {
+        m->g2 = copysignf(FOGRT_HG_G_MAX, m->g2);
+        fogrt__log(s, FOGRT_LOG_WARNING, "medium.g2: |g2| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
+    }
+    return FOGRT_RESULT_OK;
+}
+
+/* Two lobes. The lobe is chosen by u1 (lobe 1 below w) and u1 rescaled to the lobe's
+   uniform: each lobe then keeps 3.3's exact sampler, and the pdf is the mixture's at the
+   direction drawn, the drawn lobe's part from that sampler (exact near its peak), the
+   other's from the chords (fogrt_hg_pdf). A weight outside [0, 1] (or NaN) is clamped. */
+FOGRT__PUBLIC float fogrt_hg2_phase(float g1, float g2, float w, float mu)
+{
+    w = FOGRT__CLAMP(w, 0.0f, 1.0f);
+    return w * fogrt_hg_phase(g1, mu) + (1.0f - w) * fogrt_hg_phase(g2, mu);
+}
+FOGRT__PUBLIC float fogrt_hg2_pdf(float g1, float g2, float w, fogrt_vec3 wo, fogrt_vec3 wi)
+{
+    w = FOGRT__CLAMP(w, 0.0f, 1.0f);
+    return w * fogrt_hg_pdf(g1, wo, wi) + (1.0f - w) * fogrt_hg_pdf(g2, wo, wi);
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg2_unit(float g1, float g2, float w, fogrt__v3 wo, float u1, float u2, float *pdf)
+{
+    bool first;
+    float u, p;
+    fogrt__v3 wi;
+    w = FOGRT__CLAMP(w, 0.0f, 1.0f);
+    u1 = FOGRT__CLAMP(u1, 0.0f, 1.0f);
+    first = u1 < w;                                      /* w = 0: never; w = 1: always (u1 < 1) */
+    u = first ? u1 / w : (u1 - w) / (1.0f - w);
+    wi = fogrt__sample_hg_unit(first ? g1 : g2, wo, FOGRT__CLAMP(u, 0.0f, 1.0f), u2, &p);
+    if (pdf) *pdf = first ? w * p + (1.0f - w) * fogrt_hg_pdf(g2, wo, wi) : (1.0f - w) * p + w * fogrt_hg_pdf(g1, wo, wi);
+    return wi;
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg2(float g1, float g2, float w, fogrt_vec3 wo, float u1, float u2, float *pdf)
+{
+    return fogrt__sample_hg2_unit(g1, g2, w, fogrt__normalize(wo), u1, u2, pdf);
+}
+
+/* Rayleigh. The CDF of mu, F(mu) = (mu^3 + 3 mu + 4) / 8, is increasing, so F(mu) = u is a
+   cubic with one real root. With mu = 2 sinh(x) it reads 2 sinh(3x) = 8u - 4 (sinh 3x =
+   3 sinh x + 4 sinh^3 x), so mu = 2 sinh(asinh(4u - 2) / 3): no cancellation anywhere
+   (Cardano's cube roots would subtract two nearly equal numbers near u = 1/2), odd about
+   u = 1/2, and in double exactly -1 and 1 at u = 0 and 1 after rounding to float. */
+#define FOGRT__RAYLEIGH_NORM 0.05968310365946075f   /* 3 / (16 pi) */
+FOGRT__PUBLIC float fogrt_rayleigh_phase(float mu)
+{
+    mu = FOGRT__CLAMP(mu, -1.0f, 1.0f);
+    return FOGRT__RAYLEIGH_NORM * (1.0f + mu * mu);
+}
+FOGRT__PUBLIC float fogrt_sample_rayleigh_mu(float u)
+{
+    double z = 4.0 * (double)FOGRT__CLAMP(u, 0.0f, 1.0f) - 2.0;
+    return FOGRT__CLAMP((float)(2.0 * sinh(asinh(z) / 3.0)), -1.0f, 1.0f);
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_rayleigh_unit(fogrt__v3 wo, float u1, float u2, float *pdf)
+{
+    fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));   /* z: propagation */
+    float mu = fogrt_sample_rayleigh_mu(u1);
+    if (pdf) *pdf = fogrt_rayleigh_phase(mu);
+    return fogrt__around(&f, mu, sqrtf(FOGRT__MAX(0.0f, (1.0f - mu) * (1.0f + mu))), u2);
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_rayleigh(fogrt_vec3 wo, float u1, float u2, float *pdf)
+{
+    return fogrt__sample_rayleigh_unit(fogrt__normalize(wo), u1, u2, pdf);
+}
+FOGRT__PUBLIC float fogrt_rayleigh_pdf(fogrt_vec3 wo, fogrt_vec3 wi)
+{
+    return fogrt_rayleigh_phase(-fogrt__dot(wo, wi));
+}
+
+/* The phase function of a medium desc: what E calls for fog that is not the paper's (and
+   a desc's HG, so the public functions take any desc). wo is unit here. */
+FOGRT__PRIVATE fogrt__v3 fogrt__media_sample(const fogrt_medium_desc *m, fogrt__v3 wo, float u1, float u2, float *pdf)
+{
+    if (m->phase == FOGRT_PHASE_RAYLEIGH) return fogrt__sample_rayleigh_unit(wo, u1, u2, pdf);
+    if (m->phase == FOGRT_PHASE_HG2) return fogrt__sample_hg2_unit(m->g, m->g2, m->w, wo, u1, u2, pdf);
+    return fogrt__sample_hg_unit(m->g, wo, u1, u2, pdf);
+}
+FOGRT__PRIVATE float fogrt__media_pdf(const fogrt_medium_desc *m, fogrt__v3 wo, fogrt__v3 wi)
+{
+    if (m->phase == FOGRT_PHASE_RAYLEIGH) return fogrt_rayleigh_pdf(wo, wi);
+    if (m->phase == FOGRT_PHASE_HG2) return fogrt_hg2_pdf(m->g, m->g2, m->w, wo, wi);
+    return fogrt_hg_pdf(m->g, wo, wi);
+}
+FOGRT__PUBLIC float fogrt_phase(const fogrt_medium_desc *m, float mu)
+{
+    FOGRT_ASSERT(m);
+    if (m->phase == FOGRT_PHASE_RAYLEIGH) return fogrt_rayleigh_phase(mu);
+    if (m->phase == FOGRT_PHASE_HG2) return fogrt_hg2_phase(m->g, m->g2, m->w, mu);
+    return fogrt_hg_phase(m->g, mu);
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_phase(const fogrt_medium_desc *m, fogrt_vec3 wo, float u1, float u2, float *pdf)
+{
+    FOGRT_ASSERT(m);
+    return fogrt__media_sample(m, fogrt__normalize(wo), u1, u2, pdf);
+}
+FOGRT__PUBLIC float fogrt_phase_pdf(const fogrt_medium_desc *m, fogrt_vec3 wo, fogrt_vec3 wi)
+{
+    FOGRT_ASSERT(m);
+    return fogrt__media_pdf(m, wo, wi);
+}
+
+/* Emission. Along a fog segment of the ray (from where it enters the fog, a, to where it
+   leaves it or meets the surface, b) the light the fog adds toward the ray's origin is
+     int_a^b T(t) sigma_a Le dt = (sigma_a / sigma_t) Le (1 - T(b - a)),   T(x) = exp(-sigma_t x),
+   whatever the free flight then does: the path goes on from the collision (weight albedo)
+   or the surface (weight 1), which estimate the rest of the radiance, not this part. So
+   with expected_emission (the default) each segment adds beta (1 - albedo) Le (1 - T),
+   with no noise of its own; in unbounded fog (b infinite) that is beta (1 - albedo) Le,
+   and summed over a path of collisions, sum_k albedo^k (1 - albedo) Le = Le: fog of any
+   albedo below 1 seen from inside looks Le. Without it (the paper's way, as for
+   emitters) the collision estimator: beta (1 - albedo) Le at each collision, nothing when
+   the ray gets through, whose mean over the free flight, with collision density
+   sigma_t T(t), is the same integral. beta is the weight before the collision's albedo. */
+FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s)
+{
+    const fogrt_medium_desc *m = &s->medium;
+    s->x->emit = fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), m->albedo), m->emission);
+    s->x->emits = (s->features & FOGRT_FEATURE_MEDIUM) && !fogrt__is_black(s->x->emit);
+    s->x->media = (s->features & FOGRT_FEATURE_MEDIUM) && (m->phase != FOGRT_PHASE_HG || s->x->emits);
+}
+FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                          fogrt__v3 beta, float t_end, bool collided)
+{
+    float a, b, w = collided ? 1.0f : 0.0f;
+    if (P->xs->expected_emission) {
+        if (!fogrt__x_fog_span(s, P->o, P->d, t_end, &a, &b)) return;   /* misses the fog's box */
+        w = b < INFINITY ? -expm1f(-s->medium.sigma_t * (b - a)) : 1.0f;
+    }
+    if (w > 0.0f) fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, s->x->emit), w), "fog emission");
+}
+#endif /* FOGRT_NO_MEDIA */
 #endif /* FOGRT_MINIMAL */
 
 #endif /* FOGRT_IMPLEMENTATION_INCLUDED */

@@ -266,6 +266,16 @@ CLI_FN bool cli_parse_albedo(const char *s, fogrt_vec3 *out)
     out->x = (float)v[0]; out->y = (float)v[1]; out->z = (float)v[2];
     return true;
 }
+/* "2" or "1,0.5,0.2": radiance, each finite and >= 0 */
+CLI_FN bool cli_parse_emission(const char *s, fogrt_vec3 *out)
+{
+    double v[3];
+    if (strchr(s, ',')) { if (!cli_parse_list(s, v, 3)) return false; }
+    else { if (!cli_parse_double(s, &v[0])) return false; v[1] = v[2] = v[0]; }
+    if (!(v[0] >= 0 && v[0] <= 3.0e38 && v[1] >= 0 && v[1] <= 3.0e38 && v[2] >= 0 && v[2] <= 3.0e38)) return false;
+    out->x = (float)v[0]; out->y = (float)v[1]; out->z = (float)v[2];
+    return true;
+}
 CLI_FN bool cli_ends_with(const char *s, const char *ext)
 {
     size_t n = strlen(s), m = strlen(ext), i;
@@ -288,6 +298,9 @@ typedef struct cli_common {
     int max_depth;                       /* -m */
     bool hemisphere;                     /* -H */
     float g; bool g_set, paper_g;        /* --g, -g */
+    float g2, w; bool two_lobes;         /* --g G1,G2,W (appendix G) */
+    fogrt_phase_type phase; bool phase_set;   /* --phase (G) */
+    fogrt_vec3 emission; bool emission_set;   /* --emission (G) */
     float density; bool density_set;     /* --density */
     fogrt_vec3 albedo; bool albedo_set;  /* --albedo */
     fogrt_integrator integrator;         /* --integrator */
@@ -297,9 +310,19 @@ typedef struct cli_common {
 } cli_common;
 
 static const char *const cli_common_names[] = {
-    "-r", "-t", "-l", "-m", "-H", "-g", "--g", "--density", "--albedo", "--integrator", "--fresnel",
-    "--seed", "--exposure", "-h", "--help", NULL
+    "-r", "-t", "-l", "-m", "-H", "-g", "--g", "--density", "--albedo", "--phase", "--emission", "--integrator",
+    "--fresnel", "--seed", "--exposure", "-h", "--help", NULL
 };
+
+/* The build that left out appendix G of fogrt.h (media beyond the paper), for the one line
+   that refuses its flags. */
+#if defined(FOGRT_MINIMAL)
+#define CLI_NO_MEDIA_MACRO "FOGRT_MINIMAL"
+#elif defined(FOGRT_NO_MEDIUM)
+#define CLI_NO_MEDIA_MACRO "FOGRT_NO_MEDIUM"
+#else
+#define CLI_NO_MEDIA_MACRO "FOGRT_NO_MEDIA"
+#endif
 
 /* The defaults (the image size is the program's: fogrt 800x600, the preview 320x240). */
 CLI_FN void cli_common_defaults(cli_common *c, int width, int height)
@@ -344,8 +367,20 @@ CLI_FN int cli_common_flag(cli_arg *A, cli_common *c)
     }
     if (cli_is(A, "-H")) { c->hemisphere = true; return 0; }
     if (cli_is(A, "-g") || cli_is(A, "--g")) {
+        double l[3];
         CLI_NEED(1); v = cli_next(A);
-        if (!cli_parse_float(v, &c->g) || c->g < -1 || c->g > 1) return cli_bad_flag(a, "g must be a number in [-1, 1], got '%s'", v);
+        if (strchr(v, ',')) {                     /* two lobes: w HG(G1) + (1 - w) HG(G2) */
+#ifdef FOGRT_NO_MEDIA
+            return cli_bad_flag(a, "two lobes G1,G2,W need appendix G of fogrt.h: this %s was built with %s", cli_prog, CLI_NO_MEDIA_MACRO);
+#endif
+            if (!cli_parse_list(v, l, 3) || !(l[0] >= -1 && l[0] <= 1 && l[1] >= -1 && l[1] <= 1 && l[2] >= 0 && l[2] <= 1))
+                return cli_bad_flag(a, "two lobes must be G1,G2,W with G1 and G2 in [-1, 1] and W in [0, 1], got '%s'", v);
+            c->g = (float)l[0]; c->g2 = (float)l[1]; c->w = (float)l[2]; c->two_lobes = true;
+        } else if (!cli_parse_float(v, &c->g) || c->g < -1 || c->g > 1) {
+            return cli_bad_flag(a, "g must be a number in [-1, 1] (or G1,G2,W for two lobes), got '%s'", v);
+        } else {
+            c->two_lobes = false;
+        }
         c->g_set = true;
         if (cli_is(A, "-g")) c->paper_g = true;
         return 0;
@@ -362,6 +397,24 @@ CLI_FN int cli_common_flag(cli_arg *A, cli_common *c)
         if (!cli_parse_albedo(v, &c->albedo)) return cli_bad_flag(a, "albedo must be a number in [0, 1] or r,g,b with each in [0, 1], got '%s'", v);
         c->albedo_set = true;
         return 0;
+    }
+    if (cli_is(A, "--phase") || cli_is(A, "--emission")) {
+        CLI_NEED(1); v = cli_next(A);
+#ifdef FOGRT_NO_MEDIA
+        return cli_bad_flag(a, "needs appendix G of fogrt.h (media beyond the paper): this %s was built with %s", cli_prog, CLI_NO_MEDIA_MACRO);
+#else
+        if (cli_is(A, "--phase")) {
+            if (strcmp(v, "hg") == 0) c->phase = FOGRT_PHASE_HG;
+            else if (strcmp(v, "rayleigh") == 0) c->phase = FOGRT_PHASE_RAYLEIGH;
+            else return cli_bad_flag(a, "must be hg or rayleigh, got '%s'", v);
+            c->phase_set = true;
+            return 0;
+        }
+        if (!cli_parse_emission(v, &c->emission))
+            return cli_bad_flag(a, "emission must be R,G,B (or one number for all three), each finite and >= 0, got '%s'", v);
+        c->emission_set = true;
+        return 0;
+#endif
     }
     if (cli_is(A, "--integrator")) {
         CLI_NEED(1); v = cli_next(A);
@@ -392,6 +445,21 @@ CLI_FN int cli_common_flag(cli_arg *A, cli_common *c)
     return -1;
 }
 
+/* What the fog flags of appendix G ask of the medium desc (after the parsing: --phase
+   rayleigh with two lobes is refused, exit 2). */
+CLI_FN int cli_common_media_check(const cli_common *c)
+{
+    if (c->phase_set && c->phase == FOGRT_PHASE_RAYLEIGH && c->two_lobes)
+        return cli_bad_flag("--phase", "rayleigh cannot be combined with two lobes (--g G1,G2,W): the lobes are Henyey-Greenstein's");
+    return 0;
+}
+CLI_FN void cli_common_media_apply(const cli_common *c, fogrt_medium_desc *md)
+{
+    if (c->g_set) { md->phase = c->two_lobes ? FOGRT_PHASE_HG2 : FOGRT_PHASE_HG; md->g2 = c->g2; md->w = c->w; }
+    if (c->phase_set && (c->phase == FOGRT_PHASE_RAYLEIGH || md->phase == FOGRT_PHASE_RAYLEIGH)) md->phase = c->phase;
+    if (c->emission_set) md->emission = c->emission;
+}
+
 /* The help lines of the common flags, the same words in both programs. */
 CLI_FN void cli_common_usage(FILE *f, int width, int height)
 {
@@ -415,6 +483,13 @@ CLI_FN void cli_common_usage(FILE *f, int width, int height)
         "                 the scene's own: 0.3 for the default scene and OBJ/PLY, 0 for .dae)\n"
         "  --albedo A     single-scattering albedo in [0, 1], a scalar or r,g,b (default: the\n"
         "                 scene's: 0.9; .dae files 0.9)\n"
+        "  --g G1,G2,W    (also -g) two Henyey-Greenstein lobes, W HG(G1) + (1 - W) HG(G2), G1\n"
+        "                 and G2 in [-1, 1], W in [0, 1] (default: one lobe, --g G)\n"
+        "  --phase P      the fog's phase function: hg (Henyey-Greenstein, --g) or rayleigh\n"
+        "                 (3/(16 pi) (1 + cos^2), --g unused) (default hg)\n"
+        "  --emission E   radiance the fog emits, R,G,B or one number, each >= 0, added as\n"
+        "                 sigma_a E per unit length with sigma_a = density x (1 - albedo)\n"
+        "                 (default 0: no emission)\n"
         "  --integrator I path (global illumination, the paper's Algorithm 1) or direct (one\n"
         "                 bounce, the paper's baseline) (default path)\n"
         "  --fresnel F    schlick or exact (default schlick)\n"

@@ -131,8 +131,8 @@ typedef struct cli_options {
 /* Every flag the parser takes, for "did you mean" (tests/test_cli.sh checks that -h and the
    README's table list the same ones). */
 static const char *const cli_flag_names[] = {
-    "-r", "-t", "-l", "-m", "-H", "-g", "--g", "--density", "--albedo", "--integrator", "--fresnel",
-    "--seed", "--exposure", "-h", "--help",
+    "-r", "-t", "-l", "-m", "-H", "-g", "--g", "--density", "--albedo", "--phase", "--emission", "--integrator",
+    "--fresnel", "--seed", "--exposure", "-h", "--help",
     "-s", "-o", "-f", "-b", "-d", "-a", "-c", "-e",
     "--camera-pos", "--look-at", "--up", "--fov", "--cs184-framing", "--print-camera",
     "--fog-bounds", "--equiangular", "--lights", "--glow", "--footprint", "--expected-emission", "--mis",
@@ -438,6 +438,7 @@ static int parse_args(int argc, char **argv, cli_options *o)
     o->integrator = o->c.integrator; o->fresnel = o->c.fresnel; o->seed = o->c.seed;
     o->exposure_ev = o->c.exposure_ev;
 
+    if ((k = cli_common_media_check(&o->c)) != 0) return k;
     if (o->adaptive && (o->time_budget > 0 || o->target_error > 0))
         return bad_flag("-a", "cannot be combined with --time or --target-error");
     {   /* the image memory, before anything is allocated */
@@ -1593,10 +1594,11 @@ static int run(int argc, char **argv)
     else if (o.paper_g && md.sigma_t == 0.0f) md.sigma_t = 0.2f;   /* the paper's -g switches fog on */
     if (o.albedo_set) md.albedo = o.albedo;
     if (o.g_set) md.g = o.g;
+    cli_common_media_apply(&o.c, &md);           /* --g G1,G2,W, --phase, --emission */
     if (o.fog_where == CLI_FOG_BOX) { md.bounded = true; md.bounds_min = o.fog_lo; md.bounds_max = o.fog_hi; }
     if (o.fog_where == CLI_FOG_ALL) md.bounded = false;
     r = fogrt_scene_set_medium(scene, &md);
-    if (r) { fail_line(&logbuf, o.fog_where == CLI_FOG_BOX ? "--density/--albedo/--g/--fog-bounds" : "--density/--albedo/--g", r); status = 2; goto done; }
+    if (r) { fail_line(&logbuf, o.fog_where == CLI_FOG_BOX ? "--density/--albedo/--g/--phase/--emission/--fog-bounds" : "--density/--albedo/--g/--phase/--emission", r); status = 2; goto done; }
     if (o.env_map) {                             /* -e: the environment map light */
         int ew = 0, eh = 0;
         float *env;

@@ -86,6 +86,7 @@ typedef struct preview_options {
     float density; bool density_set;
     fogrt_vec3 albedo; bool albedo_set;
     float g; bool g_set; bool paper_g;
+    cli_common fog;           /* the common flags as parsed: appendix G's --g G1,G2,W, --phase, --emission */
     float exposure;           /* --exposure, as the multiplier 2^EV */
     const char *scene;
     const char *save_dir;
@@ -252,6 +253,8 @@ static int parse_flags(int argc, char **argv, preview_options *o)
     o->seed = c.seed; o->density = c.density; o->density_set = c.density_set; o->albedo = c.albedo;
     o->albedo_set = c.albedo_set; o->g = c.g; o->g_set = c.g_set; o->paper_g = c.paper_g;
     o->exposure = exp2f(c.exposure_ev);           /* --exposure is stops, as in fogrt */
+    o->fog = c;
+    if ((k = cli_common_media_check(&c)) != 0) return k;
     if (o->keys && o->frames == 0) return bad_flag("--keys", "needs --frames (scripted mode)");
     if (o->width * o->scale > 16384 || o->height * o->scale > 16384)
         return bad_flag("--scale", "window of %dx%d pixels is too large (at most 16384 on a side)", o->width * o->scale, o->height * o->scale);
@@ -504,8 +507,9 @@ static int load_scene(app *a)
     else if (o->paper_g && md.sigma_t == 0.0f) md.sigma_t = 0.2f;
     if (o->albedo_set) md.albedo = o->albedo;
     if (o->g_set) md.g = o->g;
+    cli_common_media_apply(&o->fog, &md);         /* --g G1,G2,W, --phase, --emission */
     r = fogrt_scene_set_medium(a->scene, &md);
-    if (r) { fprintf(stderr, "preview: --density/--albedo/--g: %s\n", fogrt_result_string(r)); return 2; }
+    if (r) { fprintf(stderr, "preview: --density/--albedo/--g/--phase/--emission: %s\n", fogrt_result_string(r)); return 2; }
     r = preview_build(a->scene);
     if (r) {
         fprintf(stderr, "preview: %s: %s\n", o->scene ? o->scene : "default scene", fogrt_result_string(r));
@@ -641,6 +645,7 @@ static void *worker_main(void *arg)
         if (!have_view || next_gen != gen) {
             if (!have_view || !same_medium(&cur, &next)) {
                 fogrt_medium_desc md;
+                fogrt_scene_get_medium(a->scene, &md);   /* the rest (box, phase, emission) as set */
                 md.sigma_t = next.fog ? next.density : 0.0f;
                 md.albedo = next.albedo;
                 md.g = next.g;

@@ -215,11 +215,13 @@ if have "$GCC"; then
 fi
 if have "$GXX"; then
     run "$GXX FOGRT_MINIMAL" $GXX $XXWARN -DFOGRT_MINIMAL -I"$ROOT" -c "$TMP/impl.cc" -o "$TMP/min_cxx.o"
+    run "$GXX FOGRT_NO_MEDIA" $GXX $XXWARN -DFOGRT_NO_MEDIA -I"$ROOT" -c "$TMP/impl.cc" -o "$TMP/nomedia_cxx.o"
 fi
 if have "$GCC"; then
     for defs in -DFOGRT_NO_WIDE_BVH -DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_NO_ESTIMATION \
                 "-DFOGRT_NO_WIDE_BVH -DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_NO_ESTIMATION" \
                 "-DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_NO_MEDIUM" "-DFOGRT_NO_ESTIMATION -DFOGRT_TRACE" \
+                -DFOGRT_NO_MEDIA "-DFOGRT_NO_MEDIA -DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_TRACE" \
                 -DFOGRT_WBVH_NO_AVX2 -DFOGRT_WBVH_NO_SIMD; do
         run "$GCC appendix removed: $defs" $GCC $CWARN -fopenmp $defs -I"$ROOT" -c "$TMP/impl.c" -o "$TMP/app.o"
     done
@@ -293,6 +295,8 @@ if have "$GCC" && have nm; then
     run "nm: FOGRT_NO_ESTIMATION removes appendix C" appendix_nm FOGRT_NO_ESTIMATION \
         fogrt_image_sample_rates fogrt_scene_set_environment_map fogrt_fresnel_dielectric fogrt__roulette_pilot \
         fogrt__x_pixel_position fogrt__build_light_pick
+    run "nm: FOGRT_NO_MEDIA removes appendix G" appendix_nm FOGRT_NO_MEDIA \
+        fogrt_sample_hg2 fogrt_sample_rayleigh fogrt_sample_phase fogrt__x_check_media fogrt__media_emission
 else
     skip "appendix nm checks: gcc or nm not installed"
 fi

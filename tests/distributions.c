@@ -475,7 +475,7 @@ static void check_directions(const char *name, const char *title, int which, cel
             w = bs.wi;
         } else {
             float u[2];
-            fogrt__light_sample ls;
+            fogrt_light_sample ls;
             u[0] = u1; u[1] = u2;
             if (!fogrt__sample_point_light(scene, &scene->lights[0], p, u, &ls)) continue;
             w = ls.wi;
@@ -588,7 +588,7 @@ static void check_area_light(void)
     fogrt_rng_seed(&rng, 1404, 0);
     for (i = 0; i < N_SAMPLES; ++i) {
         float u[3];
-        fogrt__light_sample ls;
+        fogrt_light_sample ls;
         double x, z;
         u[0] = fogrt_rng_float(&rng); u[1] = fogrt_rng_float(&rng); u[2] = fogrt_rng_float(&rng);
         if (!fogrt__sample_area_light(s, &s->area_lights[0], p, u, &ls)) continue;

@@ -57,7 +57,12 @@
 #else
 #define STATS_TESTS_BSDF_STATS 17   /* tests/test_bsdf_stats.c: 5 chi-square + 12 binomial */
 #endif
-#define STATS_SUITE_TESTS (STATS_TESTS_SAMPLING + STATS_TESTS_BSDF_STATS)
+#ifdef FOGRT_NO_MEDIA   /* appendix G left out (also by FOGRT_MINIMAL): its tests skip */
+#define STATS_TESTS_MEDIA      0
+#else
+#define STATS_TESTS_MEDIA      20   /* tests/test_media.c: 19 chi-square + 1 KS */
+#endif
+#define STATS_SUITE_TESTS (STATS_TESTS_SAMPLING + STATS_TESTS_BSDF_STATS + STATS_TESTS_MEDIA)
 
 /* Where failing tests dump their tables (relative to the repository root, where tests run). */
 #ifndef STATS_DUMP_DIR

@@ -77,6 +77,19 @@ expect 2 "--albedo"     "albedo above 1"          -- --albedo 1.5 -f "$out"
 expect 2 "--albedo"     "albedo with two parts"   -- --albedo 0.5,0.5 -f "$out"
 expect 2 "--albedo"     "negative albedo channel" -- --albedo 0.5,-0.1,0.5 -f "$out"
 expect 2 "--integrator" "unknown integrator"      -- --integrator bidir -f "$out"
+# appendix G's fog flags: two lobes, the phase function, emission
+expect 2 "--g"          "two lobes, |G1| > 1"     -- --g 1.5,0,0.5 -f "$out";          one_line_no_image "two lobes, |G1| > 1"
+expect 2 "--g"          "two lobes, W > 1"        -- --g 0.5,0.2,1.2 -f "$out"
+expect 2 "--g"          "two lobes, W < 0"        -- --g 0.5,0.2,-0.1 -f "$out"
+expect 2 "--g"          "two values for --g"      -- --g 0.5,0.2 -f "$out"
+expect 2 "-g"           "two lobes, NaN G2 (-g)"  -- -g 0.5,nan,0.5 -f "$out"
+expect 2 "--phase"      "unknown phase function"  -- --phase mie -f "$out";            one_line_no_image "unknown phase"
+expect 2 "--phase"      "missing phase"           -- -f "$out" --phase
+expect 2 "--phase"      "rayleigh with two lobes" -- --phase rayleigh --g 0.8,-0.4,0.7 -f "$out"; one_line_no_image "rayleigh with two lobes"
+expect 2 "--emission"   "negative emission"       -- --emission -1 -f "$out";          one_line_no_image "negative emission"
+expect 2 "--emission"   "emission with two parts" -- --emission 1,2 -f "$out"
+expect 2 "--emission"   "infinite emission"       -- --emission 1,inf,1 -f "$out"
+expect 2 "--emission"   "NaN emission"            -- --emission nan -f "$out"
 expect 2 "--fresnel"    "unknown fresnel"         -- --fresnel fast -f "$out"
 expect 2 "--bvh"        "unknown bvh"             -- --bvh kd -f "$out"
 expect 2 "--seed"       "negative seed"           -- --seed -1 -f "$out"
@@ -102,7 +115,7 @@ expect 2 "short.cam:2:" "malformed -c file"       -- -f "$out" -c "$tmp/short.ca
 
 # ---- help ----
 expect 0 "" "help" -- -h
-for flag in -s -l -t -m -o -r -f -b -d -a -H -c -g -h --density --albedo --g --integrator --fresnel --bvh --seed --time --target-error --quiet \
+for flag in -s -l -t -m -o -r -f -b -d -a -H -c -g -h --density --albedo --g --phase --emission --integrator --fresnel --bvh --seed --time --target-error --quiet \
             --camera-pos --look-at --up --fov --cs184-framing --print-camera --exposure --log --reference --equiangular --mis --glow --footprint --expected-emission --lights; do
     check "grep -qF -- ' $flag ' '$tmp/out'" "-h does not document $flag"
 done
@@ -148,6 +161,16 @@ pfm_ok() {
     hdr=$(head -n 3 "$1" | wc -c)
     [ "$(wc -c <"$1")" -eq $((hdr + $2 * $3 * 12)) ]
 }
+# appendix G's fog flags render; a single --g and --phase hg are today's fog, bit for bit;
+# emitting fog is brighter than the same fog without
+expect 0 "" "two lobes, Rayleigh, emission" -- --quiet -s 2 -r 16 12 --g 0.8,-0.4,0.7 --emission 0.2,0.1,0.05 -f "$tmp/m1.pfm"
+expect 0 "" "Rayleigh" -- --quiet -s 2 -r 16 12 --phase rayleigh --density 0.5 -f "$tmp/m2.pfm"
+check "pfm_ok '$tmp/m1.pfm' 16 12 && pfm_ok '$tmp/m2.pfm' 16 12" "media: the images were not written"
+"$fogrt" --quiet -s 2 -r 16 12 --seed 2 --g 0.6 -f "$tmp/m3.pfm"
+"$fogrt" --quiet -s 2 -r 16 12 --seed 2 --g 0.6 --phase hg --emission 0 -f "$tmp/m4.pfm"
+check "cmp -s '$tmp/m3.pfm' '$tmp/m4.pfm'" "media: --phase hg --emission 0 changed the image of --g 0.6"
+"$fogrt" --quiet -s 2 -r 16 12 --seed 2 --g 0.6 --emission 0.5 -f "$tmp/m5.pfm"
+check "[ \"\$(pfm_stats '$tmp/m5.pfm' | awk '{ print \$4 }')\" != \"\$(pfm_stats '$tmp/m3.pfm' | awk '{ print \$4 }')\" ] && awk -v a=\"\$(pfm_stats '$tmp/m5.pfm' | awk '{ print \$4 }')\" -v b=\"\$(pfm_stats '$tmp/m3.pfm' | awk '{ print \$4 }')\" 'BEGIN { exit !(a > b) }'" "media: --emission 0.5 did not brighten the image"
 now() { date +%s.%N; }
 # wait_rendering CSV: wait (up to 60 s) until the render's --log has its first batch row, so
 # that a signal sent next lands in the render whatever the machine's speed (a sanitizer

@@ -17,7 +17,10 @@ rejected at ires 16 and 64 alike. So every case runs three times: with the harne
 defaults, with ires = 16 and with ires = 64. A case fails only when fogrt is rejected where
 the control, under the same settings, is accepted (or, for a sampler Mitsuba does not
 have, when fogrt is rejected at ires = 64), or when a negative control (HG sampled at
-g = 0.6, its pdf given at 0.57; the footprint's pdf without its sphere's part) is accepted. The table goes to OUT/results.md.
+g = 0.6, its pdf given at 0.57; the footprint's pdf without its sphere's part; two HG lobes
+whose pdf has the weights swapped) is accepted. Appendix G's two HG lobes run beside
+Mitsuba's blendphase of two hg, its Rayleigh beside Mitsuba's rayleigh. The table goes to
+OUT/results.md.
 
 fogrt's samplers are compiled from fogrt.h into a shared library (chi2_shim.c) and called
 through ctypes on whole batches. The harness needs Mitsuba's llvm_ad_rgb variant (Debian's
@@ -36,8 +39,9 @@ import crosscheck  # noqa: E402  (the virtual environment and the LLVM search)
 
 GENERIC_WO = (0.3, -0.5, 0.812)
 # the samplers of chi2_shim.c, by its kind argument
-HG, GLOW, COSINE, SPHERE, HG_WRONG_PDF, FOOTPRINT, FOOTPRINT_WRONG_PDF = range(7)
-NEGATIVE = (HG_WRONG_PDF, FOOTPRINT_WRONG_PDF)   # the negative controls: must be rejected
+HG, GLOW, COSINE, SPHERE, HG_WRONG_PDF, FOOTPRINT, FOOTPRINT_WRONG_PDF, HG2, RAYLEIGH, HG2_WRONG_PDF = range(10)
+NEGATIVE = (HG_WRONG_PDF, FOOTPRINT_WRONG_PDF, HG2_WRONG_PDF)   # the negative controls: must be rejected
+HG2_ROWS = ((0.8, -0.4, 0.7), (0.95, -0.7, 0.5), (-0.3, 0.6, 0.25))   # chi2_shim.c's HG2: g1, g2, w
 IRES = (4, 16, 64)   # quadrature points per cell side: the harness's default, then finer
 
 
@@ -58,10 +62,16 @@ def cases():
     # sphere around the lit patch (both ways mixed) and inside it (the lamp's cone alone)
     out.append(("spot's footprint, from outside its sphere", FOOTPRINT, 0.0, (-1.2, 1.1, 1.0), None))
     out.append(("spot's footprint, from inside its sphere", FOOTPRINT, 0.0, (0.3, 0.5, 0.2), None))
+    # appendix G: two HG lobes beside Mitsuba's blendphase of two hg, Rayleigh beside its rayleigh
+    for row, (g1, g2, w) in enumerate(HG2_ROWS):
+        out.append(("two lobes %g, %g, w = %g, generic wo" % (g1, g2, w), HG2, float(row), unit(GENERIC_WO),
+                    ("blend", (g1, g2, w))))
+    out.append(("Rayleigh, generic wo", RAYLEIGH, 0.0, unit(GENERIC_WO), ("rayleigh", 0.0)))
     out.append(("cosine hemisphere", COSINE, 0.0, (0.0, 0.0, 1.0), ("cosine", 0.0)))
     out.append(("uniform sphere", SPHERE, 0.0, (0.0, 0.0, 1.0), ("sphere", 0.0)))
     out.append(("negative control: HG g = 0.6, pdf at g = 0.57", HG_WRONG_PDF, 0.6, unit(GENERIC_WO), None))
     out.append(("negative control: the footprint, pdf of the lamp's cone alone", FOOTPRINT_WRONG_PDF, 0.0, (-1.2, 1.1, 1.0), None))
+    out.append(("negative control: two lobes 0.8, -0.4, w = 0.7, pdf with w = 0.3", HG2_WRONG_PDF, 0.0, unit(GENERIC_WO), None))
     return out
 
 
@@ -118,6 +128,15 @@ def main():
         kind, g = control
         if kind == "hg":
             s, p = PhaseFunctionAdapter("hg", "<float name='g' value='%r'/>" % g, wi=list(wo))
+            return s, p, 3
+        if kind == "blend":   # Mitsuba's weight is the second phase's: fogrt's w HG(g1) + (1 - w) HG(g2)
+            g1, g2, w = g
+            inner = ("<float name='weight' value='%r'/><phase type='hg'><float name='g' value='%r'/></phase>"
+                     "<phase type='hg'><float name='g' value='%r'/></phase>" % (1.0 - w, g1, g2))
+            s, p = PhaseFunctionAdapter("blendphase", inner, wi=list(wo))
+            return s, p, 3
+        if kind == "rayleigh":
+            s, p = PhaseFunctionAdapter("rayleigh", "", wi=list(wo))
             return s, p, 3
         if kind == "cosine":   # Mitsuba's pdf is cos / pi on the whole sphere: 0 below, as fogrt's
             return (mi.warp.square_to_cosine_hemisphere,

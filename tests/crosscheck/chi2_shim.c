@@ -23,7 +23,10 @@ static fogrt__footprint shim_footprint(void)
    negative control, HG sampled at g but its pdf given at 0.95 g (must be rejected); 5: the
    footprint above, seen from the point wo (both ways mixed outside its sphere, the lamp's
    cone alone inside it); 6: the negative control, that footprint sampled the same way but
-   its pdf given as the lamp's cone's alone (must be rejected). */
+   its pdf given as the lamp's cone's alone (must be rejected); 7: two HG lobes (appendix G),
+   param the row of HG2 below; 8: Rayleigh (G); 9: the negative control, two lobes (row
+   param) sampled but the pdf given with the weights swapped (w for 1 - w). */
+static const float HG2[3][3] = {{0.8f, -0.4f, 0.7f}, {0.95f, -0.7f, 0.5f}, {-0.3f, 0.6f, 0.25f}};   /* g1, g2, w */
 void chi2_sample(int kind, float param, float wx, float wy, float wz, const float *u1, const float *u2, float *out, int n)
 {
     fogrt_vec3 wo = v3(wx, wy, wz);
@@ -34,6 +37,8 @@ void chi2_sample(int kind, float param, float wx, float wy, float wz, const floa
         fogrt_vec3 w;
         if (kind == 5 || kind == 6) { if (!fogrt__sample_footprint(&F, wo, u1[i], u2[i], &w)) w = v3(0.0f, 0.0f, 0.0f); }   /* never here */
         else if (kind == 0 || kind == 4) w = fogrt_sample_hg(param, wo, u1[i], u2[i], &pdf);
+        else if (kind == 7 || kind == 9) { const float *h = HG2[(int)param]; w = fogrt_sample_hg2(h[0], h[1], h[2], wo, u1[i], u2[i], &pdf); }
+        else if (kind == 8) w = fogrt_sample_rayleigh(wo, u1[i], u2[i], &pdf);
         else if (kind == 1) w = fogrt_sample_glow(wo, u1[i], u2[i], &pdf);
         else if (kind == 2) w = fogrt_sample_cosine_hemisphere(u1[i], u2[i]);
         else w = fogrt_sample_uniform_sphere(u1[i], u2[i]);
@@ -50,6 +55,9 @@ void chi2_pdf(int kind, float param, float wx, float wy, float wz, const float *
         if (kind == 5) out[i] = fogrt__footprint_pdf(&F, wo, w);
         else if (kind == 6) out[i] = fogrt__footprint_cone_pdf(&F, wo, w);
         else if (kind == 0) out[i] = fogrt_hg_pdf(param, wo, w);
+        else if (kind == 7) { const float *h = HG2[(int)param]; out[i] = fogrt_hg2_pdf(h[0], h[1], h[2], wo, w); }
+        else if (kind == 9) { const float *h = HG2[(int)param]; out[i] = fogrt_hg2_pdf(h[0], h[1], 1.0f - h[2], wo, w); }
+        else if (kind == 8) out[i] = fogrt_rayleigh_pdf(wo, w);
         else if (kind == 4) out[i] = fogrt_hg_pdf(0.95f * param, wo, w);
         else if (kind == 1) out[i] = fogrt_glow_pdf(wo, w);
         else if (kind == 2) out[i] = fogrt_cosine_hemisphere_pdf(w.z);   /* 0 below the horizon */
