@@ -1654,6 +1654,11 @@ static int run(int argc, char **argv)
     /* Build */
     bd = fogrt_build_defaults();
     bd.heuristic = o.bvh;
+    /* The roulette's pilot (Part II, C) traces 64 x 48 x 16 camera paths at build time: a
+       render of fewer than four times as many samples pays more for it than it can gain. */
+    if ((o.spp_set || (o.time_budget <= 0 && o.target_error <= 0)) &&
+        (double)o.width * (double)o.height * (double)o.spp < 4.0 * 64 * 48 * 16)
+        bd.roulette_pilot = false;
     if (o.fog_where == CLI_FOG_SCENE && md.sigma_t > 0.0f) {
         /* The scene's box is known once it is built: a quick build (no roulette pilot) for
            it, the fog set to that box, then the real build. */
