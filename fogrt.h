@@ -2091,7 +2091,7 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 
 /* The scene's ray query: the binary tree above, or the wide tree of Part II (A) when the
    build made one. */
-FOGRT__HOT bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
+FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
                                 fogrt_hit *hit, bool any_hit)
 {
 #ifndef FOGRT_NO_WIDE_BVH
