@@ -437,6 +437,11 @@ typedef enum fogrt_bvh_heuristic {
                      milliseconds), which sets the roulette's k for the scene's renders;
                      false: k = 1 (q = throughput), for a build timed alone or a scene
                      rebuilt every frame
+     release_binary  false; true: with the wide layout, the binary tree is freed as soon as
+                     the wide tree holds what it needs of it (about 24 bytes per primitive
+                     less, also at the build's peak); fogrt_scene_get_bvh then gives no
+                     tree and fogrt_bvh_sah_cost 0. For a program that only renders (the
+                     fogrt command)
      resolved        set by fogrt_build_defaults(): the fields hold their real values      */
 typedef enum fogrt_bvh_layout {
     FOGRT_BVH_LAYOUT_DEFAULT = 0,   /* wide from FOGRT_WBVH_MIN_PRIMS (1) primitives, else binary */
@@ -454,6 +459,7 @@ typedef struct fogrt_build_desc {
     int max_leaf_size;
     fogrt_bvh_layout layout;
     bool roulette_pilot;
+    bool release_binary;
     bool resolved;
 } fogrt_build_desc;
 
@@ -3189,8 +3195,8 @@ FOGRT__PRIVATE uint32_t fogrt__features(const fogrt_scene *s)
 
 FOGRT__PUBLIC fogrt_build_desc fogrt_build_defaults(void)
 {
-    /* heuristic, bins, c_trav, c_int, max_leaf_size, layout, roulette_pilot, resolved */
-    static const fogrt_build_desc d = { FOGRT_BVH_SAH, FOGRT_BVH_BINS, 1.0f, 1.0f, 4, FOGRT_BVH_LAYOUT_DEFAULT, true, true };
+    /* heuristic, bins, c_trav, c_int, max_leaf_size, layout, roulette_pilot, release_binary, resolved */
+    static const fogrt_build_desc d = { FOGRT_BVH_SAH, FOGRT_BVH_BINS, 1.0f, 1.0f, 4, FOGRT_BVH_LAYOUT_DEFAULT, true, false, true };
     return d;
 }
 /* The desc (NULL: the defaults), checked. Like the render desc it must come from
@@ -4289,60 +4295,104 @@ FOGRT__PRIVATE bool fogrt__wbvh_avx2_usable(void)
     return false;
 #endif
 }
-/* Build the wide tree from the scene's binary tree (s->nodes) and packed primitives
-   (s->prim_index, and the primitives themselves): each wide node collects its lanes
-   (step 1 above); a lane with at most FOGRT_WBVH_LEAF (4) primitives below it becomes one
-   leaf, one full packet (the binary tree's leaves hold about 2 primitives, so this halves
-   the packets and the nodes); the others become new wide nodes, handled the same way from
-   a stack. Then each node gets its lanes' boxes and each leaf its packets. Returns false
-   when out of memory (w is then empty). */
-FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
+/* A wide node's lanes from its record: boxes from the binary nodes, children and counts. A
+   leaf lane's child is its first packet; start[that packet] receives where the leaf's
+   primitives begin in s->prim_index, which is all fogrt__wbvh_packets needs of the binary
+   tree. */
+FOGRT__PRIVATE void fogrt__wbvh_node_fill(const fogrt_scene *s, fogrt__wnode *wn, const fogrt__wrec *r, uint32_t *start)
 {
-    uint32_t *size, i, j, cap, leaf, leaf2;
+    uint32_t j;
+    int k;
+    for (j = 0; j < FOGRT__WBVH_W; ++j) {
+        const fogrt_bvh_node *bj = &s->nodes[r->lane[j]];
+        bool used = r->count[j] != FOGRT__WBVH_EMPTY;
+        for (k = 0; k < 3; ++k) {    /* an unused lane: the empty box no ray enters */
+            wn->box[k][j] = used ? bj->bmin[k] : INFINITY;
+            wn->box[3 + k][j] = used ? bj->bmax[k] : -INFINITY;
+        }
+        wn->child[j] = r->child[j]; wn->count[j] = r->count[j];
+        if (used && wn->count[j] > 0) start[wn->child[j]] = fogrt__wbvh_first(s->nodes, r->lane[j]);
+    }
+}
+/* The wide nodes from the scene's binary tree: each wide node collects its lanes (step 1
+   above); a lane with at most FOGRT_WBVH_LEAF (4) primitives below it becomes one leaf, one
+   full packet (the binary tree's leaves hold about 2 primitives, so this halves the packets
+   and the nodes); the others become new wide nodes, handled the same way from a stack.
+   Then each node gets its lanes' boxes, and *start (allocated here, one entry per packet)
+   where each leaf's primitives begin. Returns false when out of memory (w then has no nodes). */
+FOGRT__PRIVATE bool fogrt__wbvh_nodes(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a, uint32_t **start)
+{
+    uint32_t *size, i, cap, leaf, leaf2;
     bool small;
     fogrt__wrec *rec = NULL;
-    memset(w, 0, sizeof *w);
-    w->avx2 = fogrt__wbvh_avx2_usable();
-    if (!s->nodes || !s->prim_index || s->tri_count + s->sph_count == 0) return true;   /* nothing to trace */
+    *start = NULL;
     if (!(size = fogrt__wbvh_sizes(s, a))) return false;
     small = fogrt__wbvh_small_scene(s->tri_count + s->sph_count);
     leaf = small ? 0u : (uint32_t)FOGRT__WBVH_LEAF;
     leaf2 = small ? 0u : (uint32_t)FOGRT__WBVH_LEAF2;
     cap = fogrt__wbvh_bound(s, size, leaf2);
-    if ((rec = (fogrt__wrec *)fogrt__alloc(a, sizeof(fogrt__wrec) * cap)) != NULL) {
+    if ((rec = (fogrt__wrec *)fogrt__alloc(a, sizeof(fogrt__wrec) * cap)) != NULL)
         fogrt__wbvh_layout(s, size, leaf, leaf2, rec, cap, &w->node_count, &w->tri_packets);
-        w->nodes = (fogrt__wnode *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wnode) * w->node_count, &w->nodes_mem);
-        w->tris = (fogrt__wtri *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wtri) * (w->tri_packets ? w->tri_packets : 1u), &w->tris_mem);
-    }
     fogrt__free(a, size);
-    if (!w->nodes || !w->tris) { fogrt__free(a, rec); fogrt__wbvh_free(w, a); return false; }
-    for (i = 0; i < w->node_count; ++i) {
-        fogrt__wnode *wn = &w->nodes[i];
-        for (j = 0; j < FOGRT__WBVH_W; ++j) {
-            const fogrt_bvh_node *bj = &s->nodes[rec[i].lane[j]];
-            bool used = rec[i].count[j] != FOGRT__WBVH_EMPTY;
-            int k;
-            for (k = 0; k < 3; ++k) {    /* an unused lane: the empty box no ray enters */
-                wn->box[k][j] = used ? bj->bmin[k] : INFINITY;
-                wn->box[3 + k][j] = used ? bj->bmax[k] : -INFINITY;
-            }
-            wn->child[j] = rec[i].child[j]; wn->count[j] = rec[i].count[j];
-            if (used && wn->count[j] > 0) {
-                uint32_t next = wn->child[j];
-                fogrt__wbvh_pack_leaf(s, w, fogrt__wbvh_first(s->nodes, rec[i].lane[j]), wn->count[j], &next);
-            }
-        }
+    if (rec) {
+        w->nodes = (fogrt__wnode *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wnode) * w->node_count, &w->nodes_mem);
+        *start = (uint32_t *)fogrt__alloc(a, sizeof(uint32_t) * (w->tri_packets ? w->tri_packets : 1u));
     }
+    if (!w->nodes || !*start) {
+        fogrt__free(a, rec); fogrt__free(a, *start); *start = NULL;
+        fogrt__wbvh_free(w, a);
+        return false;
+    }
+    for (i = 0; i < w->node_count; ++i) fogrt__wbvh_node_fill(s, &w->nodes[i], &rec[i], *start);
     fogrt__free(a, rec);
     return true;
 }
+/* Each leaf's packets, from start (fogrt__wbvh_nodes), s->prim_index and the primitives
+   themselves. Returns false when out of memory. */
+FOGRT__PRIVATE bool fogrt__wbvh_packets(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a, const uint32_t *start)
+{
+    uint32_t i, j;
+    w->tris = (fogrt__wtri *)fogrt__wbvh_alloc_lines(a, sizeof(fogrt__wtri) * (w->tri_packets ? w->tri_packets : 1u), &w->tris_mem);
+    if (!w->tris) return false;
+    for (i = 0; i < w->node_count; ++i)
+        for (j = 0; j < FOGRT__WBVH_W; ++j) {
+            const fogrt__wnode *wn = &w->nodes[i];
+            uint32_t next = wn->child[j];
+            if (wn->count[j] != FOGRT__WBVH_EMPTY && wn->count[j] > 0) fogrt__wbvh_pack_leaf(s, w, start[next], wn->count[j], &next);
+        }
+    return true;
+}
+/* The wide tree of a built binary tree: its nodes, then its packets. With release (the
+   scene itself, or NULL), the binary tree's nodes are freed as soon as the wide nodes have
+   their boxes, before the packets take their room, and prim_index after the packets: the
+   build's peak is then the wide tree and the scene, without the binary tree (fogrt_build_desc
+   .release_binary). Returns false when out of memory (w is then empty). */
+FOGRT__PRIVATE bool fogrt__wbvh_make(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a, fogrt_scene *release)
+{
+    uint32_t *start;
+    bool ok;
+    memset(w, 0, sizeof *w);
+    w->avx2 = fogrt__wbvh_avx2_usable();
+    if (!s->nodes || !s->prim_index || s->tri_count + s->sph_count == 0) return true;   /* nothing to trace */
+    if (!fogrt__wbvh_nodes(s, w, a, &start)) return false;
+    if (release) { fogrt__free(a, release->nodes); release->nodes = NULL; release->node_count = 0; }
+    ok = fogrt__wbvh_packets(s, w, a, start);
+    fogrt__free(a, start);
+    if (release) { fogrt__free(a, release->prim_index); release->prim_index = NULL; }
+    if (!ok) fogrt__wbvh_free(w, a);
+    return ok;
+}
+FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
+{
+    return fogrt__wbvh_make(s, w, a, NULL);
+}
 /* The scene's wide tree: built by fogrt_scene_build (seam 3), released with the rest of
    the built data (seam 4). */
-FOGRT__PRIVATE bool fogrt__wide_build(fogrt_scene *s)
+FOGRT__PRIVATE bool fogrt__wide_build(fogrt_scene *s, bool release_binary)
 {
     s->x->wide = (fogrt__wbvh *)fogrt__alloc(&s->allocator, sizeof *s->x->wide);
     if (!s->x->wide) return false;
-    return fogrt__wbvh_build(s, s->x->wide, &s->allocator);
+    return fogrt__wbvh_make(s, s->x->wide, &s->allocator, release_binary ? s : NULL);
 }
 FOGRT__PRIVATE void fogrt__wide_release(fogrt_scene *s)
 {
@@ -7022,6 +7072,14 @@ FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const fogrt__se
 FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n)
 {
     struct fogrt__x *x = (struct fogrt__x *)fogrt__alloc(&s->allocator, sizeof *x);
+#ifndef FOGRT_NO_ESTIMATION
+    /* The pilot's rays cost what the tree's do. Where the SAH cost says a ray visits some
+       thousand nodes (slivers that all overlap: a fan of a million triangles around one
+       vertex; 10 to 30 in ordinary scenes), its fixed number of paths would take minutes
+       before any of the render's own limits apply, so it is not run (k = 1). Priced before
+       the binary tree may be released (A). */
+    bool pilot = d->roulette_pilot && fogrt_bvh_sah_cost(s) <= FOGRT__PILOT_MAX_SAH;
+#endif
     if (!x) return false;
     memset(x, 0, sizeof *x);
     s->x = x;
@@ -7031,7 +7089,7 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
 #endif
 #ifndef FOGRT_NO_WIDE_BVH
     if (fogrt__wants_wide(d, n)) {                      /* A: the wide tree replaces the packed primitives */
-        if (!fogrt__wide_build(s)) return false;
+        if (!fogrt__wide_build(s, d->release_binary)) return false;
         fogrt__free(&s->allocator, s->prims); s->prims = NULL;
     }
 #else
@@ -7058,12 +7116,7 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
     if (fogrt__lamps_in_fog(s) && !fogrt__find_footprints(s)) return false;   /* B */
 #endif
 #ifndef FOGRT_NO_ESTIMATION
-    /* The pilot's rays cost what the tree's do. Where the SAH cost says a ray visits some
-       thousand nodes (slivers that all overlap: a fan of a million triangles around one
-       vertex; 10 to 30 in ordinary scenes), its fixed number of paths would take minutes
-       before any of the render's own limits apply, so it is not run (k = 1). */
-    if (d->roulette_pilot && fogrt_bvh_sah_cost(s) <= FOGRT__PILOT_MAX_SAH)
-        x->rr_k = fogrt__roulette_pilot(s);                                 /* C */
+    if (pilot) x->rr_k = fogrt__roulette_pilot(s);                          /* C */
 #endif
     return true;
 }

@@ -1654,6 +1654,7 @@ static int run(int argc, char **argv)
     /* Build */
     bd = fogrt_build_defaults();
     bd.heuristic = o.bvh;
+    bd.release_binary = true;                    /* fogrt only renders: no tree to inspect */
     /* The roulette's pilot (Part II, C) traces 64 x 48 x 16 camera paths at build time: a
        render of fewer than four times as many samples pays more for it than it can gain. */
     if ((o.spp_set || (o.time_budget <= 0 && o.target_error <= 0)) &&

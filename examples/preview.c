@@ -173,6 +173,7 @@ static fogrt_render_desc preview_render_desc(const view_params *v, const preview
 static fogrt_result preview_build(fogrt_scene *scene)
 {
     fogrt_build_desc bd = fogrt_build_defaults();
+    bd.release_binary = true;               /* the preview only renders: no tree to inspect */
     return fogrt_scene_build(scene, &bd);
 }
 static void preview_image_free(fogrt_image *img)
