@@ -724,9 +724,44 @@ static void test_obj_polygons(void)
     assert_vec3(0, 0, 0, 0, tri_v(s, 5, 0), "-9 is vertex 1");
     assert_vec3(0, 1, 0, 0, tri_v(s, 5, 1), "-8 is vertex 2");
     assert_vec3(0, 0, 1, 0, tri_v(s, 5, 2), "-6 is vertex 4");
-    /* no normals in the file: smooth computed ones, along the winding (+z) */
-    assert_vec3(1e-6f, 0, 0, 1, tri_n(s, 0, 0), "computed normal");
+    /* no normals in the file, and every face in the plane z = 0 facing +z: the computed
+       smooth normals would be the face normals, so none are stored */
+    TEST_ASSERT_FALSE(s->tri_has_n[0]);
+    TEST_ASSERT_NULL(s->tri_n);
     fogrt_scene_destroy(s);
+}
+
+/* Loads the OBJ text obj (default placement unless as_is) into a fresh scene. */
+static fogrt_scene *load_obj_text(const char *obj, bool place_as_is)
+{
+    fogrt_load_options opt = as_is();
+    fogrt_load_report rep;
+    fogrt_scene *s = new_scene();
+    if (!place_as_is) opt.place = FOGRT_LOAD_PLACE_DEFAULT;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_load_obj_memory(s, obj, strlen(obj), "flat.obj", &opt, &rep), rep.message);
+    return s;
+}
+/* A flat mesh (every face with an area facing one way in one plane) gets no computed
+   normals, placed or not, in an axis plane or in a tilted one (z = x, exact in float); a
+   mesh lifted 1e-3 out of its plane, or with one face turned over, gets them. */
+static void test_flat_mesh_without_normals(void)
+{
+    static const char *flat = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 1 1 2\n";
+    static const char *tilted = "v 0 0 0\nv 1 0 1\nv 1 1 1\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
+    static const char *lifted = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0.001\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n";
+    static const char *turned = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 1 4 5\n";
+    static const struct { const char **obj; bool as_is, normals; } cases[] = {
+        { &flat, true, false }, { &flat, false, false }, { &tilted, true, false },
+        { &lifted, true, true }, { &lifted, false, true }, { &turned, true, true } };
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        fogrt_scene *s = load_obj_text(*cases[i].obj, cases[i].as_is);
+        char msg[64];
+        snprintf(msg, sizeof msg, "case %u", (unsigned)i);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(cases[i].normals, s->tri_n != NULL, msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(cases[i].normals, s->tri_has_n[0], msg);
+        fogrt_scene_destroy(s);
+    }
 }
 
 /* OBJ normals (v//n, v/t/n) are used, normalised, one vertex per (position, normal) pair. */
@@ -1742,6 +1777,7 @@ int main(void)
     RUN_TEST(test_dae_xml_quirks);
     RUN_TEST(test_dae_mirror_node);
     RUN_TEST(test_obj_polygons);
+    RUN_TEST(test_flat_mesh_without_normals);
     RUN_TEST(test_obj_normals);
     RUN_TEST(test_ply_ascii);
     RUN_TEST(test_ply_binary);
