@@ -1083,6 +1083,7 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
    Part I reaches Part II only at these seams, each marked "SEAM n" where it stands:
      1. fogrt__traverse            the wide tree, when the build made one (A)
      2. fogrt_scene_build          how small a binary node may stay, for the wide tree (A);
+        fogrt__build_tree          the boxes of long slivers cut into pieces (A);
         fogrt__bvh_split_binned    and a node's whole binned split in SIMD lanes (A)
      3. fogrt_scene_build          Part II's tables: wide tree, HG table, footprints, pilot
      4. fogrt__free_built          their release
@@ -1230,6 +1231,8 @@ FOGRT__HOT bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d
                                       fogrt_hit *hit, bool any_hit, bool *done);                  /* 1 (A) */
 FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n);                /* 2 (A) */
 struct fogrt__build; struct fogrt__bjob;
+FOGRT__PRIVATE uint32_t fogrt__x_refs(const fogrt_scene *s, uint32_t n);
+FOGRT__PRIVATE void fogrt__x_split_refs(const fogrt_scene *s, struct fogrt__build *b, uint32_t n, uint32_t m);
 FOGRT__PRIVATE bool fogrt__x_split_binned(struct fogrt__build *b, const struct fogrt__bjob *job, fogrt_bvh_node *child,
                                           struct fogrt__bjob *left, struct fogrt__bjob *right, bool *halve, uint32_t *left_count);
 #endif
@@ -3223,22 +3226,29 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fog
 FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n, uint32_t leaf_keep)
 {
     fogrt__build b;
+    uint32_t m = n;                                     /* the tree's references to primitives */
     bool ok;
     memset(&b, 0, sizeof b);
     b.desc = *d;
-    b.box = (fogrt__aabb *)fogrt__alloc(&s->allocator, sizeof(fogrt__aabb) * (n + 1));
-    s->nodes = (fogrt_bvh_node *)fogrt__alloc(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
-    s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
+#ifndef FOGRT_NO_WIDE_BVH
+    if (leaf_keep) m = fogrt__x_refs(s, n);            /* SEAM 2: and the pieces of long slivers */
+#endif
+    b.box = (fogrt__aabb *)fogrt__alloc(&s->allocator, sizeof(fogrt__aabb) * (m + 1));
+    s->nodes = (fogrt_bvh_node *)fogrt__alloc(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)m + 2));
+    s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (m + 1));
     if (!leaf_keep)    /* else Part II's wide tree (A) will hold the primitives itself */
         s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
     ok = b.box && s->nodes && s->prim_index && (leaf_keep || s->prims);
     if (ok) {
-        memset(&b.box[n], 0, sizeof b.box[n]);          /* a spare box: lane loads may read past the last */
+        memset(&b.box[m], 0, sizeof b.box[m]);          /* a spare box: lane loads may read past the last */
         fogrt__bounds(s, &b, n);
         b.nodes = s->nodes;
         b.idx = s->prim_index;
         b.leaf_keep = leaf_keep;
-        if (n > 0) fogrt__bvh_build(&b, n);
+#ifndef FOGRT_NO_WIDE_BVH
+        if (m > n) fogrt__x_split_refs(s, &b, n, m);    /* SEAM 2 */
+#endif
+        if (n > 0) fogrt__bvh_build(&b, m);
         else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
         s->node_count = b.node_count;
         if (s->prims) fogrt__pack_prims(s, n);
@@ -4768,6 +4778,114 @@ FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n
 {
     if (!fogrt__wants_wide(d, n) || fogrt__wbvh_small_scene(n)) return 0;
     return FOGRT__MIN((uint32_t)d->max_leaf_size, (uint32_t)FOGRT__WBVH_LEAF);
+}
+/* Seam 2, too: long slivers (pre-splitting, as Embree's builders do). A triangle's box can
+   be far larger than the triangle: a sliver running diagonally, such as the thousands of
+   long thin triangles of a fan around one vertex, has a box of about its length squared
+   and next to no area, and the boxes of a fan's slivers all overlap near their shared
+   vertex, so every ray there tests them all. Such a triangle enters the tree as several
+   references, each with the box of the part of it inside one of k equal slabs of its box
+   (across its longest side): each part's box is about 1/k of the length across, so the
+   boxes a ray meets shrink about k-fold (a 200,000-triangle fan, random rays: 2.3 times
+   the rays per second with k = 2, 3.8 with 4; docs/benchmarks.md, "Slivers"). A reference
+   finds the whole triangle's hits, so the answers do not change, only which boxes lead
+   there.
+   Which: k = (box area / triangle area) / FOGRT__WBVH_SPLIT_RATIO, at most
+   FOGRT__WBVH_SPLIT_MAX; a well-shaped triangle's box is 4 to 12 times its area (the CS184
+   bunny's at most 11), so ordinary meshes are not cut at all and build the same tree. How
+   many: the extra references are at most as many as the primitives, and a scene never gets
+   past FOGRT__WBVH_SPLIT_REFS references in all (each costs about 70 bytes of build and
+   tree: an 8M-triangle fan stays as it is); when the slivers want more, each gets its share
+   of the budget in proportion to what it wants (spread in triangle order). Only with the
+   wide layout (the binary layout packs one primitive per reference). */
+#define FOGRT__WBVH_SPLIT_RATIO 64.0f
+#define FOGRT__WBVH_SPLIT_MAX 16u
+#define FOGRT__WBVH_SPLIT_REFS (1u << 22)
+/* The pieces triangle t wants (1: none), and its box and slab axis. */
+FOGRT__PRIVATE uint32_t fogrt__split_want(const fogrt_scene *s, uint32_t t, fogrt__aabb *box, int *axis)
+{
+    float area = fogrt__tri_area(s, t), r;
+    fogrt__v3 e;
+    *box = fogrt__prim_box(s, t);
+    e = fogrt__sub(box->hi, box->lo);
+    *axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+    if (!(area > 0.0f && fogrt__comp(e, *axis) < FLT_MAX)) return 1;   /* no area, or a box past float */
+    r = fogrt__aabb_area(box) / (FOGRT__WBVH_SPLIT_RATIO * area);
+    return r >= (float)FOGRT__WBVH_SPLIT_MAX ? FOGRT__WBVH_SPLIT_MAX : (r >= 1.0f ? (uint32_t)r : 1u);
+}
+/* The extra references every sliver wants, summed, and the budget for them. */
+FOGRT__PRIVATE uint64_t fogrt__split_wanted(const fogrt_scene *s, uint32_t n, uint64_t *budget)
+{
+    uint64_t want = 0;
+    uint32_t t;
+    fogrt__aabb box;
+    int axis;
+    *budget = n < FOGRT__WBVH_SPLIT_REFS ? FOGRT__MIN((uint64_t)n, (uint64_t)(FOGRT__WBVH_SPLIT_REFS - n)) : 0u;
+    for (t = 0; *budget > 0 && t < s->tri_count; ++t) want += fogrt__split_want(s, t, &box, &axis) - 1u;
+    return want;
+}
+FOGRT__PRIVATE uint32_t fogrt__x_refs(const fogrt_scene *s, uint32_t n)
+{
+    uint64_t budget, want = fogrt__split_wanted(s, n, &budget);
+    return n + (uint32_t)FOGRT__MIN(want, budget);
+}
+/* The box of the part of triangle v between the planes a and b across axis ax: its corners
+   between them and where its edges cross them. The crossings are rounded, so the box is
+   widened by 8 ulps of the triangle's coordinates, within the triangle's own box. */
+FOGRT__PRIVATE fogrt__aabb fogrt__split_piece(const fogrt__v3 *v, const fogrt__aabb *whole, int ax, float a, float b)
+{
+    fogrt__aabb r = fogrt__aabb_empty();
+    int i, j, k;
+    for (i = 0; i < 3; ++i) {
+        fogrt__v3 p = v[i], q = v[(i + 1) % 3];
+        float pa = fogrt__comp(p, ax), qa = fogrt__comp(q, ax);
+        if (pa >= a && pa <= b) fogrt__aabb_grow(&r, p);
+        for (j = 0; j < 2; ++j) {
+            float c = j ? b : a;
+            if ((pa < c && qa > c) || (pa > c && qa < c)) fogrt__aabb_grow(&r, fogrt__madd(p, fogrt__sub(q, p), (c - pa) / (qa - pa)));
+        }
+    }
+    for (k = 0; k < 3; ++k) {
+        float lo = fogrt__comp(whole->lo, k), hi = fogrt__comp(whole->hi, k);
+        float pad = 8.0f * FLT_EPSILON * FOGRT__MAX(fabsf(lo), fabsf(hi));
+        float rlo = FOGRT__MAX(lo, (k == ax ? a : fogrt__comp(r.lo, k)) - pad);
+        float rhi = FOGRT__MIN(hi, (k == ax ? b : fogrt__comp(r.hi, k)) + pad);
+        if (!(rlo <= rhi)) { rlo = lo; rhi = hi; }      /* nothing found (rounding): the whole extent */
+        if (k == 0) { r.lo.x = rlo; r.hi.x = rhi; } else if (k == 1) { r.lo.y = rlo; r.hi.y = rhi; } else { r.lo.z = rlo; r.hi.z = rhi; }
+    }
+    return r;
+}
+/* Triangle t's k references: its own (box[t]) and k - 1 more from b->box[*next]. */
+FOGRT__PRIVATE void fogrt__split_tri(const fogrt_scene *s, fogrt__build *b, uint32_t t, uint32_t k, const fogrt__aabb *whole,
+                                     int ax, uint32_t *next)
+{
+    float lo = fogrt__comp(whole->lo, ax), hi = fogrt__comp(whole->hi, ax), a = lo;
+    uint32_t j;
+    for (j = 0; j < k; ++j) {
+        float c = j + 1 == k ? hi : lo + (hi - lo) * (float)(j + 1) / (float)k;
+        uint32_t r = j == 0 ? t : (*next)++;
+        b->box[r] = fogrt__split_piece(&s->tri_v[3 * t], whole, ax, a, c);
+        b->idx[r] = t;
+        a = c;
+    }
+}
+/* Seam 2: the m - n extra references of fogrt__x_refs, shared out by the slivers' wants
+   (each gets floor of its running share, so the shares add up to the budget exactly). */
+FOGRT__PRIVATE void fogrt__x_split_refs(const fogrt_scene *s, fogrt__build *b, uint32_t n, uint32_t m)
+{
+    uint64_t budget, want = fogrt__split_wanted(s, n, &budget), before = 0, extra = m - n;
+    uint32_t t, next = n;
+    fogrt__aabb box;
+    int axis;
+    for (t = 0; t < s->tri_count; ++t) {
+        uint64_t w = fogrt__split_want(s, t, &box, &axis) - 1u, k;
+        if (w == 0) continue;
+        k = want <= extra ? w : (before + w) * extra / want - before * extra / want;
+        before += w;
+        if (k > 0) fogrt__split_tri(s, b, t, (uint32_t)k + 1u, &box, axis, &next);
+    }
+    FOGRT_ASSERT(next == m);
+    (void)budget;
 }
 /* Seam 2, too: Part I's binned split of a node (2.1: binning, sweep, partition, child
    boxes) in SSE lanes, a box's corner in one register. Part I keeps each box as six floats

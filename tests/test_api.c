@@ -239,6 +239,7 @@ static void test_pilot_skipped_in_sliver_fans(void)
     fogrt_scene *s = NULL;
     fogrt_mesh_desc md;
     fogrt_light_desc l;
+    fogrt_build_desc bd = fogrt_build_defaults();
     int i;
     v[0] = v[1] = v[2] = 0.0f;
     for (i = 0; i <= N; ++i) {
@@ -256,6 +257,10 @@ static void test_pilot_skipped_in_sliver_fans(void)
     CHECK_OK(fogrt_scene_add_light(s, &l));
     CHECK_OK(fogrt_scene_build(s, NULL));
     TEST_ASSERT_TRUE(fogrt_bvh_sah_cost(s) > FOGRT__PILOT_MAX_SAH);
+    TEST_ASSERT_EQUAL_FLOAT(1.0f, s->x->rr_k);
+    bd.release_binary = true;                            /* the tree is priced before it goes */
+    CHECK_OK(fogrt_scene_build(s, &bd));
+    TEST_ASSERT_EQUAL_FLOAT(0.0f, fogrt_bvh_sah_cost(s));
     TEST_ASSERT_EQUAL_FLOAT(1.0f, s->x->rr_k);
     fogrt_scene_destroy(s);
     CHECK_OK(fogrt_scene_create(NULL, &s));

@@ -383,17 +383,38 @@ static int same_centroids(const soup *s, const uint32_t *prims, uint32_t count)
     return 1;
 }
 
+/* Whether the build may cut triangle p's box into pieces, several references to it (a long
+   sliver, appendix A; the library's own rule). */
+static bool sliver(const fogrt_scene *scene, uint32_t p)
+{
+#ifdef FOGRT_NO_WIDE_BVH
+    (void)scene; (void)p;
+    return false;
+#else
+    fogrt__aabb box;
+    int axis;
+    return p < scene->tri_count && fogrt__split_want(scene, p, &box, &axis) > 1;
+#endif
+}
+/* The references of the tree: its leaves' primitive counts, summed. */
+static uint32_t tree_refs(const fogrt_bvh_node *nodes, uint32_t node_count)
+{
+    uint32_t i, refs = 0;
+    for (i = 0; i < node_count; i++) if (i != 1) refs += nodes[i].prim_count;
+    return refs;
+}
 /* Walks the tree from the root: every reachable node once, node 1 never, children inside
    their parent, leaves holding their primitives' bounds, every primitive in exactly one
-   leaf, leaves no bigger than max_leaf_size (unless their primitives cannot be separated). */
+   leaf (a long sliver may be in several, each vertex then in one of their boxes), leaves no
+   bigger than max_leaf_size (unless their primitives cannot be separated). */
 static void check_tree(const fogrt_scene *scene, const soup *s, uint32_t max_leaf, tree_stats *st,
                        const char *what)
 {
     const fogrt_bvh_node *nodes = NULL;
     const uint32_t *prim_index = NULL;
-    uint32_t node_count = 0, prim_total = s->tri_count + s->sphere_count, i, k;
+    uint32_t node_count = 0, prim_total = s->tri_count + s->sphere_count, i, k, refs;
     uint32_t *stack, *depth, sp = 0;
-    unsigned char *visited, *seen;
+    unsigned char *visited, *seen, *corners;
     fogrt_scene_info info;
     char msg[256];
     fogrt_scene_get_bvh(scene, &nodes, &node_count, &prim_index);
@@ -401,11 +422,14 @@ static void check_tree(const fogrt_scene *scene, const soup *s, uint32_t max_lea
     TEST_ASSERT_NOT_NULL_MESSAGE(prim_index, what);
     TEST_ASSERT_GREATER_OR_EQUAL_MESSAGE(1, node_count, what);
     memset(st, 0, sizeof *st);
+    refs = tree_refs(nodes, node_count);
+    TEST_ASSERT_GREATER_OR_EQUAL_MESSAGE(prim_total, refs, what);
     visited = (unsigned char *)calloc(node_count + 1, 1);
     seen = (unsigned char *)calloc(prim_total + 1, 1);
+    corners = (unsigned char *)calloc(prim_total + 1, 1);
     stack = (uint32_t *)malloc(sizeof(uint32_t) * (node_count + 2));
     depth = (uint32_t *)malloc(sizeof(uint32_t) * (node_count + 2));
-    TEST_ASSERT_TRUE(visited && seen && stack && depth);
+    TEST_ASSERT_TRUE(visited && seen && corners && stack && depth);
 
     /* The root's bounds are the scene's bounds. */
     fogrt_scene_get_info(scene, &info);
@@ -431,7 +455,7 @@ static void check_tree(const fogrt_scene *scene, const soup *s, uint32_t max_lea
         if (n->prim_count > 0) {                                 /* a leaf */
             st->leaves++;
             if (n->prim_count > st->max_leaf) st->max_leaf = n->prim_count;
-            TEST_ASSERT_TRUE_MESSAGE((uint64_t)n->left_first + n->prim_count <= prim_total, msg);
+            TEST_ASSERT_TRUE_MESSAGE((uint64_t)n->left_first + n->prim_count <= refs, msg);
             if (n->prim_count > max_leaf) {
                 snprintf(msg, sizeof msg, "%s: leaf %u holds %u primitives, max_leaf_size %u",
                          what, ni, n->prim_count, max_leaf);
@@ -440,11 +464,11 @@ static void check_tree(const fogrt_scene *scene, const soup *s, uint32_t max_lea
             for (i = n->left_first; i < n->left_first + n->prim_count; i++) {
                 uint32_t p = prim_index[i];
                 TEST_ASSERT_LESS_THAN_MESSAGE(prim_total, p, msg);
-                TEST_ASSERT_FALSE_MESSAGE(seen[p], "a primitive is in two leaves");
+                TEST_ASSERT_FALSE_MESSAGE(seen[p] && !sliver(scene, p), "a primitive is in two leaves");
                 seen[p] = 1;
                 if (p < s->tri_count) {
-                    for (k = 0; k < 3; k++)
-                        TEST_ASSERT_TRUE_MESSAGE(box_contains_point(n, s->v[3 * p + k]), "leaf box misses a vertex");
+                    for (k = 0; k < 3; k++) if (box_contains_point(n, s->v[3 * p + k])) corners[p] |= (unsigned char)(1u << k);
+                    TEST_ASSERT_TRUE_MESSAGE(corners[p] == 7 || sliver(scene, p), "leaf box misses a vertex");
                 } else {
                     fogrt_vec3 c = s->center[p - s->tri_count];
                     float r = s->radius[p - s->tri_count];
@@ -470,10 +494,12 @@ static void check_tree(const fogrt_scene *scene, const soup *s, uint32_t max_lea
     for (i = 0; i < prim_total; i++) {
         snprintf(msg, sizeof msg, "%s: primitive %u is in no leaf", what, i);
         TEST_ASSERT_TRUE_MESSAGE(seen[i], msg);
+        snprintf(msg, sizeof msg, "%s: a vertex of sliver %u is in none of its leaves' boxes", what, i);
+        TEST_ASSERT_TRUE_MESSAGE(i >= s->tri_count || corners[i] == 7, msg);
     }
     /* Every node but node 1 is used: no leaked nodes. */
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(node_count > 1 ? node_count - 1 : node_count, st->reached, what);
-    free(visited); free(seen); free(stack); free(depth);
+    free(visited); free(seen); free(corners); free(stack); free(depth);
 }
 
 /* ------------------------------------------------------------------------------------------
@@ -770,7 +796,9 @@ static void test_degenerate_scenes(void)
 
 /* The SAH tree and the paper's volume-heuristic tree answer every ray identically, and the
    SAH tree is no more expensive by the SAH cost measure (it minimises that measure; on a
-   soup of mixed sizes the volume heuristic, blind to flat boxes, does worse). */
+   soup of mixed sizes the volume heuristic, blind to flat boxes, does worse). The binary
+   layout: the trees as Part I builds them, without appendix A's pieces of long slivers
+   (both trees would cut the same slivers, and the measure would weigh the pieces). */
 static void test_sah_vs_volume(void)
 {
     static const uint64_t seeds[] = { 21, 22 };
@@ -787,6 +815,7 @@ static void test_sah_vs_volume(void)
         tree_stats st_sah, st_vol;
         make_soup(&s, seeds[c], 1500, c == 0 ? 0u : 100u, 0.0f);
         bd = fogrt_build_defaults();
+        bd.layout = FOGRT_BVH_LAYOUT_BINARY;
         bd.heuristic = FOGRT_BVH_SAH;
         sah = soup_scene(&s, &bd);
         bd.heuristic = FOGRT_BVH_VOLUME;
@@ -1035,6 +1064,190 @@ static void test_split_paths_agree(void)
 #endif
 }
 
+/* A fan of n slivers around the origin, from the arc of radius 1 between angles 0 and
+   span, tilted into the plane z = x: near the shared vertex every box overlaps every other.
+   (z = x holds in float exactly, so every sliver lies in the one plane: in a plane the
+   rounded vertices leave, a ray at the shared vertex gets a t from each sliver's own tilt,
+   up to 1e-3 apart, and the closest of them may sit in a box that starts beyond another.) */
+static void make_fan(soup *s, uint32_t n, double span)
+{
+    uint32_t i;
+    memset(s, 0, sizeof *s);
+    s->tri_count = n;
+    s->v = (fogrt_vec3 *)calloc(3 * (size_t)n + 3, sizeof(fogrt_vec3));
+    s->degenerate = (unsigned char *)calloc((size_t)n + 1, 1);
+    s->center = (fogrt_vec3 *)calloc(1, sizeof(fogrt_vec3));
+    s->radius = (float *)calloc(1, sizeof(float));
+    TEST_ASSERT_TRUE(s->v && s->degenerate && s->center && s->radius);
+    for (i = 0; i < n; i++) {
+        double a0 = span * i / n, a1 = span * (i + 1) / n;
+        s->v[3 * i + 1] = v3((float)cos(a0), (float)sin(a0), (float)cos(a0));
+        s->v[3 * i + 2] = v3((float)cos(a1), (float)sin(a1), (float)cos(a1));
+    }
+}
+/* The references of a built scene's tree (its binary tree kept). */
+static uint32_t scene_refs(const fogrt_scene *scene)
+{
+    const fogrt_bvh_node *nodes = NULL;
+    uint32_t node_count = 0;
+    fogrt_scene_get_bvh(scene, &nodes, &node_count, NULL);
+    TEST_ASSERT_NOT_NULL(nodes);
+    return tree_refs(nodes, node_count);
+}
+/* Rays at points inside the soup's triangles (2% of the way in from every edge) from
+   random origins, and random rays through its box: the scene's answers must be brute
+   force's, the same primitive at the same t (a sliver's t is poorly conditioned, up to
+   1e-4 off, but computed alike by both), and occlusion must agree. (make_rays aims at
+   vertices and edges too: at the shared vertex of a fan every sliver hits, each at its own
+   rounded t, and which is closest is decided by rounding.) */
+static void check_inside_rays(const fogrt_scene *scene, const soup *s, uint64_t seed, int ray_count, const char *what)
+{
+    test_rng r;
+    int i, hits = 0;
+    r.s = seed;
+    for (i = 0; i < ray_count; i++) {
+        fogrt_vec3 o = random_point(&r, 2.0f), d;
+        fogrt_hit a, b;
+        bool ha, hb;
+        char msg[256];
+        if (i % 4 != 3) {
+            const fogrt_vec3 *t = &s->v[3 * rng_below(&r, s->tri_count)];
+            float b1 = rng_range(&r, 0.02f, 0.96f), b2 = rng_range(&r, 0.02f, 0.98f - b1);
+            fogrt_vec3 p = vadd(t[0], vadd(vscale(vsub(t[1], t[0]), b1), vscale(vsub(t[2], t[0]), b2)));
+            d = vnorm(vsub(p, o));
+        } else {
+            d = random_direction(&r);
+        }
+        memset(&a, 0, sizeof a); memset(&b, 0, sizeof b);
+        ha = fogrt_scene_intersect(scene, o, d, 0.0f, INFINITY, &a);
+        hb = fogrt_scene_intersect_brute(scene, o, d, 0.0f, INFINITY, &b);
+        snprintf(msg, sizeof msg, "%s: ray %d o=(%.9g, %.9g, %.9g) d=(%.9g, %.9g, %.9g): BVH %d prim %u t=%.9g, brute %d prim %u t=%.9g",
+                 what, i, o.x, o.y, o.z, d.x, d.y, d.z, ha, a.prim, a.t, hb, b.prim, b.t);
+        TEST_ASSERT_TRUE_MESSAGE(ha == hb && (!ha || (a.prim == b.prim && a.t == b.t)), msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(hb, fogrt_scene_occluded(scene, o, d, 0.0f, INFINITY), msg);
+        hits += hb;
+    }
+    TEST_ASSERT_GREATER_THAN_MESSAGE(ray_count / 2, hits, what);
+}
+
+/* Long slivers enter the wide layout's tree as several references with the boxes of their
+   parts (appendix A): a fan of 3000 gets one extra reference per sliver (the budget: as many
+   as the primitives), the tree keeps its invariants (every vertex of a sliver in one of its
+   leaves' boxes), rays at points all along the slivers find what brute force finds (the
+   pieces' boxes leave no gap), and the SAH cost falls below
+   two thirds of the uncut binary layout's. A lone sliver among well-shaped triangles gets
+   all 16 pieces; the well-shaped triangles (a grid) alone are not cut at all. */
+static void test_sliver_pieces(void)
+{
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("A: the pieces of long slivers");
+#else
+    soup s;
+    fogrt_scene *scene;
+    fogrt_build_desc bd = fogrt_build_defaults();
+    tree_stats st;
+    float cost_cut, cost_whole;
+    uint32_t i, j;
+    char msg[160];
+    bd.roulette_pilot = false;
+    make_fan(&s, 3000, 1.5707963267948966);
+    scene = soup_scene(&s, &bd);
+    TEST_ASSERT_EQUAL_UINT32(2 * 3000, scene_refs(scene));
+    check_tree(scene, &s, 4, &st, "fan of 3000");
+    check_inside_rays(scene, &s, 61, 4000, "fan of 3000, cut");
+    cost_cut = fogrt_bvh_sah_cost(scene);
+    fogrt_scene_destroy(scene);
+    bd.layout = FOGRT_BVH_LAYOUT_BINARY;
+    scene = soup_scene(&s, &bd);
+    TEST_ASSERT_EQUAL_UINT32(3000, scene_refs(scene));
+    cost_whole = fogrt_bvh_sah_cost(scene);
+    snprintf(msg, sizeof msg, "fan of 3000: SAH cost %.1f cut, %.1f whole", (double)cost_cut, (double)cost_whole);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(cost_cut < 0.67f * cost_whole, msg);
+    fogrt_scene_destroy(scene);
+    free_soup(&s);
+
+    bd.layout = FOGRT_BVH_LAYOUT_DEFAULT;
+    make_fan(&s, 2 * 20 * 20 + 1, 1.0);           /* room for a grid of 800 and one sliver */
+    for (i = 0; i < 20; i++)
+        for (j = 0; j < 20; j++) {
+            fogrt_vec3 *t = &s.v[3 * (2 * (20 * i + j))];
+            float x = 0.1f * (float)i, y = 0.1f * (float)j;
+            t[0] = v3(x, y, x); t[1] = v3(x + 0.1f, y, x + 0.1f); t[2] = v3(x, y + 0.1f, x);
+            t[3] = v3(x + 0.1f, y, x + 0.1f); t[4] = v3(x + 0.1f, y + 0.1f, x + 0.1f); t[5] = v3(x, y + 0.1f, x);
+        }
+    s.tri_count = 800;                             /* the grid: a box is at most 8 times its triangle */
+    scene = soup_scene(&s, &bd);
+    TEST_ASSERT_EQUAL_UINT32(800, scene_refs(scene));
+    fogrt_scene_destroy(scene);
+    s.tri_count = 801;                             /* and one sliver above it: 3.5 long, 1e-3 across */
+    s.v[3 * 800] = v3(0.0f, 0.0f, 1.0f); s.v[3 * 800 + 1] = v3(2.0f, 2.0f, 3.0f); s.v[3 * 800 + 2] = v3(2.0f, 2.001f, 3.0f);
+    scene = soup_scene(&s, &bd);
+    TEST_ASSERT_EQUAL_UINT32(800 + 16, scene_refs(scene));
+    check_tree(scene, &s, 4, &st, "grid and a sliver");
+    check_inside_rays(scene, &s, 62, 2000, "grid and a sliver");
+    fogrt_scene_destroy(scene);
+    free_soup(&s);
+#endif
+}
+
+/* fogrt_build_desc.release_binary frees the binary tree once the wide tree is made of it:
+   the getters then give no tree, the memory getter at least its nodes and indices less,
+   every ray the same answer bit for bit, a rebuild the same again; the binary layout, which
+   traces the binary tree, keeps it. */
+static void test_release_binary(void)
+{
+#ifdef FOGRT_MINIMAL
+    PART_II_ONLY("A: the wide tree");
+#else
+    soup s;
+    fogrt_scene *kept, *freed;
+    fogrt_build_desc bd = fogrt_build_defaults();
+    const fogrt_bvh_node *nodes = NULL;
+    const uint32_t *prim_index = NULL;
+    uint32_t node_count = 1;
+    test_ray *rays;
+    int i, rebuild, ray_count = 2000;
+    make_soup(&s, 71, 1200, 30, 0.0f);
+    bd.roulette_pilot = false;
+    kept = soup_scene(&s, &bd);
+    bd.release_binary = true;
+    freed = soup_scene(&s, &bd);
+    rays = make_rays(&s, 71, ray_count, 0.0f);
+    for (rebuild = 0; rebuild < 2; rebuild++) {
+        fogrt_scene_get_bvh(freed, &nodes, &node_count, &prim_index);
+        TEST_ASSERT_NULL(nodes);
+        TEST_ASSERT_NULL(prim_index);
+        TEST_ASSERT_EQUAL_UINT32(0, node_count);
+        TEST_ASSERT_EQUAL_FLOAT(0.0f, fogrt_bvh_sah_cost(freed));
+        TEST_ASSERT_TRUE(fogrt_scene_get_memory(kept) - fogrt_scene_get_memory(freed) >=
+                         kept->node_count * sizeof(fogrt_bvh_node) + 1230 * sizeof(uint32_t));
+        for (i = 0; i < ray_count; i++) {
+            fogrt_hit a, b;
+            bool ha, hb;
+            memset(&a, 0, sizeof a); memset(&b, 0, sizeof b);
+            ha = fogrt_scene_intersect(kept, rays[i].o, rays[i].d, rays[i].tmin, rays[i].tmax, &a);
+            hb = fogrt_scene_intersect(freed, rays[i].o, rays[i].d, rays[i].tmin, rays[i].tmax, &b);
+            TEST_ASSERT_EQUAL_INT(ha, hb);
+            TEST_ASSERT_EQUAL_MEMORY(&a, &b, sizeof a);
+            TEST_ASSERT_EQUAL_INT(fogrt_scene_occluded(kept, rays[i].o, rays[i].d, rays[i].tmin, rays[i].tmax),
+                                  fogrt_scene_occluded(freed, rays[i].o, rays[i].d, rays[i].tmin, rays[i].tmax));
+        }
+        TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_scene_build(freed, &bd));
+    }
+    fogrt_scene_destroy(freed);
+    bd.layout = FOGRT_BVH_LAYOUT_BINARY;
+    freed = soup_scene(&s, &bd);
+    fogrt_scene_get_bvh(freed, &nodes, &node_count, &prim_index);
+    TEST_ASSERT_NOT_NULL(nodes);
+    TEST_ASSERT_NOT_NULL(prim_index);
+    fogrt_scene_destroy(freed);
+    fogrt_scene_destroy(kept);
+    free(rays);
+    free_soup(&s);
+#endif
+}
+
 /* Expensive intersections (c_int large) or traversal (c_trav large) change the tree's shape
    but never its answers. */
 static void test_cost_parameters(void)
@@ -1086,5 +1299,7 @@ int main(void)
     RUN_TEST(test_layouts_agree);
     RUN_TEST(test_cost_parameters);
     RUN_TEST(test_split_paths_agree);
+    RUN_TEST(test_sliver_pieces);
+    RUN_TEST(test_release_binary);
     return UNITY_END();
 }
