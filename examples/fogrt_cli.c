@@ -38,6 +38,7 @@
 #include <unistd.h>
 #include <sys/types.h>
 #include <sys/stat.h>
+#include <sys/time.h>
 
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
@@ -215,8 +216,9 @@ static void usage(FILE *f)
         "                   the image stays unbiased); -s and the spp shown are then the mean\n"
         "                   over the pixels (default on)\n"
         "  --bvh H          sah or volume (the paper's volume heuristic) (default sah)\n"
-        "  --time SECONDS   stop after about this long (default: no limit; without -s the\n"
-        "                   sample count is then unlimited)\n"
+        "  --time SECONDS   stop after about this long, within a sample, even inside the first\n"
+        "                   pass (default: no limit; without -s the sample count is then\n"
+        "                   unlimited)\n"
         "  --target-error E stop when the estimated relative RMS error is <= E (default: none;\n"
         "                   E >= 1.2e-7, float's precision); without -s the render also stops\n"
         "                   at %d spp or after %.0f s, whichever comes first, even if the\n"
@@ -473,8 +475,13 @@ static int parse_args(int argc, char **argv, cli_options *o)
    ------------------------------------------------------------------------------------------ */
 /* Set by the first SIGINT/SIGTERM/SIGHUP (see on_signal below). */
 static volatile sig_atomic_t cli_interrupted = 0;
-/* fogrt_render_desc.cancel reads it as an int before every sample (so that -l 65536 stops
-   within one sample, not one row): sig_atomic_t must be int, as it is on glibc and musl. */
+/* Set when the time limit (--time, or --target-error's ceiling) runs out during a batch: a
+   timer (SIGALRM) sets it, so a first pass that takes longer than the limit stops too. */
+static volatile sig_atomic_t cli_time_up = 0;
+/* Either of the two: fogrt_render_desc.cancel reads it as an int before every sample (so
+   that -l 65536 stops within one sample, not one row): sig_atomic_t must be int, as it is
+   on glibc and musl. */
+static volatile sig_atomic_t cli_stop = 0;
 typedef char cli_sig_atomic_is_int[sizeof(sig_atomic_t) == sizeof(int) ? 1 : -1];
 static void fill_render_desc(const cli_options *o, int threads, fogrt_render_desc *rd)
 {
@@ -494,7 +501,7 @@ static void fill_render_desc(const cli_options *o, int threads, fogrt_render_des
     rd->light_by_power = o->by_power;
     rd->seed = o->seed;
     rd->threads = threads;
-    rd->cancel = (const volatile int *)&cli_interrupted;
+    rd->cancel = (const volatile int *)&cli_stop;
 }
 static void release_image(fogrt_image *img)
 {
@@ -532,8 +539,34 @@ static void on_signal(int sig)
         _exit(130);
     }
     cli_interrupted = sig;
+    cli_stop = 1;
     if (cli_tty) write_stderr_raw(first, sizeof first - 1);      /* ends the \r progress line */
     else write_stderr_raw(first + 1, sizeof first - 2);
+}
+static void on_alarm(int sig)
+{
+    (void)sig;
+    cli_time_up = 1;
+    cli_stop = 1;
+}
+/* The time limit's timer: SIGALRM `seconds` from now (0: none, and any pending one off). */
+static void arm_time_limit(double seconds)
+{
+    struct itimerval it;
+    struct sigaction sa;
+    memset(&it, 0, sizeof it);
+    if (seconds > 0) {
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_alarm;
+        sigemptyset(&sa.sa_mask);
+        sa.sa_flags = SA_RESTART;
+        sigaction(SIGALRM, &sa, NULL);
+        if (seconds > 1e8) seconds = 1e8;
+        it.it_value.tv_sec = (time_t)seconds;
+        it.it_value.tv_usec = (suseconds_t)((seconds - floor(seconds)) * 1e6);
+        if (it.it_value.tv_sec == 0 && it.it_value.tv_usec == 0) it.it_value.tv_usec = 1;
+    }
+    setitimer(ITIMER_REAL, &it, NULL);
 }
 static void install_signals(void)
 {
@@ -1175,7 +1208,7 @@ static bool on_progress(const fogrt_progress *pr, void *user)
 {
     render_state *p = (render_state *)user;
     double spp_now = (double)p->spp_done + (double)p->spp_batch * pr->rows_done / (pr->rows_total > 0 ? pr->rows_total : 1);
-    if (cli_interrupted) return false;    /* the rows already started finish; the rest wait */
+    if (cli_stop) return false;           /* the rows already started finish; the rest wait */
     print_progress(p, spp_now, false);
     return true;
 }
@@ -1250,8 +1283,10 @@ static uint64_t batch_spp(const render_state *p, uint64_t done, bool rates_pendi
 /* Batches of batch_spp, so the estimate updates and the log gets a row often. A time limit
    (--time, or --target-error's ceiling) is the one input read from the clock: it stops the
    render between batches, and the last batch is cut to the time left at the speed measured
-   so far (a run that a time limit stops depends on time; any other does not). An interrupt
-   cancels the batch through the render's cancel flag: every sample taken stays counted. */
+   so far (a run that a time limit stops depends on time; any other does not); a batch still
+   running when the limit passes (a first pass slower than the whole limit) is cancelled by
+   a timer, within a sample. An interrupt cancels the batch the same way. Every sample taken
+   stays counted. */
 static fogrt_result render_progressive(const fogrt_scene *scene, fogrt_render_desc *rd, fogrt_image *img,
                                        render_state *p, const char **stopped_by)
 {
@@ -1261,6 +1296,7 @@ static fogrt_result render_progressive(const fogrt_scene *scene, fogrt_render_de
     rd->progress = on_progress;
     rd->user_data = p;
     *stopped_by = NULL;
+    arm_time_limit(p->seconds_limit);
     for (;;) {
         fogrt_render_stats st;
         uint64_t b;
@@ -1275,8 +1311,12 @@ static fogrt_result render_progressive(const fogrt_scene *scene, fogrt_render_de
         p->spp_batch = (int)b;
         r = fogrt_render(scene, rd, img, (int)b, &st);
         p->rays += st.rays;
+        if (r == FOGRT_RESULT_CANCELLED && !cli_interrupted) {     /* the time ran out mid-batch */
+            *stopped_by = "time";
+            take_measurement(p, img, "batch");
+        }
         if (r == FOGRT_RESULT_CANCELLED) { r = FOGRT_RESULT_OK; break; }
-        if (r) return r;
+        if (r) break;
         done += b;
         p->spp_done = done; p->spp_batch = 0;
         /* --pixel-rates: once, after the pilot's spp taken alike; kept to the end (unbiased) */
@@ -1294,6 +1334,7 @@ static fogrt_result render_progressive(const fogrt_scene *scene, fogrt_render_de
         /* nothing can light the scene: every sample is 0, the estimate stays n/a for ever */
         if (p->o->target_error > 0 && p->black) { *stopped_by = "black"; break; }
     }
+    arm_time_limit(0.0);
     if (cli_interrupted) take_measurement(p, img, "interrupted");
     return r;
 }
@@ -1741,6 +1782,10 @@ static int run(int argc, char **argv)
 
     fogrt_image_error(&img, &ee);
     spp_mean = (double)ee.samples / ps.pixels;
+    if (ee.samples == 0 && !cli_interrupted) {     /* one sample took longer than the limit */
+        fprintf(stderr, "fogrt: the time limit (%g s) ran out before any sample was taken: nothing written\n", ps.seconds_limit);
+        status = 1; goto done;
+    }
     if (ee.samples == 0) {
         fprintf(stderr, "fogrt: interrupted before any sample was taken: nothing written\n");
         status = 130; goto done;
