@@ -1057,15 +1057,17 @@ static bool write_file(const app *a, const char *flag, const char *path, const c
     return cli_prepare_output(&out, flag, path) && cli_write_output(&out, b);
 }
 
-/* s: the shown image as PNG (tonemapped) and PFM (linear), the settings in the name. */
-static void save_image(app *a)
+/* s: the shown image as PNG (tonemapped) and PFM (linear), the settings in the name.
+   Returns false when nothing was saved (the message names the file): a scripted run then
+   exits with status 1, an interactive one goes on. */
+static bool save_image(app *a)
 {
     char name[512], path[1024];
     const view_params *v = &a->rgb_params;
     cli_membuf b;
     size_t n;
     bool ok;
-    if (a->rgb_spp == 0) { fprintf(stderr, "preview: s: nothing to save yet (no full-resolution sample)\n"); return; }
+    if (a->rgb_spp == 0) { fprintf(stderr, "preview: s: nothing to save yet (no full-resolution sample)\n"); return false; }
     snprintf(name, sizeof name, "fogrt-preview_%s_g%.2f_density%.3g%s_albedo%.2f_%s_%s_eq%s_depth%d_%dx%d_%llu-spp",
              a->scene_name, (double)v->g, (double)v->density, v->fog ? "" : "-off", (double)v->albedo.x,
              v->path ? "path" : "direct", v->nee ? "nee" : "hemisphere", v->equiangular ? "on" : "off",
@@ -1075,7 +1077,7 @@ static void save_image(app *a)
     cli_encode_pfm(a->rgb_w, a->rgb_h, a->rgb, &b);
     ok = write_file(a, "s:", path, &b);
     free(b.data);
-    if (!ok) return;
+    if (!ok) return false;
     n = strlen(path);
     memcpy(path + n - 4, ".png", 4);
     fogrt_tonemap_rgb8(a->rgb, a->rgb_w, a->rgb_h, log2f(a->exposure), FOGRT_TONEMAP_SRGB, a->rgb8);
@@ -1083,10 +1085,11 @@ static void save_image(app *a)
     if (!stbi_write_png_to_func(cli_membuf_stb, &b, a->rgb_w, a->rgb_h, 3, a->rgb8, a->rgb_w * 3)) b.failed = true;
     ok = write_file(a, "s:", path, &b);
     free(b.data);
-    if (!ok) return;
+    if (!ok) return false;
     path[n - 4] = '\0';
     printf("preview: saved %s.png and %s.pfm\n", path, path);
     fflush(stdout);
+    return true;
 }
 
 /* The window's content (the back buffer just drawn) as PNG, rows flipped to top-first. */
@@ -1319,7 +1322,7 @@ int main(int argc, char **argv)
             if (!scripted_frame(a, ev, nev, &next_ev, frame)) break;
             present(a, true);
             update_title(a);
-            if (a->save_pending) { a->save_pending = false; save_image(a); }
+            if (a->save_pending) { a->save_pending = false; if (!save_image(a)) status = 1; }
             if (frame == a->opt.frames && a->opt.screenshot && !write_screenshot(a, a->opt.screenshot)) status = 1;
             glfwSwapBuffers(a->window);
         }
@@ -1334,7 +1337,7 @@ int main(int argc, char **argv)
             } else if (now_seconds() - a->last_title > 0.25 && a->frames > 0) {
                 update_title(a);
             }
-            if (a->save_pending) { a->save_pending = false; save_image(a); }
+            if (a->save_pending) { a->save_pending = false; (void)save_image(a); }   /* said why; go on */
             pthread_mutex_lock(&a->mu);
             if (a->quit) glfwSetWindowShouldClose(a->window, GLFW_TRUE);
             pthread_mutex_unlock(&a->mu);

@@ -244,6 +244,9 @@ printf 'an old picture' >"$tmp/old.png"; cp "$tmp/old.png" "$tmp/old.orig"
 ( ulimit -f 8; "$preview" $common --screenshot "$tmp/old.png" >"$tmp/shotbig.out" 2>"$tmp/shotbig.err" ); rc=$?
 check "[ $rc -eq 1 ] && grep -q 'old.png' '$tmp/shotbig.err' && cmp -s '$tmp/old.png' '$tmp/old.orig'" "--screenshot beyond ulimit -f: exit $rc, or the old file was damaged" shotbig
 check "[ -z \"\$(ls -A '$tmp' | grep '\\.tmp-')\" ]" "--screenshot left a temporary file behind"
+# a scripted save that fails (its directory does not exist) is exit status 1, naming the file
+run savemissing $common --keys "$frames:s" --save-dir "$tmp/no/such/dir"
+check "[ $rc -eq 1 ] && grep -q 'no/such/dir/fogrt-preview_.*\.pfm: cannot write' '$tmp/savemissing.err'" "s into a missing directory: exit $rc, expected 1 naming the file" savemissing
 if [ "$(id -u)" -eq 0 ] && mkdir "$tmp/small" && mount -t tmpfs -o size=64k tmpfs "$tmp/small" 2>/dev/null; then
     # a real full disk: an old PNG on a 64 KB file system, the rest of it filled
     cp "$tmp/old.orig" "$tmp/small/shot.png"
@@ -253,7 +256,7 @@ if [ "$(id -u)" -eq 0 ] && mkdir "$tmp/small" && mount -t tmpfs -o size=64k tmpf
     check "[ -z \"\$(ls -A '$tmp/small' | grep tmp)\" ]" "--screenshot on a full disk left a temporary file"
     mkdir -p "$tmp/small2"
     run savedisk $common --keys "$frames:s" --save-dir "$tmp/small"
-    check "grep -q 'No space left' '$tmp/savedisk.err' && [ -z \"\$(ls -A '$tmp/small' | grep -v '^fill\$\\|^shot.png\$')\" ]" "s on a full disk: no message, or a partial file left" savedisk
+    check "[ $rc -eq 1 ] && grep -q 'No space left' '$tmp/savedisk.err' && [ -z \"\$(ls -A '$tmp/small' | grep -v '^fill\$\\|^shot.png\$')\" ]" "s on a full disk: exit $rc (expected 1), no message, or a partial file left" savedisk
     umount "$tmp/small"
 else
     echo "test_preview.sh: full-disk screenshot skipped (needs root and a tmpfs mount)"
