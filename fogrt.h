@@ -3905,10 +3905,12 @@ FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s);
 /* ------------------------------------------------------------------------------------------
    A. The wide BVH
    What it adds: 8 (or 4) children per node, their boxes tested side by side in SIMD lanes
-   (SSE, AVX2 where the processor has it), huge pages for the big arrays, and 2.1's binned
-   split of a node in SSE lanes (the same tree as Part I's, built faster: seam 2).
-   What it costs: nothing where the binary tree is chosen (fogrt_build_desc.layout).
-   Its gain: docs/benchmarks.md, table "Wide BVH".
+   (SSE, AVX2 where the processor has it), huge pages for the big arrays, 2.1's binned
+   split of a node in SSE lanes (the same tree as Part I's, built faster: seam 2), and long
+   slivers' boxes cut into pieces (seam 2, below fogrt__x_leaf_keep).
+   What it costs: nothing where the binary tree is chosen (fogrt_build_desc.layout); a
+   sliver's pieces cost references, build time and memory, and only slivers get them.
+   Its gain: docs/benchmarks.md, tables "Wide BVH" and "Slivers".
 
 
    The binary tree of 2.1 is good (few boxes and few triangles per ray), but each step
@@ -3963,7 +3965,11 @@ FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s);
    bytes per triangle). The collapse first lays the nodes out as small records, then gives
    nodes and packets blocks of exactly the size used. Both arrays start on a cache line and
    ask for huge pages (below); the binary tree's packed primitives of 2.1 are not
-   made for the wide layout.
+   made for the wide layout. The nodes are made before the packets, and need the binary
+   tree's nodes, the packets only where each leaf's primitives begin, so with
+   fogrt_build_desc.release_binary the binary nodes go before the packets take their room
+   (a fan of 8M slivers peaks at 0.95 GB in fogrt instead of 1.13: the binary tree is 24
+   bytes per primitive, the packets 50 there).
 
    SIMD: FOGRT_WBVH_SSE (set below: on by default where the compiler targets SSE2,
    that is every x86-64) selects the SSE intrinsics; FOGRT_WBVH_NO_SIMD forces the plain C99

@@ -1,9 +1,10 @@
 /* bench.c - how fast fogrt builds its BVH, traces rays and renders. Run it with `make bench`.
 
    It prints, all measured in one run so that the ratios compare like with like:
-     1. BVH build seconds (median of several builds) of two meshes: (a) the CS184 bunny
+     1. BVH build seconds (median of several builds) of three meshes: (a) the CS184 bunny
         (CBbunny.dae, when fogrt_load.h and ../shared are there, else a displaced sphere of the
-        same size, ~28.6k triangles) and (b) a displaced sphere of 1M triangles;
+        same size, ~28.6k triangles), (b) a displaced sphere of 1M triangles and (c) a fan of
+        100,000 slivers around one vertex (bench/fan.h; its primary rays on 128 x 128 pixels);
      2. bytes per triangle of the built scene: fogrt_scene_get_memory with its split
         (geometry, binary BVH, wide BVH, the rest), what fogrt's allocator handed out (after
         the build and at its peak), and Embree's allocations through its memory monitor;
@@ -25,7 +26,8 @@
    Before timing, a sample of every ray set is checked against fogrt_scene_intersect_brute
    (and the Embree answers against fogrt's), so a fast but wrong BVH cannot pass unnoticed.
 
-   Usage: bench [--quick]     --quick: fewer rays and repetitions (a smoke test, noisy)   */
+   Usage: bench [--quick] [--fan]   --quick: fewer rays and repetitions (a smoke test, noisy);
+                                    --fan: the fan alone                                     */
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
 #ifdef HAVE_FOGRT_LOAD
@@ -33,6 +35,7 @@
 #include "fogrt_load.h"
 #endif
 
+#include "fan.h"
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -227,6 +230,26 @@ static void make_displaced_sphere(uint32_t rings, uint32_t segments, const char 
     /* A camera 3.2 units away: the sphere fills most of the frame. */
     g->camera.position.x = 0.6f; g->camera.position.y = 0.8f; g->camera.position.z = 3.0f;
     g->camera.fov_deg = 45.0f;
+}
+
+/* A fan of n long thin triangles around one vertex (bench/fan.h, tilted against every axis),
+   the case that defeats boxes: near the shared vertex every sliver's box overlaps every
+   other's. The camera looks at it from 1.8 units along its normal. */
+static void make_fan(uint32_t n, const char *name, bench_geometry *g)
+{
+    uint32_t i;
+    memset(g, 0, sizeof *g);
+    snprintf(g->name, sizeof g->name, "%s", name);
+    g->vertex_count = n + 2;
+    g->triangle_count = n;
+    g->positions = (float *)xmalloc(sizeof(float) * 3 * g->vertex_count);
+    g->indices = (uint32_t *)xmalloc(sizeof(uint32_t) * 3 * g->triangle_count);
+    for (i = 0; i < g->vertex_count; i++) fan_vertex(i, n, 0.5 * 3.14159265358979323846, 1, g->positions + 3 * i);
+    for (i = 0; i < n; i++) { g->indices[3 * i] = 0; g->indices[3 * i + 1] = i + 1; g->indices[3 * i + 2] = i + 2; }
+    g->camera.position.x = -0.28f; g->camera.position.y = -0.28f; g->camera.position.z = 1.9f;
+    g->camera.look_at.x = g->camera.look_at.y = g->camera.look_at.z = 0.45f;
+    g->camera.up.y = 1.0f;
+    g->camera.fov_deg = 60.0f;
 }
 
 /* A fresh scene holding the geometry (one diffuse material) and its camera, not yet built. */
@@ -631,6 +654,9 @@ static void make_ray_sets(const bench_geometry *g, const fogrt_scene *scene, int
     add_shadow_rays(g, &info, &sets[2], t_f, p_f, eps, &rng, &sets[3]);
 }
 
+/* Decimals for a rate in Mrays/s: 2, and 4 below 0.1 (a fan's rays run at thousands a second). */
+static int rate_digits(double mrays) { return mrays < 0.1 ? 4 : 2; }
+
 /* One ray set: checks, then 1 and 2 threads, fogrt and Embree alternating; prints its line. */
 static void bench_ray_set(const bench_geometry *g, const fogrt_scene *scene, const void *embree_scene,
                           const ray_set *s, const bench_options *opt, float *t_f, uint32_t *p_f,
@@ -681,10 +707,11 @@ static void bench_ray_set(const bench_geometry *g, const fogrt_scene *scene, con
         mrays_e[ti] = (double)s->count / median(te, opt->trace_reps) / 1e6;
 #endif
     }
-    printf("%-8s %9zu %5.1f | %9.2f %9.2f", s->name, s->count,
-           100.0 * (double)hits / (double)(s->count ? s->count : 1), mrays_f[0], mrays_f[1]);
+    printf("%-8s %9zu %5.1f | %9.*f %9.*f", s->name, s->count,
+           100.0 * (double)hits / (double)(s->count ? s->count : 1), rate_digits(mrays_f[0]), mrays_f[0],
+           rate_digits(mrays_f[1]), mrays_f[1]);
 #ifdef HAVE_EMBREE
-    printf(" | %9.2f %9.2f | %8.2f %8.2f", mrays_e[0], mrays_e[1],
+    printf(" | %9.*f %9.*f | %8.2f %8.2f", rate_digits(mrays_e[0]), mrays_e[0], rate_digits(mrays_e[1]), mrays_e[1],
            mrays_f[0] / mrays_e[0], mrays_e[1] > 0 ? mrays_f[1] / mrays_e[1] : 0.0);
 #endif
     printf(" | %6.2f | brute %zu/%zu bad", mrays_f[0] > 0 ? mrays_f[1] / mrays_f[0] : 0.0, bad_brute, checked);
@@ -829,14 +856,18 @@ static void bench_render(const bench_options *opt)
 
 int main(int argc, char **argv)
 {
-    bench_options opt;
-    bench_geometry bunny, big;
-    bool quick = argc > 1 && strcmp(argv[1], "--quick") == 0;
-    bool have_bunny = false;
+    bench_options opt, fan_opt;
+    bench_geometry bunny, big, fan;
+    bool quick = false, fan_only = false, have_bunny = false;
+    int a;
 
-    if (argc > 2 || (argc == 2 && !quick)) {
-        fprintf(stderr, "usage: %s [--quick]\n", argv[0]);
-        return 2;
+    for (a = 1; a < argc; a++) {
+        if (strcmp(argv[a], "--quick") == 0) quick = true;
+        else if (strcmp(argv[a], "--fan") == 0) fan_only = true;
+        else {
+            fprintf(stderr, "usage: %s [--quick] [--fan]\n", argv[0]);
+            return 2;
+        }
     }
     opt.image_side = quick ? 512 : 1024;
     opt.trace_reps = quick ? 3 : 5;
@@ -859,18 +890,27 @@ int main(int argc, char **argv)
     printf("\n");
     print_load_average("at the start");
 
+    if (!fan_only) {
 #ifdef HAVE_FOGRT_LOAD
-    have_bunny = load_cs184_bunny(&bunny, opt.image_side);
+        have_bunny = load_cs184_bunny(&bunny, opt.image_side);
 #endif
-    if (!have_bunny) make_displaced_sphere(124, 116, "synthetic bunny-sized mesh (displaced sphere)", &bunny);
-    bench_geometry_run(&bunny, &opt);
-    geometry_free(&bunny);
+        if (!have_bunny) make_displaced_sphere(124, 116, "synthetic bunny-sized mesh (displaced sphere)", &bunny);
+        bench_geometry_run(&bunny, &opt);
+        geometry_free(&bunny);
 
-    make_displaced_sphere(501, 1000, "synthetic 1M-triangle mesh (displaced sphere)", &big);
-    bench_geometry_run(&big, &opt);
-    geometry_free(&big);
+        make_displaced_sphere(501, 1000, "synthetic 1M-triangle mesh (displaced sphere)", &big);
+        bench_geometry_run(&big, &opt);
+        geometry_free(&big);
+    }
 
-    bench_render(&opt);
+    /* A ray costs a fan about as many box tests as it has slivers near the ray: fewer rays. */
+    fan_opt = opt;
+    fan_opt.image_side = quick ? 64 : 128;
+    make_fan(100000, "fan of 100,000 slivers around one vertex (bench/fan.h)", &fan);
+    bench_geometry_run(&fan, &fan_opt);
+    geometry_free(&fan);
+
+    if (!fan_only) bench_render(&opt);
 
     printf("\n");
     print_load_average("at the end");

@@ -1,7 +1,8 @@
 # mk/bench.mk - benchmarks (docs/benchmarks.md).
 #   make bench       BVH build time, bytes per triangle, closest-hit and shadow (any-hit)
-#                    Mrays/s (1 and 2 threads), render samples/s and its 2T/1T;
-#                    BENCH_ARGS=--quick for a short, noisy run
+#                    Mrays/s (1 and 2 threads) of the bunny, a 1M mesh and a fan of slivers,
+#                    render samples/s and its 2T/1T; BENCH_ARGS=--quick for a short, noisy
+#                    run, BENCH_ARGS=--fan for the fan alone
 #   make bench-spot  the paper's spot-lit fog at equal time, this tree against the header of
 #                    commit SPOT_BASE in the same run (default 7a4a5f3, the goal's reference)
 #   make bench-base  make bench's figures against the header of commit BENCH_BASE, same run
@@ -31,16 +32,22 @@ deps-embree:
 	@[ "$(BENCH_EMBREE)" != 1 ] || sh tools/need-package.sh libembree-dev $(BENCH_EMBREE_HEADER) \
 	  "or run 'make bench BENCH_EMBREE=0' for fogrt's figures alone (Embree is make bench's yardstick)"
 
-$(BUILD)/bench/fogrt_bench: bench/bench.c bench/bench_embree.c fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | deps-embree $(BUILD)
+$(BUILD)/bench/fogrt_bench: bench/bench.c bench/bench_embree.c bench/fan.h fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | deps-embree $(BUILD)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) $(BENCH_DEFS) -DHAVE_EMBREE -o $@ bench/bench.c bench/bench_embree.c -lembree3 $(LDLIBS)
 
-$(BUILD)/bench/fogrt_bench_alone: bench/bench.c fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | $(BUILD)
+$(BUILD)/bench/fogrt_bench_alone: bench/bench.c bench/fan.h fogrt.h $(wildcard fogrt_load.h) mk/bench.mk | $(BUILD)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) $(BENCH_DEFS) -o $@ bench/bench.c $(LDLIBS)
 
 bench: $(BENCH_BIN)
 	./$(BENCH_BIN) $(BENCH_ARGS)
+
+# The fans of slivers as files (binary PLY, or one OBJ polygon): what fogrt's memory and time
+# on them are measured with (docs/benchmarks.md, "Slivers").
+$(BUILD)/bench/fan_mesh: bench/fan_mesh.c bench/fan.h | $(BUILD)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ bench/fan_mesh.c $(LDLIBS)
 
 # The spot-lit fog at equal time against SPOT_BASE's header, rebuilt from git history into
 # build/spot-base/<commit> (bench/spot_goal.sh): about a minute per run, SPOT_RUNS runs.
