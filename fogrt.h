@@ -7367,6 +7367,15 @@ FOGRT__PUBLIC void fogrt_trace_describe(const fogrt_trace_event *e, char *buf, s
    a brute-force ray query to check the tree against, and the bytes the scene holds, Part
    II's tables included.
    ------------------------------------------------------------------------------------------ */
+/* The binary tree's references (its leaves' primitive counts, summed): the primitives, and
+   the pieces of long slivers (A). */
+FOGRT__PRIVATE size_t fogrt__tree_refs(const fogrt_scene *s)
+{
+    size_t refs = 0;
+    uint32_t i;
+    for (i = 0; i < s->node_count; ++i) if (i != 1) refs += s->nodes[i].prim_count;
+    return refs;
+}
 FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
 {
     size_t t, p, b = sizeof *s, lit = 0;
@@ -7378,7 +7387,7 @@ FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
     b += t * ((s->tri_n ? 6 : 3) * sizeof(fogrt__v3) + 1 + 2 * sizeof(uint32_t));   /* vertices, normals, flag, ids */
     b += (size_t)s->sph_count * (sizeof(fogrt__v3) + sizeof(float) + sizeof(uint32_t));
     if (s->env_map) b += sizeof(float) * 3 * (size_t)s->env_w * (size_t)s->env_h;
-    if (s->nodes) b += sizeof(fogrt_bvh_node) * s->node_count + p * sizeof(uint32_t);
+    if (s->nodes) b += sizeof(fogrt_bvh_node) * s->node_count + fogrt__tree_refs(s) * sizeof(uint32_t);
     if (s->prims) b += p * sizeof(fogrt__prim);         /* 2.1's primitives: the binary layout only */
     if (s->spot_cos) b += sizeof(float) * 2 * s->light_count;
     for (i = 0; s->area_lights && i < s->area_light_count; ++i) lit += s->area_lights[i].count;

@@ -605,7 +605,7 @@ static void print_memory(const fogrt_scene *scene, size_t geometry_bytes, size_t
                          const void *embree_scene)
 {
     double tris = (double)(scene->tri_count + scene->sph_count), total = (double)fogrt_scene_get_memory(scene);
-    double binary = (double)scene->node_count * sizeof(fogrt_bvh_node) + tris * (double)sizeof(uint32_t)
+    double binary = (double)scene->node_count * sizeof(fogrt_bvh_node) + (double)fogrt__tree_refs(scene) * sizeof(uint32_t)
                   + (scene->prims ? tris * (double)sizeof(fogrt__prim) : 0.0);   /* the binary layout only */
     double wide = scene->x->wide ? (double)fogrt__wbvh_bytes(scene->x->wide) : 0.0;
     double geometry = (double)geometry_bytes;

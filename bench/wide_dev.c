@@ -685,7 +685,7 @@ static void speed_scene(const char *name, const fogrt_scene *s, double bin_build
     double t0, wide_build_s, wb[MAXR];
     int k, rep, nt = 2;
     void *embree = NULL;
-    size_t bin_bytes = sizeof(fogrt_bvh_node) * s->node_count + sizeof(uint32_t) * (size_t)(s->tri_count + s->sph_count);
+    size_t bin_bytes = sizeof(fogrt_bvh_node) * s->node_count + sizeof(uint32_t) * fogrt__tree_refs(s);
     uint32_t np = s->tri_count + s->sph_count;
 #ifdef HAVE_EMBREE
     emb e;
@@ -749,10 +749,11 @@ static void speed_scene(const char *name, const fogrt_scene *s, double bin_build
 }
 
 /* The wide layout leaves out chapter 10's packed primitives (its packets hold their own
-   copy); the binary traversal this harness compares with needs them. */
+   copy); the binary traversal this harness compares with needs them, one per reference of
+   the tree (a long sliver's pieces are several). */
 static void binary_prims(fogrt_scene *s)
 {
-    uint32_t n = s->tri_count + s->sph_count;
+    uint32_t n = (uint32_t)fogrt__tree_refs(s);
     if (s->prims) return;
     s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
     if (!s->prims) { fprintf(stderr, "wide_dev: out of memory\n"); exit(1); }
