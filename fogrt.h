@@ -1081,16 +1081,15 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
      I.3  The camera, the scene build, rendering with its error estimate, output, the default scene
    Read Part I alone and you have the whole method; fogrt_render_paper_defaults() runs it.
 
-   Part II, after it, is an appendix of speed and variance reduction, one idea a chapter
-   (A: the wide BVH; B: lamps in fog; C: sampling and estimation; D: the path trace; E: the
-   full integrator, Algorithm 1 with all of them), which fogrt_render_defaults() uses.
-   FOGRT_MINIMAL compiles Part I alone; FOGRT_NO_WIDE_BVH, FOGRT_NO_LAMPS_IN_FOG and
-   FOGRT_NO_ESTIMATION leave out appendix A, B or C.
+   Part II, after it, is an appendix, one idea a chapter (A the wide BVH, B lamps in fog, C
+   sampling and estimation, D the path trace, E the full integrator, F inspection, G media),
+   which fogrt_render_defaults() uses. FOGRT_MINIMAL compiles Part I alone.
 
    Part I reaches Part II only at these seams, each marked "SEAM n" where it stands:
      1. fogrt__traverse            the wide tree, when the build made one (A)
      2. fogrt_scene_build          how small a binary node may stay, for the wide tree (A);
-        fogrt__bvh_split_binned    and a node's whole binned split in SIMD lanes (A)
+        fogrt__bvh_split_binned    and a node's whole binned split in SIMD lanes (A);
+        fogrt__build_tree          and huge pages for the build's two big arrays (A)
      3. fogrt_scene_build          Part II's tables: wide tree, HG table, footprints, pilot
      4. fogrt__free_built          their release
      5. fogrt__fresnel             the exact dielectric Fresnel (C)
@@ -1226,6 +1225,10 @@ FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n
 struct fogrt__build; struct fogrt__bjob;
 FOGRT__PRIVATE bool fogrt__x_split_binned(struct fogrt__build *b, const struct fogrt__bjob *job, fogrt_bvh_node *child,
                                           struct fogrt__bjob *left, struct fogrt__bjob *right, bool *halve, uint32_t *left_count);
+FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size);                     /* 2 (A) */
+#define FOGRT__ALLOC_BUILD fogrt__alloc_big
+#else
+#define FOGRT__ALLOC_BUILD fogrt__alloc
 #endif
 #ifndef FOGRT_MINIMAL
 FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n);        /* 3 */
@@ -1376,18 +1379,13 @@ FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s) {
     if (!s) return;
     a = s->allocator;
     fogrt__free_built(s);
-    fogrt__free(&a, s->materials);
-    fogrt__free(&a, s->tri_v); fogrt__free(&a, s->tri_n); fogrt__free(&a, s->tri_has_n);
+    fogrt__free(&a, s->materials); fogrt__free(&a, s->tri_v); fogrt__free(&a, s->tri_n); fogrt__free(&a, s->tri_has_n);
     fogrt__free(&a, s->tri_material); fogrt__free(&a, s->tri_mesh);
     fogrt__free(&a, s->sph_c); fogrt__free(&a, s->sph_r); fogrt__free(&a, s->sph_material);
-    fogrt__free(&a, s->lights);
-    fogrt__free(&a, s->env_map);
-    fogrt__free(&a, s);
+    fogrt__free(&a, s->lights); fogrt__free(&a, s->env_map); fogrt__free(&a, s);
 }
 
-FOGRT__PRIVATE bool fogrt__colour_ok(fogrt__v3 c) {
-    return fogrt__v3_finite(c) && c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f;
-}
+FOGRT__PRIVATE bool fogrt__colour_ok(fogrt__v3 c) { return fogrt__v3_finite(c) && c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f; }
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_material_desc *desc,
                                                     uint32_t *out_id) {
     fogrt_material_desc m;
@@ -3094,8 +3092,8 @@ FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d,
     bool ok;
     memset(&b, 0, sizeof b);
     b.desc = *d;
-    b.box = (fogrt__aabb *)fogrt__alloc(&s->allocator, sizeof(fogrt__aabb) * (n + 1));
-    s->nodes = (fogrt_bvh_node *)fogrt__alloc(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
+    b.box = (fogrt__aabb *)FOGRT__ALLOC_BUILD(&s->allocator, sizeof(fogrt__aabb) * (n + 1));   /* SEAM 2: huge pages */
+    s->nodes = (fogrt_bvh_node *)FOGRT__ALLOC_BUILD(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)n + 2));
     s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n + 1));
     if (!leaf_keep)    /* else Part II's wide tree (A) will hold the primitives itself */
         s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
@@ -3195,9 +3193,6 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void) {
 #endif
     return d;
 }
-/* The settings the integrators read, from a desc (NULL: the defaults). A desc must come
-   from fogrt_render_defaults(): a zeroed one would silently mean "max depth 0, no light
-   sampling", so it is refused with a message saying so. */
 /* What a desc asks of a build that left out the part of fogrt.h it needs. */
 FOGRT__PRIVATE fogrt_result fogrt__check_build_has(const fogrt_scene *s, const fogrt_render_desc *d) {
 #ifdef FOGRT_NO_EXACT_FRESNEL
@@ -3215,6 +3210,8 @@ FOGRT__PRIVATE fogrt_result fogrt__check_build_has(const fogrt_scene *s, const f
     (void)s; (void)d;
     return FOGRT_RESULT_OK;
 }
+/* The settings the integrators read, from a desc (NULL: the defaults) that must come from a
+   fogrt_render_*defaults(): a zeroed one would silently mean "max depth 0, no light sampling". */
 FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fogrt_render_desc *in,
                                                   fogrt__settings *st, fogrt_render_desc *out) {
     fogrt_render_desc d = in ? *in : fogrt_render_defaults();
@@ -4064,9 +4061,7 @@ FOGRT__PRIVATE uint32_t fogrt__wbvh_bound(const fogrt_scene *s, const uint32_t *
     return big;
 }
 /* Whether the scene is small enough to build without merged leaves (FOGRT_WBVH_SMALL_SCENE). */
-FOGRT__PRIVATE bool fogrt__wbvh_small_scene(uint32_t prims) {
-    return prims <= FOGRT_WBVH_SMALL_SCENE;
-}
+FOGRT__PRIVATE bool fogrt__wbvh_small_scene(uint32_t prims) { return prims <= FOGRT_WBVH_SMALL_SCENE; }
 /* Step 1 for every wide node, from a stack: the records rec[0 .. *nodes) in the order the
    nodes will be stored, and the number of packets; leaf and leaf2 are the merge limits
    (FOGRT__WBVH_LEAF and FOGRT__WBVH_LEAF2, or 0 in a small scene). */
