@@ -1083,7 +1083,8 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 
    Part II, after it, is an appendix, one idea a chapter (A the wide BVH, B lamps in fog, C
    sampling and estimation, D the path trace, E the full integrator, F inspection, G media),
-   which fogrt_render_defaults() uses. FOGRT_MINIMAL compiles Part I alone.
+   which fogrt_render_defaults() uses. FOGRT_MINIMAL compiles Part I alone; what a build left
+   out is refused by the checks after Part II ("What a build without a feature refuses").
 
    Part I reaches Part II only at these seams, each marked "SEAM n" where it stands:
      1. fogrt__traverse            the wide tree, when the build made one (A)
@@ -1215,6 +1216,11 @@ FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x) {
     return x ^ (x >> 31);
 }
 
+/* What a build without a feature refuses (after Part II; in a full build they pass everything). */
+FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_material(const fogrt_scene *s, const fogrt_material_desc *m);
+FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_medium(const fogrt_scene *s, const fogrt_medium_desc *m);
+FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_build(const fogrt_scene *s, const fogrt_build_desc *d);
+FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_render(const fogrt_scene *s, const fogrt_render_desc *d);
 /* The seams: what Part I calls of Part II (numbered as in the list above). */
 struct fogrt__settings;
 struct fogrt__job;
@@ -1322,6 +1328,7 @@ FOGRT__PRIVATE fogrt_result fogrt__fail(const fogrt_scene *s, fogrt_result r, co
 /* A validation rule, in the manner of sokol_gfx's _SG_VALIDATE: if cond holds, the call
    fails with FOGRT_RESULT_<result> and msg (in a function whose scene is named s). */
 #define FOGRT__REFUSE_IF(cond, result, msg) do { if (cond) return fogrt__fail(s, FOGRT_RESULT_##result, msg); } while (0)
+#define FOGRT__PASS(call) do { fogrt_result r_ = (call); if (r_ != FOGRT_RESULT_OK) return r_; } while (0)
 FOGRT__PUBLIC const char *fogrt_scene_last_error(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->error; }
 
 /* Move *ptr to a new array of new_cap elements, keeping its first used elements. Returns
@@ -1397,10 +1404,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_
                      "material.reflectance/transmittance/emission: negative or not finite");
     FOGRT__REFUSE_IF(!fogrt__finite(m.ior) || m.ior < 0.0f, INVALID_MATERIAL, "material.ior: must be > 0 (0 means the default 1.5)");
     if (m.type == FOGRT_BSDF_DEFAULT) m.type = FOGRT_BSDF_DIFFUSE;
-#ifdef FOGRT_NO_GLASS
-    FOGRT__REFUSE_IF(m.type == FOGRT_BSDF_REFRACTION || m.type == FOGRT_BSDF_GLASS, UNSUPPORTED,
-                     "material.type: refraction and glass need a build without FOGRT_NO_GLASS");
-#endif
+    FOGRT__PASS(fogrt__refuse_stripped_material(s, &m));
     m.ior = FOGRT__DEF(m.ior, 1.5f);
     if (s->material_count == 0xFFFFFFFEu) return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "too many materials");
     if (s->material_count + 1 > s->material_cap) {
@@ -1585,23 +1589,15 @@ FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medi
     FOGRT__REFUSE_IF(!(m->g >= -1.0f && m->g <= 1.0f), INVALID_MEDIUM, "medium.g: outside [-1, 1]");
     FOGRT__REFUSE_IF(m->bounded && !fogrt__box_ok(m->bounds_min, m->bounds_max), INVALID_MEDIUM,
                      "medium.bounds_min/bounds_max: not finite, beyond 1e30, or min not below max on every axis");
-#ifdef FOGRT_NO_ESTIMATION
-    FOGRT__REFUSE_IF(m->bounded && m->sigma_t > 0.0f, UNSUPPORTED,
-                     "medium.bounded: fog in a box needs a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
-#endif
-#ifdef FOGRT_NO_MEDIUM
-    FOGRT__REFUSE_IF(m->sigma_t > 0.0f, UNSUPPORTED, "medium: fogrt was compiled with FOGRT_NO_MEDIUM");
-#endif
+    FOGRT__PASS(fogrt__refuse_stripped_medium(s, m));
     if (fabsf(m->g) >= FOGRT_HG_G_MAX && fabsf(m->g) != FOGRT_HG_G_MAX) {
         m->g = copysignf(FOGRT_HG_G_MAX, m->g);
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
     }
-#ifdef FOGRT_NO_MEDIA
-    FOGRT__REFUSE_IF(m->phase || m->g2 != 0.0f || m->w != 0.0f || !fogrt__is_black(m->emission), UNSUPPORTED,
-                     "medium.phase/g2/w/emission: media beyond the paper need a build without FOGRT_NO_MEDIA, FOGRT_NO_MEDIUM and FOGRT_MINIMAL");
-    return FOGRT_RESULT_OK;
-#else
+#ifndef FOGRT_NO_MEDIA
     return fogrt__x_check_media(s, m);                   /* SEAM 6: the phase and emission of G */
+#else
+    return FOGRT_RESULT_OK;
 #endif
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_medium_desc *desc) {
@@ -3078,11 +3074,7 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fog
         !fogrt__finite(d->c_trav) || !fogrt__finite(d->c_int))
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: heuristic, layout, bins (1..64), max_leaf_size (>= 1), c_trav or c_int out of range");
     if (d->heuristic == FOGRT_BVH_DEFAULT) d->heuristic = FOGRT_BVH_SAH;
-#ifdef FOGRT_NO_WIDE_BVH
-    FOGRT__REFUSE_IF(d->layout == FOGRT_BVH_LAYOUT_WIDE, UNSUPPORTED,
-                     "build desc: layout wide needs a build without FOGRT_NO_WIDE_BVH (and FOGRT_MINIMAL)");
-#endif
-    return FOGRT_RESULT_OK;
+    return fogrt__refuse_stripped_build(s, d);
 }
 /* The tree, and the primitives in BVH order in the form the traversal reads. leaf_keep:
    nodes of at most this many primitives stay leaves (0: the heuristic decides). Returns
@@ -3193,35 +3185,17 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void) {
 #endif
     return d;
 }
-/* What a desc asks of a build that left out the part of fogrt.h it needs. */
-FOGRT__PRIVATE fogrt_result fogrt__check_build_has(const fogrt_scene *s, const fogrt_render_desc *d) {
-#ifdef FOGRT_NO_EXACT_FRESNEL
-    FOGRT__REFUSE_IF(d->fresnel == FOGRT_FRESNEL_EXACT, UNSUPPORTED,
-                     "render desc: fresnel exact needs a build without FOGRT_NO_EXACT_FRESNEL, FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
-#endif
-#ifdef FOGRT_NO_LAMPS_IN_FOG
-    FOGRT__REFUSE_IF(d->equiangular || d->glow || d->footprint || d->expected_emission, UNSUPPORTED,
-                     "render desc: equiangular, glow, footprint and expected_emission need a build without FOGRT_NO_LAMPS_IN_FOG and FOGRT_MINIMAL (start from fogrt_render_paper_defaults())");
-#endif
-#ifdef FOGRT_NO_ESTIMATION
-    FOGRT__REFUSE_IF(d->light_by_power || d->sample_rate, UNSUPPORTED,
-                     "render desc: light_by_power and sample_rate need a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
-#endif
-    (void)s; (void)d;
-    return FOGRT_RESULT_OK;
-}
 /* The settings the integrators read, from a desc (NULL: the defaults) that must come from a
    fogrt_render_*defaults(): a zeroed one would silently mean "max depth 0, no light sampling". */
 FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fogrt_render_desc *in,
                                                   fogrt__settings *st, fogrt_render_desc *out) {
     fogrt_render_desc d = in ? *in : fogrt_render_defaults();
-    fogrt_result r;
     FOGRT__REFUSE_IF(!d.resolved, INVALID_ARGUMENT,
                      "render desc: not from fogrt_render_defaults() (a zeroed desc would mean max_depth 0 and no light sampling)");
     if (d.max_depth < -1 || d.min_depth < 0 || d.rr_depth < 0 || d.light_samples < 1 ||
         (unsigned)d.integrator >= (unsigned)FOGRT_INTEGRATOR_NUM || (unsigned)d.fresnel >= (unsigned)FOGRT_FRESNEL_NUM)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: max_depth (>= -1), min_depth (>= 0), rr_depth (>= 0), light_samples (>= 1), integrator or fresnel out of range");
-    if ((r = fogrt__check_build_has(s, &d)) != FOGRT_RESULT_OK) return r;
+    FOGRT__PASS(fogrt__refuse_stripped_render(s, &d));
     st->max_depth = d.max_depth < 0 ? 0x7FFFFFFF : d.max_depth;
     st->min_depth = d.min_depth;
     st->rr_depth = d.rr_depth;
@@ -3609,16 +3583,14 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
     fogrt_camera_desc cd;
     fogrt_medium_desc fd;
     uint32_t white, red, blue, lamp, matte, glass, i, wall[6];
-    fogrt_result r = FOGRT_RESULT_OK;
-#define FOGRT__TRY(call) do { r = (call); if (r != FOGRT_RESULT_OK) return r; } while (0)
     memset(&md, 0, sizeof md);
     md.type = FOGRT_BSDF_DIFFUSE;
-    md.reflectance = fogrt__v(0.73f, 0.73f, 0.73f); FOGRT__TRY(fogrt_scene_add_material(s, &md, &white));
-    md.reflectance = fogrt__v(0.65f, 0.06f, 0.05f); FOGRT__TRY(fogrt_scene_add_material(s, &md, &red));
-    md.reflectance = fogrt__v(0.08f, 0.12f, 0.60f); FOGRT__TRY(fogrt_scene_add_material(s, &md, &blue));
-    md.reflectance = fogrt__v(0.60f, 0.55f, 0.45f); FOGRT__TRY(fogrt_scene_add_material(s, &md, &matte));
+    md.reflectance = fogrt__v(0.73f, 0.73f, 0.73f); FOGRT__PASS(fogrt_scene_add_material(s, &md, &white));
+    md.reflectance = fogrt__v(0.65f, 0.06f, 0.05f); FOGRT__PASS(fogrt_scene_add_material(s, &md, &red));
+    md.reflectance = fogrt__v(0.08f, 0.12f, 0.60f); FOGRT__PASS(fogrt_scene_add_material(s, &md, &blue));
+    md.reflectance = fogrt__v(0.60f, 0.55f, 0.45f); FOGRT__PASS(fogrt_scene_add_material(s, &md, &matte));
     md.reflectance = fogrt__v(0.0f, 0.0f, 0.0f);
-    md.emission = fogrt__v(8.5f, 6.0f, 2.0f);     FOGRT__TRY(fogrt_scene_add_material(s, &md, &lamp));
+    md.emission = fogrt__v(8.5f, 6.0f, 2.0f);     FOGRT__PASS(fogrt_scene_add_material(s, &md, &lamp));
     memset(&md, 0, sizeof md);
 #ifndef FOGRT_NO_GLASS
     md.type = FOGRT_BSDF_GLASS; md.ior = 1.5f;
@@ -3626,16 +3598,16 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
     md.type = FOGRT_BSDF_MIRROR;                  /* a build without glass: a mirror sphere */
 #endif
     md.reflectance = fogrt__v(1.0f, 1.0f, 1.0f); md.transmittance = fogrt__v(1.0f, 1.0f, 1.0f);
-    FOGRT__TRY(fogrt_scene_add_material(s, &md, &glass));
+    FOGRT__PASS(fogrt_scene_add_material(s, &md, &glass));
     wall[0] = wall[1] = wall[2] = white; wall[3] = red; wall[4] = blue; wall[5] = lamp;
     memset(&mesh, 0, sizeof mesh);
     mesh.vertex_count = 4; mesh.indices = idx; mesh.triangle_count = 2;
     for (i = 0; i < 6; ++i) {
         mesh.positions = fogrt__default_quads[i]; mesh.material = wall[i];
-        FOGRT__TRY(fogrt_scene_add_mesh(s, &mesh));
+        FOGRT__PASS(fogrt_scene_add_mesh(s, &mesh));
     }
-    FOGRT__TRY(fogrt_scene_add_sphere(s, fogrt__v(-0.45f, 0.35f, -0.35f), 0.35f, matte));
-    FOGRT__TRY(fogrt_scene_add_sphere(s, fogrt__v(0.45f, 0.35f, 0.25f), 0.35f, glass));
+    FOGRT__PASS(fogrt_scene_add_sphere(s, fogrt__v(-0.45f, 0.35f, -0.35f), 0.35f, matte));
+    FOGRT__PASS(fogrt_scene_add_sphere(s, fogrt__v(0.45f, 0.35f, 0.25f), 0.35f, glass));
     /* The spot light: high on the left, aimed at the floor right of centre; its cone shows in the fog. */
     memset(&ld, 0, sizeof ld);
     ld.type = FOGRT_LIGHT_SPOT;
@@ -3643,19 +3615,18 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
     ld.direction = fogrt__sub(fogrt__v(0.3f, 0.0f, 0.0f), ld.position);
     ld.intensity = fogrt__v(16.0f, 20.0f, 26.0f);
     ld.cutoff_deg = 16.0f; ld.beam_deg = 11.0f; ld.radius = 0.02f;
-    FOGRT__TRY(fogrt_scene_add_light(s, &ld));
+    FOGRT__PASS(fogrt_scene_add_light(s, &ld));
     memset(&cd, 0, sizeof cd);
     cd.position = fogrt__v(0.0f, 0.75f, 3.6f); cd.look_at = fogrt__v(0.0f, 0.7f, 0.0f); cd.fov_deg = 38.0f;
-    FOGRT__TRY(fogrt_scene_set_camera(s, &cd));
+    FOGRT__PASS(fogrt_scene_set_camera(s, &cd));
 #ifndef FOGRT_NO_MEDIUM   /* a build without fog gets the same box, without fog */
     memset(&fd, 0, sizeof fd);
     fd.sigma_t = 0.3f; fd.albedo = fogrt__v(0.9f, 0.9f, 0.9f); fd.g = 0.6f;
-    FOGRT__TRY(fogrt_scene_set_medium(s, &fd));
+    FOGRT__PASS(fogrt_scene_set_medium(s, &fd));
 #else
     (void)fd;
 #endif
-#undef FOGRT__TRY
-    return r;
+    return FOGRT_RESULT_OK;
 }
 
 #ifndef FOGRT_MINIMAL
@@ -7072,6 +7043,61 @@ FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__set
 }
 #endif /* FOGRT_NO_MEDIA */
 #endif /* FOGRT_MINIMAL */
+
+/* ------------------------------------------------------------------------------------------
+   What a build without a feature refuses
+   A desc that asks for what a build left out (FOGRT_MINIMAL, FOGRT_NO_<APPENDIX>, or Part I's
+   own FOGRT_NO_MEDIUM and FOGRT_NO_GLASS) fails with FOGRT_RESULT_UNSUPPORTED and one line
+   naming the macro. Part I runs these checks on every desc it takes; in a full build they
+   pass everything.
+   ------------------------------------------------------------------------------------------ */
+FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_material(const fogrt_scene *s, const fogrt_material_desc *m) {
+#ifdef FOGRT_NO_GLASS
+    FOGRT__REFUSE_IF(m->type == FOGRT_BSDF_REFRACTION || m->type == FOGRT_BSDF_GLASS, UNSUPPORTED,
+                     "material.type: refraction and glass need a build without FOGRT_NO_GLASS");
+#endif
+    (void)s; (void)m;
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_medium(const fogrt_scene *s, const fogrt_medium_desc *m) {
+#ifdef FOGRT_NO_ESTIMATION
+    FOGRT__REFUSE_IF(m->bounded && m->sigma_t > 0.0f, UNSUPPORTED,
+                     "medium.bounded: fog in a box needs a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
+#endif
+#ifdef FOGRT_NO_MEDIUM
+    FOGRT__REFUSE_IF(m->sigma_t > 0.0f, UNSUPPORTED, "medium: fogrt was compiled with FOGRT_NO_MEDIUM");
+#endif
+#ifdef FOGRT_NO_MEDIA
+    FOGRT__REFUSE_IF(m->phase || m->g2 != 0.0f || m->w != 0.0f || !fogrt__is_black(m->emission), UNSUPPORTED,
+                     "medium.phase/g2/w/emission: media beyond the paper need a build without FOGRT_NO_MEDIA, FOGRT_NO_MEDIUM and FOGRT_MINIMAL");
+#endif
+    (void)s; (void)m;
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_build(const fogrt_scene *s, const fogrt_build_desc *d) {
+#ifdef FOGRT_NO_WIDE_BVH
+    FOGRT__REFUSE_IF(d->layout == FOGRT_BVH_LAYOUT_WIDE, UNSUPPORTED,
+                     "build desc: layout wide needs a build without FOGRT_NO_WIDE_BVH (and FOGRT_MINIMAL)");
+#endif
+    (void)s; (void)d;
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_render(const fogrt_scene *s, const fogrt_render_desc *d) {
+#ifdef FOGRT_NO_EXACT_FRESNEL
+    FOGRT__REFUSE_IF(d->fresnel == FOGRT_FRESNEL_EXACT, UNSUPPORTED,
+                     "render desc: fresnel exact needs a build without FOGRT_NO_EXACT_FRESNEL, FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
+#endif
+#ifdef FOGRT_NO_LAMPS_IN_FOG
+    FOGRT__REFUSE_IF(d->equiangular || d->glow || d->footprint || d->expected_emission, UNSUPPORTED,
+                     "render desc: equiangular, glow, footprint and expected_emission need a build without FOGRT_NO_LAMPS_IN_FOG and FOGRT_MINIMAL (start from fogrt_render_paper_defaults())");
+#endif
+#ifdef FOGRT_NO_ESTIMATION
+    FOGRT__REFUSE_IF(d->light_by_power || d->sample_rate, UNSUPPORTED,
+                     "render desc: light_by_power and sample_rate need a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
+#endif
+    (void)s; (void)d;
+    return FOGRT_RESULT_OK;
+}
 
 #endif /* FOGRT_IMPLEMENTATION_INCLUDED */
 #endif /* FOGRT_IMPLEMENTATION */
