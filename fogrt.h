@@ -53,6 +53,8 @@
     FOGRT_NO_MEDIA         leave out appendix G, media beyond the paper: the two-lobe HG and
                            Rayleigh phase functions, emitting fog (a medium desc that asks
                            for them fails)
+    FOGRT_NO_SHAPES        leave out appendix H, media inside shapes (fogrt_scene_set_interior
+                           and the interface material fail; implied by FOGRT_NO_MEDIA)
     FOGRT_NO_MEDIUM        strip the fog: no free-flight, transmittance, phase or equiangular
                            code (fogrt_scene_set_medium with sigma_t > 0 fails; implies
                            FOGRT_NO_MEDIA)
@@ -117,8 +119,9 @@
     WHAT FOGRT DOES NOT DO
     ======================
     Heterogeneous or chromatic media (sigma_t is one number), textures, microfacet BSDFs,
-    spectral rendering, instancing, motion blur, GPU. Nested refractive objects are not
-    tracked (leaving any refractive object puts the ray back into the fog).
+    spectral rendering, instancing, motion blur, GPU. Nested refractive objects are tracked
+    only in a scene with media inside shapes (Part II, H); elsewhere leaving any refractive
+    object puts the ray back into the fog.
 
     LICENSE
     =======
@@ -141,6 +144,9 @@
 #endif
 #if defined(FOGRT_NO_MEDIUM) && !defined(FOGRT_NO_MEDIA)
 #define FOGRT_NO_MEDIA           /* media beyond the paper (G) need the fog */
+#endif
+#if defined(FOGRT_NO_MEDIA) && !defined(FOGRT_NO_SHAPES)
+#define FOGRT_NO_SHAPES          /* media inside shapes (H) use G's phase functions and emission */
 #endif
 #if defined(FOGRT_NO_ESTIMATION) && !defined(FOGRT_NO_EXACT_FRESNEL)
 #define FOGRT_NO_EXACT_FRESNEL   /* the exact Fresnel is Part II's (C) */
@@ -239,6 +245,8 @@ typedef enum fogrt_bsdf_type {
     FOGRT_BSDF_MIRROR,        /* perfect specular reflection, tinted by reflectance */
     FOGRT_BSDF_REFRACTION,    /* specular transmission only; total internal reflection reflects */
     FOGRT_BSDF_GLASS,         /* reflect with probability F (Fresnel), else refract */
+    FOGRT_BSDF_INTERFACE,     /* index-matched: light passes straight through (the surface of a
+                                 fog volume of any shape, fogrt_scene_set_interior; Part II, H) */
     FOGRT_BSDF_NUM,
     FOGRT_BSDF_FORCE_U32 = 0x7FFFFFFF
 } fogrt_bsdf_type;
@@ -397,6 +405,27 @@ typedef struct fogrt_medium_desc {
 
 FOGRT_API fogrt_result fogrt_scene_set_medium(fogrt_scene *scene, const fogrt_medium_desc *desc);
 
+/* Media inside shapes (Part II, H; FOGRT_NO_SHAPES leaves them out). A closed mesh or a
+   sphere may hold a homogeneous medium of its own, filling the space its surface encloses:
+   with a refractive or glass material that is a filled glass (smoke in a glass sphere), with
+   FOGRT_BSDF_INTERFACE a fog volume of that shape (concave ones too). Shapes are meshes,
+   numbered from 0 in the order fogrt_scene_add_mesh added them (fogrt_scene_info's
+   mesh_count), and spheres, numbered in the order fogrt_scene_add_sphere added them.
+   desc NULL takes the medium out again. The desc is checked as fogrt_scene_set_medium's
+   (bounded must be false). Media may nest (a filled glass inside the room's fog, a shape
+   inside a shape); fogrt_scene_build refuses a medium on a mesh with an open edge and two
+   media whose shapes overlap without one holding the other, and finds the medium the camera
+   is in. The world's medium (fogrt_scene_set_medium) fills the space no shape holds; the
+   inside of a refractive shape without a medium of its own is empty (as in Part I), that of
+   an interface shape without one is its surroundings' medium (the shape is invisible).
+   A scene with such media is rendered by H's path tracer (light sampling and MIS as
+   Algorithm 1, shadow rays through interface surfaces with each medium's transmittance). */
+typedef enum fogrt_shape_kind { FOGRT_SHAPE_MESH = 0, FOGRT_SHAPE_SPHERE, FOGRT_SHAPE_NUM } fogrt_shape_kind;
+#ifndef FOGRT_NO_SHAPES
+FOGRT_API fogrt_result fogrt_scene_set_interior(fogrt_scene *scene, fogrt_shape_kind kind, uint32_t index,
+                                               const fogrt_medium_desc *desc);   /* Part II, H */
+#endif
+
 /* Adds the embedded default scene: the CS184 Cornell box (walls x = +-1, z = +-1, floor
    y = 0, ceiling y = 1.5, red left wall, blue right wall, ceiling area light), a diffuse
    sphere, a glass sphere, a spot light, fog (sigma_t 0.3, albedo 0.9, g 0.6) and a camera.
@@ -498,6 +527,7 @@ FOGRT_API uint32_t fogrt_scene_get_features(const fogrt_scene *scene);
 /* Counts and read-back, for tools and tests. */
 typedef struct fogrt_scene_info {
     uint32_t triangle_count, sphere_count, material_count;
+    uint32_t mesh_count;         /* fogrt_scene_add_mesh calls that added triangles */
     uint32_t light_count;        /* point + spot lights */
     uint32_t area_light_count;   /* emissive meshes + emissive spheres (after build) */
     fogrt_vec3 bounds_min, bounds_max;   /* of all geometry (after build) */
@@ -1216,11 +1246,14 @@ FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x) {
     return x ^ (x >> 31);
 }
 
-/* What a build without a feature refuses (after Part II; in a full build they pass everything). */
-FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_material(const fogrt_scene *s, const fogrt_material_desc *m);
-FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_medium(const fogrt_scene *s, const fogrt_medium_desc *m);
-FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_build(const fogrt_scene *s, const fogrt_build_desc *d);
-FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_render(const fogrt_scene *s, const fogrt_render_desc *d);
+/* Checks of what lies beyond Part I (after Part II): a build without a feature refuses it. */
+FOGRT__PRIVATE fogrt_result fogrt__beyond_material(const fogrt_scene *s, const fogrt_material_desc *m);
+FOGRT__PRIVATE fogrt_result fogrt__beyond_medium(const fogrt_scene *s, const fogrt_medium_desc *m);
+FOGRT__PRIVATE fogrt_result fogrt__beyond_build(const fogrt_scene *s, const fogrt_build_desc *d);
+FOGRT__PRIVATE fogrt_result fogrt__beyond_render(const fogrt_scene *s, const fogrt_render_desc *d);
+#ifndef FOGRT_NO_SHAPES
+FOGRT__PRIVATE void fogrt__x_shapes_free(fogrt_scene *s);                                         /* 4 (H) */
+#endif
 /* The seams: what Part I calls of Part II (numbered as in the list above). */
 struct fogrt__settings;
 struct fogrt__job;
@@ -1308,6 +1341,7 @@ struct fogrt_scene {
     float eps;                 /* absolute ray offset floor, relative to the scene size */
     float r2_min;              /* smallest squared distance to a point light (2.3) */
     struct fogrt__x *x;        /* Part II's state: NULL under FOGRT_MINIMAL */
+    struct fogrt__shapes *shapes;   /* Part II's media inside shapes (H), or NULL */
     char *error;               /* the last failure's message: points at error_text (writable */
     char error_text[256];      /*   through a const scene, as a log line is) */
 };
@@ -1389,6 +1423,9 @@ FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s) {
     fogrt__free(&a, s->materials); fogrt__free(&a, s->tri_v); fogrt__free(&a, s->tri_n); fogrt__free(&a, s->tri_has_n);
     fogrt__free(&a, s->tri_material); fogrt__free(&a, s->tri_mesh);
     fogrt__free(&a, s->sph_c); fogrt__free(&a, s->sph_r); fogrt__free(&a, s->sph_material);
+#ifndef FOGRT_NO_SHAPES
+    fogrt__x_shapes_free(s);                             /* SEAM 4: H's media, set on the scene */
+#endif
     fogrt__free(&a, s->lights); fogrt__free(&a, s->env_map); fogrt__free(&a, s);
 }
 
@@ -1404,7 +1441,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_
                      "material.reflectance/transmittance/emission: negative or not finite");
     FOGRT__REFUSE_IF(!fogrt__finite(m.ior) || m.ior < 0.0f, INVALID_MATERIAL, "material.ior: must be > 0 (0 means the default 1.5)");
     if (m.type == FOGRT_BSDF_DEFAULT) m.type = FOGRT_BSDF_DIFFUSE;
-    FOGRT__PASS(fogrt__refuse_stripped_material(s, &m));
+    FOGRT__PASS(fogrt__beyond_material(s, &m));
     m.ior = FOGRT__DEF(m.ior, 1.5f);
     if (s->material_count == 0xFFFFFFFEu) return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "too many materials");
     if (s->material_count + 1 > s->material_cap) {
@@ -1589,7 +1626,7 @@ FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medi
     FOGRT__REFUSE_IF(!(m->g >= -1.0f && m->g <= 1.0f), INVALID_MEDIUM, "medium.g: outside [-1, 1]");
     FOGRT__REFUSE_IF(m->bounded && !fogrt__box_ok(m->bounds_min, m->bounds_max), INVALID_MEDIUM,
                      "medium.bounds_min/bounds_max: not finite, beyond 1e30, or min not below max on every axis");
-    FOGRT__PASS(fogrt__refuse_stripped_medium(s, m));
+    FOGRT__PASS(fogrt__beyond_medium(s, m));
     if (fabsf(m->g) >= FOGRT_HG_G_MAX && fabsf(m->g) != FOGRT_HG_G_MAX) {
         m->g = copysignf(FOGRT_HG_G_MAX, m->g);
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
@@ -1621,7 +1658,7 @@ FOGRT__PUBLIC uint32_t fogrt_scene_get_features(const fogrt_scene *s) { FOGRT_AS
 FOGRT__PUBLIC void fogrt_scene_get_info(const fogrt_scene *s, fogrt_scene_info *info) {
     FOGRT_ASSERT(s && info);
     memset(info, 0, sizeof *info);
-    info->triangle_count = s->tri_count; info->sphere_count = s->sph_count;
+    info->triangle_count = s->tri_count; info->sphere_count = s->sph_count; info->mesh_count = s->mesh_count;
     info->material_count = s->material_count;
     info->light_count = s->light_count; info->area_light_count = s->area_light_count;
     info->bounds_min = s->bmin; info->bounds_max = s->bmax;
@@ -2168,6 +2205,11 @@ FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel
 #else
     if (type == FOGRT_BSDF_REFRACTION || type == FOGRT_BSDF_GLASS) return false;   /* stripped */
 #endif
+    if (type == FOGRT_BSDF_INTERFACE) {                  /* index-matched: straight through */
+        out->wi = fogrt__neg(wo); out->weight = fogrt__v(1.0f, 1.0f, 1.0f); out->pdf = 1.0f;
+        out->is_delta = out->is_transmission = true;
+        return true;
+    }
     (void)u_lobe; (void)fresnel;                         /* diffuse: cosine-weighted */
     wi = fogrt_sample_cosine_hemisphere(u1, u2);
     if (wi.z <= 0.0f) return false;
@@ -2651,7 +2693,7 @@ FOGRT__HOT bool fogrt__surface_vertex_set(fogrt__vertex *v, const fogrt_material
                                           fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns, bool in_medium) {
     fogrt_bsdf_type type = fogrt__bsdf_type(m);
     bool entering = fogrt__dot(wo, ng) > 0.0f;
-    if (type != FOGRT_BSDF_REFRACTION && type != FOGRT_BSDF_GLASS) {
+    if (type < FOGRT_BSDF_REFRACTION) {                  /* reflects only: two-sided */
         if (!entering) { ng = fogrt__neg(ng); ns = fogrt__neg(ns); }
         if (fogrt__dot(wo, ns) <= 0.0f) ns = ng;
     }
@@ -3074,7 +3116,7 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fog
         !fogrt__finite(d->c_trav) || !fogrt__finite(d->c_int))
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: heuristic, layout, bins (1..64), max_leaf_size (>= 1), c_trav or c_int out of range");
     if (d->heuristic == FOGRT_BVH_DEFAULT) d->heuristic = FOGRT_BVH_SAH;
-    return fogrt__refuse_stripped_build(s, d);
+    return fogrt__beyond_build(s, d);
 }
 /* The tree, and the primitives in BVH order in the form the traversal reads. leaf_keep:
    nodes of at most this many primitives stay leaves (0: the heuristic decides). Returns
@@ -3195,7 +3237,7 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
     if (d.max_depth < -1 || d.min_depth < 0 || d.rr_depth < 0 || d.light_samples < 1 ||
         (unsigned)d.integrator >= (unsigned)FOGRT_INTEGRATOR_NUM || (unsigned)d.fresnel >= (unsigned)FOGRT_FRESNEL_NUM)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: max_depth (>= -1), min_depth (>= 0), rr_depth (>= 0), light_samples (>= 1), integrator or fresnel out of range");
-    FOGRT__PASS(fogrt__refuse_stripped_render(s, &d));
+    FOGRT__PASS(fogrt__beyond_render(s, &d));
     st->max_depth = d.max_depth < 0 ? 0x7FFFFFFF : d.max_depth;
     st->min_depth = d.min_depth;
     st->rr_depth = d.rr_depth;
@@ -3670,6 +3712,9 @@ struct fogrt__x {
     float glow_share;          /* B: the share of scattered directions aimed at the glow (E d') */
     struct fogrt__footprint *footprints;   /* B: per point or spot light, the plane its cone lights most, or NULL */
     struct fogrt__hg_table *hg;   /* B: HG per unit angle for the medium's g, with lamps in fog */
+#ifndef FOGRT_NO_SHAPES
+    struct fogrt__hbuilt *h;   /* H: media inside shapes, or NULL */
+#endif
 #ifndef FOGRT_NO_MEDIA
     bool media;                /* G: the fog has another phase function than HG, or emits */
     bool emits;                /* G: the fog emits */
@@ -3684,6 +3729,13 @@ FOGRT__PRIVATE float fogrt__media_pdf(const fogrt_medium_desc *m, fogrt__v3 wo, 
 FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
                                           fogrt__v3 beta, float t_end, bool collided);
 FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s);
+#endif
+#ifndef FOGRT_NO_SHAPES
+/* H's steps, which E's dispatch and the build call before their chapter. */
+FOGRT__PRIVATE bool fogrt__shapes_build(fogrt_scene *s);
+FOGRT__PRIVATE void fogrt__x_shapes_release(fogrt_scene *s);
+FOGRT__PRIVATE fogrt__v3 fogrt__h_radiance(const fogrt_scene *s, const struct fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
+                                           fogrt_rng *rng, uint64_t *rays);
 #endif
 
 #ifndef FOGRT_NO_WIDE_BVH
@@ -6635,6 +6687,9 @@ FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__setting
    fog in a box or G's media (which Part I does not know). */
 FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const fogrt__settings *st) {
     const fogrt_render_desc *d = &st->desc;
+#ifndef FOGRT_NO_SHAPES
+    if (s->x->h) return true;                           /* H */
+#endif
 #ifndef FOGRT_NO_MEDIA
     if (s->x->media) return true;
 #endif
@@ -6649,6 +6704,9 @@ FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance_xs(const fogrt_scene *s, const fogrt_
 FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
                                            fogrt_rng *rng, uint64_t *rays) {
     fogrt__xs xs;
+#ifndef FOGRT_NO_SHAPES
+    if (s->x->h) return fogrt__h_radiance(s, st, o, d, rng, rays);   /* H */
+#endif
     fogrt__x_settings(s, st, &xs);
     return fogrt__x_radiance_xs(s, st, &xs, o, d, rng, rays);
 }
@@ -6663,6 +6721,9 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
     x->rr_k = 1.0f;
 #ifndef FOGRT_NO_MEDIA
     fogrt__media_build(s);                              /* G */
+#endif
+#ifndef FOGRT_NO_SHAPES
+    if (!fogrt__shapes_build(s)) return false;          /* H */
 #endif
 #ifndef FOGRT_NO_WIDE_BVH
     if (fogrt__wants_wide(d, n)) {                      /* A: the wide tree replaces the packed primitives */
@@ -6704,6 +6765,9 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
 }
 FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s) {
     if (!s->x) return;
+#ifndef FOGRT_NO_SHAPES
+    fogrt__x_shapes_release(s);
+#endif
 #ifndef FOGRT_NO_WIDE_BVH
     fogrt__wide_release(s);
 #endif
@@ -6755,7 +6819,7 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_trace_path(const fogrt_scene *s, const fogrt_rend
 }
 #ifndef FOGRT_NO_STDIO
 FOGRT__PRIVATE const char *fogrt__bsdf_name(fogrt_bsdf_type t) {
-    static const char *names[FOGRT_BSDF_NUM] = { "diffuse", "diffuse", "mirror", "refraction", "glass" };
+    static const char *names[FOGRT_BSDF_NUM] = { "diffuse", "diffuse", "mirror", "refraction", "glass", "interface" };
     return (unsigned)t < (unsigned)FOGRT_BSDF_NUM ? names[t] : "?";
 }
 #define FOGRT__V3F(v) (double)(v).x, (double)(v).y, (double)(v).z
@@ -7042,24 +7106,519 @@ FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__set
     if (w > 0.0f) fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, s->x->emit), w), "fog emission");
 }
 #endif /* FOGRT_NO_MEDIA */
+
+#ifndef FOGRT_NO_SHAPES
+#include <stdlib.h>   /* qsort */
+/* ------------------------------------------------------------------------------------------
+   H. Media inside shapes
+   What it adds: a homogeneous medium inside any closed mesh or sphere
+   (fogrt_scene_set_interior): smoke in a glass, a fog volume of any shape behind an
+   index-matched surface (FOGRT_BSDF_INTERFACE), media inside media, the camera inside any
+   of them.
+   What it costs: nothing for a scene without such media (seam 7 tests one pointer); a scene
+   with them is rendered by the path tracer below, which samples lights with MIS as
+   Algorithm 1 (3.4) does, but has none of B's or C's variance reduction.
+   Its tests: tests/test_shapes.c; docs/validation.md, "Media inside shapes".
+
+   The media form a tree. Every shape that bounds a medium (one with an interior, or a
+   refractive or interface one) has an inside medium and an outside one, the inside of the
+   innermost such shape that holds it (or the world's medium). The build finds who holds whom
+   by ray parity: a ray from a point crosses the surface of every closed shape that holds the
+   point an odd number of times. A path carries the medium it travels in; crossing a
+   boundary's surface (refracting through it, or passing an interface) takes it to that
+   boundary's other medium. A shadow ray passes interface surfaces only, and collects the
+   transmittance (eq. 8) of every medium it crosses.
+   ------------------------------------------------------------------------------------------ */
+typedef struct fogrt__interior { fogrt_shape_kind kind; uint32_t index; fogrt_medium_desc m; } fogrt__interior;
+struct fogrt__shapes { fogrt__interior *items; uint32_t count, cap; };
+/* A boundary of the built scene: a shape, its two media (indices into media), its box. */
+typedef struct fogrt__boundary {
+    fogrt_shape_kind kind;
+    uint32_t index, inside, outside, holder;   /* holder: the innermost boundary that holds it, or UINT32_MAX */
+    int declared;                              /* its interior's medium index, or -1 */
+    bool closed, interface;
+    fogrt__aabb box;
+} fogrt__boundary;
+struct fogrt__hbuilt {
+    fogrt_medium_desc *media;    /* 0: the world's (sigma_t 0 without fog), 1: empty, then the interiors */
+    fogrt__v3 *emit;             /* per medium: (1 - albedo) Le, added at each collision (G) */
+    fogrt__boundary *bounds;
+    uint32_t *mesh_bound, *sph_bound;   /* per mesh and per sphere: its boundary, or UINT32_MAX */
+    uint32_t media_count, bound_count, camera_medium;
+};
+#define FOGRT__H_MAX_CROSSINGS 256   /* surfaces one shadow ray may pass */
+#define FOGRT__H_POINTS 16           /* points of a shape tested against the others */
+
+FOGRT__PUBLIC fogrt_result fogrt_scene_set_interior(fogrt_scene *s, fogrt_shape_kind kind, uint32_t index,
+                                                   const fogrt_medium_desc *desc) {
+    struct fogrt__shapes *sh;
+    fogrt_medium_desc m;
+    uint32_t i;
+    FOGRT_ASSERT(s);
+    FOGRT__REFUSE_IF((unsigned)kind >= (unsigned)FOGRT_SHAPE_NUM, INVALID_ARGUMENT, "interior: kind is not FOGRT_SHAPE_MESH or FOGRT_SHAPE_SPHERE");
+    FOGRT__REFUSE_IF(index >= (kind == FOGRT_SHAPE_MESH ? s->mesh_count : s->sph_count), INVALID_ARGUMENT,
+                     "interior: the scene has no mesh or sphere of that number");
+    memset(&m, 0, sizeof m);
+    if (desc) {
+        m = *desc;
+        FOGRT__REFUSE_IF(m.bounded, INVALID_MEDIUM, "interior medium.bounded: a shape's medium is bounded by the shape");
+        FOGRT__PASS(fogrt__check_medium(s, &m));
+    }
+    if (!s->shapes) {
+        s->shapes = (struct fogrt__shapes *)fogrt__alloc(&s->allocator, sizeof *s->shapes);
+        if (!s->shapes) return FOGRT_RESULT_OUT_OF_MEMORY;
+        memset(s->shapes, 0, sizeof *s->shapes);
+    }
+    sh = s->shapes;
+    for (i = 0; i < sh->count && !(sh->items[i].kind == kind && sh->items[i].index == index); ++i) {}
+    if (!desc) {                                         /* take it out */
+        if (i < sh->count) sh->items[i] = sh->items[--sh->count];
+    } else {
+        if (i == sh->count && sh->count == sh->cap) {
+            uint32_t cap = fogrt__grow_cap(sh->cap, sh->count + 1);
+            if (!fogrt__reserve(s, (void **)&sh->items, sh->count, cap, sizeof *sh->items)) return FOGRT_RESULT_OUT_OF_MEMORY;
+            sh->cap = cap;
+        }
+        if (i == sh->count) sh->count++;
+        sh->items[i].kind = kind; sh->items[i].index = index; sh->items[i].m = m;
+    }
+    s->built = false;
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PRIVATE void fogrt__x_shapes_free(fogrt_scene *s) {
+    if (!s->shapes) return;
+    fogrt__free(&s->allocator, s->shapes->items);
+    fogrt__free(&s->allocator, s->shapes);
+    s->shapes = NULL;
+}
+
+/* The triangles of mesh j: tri_mesh grows with the triangle index, so a binary search. */
+FOGRT__PRIVATE uint32_t fogrt__mesh_first(const fogrt_scene *s, uint32_t j) {
+    uint32_t lo = 0, hi = s->tri_count;
+    while (lo < hi) { uint32_t mid = lo + (hi - lo) / 2; if (s->tri_mesh[mid] < j) lo = mid + 1; else hi = mid; }
+    return lo;
+}
+FOGRT__PRIVATE bool fogrt__transmits(const fogrt_scene *s, uint32_t material) {
+    return fogrt__bsdf_type(&s->materials[material]) >= FOGRT_BSDF_REFRACTION;
+}
+
+/* Closed: every edge of the mesh's triangles (by its two end points, exactly) is shared by
+   an even number of them. An edge is kept as its two points in increasing order. */
+typedef struct fogrt__edge { float p[6]; } fogrt__edge;
+FOGRT__PRIVATE int fogrt__floats_cmp(const float *p, const float *q, int n) {
+    int i;
+    for (i = 0; i < n; ++i) if (p[i] != q[i]) return p[i] < q[i] ? -1 : 1;
+    return 0;
+}
+FOGRT__PRIVATE int fogrt__edge_cmp(const void *x, const void *y) {
+    return fogrt__floats_cmp(((const fogrt__edge *)x)->p, ((const fogrt__edge *)y)->p, 6);
+}
+FOGRT__PRIVATE bool fogrt__edge_of(const fogrt_scene *s, uint32_t t, uint32_t k, fogrt__edge *e) {
+    fogrt__v3 p = s->tri_v[3 * t + k], q = s->tri_v[3 * t + (k + 1) % 3];
+    float a[3], b[3];
+    int c;
+    a[0] = p.x; a[1] = p.y; a[2] = p.z; b[0] = q.x; b[1] = q.y; b[2] = q.z;
+    if ((c = fogrt__floats_cmp(a, b, 3)) == 0) return false;   /* a degenerate triangle's edge */
+    memcpy(e->p, c < 0 ? a : b, sizeof a);
+    memcpy(e->p + 3, c < 0 ? b : a, sizeof a);
+    return true;
+}
+FOGRT__PRIVATE int fogrt__mesh_closed(const fogrt_scene *s, uint32_t first, uint32_t end) {   /* -1: out of memory */
+    fogrt__edge *e = (fogrt__edge *)fogrt__alloc(&s->allocator, sizeof(fogrt__edge) * (3 * (size_t)(end - first) + 1));
+    size_t n = 0, i, k;
+    uint32_t t;
+    if (!e) return -1;
+    for (t = first; t < end; ++t)
+        for (k = 0; k < 3; ++k) n += fogrt__edge_of(s, t, (uint32_t)k, &e[n]);
+    qsort(e, n, sizeof *e, fogrt__edge_cmp);
+    for (i = 0; i < n; i = k) {
+        for (k = i + 1; k < n && fogrt__edge_cmp(&e[i], &e[k]) == 0; ++k) {}
+        if ((k - i) % 2) break;
+    }
+    fogrt__free(&s->allocator, e);
+    return i >= n;
+}
+
+/* Whether boundary b (closed) holds point p: inside a sphere, or an odd number of the
+   mesh's triangles crossed by a ray from p in a direction no axis-aligned or diagonal
+   surface holds. */
+FOGRT__PRIVATE bool fogrt__holds(const fogrt_scene *s, const fogrt__boundary *b, fogrt__v3 p) {
+    const fogrt__v3 d = { 0.5772f, 0.5774f, 0.5776f };
+    uint32_t t, end, crossings = 0;
+    if (b->kind == FOGRT_SHAPE_SPHERE) {
+        fogrt__v3 pc = fogrt__sub(p, s->sph_c[b->index]);
+        return fogrt__dot(pc, pc) < s->sph_r[b->index] * s->sph_r[b->index];
+    }
+    end = fogrt__mesh_first(s, b->index + 1);
+    for (t = fogrt__mesh_first(s, b->index); t < end; ++t) {
+        const fogrt__v3 *v = &s->tri_v[3 * t];
+        float th, u, w;
+        crossings += fogrt__hit_triangle(p, d, v[0], fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0]), 0.0f, INFINITY, &th, &u, &w);
+    }
+    return crossings % 2 == 1;
+}
+/* Point i of FOGRT__H_POINTS on boundary b's surface: a triangle's centroid, spread over the
+   mesh, or a point of the sphere. */
+FOGRT__PRIVATE fogrt__v3 fogrt__shape_point(const fogrt_scene *s, const fogrt__boundary *b, uint32_t i) {
+    if (b->kind == FOGRT_SHAPE_SPHERE) {
+        fogrt__v3 d = fogrt_sample_uniform_sphere(((float)i + 0.5f) / FOGRT__H_POINTS, (float)(i * 7 % FOGRT__H_POINTS) / FOGRT__H_POINTS);
+        return fogrt__madd(s->sph_c[b->index], d, s->sph_r[b->index]);
+    } else {
+        uint32_t first = fogrt__mesh_first(s, b->index), n = fogrt__mesh_first(s, b->index + 1) - first;
+        const fogrt__v3 *v = &s->tri_v[3 * (first + (uint32_t)((uint64_t)i * n / FOGRT__H_POINTS))];
+        return fogrt__scale(fogrt__add(v[0], fogrt__add(v[1], v[2])), 1.0f / 3.0f);
+    }
+}
+FOGRT__PRIVATE float fogrt__box_volume(const fogrt__aabb *b) {
+    fogrt__v3 e = fogrt__sub(b->hi, b->lo);
+    return e.x * e.y * e.z;
+}
+/* The innermost closed boundary other than `except` that holds p, or UINT32_MAX. */
+FOGRT__PRIVATE uint32_t fogrt__innermost(const fogrt_scene *s, const fogrt__boundary *B, uint32_t n, fogrt__v3 p, uint32_t except) {
+    uint32_t j, best = UINT32_MAX;
+    for (j = 0; j < n; ++j)
+        if (j != except && B[j].closed && fogrt__holds(s, &B[j], p) &&
+            (best == UINT32_MAX || fogrt__box_volume(&B[j].box) < fogrt__box_volume(&B[best].box)))
+            best = j;
+    return best;
+}
+
+/* "<prefix>mesh 3<suffix>": a message naming a shape, without stdio. */
+FOGRT__PRIVATE const char *fogrt__shape_msg(char *buf, const char *prefix, const fogrt__boundary *b, const char *suffix) {
+    char num[12];
+    int n = 0;
+    uint32_t v = b->index;
+    do { num[n++] = (char)('0' + v % 10); v /= 10; } while (v);
+    buf[0] = '\0';
+    strncat(buf, prefix, 80);
+    strcat(buf, b->kind == FOGRT_SHAPE_MESH ? "mesh " : "sphere ");
+    while (n) { size_t l = strlen(buf); buf[l] = num[--n]; buf[l + 1] = '\0'; }
+    strncat(buf, suffix, 150);
+    return buf;
+}
+/* Whether the scene has media inside shapes: an interior, or an interface material. */
+FOGRT__PRIVATE bool fogrt__shapes_wanted(const fogrt_scene *s) {
+    uint32_t i;
+    if (s->shapes && s->shapes->count) return true;
+    for (i = 0; i < s->material_count && fogrt__bsdf_type(&s->materials[i]) != FOGRT_BSDF_INTERFACE; ++i) {}
+    return i < s->material_count;
+}
+/* Boundary k's fields from the shape: its interior, material, box and closedness. */
+FOGRT__PRIVATE int fogrt__boundary_set(const fogrt_scene *s, fogrt__boundary *b, fogrt_shape_kind kind, uint32_t index) {
+    const struct fogrt__shapes *sh = s->shapes;
+    uint32_t i, first, end;
+    b->kind = kind; b->index = index; b->declared = -1; b->holder = UINT32_MAX;
+    for (i = 0; sh && i < sh->count; ++i)
+        if (sh->items[i].kind == kind && sh->items[i].index == index) b->declared = (int)(2 + i);
+    if (kind == FOGRT_SHAPE_SPHERE) {
+        fogrt__v3 r = fogrt__v(s->sph_r[index], s->sph_r[index], s->sph_r[index]);
+        b->box.lo = fogrt__sub(s->sph_c[index], r); b->box.hi = fogrt__add(s->sph_c[index], r);
+        b->interface = fogrt__bsdf_type(&s->materials[s->sph_material[index]]) == FOGRT_BSDF_INTERFACE;
+        b->closed = true;
+        return 1;
+    }
+    first = fogrt__mesh_first(s, index); end = fogrt__mesh_first(s, index + 1);
+    b->box = fogrt__aabb_empty(); b->interface = false;
+    for (i = first; i < end; ++i) {
+        fogrt__aabb t = fogrt__prim_box(s, i);
+        fogrt__aabb_union(&b->box, &t);
+        b->interface |= fogrt__bsdf_type(&s->materials[s->tri_material[i]]) == FOGRT_BSDF_INTERFACE;
+    }
+    i = (uint32_t)fogrt__mesh_closed(s, first, end);
+    b->closed = i == 1;
+    return (int)i;   /* -1: out of memory */
+}
+/* Which meshes and spheres are boundaries: an interior, or a refractive or interface material. */
+FOGRT__PRIVATE uint8_t *fogrt__boundary_marks(const fogrt_scene *s) {
+    uint8_t *mark = (uint8_t *)fogrt__alloc(&s->allocator, (size_t)s->mesh_count + s->sph_count + 1);
+    uint32_t i;
+    if (!mark) return NULL;
+    memset(mark, 0, (size_t)s->mesh_count + s->sph_count + 1);
+    for (i = 0; i < s->tri_count; ++i) mark[s->tri_mesh[i]] |= fogrt__transmits(s, s->tri_material[i]);
+    for (i = 0; i < s->sph_count; ++i) mark[s->mesh_count + i] = fogrt__transmits(s, s->sph_material[i]);
+    for (i = 0; s->shapes && i < s->shapes->count; ++i)
+        mark[(s->shapes->items[i].kind == FOGRT_SHAPE_SPHERE ? s->mesh_count : 0) + s->shapes->items[i].index] = 1;
+    return mark;
+}
+/* The innermost boundary that holds boundary k, the same from every point of k's surface:
+   else the two overlap. */
+FOGRT__PRIVATE fogrt_result fogrt__find_holder(const fogrt_scene *s, fogrt__boundary *B, uint32_t n, uint32_t k) {
+    char msg[256], buf[128];
+    uint32_t i, h;
+    B[k].holder = fogrt__innermost(s, B, n, fogrt__shape_point(s, &B[k], 0), k);
+    for (i = 1; i < FOGRT__H_POINTS; ++i) {
+        if ((h = fogrt__innermost(s, B, n, fogrt__shape_point(s, &B[k], i), k)) == B[k].holder) continue;
+        h = h == UINT32_MAX ? B[k].holder : h;
+        fogrt__shape_msg(buf, " and ", &B[h], " overlap: media inside shapes must nest (one inside the other) or lie apart");
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, fogrt__shape_msg(msg, "media inside shapes: ", &B[k], buf));
+    }
+    return FOGRT_RESULT_OK;
+}
+/* Every boundary of the scene, closed or not, with its holder; refuses a medium on an open
+   mesh and overlapping media. *out (count *n) is the caller's to free. */
+FOGRT__PRIVATE fogrt_result fogrt__find_boundaries(const fogrt_scene *s, fogrt__boundary **out, uint32_t *n_out) {
+    uint8_t *mark = fogrt__boundary_marks(s);
+    fogrt__boundary *B;
+    uint32_t i, n = 0, total = s->mesh_count + s->sph_count;
+    char msg[256];
+    fogrt_result r = FOGRT_RESULT_OK;
+    *out = NULL; *n_out = 0;
+    if (!mark) return FOGRT_RESULT_OUT_OF_MEMORY;
+    for (i = 0; i < total; ++i) n += mark[i];
+    B = (fogrt__boundary *)fogrt__alloc(&s->allocator, sizeof *B * (n + 1));
+    for (i = 0, n = 0; B && i < total && r == FOGRT_RESULT_OK; ++i) {
+        fogrt__boundary *b = &B[n];
+        int c;
+        if (!mark[i]) continue;
+        c = fogrt__boundary_set(s, b, i < s->mesh_count ? FOGRT_SHAPE_MESH : FOGRT_SHAPE_SPHERE, i < s->mesh_count ? i : i - s->mesh_count);
+        if (c < 0) r = FOGRT_RESULT_OUT_OF_MEMORY;
+        else if (b->declared >= 0 && !b->closed)
+            r = fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, fogrt__shape_msg(msg, "interior of ", b, ": the mesh has an open edge (a medium needs a closed surface)"));
+        ++n;
+    }
+    for (i = 0; B && i < n && r == FOGRT_RESULT_OK; ++i) r = fogrt__find_holder(s, B, n, i);
+    fogrt__free(&s->allocator, mark);
+    if (!B) return FOGRT_RESULT_OUT_OF_MEMORY;
+    if (r != FOGRT_RESULT_OK) { fogrt__free(&s->allocator, B); return r; }
+    *out = B; *n_out = n;
+    return FOGRT_RESULT_OK;
+}
+/* The build's check (before anything is built, so that a refused scene stays as it was). */
+FOGRT__PRIVATE fogrt_result fogrt__shapes_check(const fogrt_scene *s) {
+    fogrt__boundary *B;
+    uint32_t n;
+    fogrt_result r;
+    if (!fogrt__shapes_wanted(s)) return FOGRT_RESULT_OK;
+    FOGRT__REFUSE_IF(s->medium.sigma_t > 0.0f && (s->medium.bounded || s->has_env), UNSUPPORTED,
+                     "media inside shapes: the world's fog must fill all space, without medium.bounded or an environment light");
+    if ((r = fogrt__find_boundaries(s, &B, &n)) == FOGRT_RESULT_OK) fogrt__free(&s->allocator, B);
+    return r;
+}
+/* The media and the two media of every boundary, innermost last: a boundary's outside is
+   its holder's inside (or the world's), its inside its own medium, else its outside (an
+   interface: invisible) or nothing (a refractive shape: empty inside, as in Part I). */
+FOGRT__PRIVATE void fogrt__resolve_media(struct fogrt__hbuilt *h) {
+    uint32_t k, pass;
+    for (pass = 0; pass <= h->bound_count; ++pass)          /* the holders' first: depth passes */
+        for (k = 0; k < h->bound_count; ++k) {
+            fogrt__boundary *b = &h->bounds[k];
+            b->outside = b->holder == UINT32_MAX ? 0u : h->bounds[b->holder].inside;
+            b->inside = b->declared >= 0 ? (uint32_t)b->declared : (b->interface ? b->outside : 1u);
+        }
+}
+FOGRT__PRIVATE void fogrt__x_shapes_release(fogrt_scene *s) {
+    struct fogrt__hbuilt *h = s->x->h;
+    if (!h) return;
+    fogrt__free(&s->allocator, h->media); fogrt__free(&s->allocator, h->emit); fogrt__free(&s->allocator, h->bounds);
+    fogrt__free(&s->allocator, h->mesh_bound); fogrt__free(&s->allocator, h->sph_bound);
+    fogrt__free(&s->allocator, h);
+    s->x->h = NULL;
+}
+/* H's tables (x->h stays NULL for a scene without media inside shapes). False: out of memory. */
+FOGRT__PRIVATE bool fogrt__shapes_build(fogrt_scene *s) {
+    struct fogrt__hbuilt *h;
+    uint32_t i, b, nm = 2 + (s->shapes ? s->shapes->count : 0);
+    fogrt__camera cam;
+    if (!fogrt__shapes_wanted(s)) return true;
+    h = s->x->h = (struct fogrt__hbuilt *)fogrt__alloc(&s->allocator, sizeof *h);
+    if (!h) return false;
+    memset(h, 0, sizeof *h);
+    h->media = (fogrt_medium_desc *)fogrt__alloc(&s->allocator, sizeof *h->media * nm);
+    h->emit = (fogrt__v3 *)fogrt__alloc(&s->allocator, sizeof *h->emit * nm);
+    h->mesh_bound = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * ((size_t)s->mesh_count + 1));
+    h->sph_bound = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * ((size_t)s->sph_count + 1));
+    if (!h->media || !h->emit || !h->mesh_bound || !h->sph_bound ||
+        fogrt__find_boundaries(s, &h->bounds, &h->bound_count) != FOGRT_RESULT_OK) return false;
+    h->media_count = nm;
+    memset(h->media, 0, sizeof *h->media * 2);
+    if (s->features & FOGRT_FEATURE_MEDIUM) h->media[0] = s->medium;
+    for (i = 2; i < nm; ++i) h->media[i] = s->shapes->items[i - 2].m;
+    for (i = 0; i < nm; ++i) h->emit[i] = fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), h->media[i].albedo), h->media[i].emission);
+    for (i = 0; i < s->mesh_count; ++i) h->mesh_bound[i] = UINT32_MAX;
+    for (i = 0; i < s->sph_count; ++i) h->sph_bound[i] = UINT32_MAX;
+    for (b = 0; b < h->bound_count; ++b)
+        *(h->bounds[b].kind == FOGRT_SHAPE_MESH ? &h->mesh_bound[h->bounds[b].index] : &h->sph_bound[h->bounds[b].index]) = b;
+    fogrt__resolve_media(h);
+    cam = fogrt__camera_setup(s, 1, 1);                 /* where the camera is: its medium */
+    b = fogrt__innermost(s, h->bounds, h->bound_count, cam.pos, UINT32_MAX);
+    h->camera_medium = b == UINT32_MAX ? 0u : h->bounds[b].inside;
+    return true;
+}
+
+/* The medium on the other side of primitive prim's surface, from medium med. */
+FOGRT__PRIVATE uint32_t fogrt__h_cross(const fogrt_scene *s, uint32_t prim, uint32_t med) {
+    const struct fogrt__hbuilt *h = s->x->h;
+    uint32_t b = prim < s->tri_count ? h->mesh_bound[s->tri_mesh[prim]] : h->sph_bound[prim - s->tri_count];
+    if (b == UINT32_MAX) return med;
+    return med == h->bounds[b].inside ? h->bounds[b].outside : h->bounds[b].inside;
+}
+FOGRT__PRIVATE bool fogrt__is_interface(const fogrt_scene *s, uint32_t prim) {
+    return fogrt__bsdf_type(&s->materials[fogrt_scene_get_prim_material(s, prim)]) == FOGRT_BSDF_INTERFACE;
+}
+/* Lines 7 and 10 through media: whether the light sample is visible from p (in medium med),
+   times the transmittance (eq. 8) of each medium on the way; interface surfaces let the
+   shadow ray through (into the medium on their other side), every other surface stops it. */
+FOGRT__PRIVATE float fogrt__h_shadow(const fogrt_scene *s, const fogrt__vertex *v, uint32_t med,
+                                     const fogrt_light_sample *ls, uint64_t *rays) {
+    const struct fogrt__hbuilt *h = s->x->h;
+    fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, ls->wi), y = fogrt__madd(v->p, ls->wi, ls->dist);
+    float T = 1.0f;
+    int k;
+    for (k = 0; k < FOGRT__H_MAX_CROSSINGS && T > 0.0f; ++k) {
+        fogrt_hit hit;
+        fogrt__v3 to = fogrt__sub(y, o), p, ng, ns;
+        float len = fogrt__length(to), tmax = len - fogrt__offset_size(s, y);
+        ++*rays;
+        if (!(tmax > 0.0f) || !fogrt__traverse(s, o, fogrt__scale(to, 1.0f / len), 0.0f, tmax, &hit, false))
+            return T * fogrt_transmittance(h->media[med].sigma_t, len);
+        if (!fogrt__is_interface(s, hit.prim)) return 0.0f;
+        T *= fogrt_transmittance(h->media[med].sigma_t, hit.t);
+        med = fogrt__h_cross(s, hit.prim, med);
+        fogrt__surface_frame(s, o, fogrt__scale(to, 1.0f / len), &hit, &p, &ng, &ns);
+        o = fogrt__offset(s, p, ng, to);
+    }
+    return 0.0f;
+}
+/* f of the vertex: the phase function of its medium in fog, else Part I's. */
+FOGRT__PRIVATE fogrt__v3 fogrt__h_vertex_f(const fogrt_scene *s, const fogrt__vertex *v, const fogrt_medium_desc *m,
+                                           fogrt__v3 wi, float *pdf) {
+    if (!v->is_medium) return fogrt__vertex_f(s, v, wi, pdf);
+    *pdf = fogrt__media_pdf(m, v->wo, wi);
+    return fogrt__v(*pdf, *pdf, *pdf);
+}
+/* Lines 5-10 (as fogrt__nee) with the shadow rays above. */
+FOGRT__PRIVATE fogrt__v3 fogrt__h_nee(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v, uint32_t med,
+                                      fogrt_rng *rng, uint64_t *rays) {
+    fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
+    uint32_t i, total = fogrt_scene_light_total(s);
+    for (i = 0; i < total; ++i) {
+        int j, n = i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->light_samples;
+        for (j = 0; j < n; ++j) {
+            fogrt_light_sample ls;
+            fogrt__v3 f;
+            float u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng), u3 = fogrt_rng_float(rng), pdf_b, tr, w;
+            if (!fogrt_scene_sample_light(s, i, v->p, u1, u2, u3, &ls)) continue;
+            f = fogrt__h_vertex_f(s, v, &s->x->h->media[med], ls.wi, &pdf_b);
+            if (fogrt__is_black(f) || (tr = fogrt__h_shadow(s, v, med, &ls, rays)) == 0.0f) continue;
+            w = ls.is_delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
+            L = fogrt__add(L, fogrt__scale(fogrt__mul(f, ls.Le), tr * w / (ls.pdf * (float)n)));
+        }
+    }
+    return L;
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__h_sky(const fogrt_scene *s, fogrt__v3 d) {
+#ifndef FOGRT_NO_ESTIMATION
+    return fogrt__env_map_radiance(s, d);
+#else
+    return fogrt__env_radiance(s, d);
+#endif
+}
+/* Lines 3-5, 8, 14, 18 in the medium *med: the next vertex, with the emission reached on the
+   way (an emitter, the sky, an emitting medium's collision); an interface surface on the way
+   is passed (into the medium on its other side) without a vertex. False: the path ends. */
+FOGRT__PRIVATE bool fogrt__h_vertex(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w, uint32_t *med,
+                                    fogrt__vertex *v, fogrt_hit *hit, fogrt_rng *rng, uint64_t *rays) {
+    const struct fogrt__hbuilt *h = s->x->h;
+    int k;
+    for (k = 0; k < FOGRT__H_MAX_CROSSINGS; ++k) {
+        const fogrt_medium_desc *m = &h->media[*med];
+        const fogrt_material_desc *mat;
+        fogrt__v3 p, ng, ns;
+        float t_fog = m->sigma_t > 0.0f ? fogrt_sample_exponential(m->sigma_t, fogrt_rng_float(rng)) : INFINITY;
+        bool found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, hit, false);
+        bool counts = w->depth >= st->min_depth;
+        ++*rays;
+        if (t_fog < (found ? hit->t : INFINITY)) {                                  /* 5, 14 */
+            if (counts) w->L = fogrt__add(w->L, fogrt__mul(w->beta, h->emit[*med]));
+            w->beta = fogrt__mul(w->beta, m->albedo);
+            v->p = fogrt__madd(w->o, w->d, t_fog); v->wo = fogrt__neg(w->d);
+            v->is_medium = v->in_medium = true; v->m = NULL; v->ng = fogrt__v(0.0f, 0.0f, 0.0f);
+            return true;
+        }
+        if (!found) {                                                                 /* the sky */
+            if (s->has_env && counts) w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__h_sky(s, w->d)));
+            return false;
+        }
+        mat = &s->materials[fogrt_scene_get_prim_material(s, hit->prim)];
+        fogrt__surface_frame(s, w->o, w->d, hit, &p, &ng, &ns);
+        if (!fogrt__is_black(mat->emission) && fogrt__dot(w->d, ng) < 0.0f && counts)   /* 8, 18 */
+            w->L = fogrt__add(w->L, fogrt__scale(fogrt__mul(w->beta, mat->emission),
+                                                 fogrt__emission_weight(s, st, w->prev_delta, w->prev_pdf, w->prev_p, hit, p, ng)));
+        if (fogrt__bsdf_type(mat) != FOGRT_BSDF_INTERFACE) {
+            if (fogrt__bsdf_type(mat) == FOGRT_BSDF_DIFFUSE && fogrt__is_black(mat->reflectance)) return false;
+            (void)fogrt__surface_vertex_set(v, mat, fogrt__neg(w->d), p, ng, ns, h->media[*med].sigma_t > 0.0f);
+            return true;
+        }
+        *med = fogrt__h_cross(s, hit->prim, *med);                                     /* through */
+        w->o = fogrt__offset(s, p, ng, w->d);
+    }
+    return false;
+}
+/* Algorithm 1 through media inside shapes: fogrt__algorithm1's loop, the medium carried
+   along (a refraction through a boundary changes it, as an interface does in h_vertex). */
+FOGRT__PRIVATE fogrt__v3 fogrt__h_radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
+                                           fogrt_rng *rng, uint64_t *rays) {
+    fogrt__walk w;
+    uint32_t vertex, med = s->x->h->camera_medium;
+    bool last = false, one_bounce = st->integrator == FOGRT_INTEGRATOR_DIRECT;
+    w.o = o; w.d = d; w.prev_p = o;
+    w.beta = fogrt__v(1.0f, 1.0f, 1.0f); w.L = fogrt__v(0.0f, 0.0f, 0.0f);
+    w.prev_pdf = 1.0f; w.prev_delta = true; w.in_fog = false; w.depth = 0;
+    for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
+        fogrt__vertex v;
+        fogrt_hit hit;
+        fogrt_bsdf_sample bs;
+        fogrt__v3 wi;
+        float u[3], cos_o;
+        bool scattering;
+        if (!fogrt__h_vertex(s, st, &w, &med, &v, &hit, rng, rays) || last || w.depth >= st->max_depth) break;
+        scattering = v.is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v.m));
+        if (st->nee && scattering && w.depth + 1 >= st->min_depth)
+            w.L = fogrt__add(w.L, fogrt__mul(w.beta, fogrt__h_nee(s, st, &v, med, rng, rays)));
+        if (one_bounce && scattering) last = true;
+        u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng); u[2] = fogrt_rng_float(rng);
+        if (v.is_medium) {                                                              /* 15-17 */
+            w.d = fogrt__media_sample(&s->x->h->media[med], v.wo, u[1], u[2], &w.prev_pdf);
+            w.prev_delta = false;
+            w.o = w.prev_p = v.p;
+        } else {                                                                        /* 19-22 */
+            if (!fogrt__sample_surface(st, &v, u, &bs, &wi, &cos_o)) break;
+            w.beta = fogrt__mul(w.beta, bs.weight);
+            w.prev_pdf = bs.pdf; w.prev_delta = bs.is_delta;
+            if (bs.is_transmission) med = fogrt__h_cross(s, hit.prim, med);
+            w.d = wi; w.o = fogrt__offset(s, v.p, v.ng, wi); w.prev_p = v.p;
+        }
+        if (++w.depth > st->rr_depth) {                                                 /* 2 */
+            float q = FOGRT__MIN(0.95f, fogrt__max3(w.beta));
+            if (!(fogrt_rng_float(rng) < q)) break;
+            w.beta = fogrt__scale(w.beta, 1.0f / q);
+        }
+    }
+    return w.L;
+}
+#endif /* FOGRT_NO_SHAPES */
 #endif /* FOGRT_MINIMAL */
 
 /* ------------------------------------------------------------------------------------------
-   What a build without a feature refuses
+   Checks of what lies beyond Part I
    A desc that asks for what a build left out (FOGRT_MINIMAL, FOGRT_NO_<APPENDIX>, or Part I's
    own FOGRT_NO_MEDIUM and FOGRT_NO_GLASS) fails with FOGRT_RESULT_UNSUPPORTED and one line
    naming the macro. Part I runs these checks on every desc it takes; in a full build they
-   pass everything.
+   pass everything but the scene's media inside shapes (H), checked before a build.
    ------------------------------------------------------------------------------------------ */
-FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_material(const fogrt_scene *s, const fogrt_material_desc *m) {
+FOGRT__PRIVATE fogrt_result fogrt__beyond_material(const fogrt_scene *s, const fogrt_material_desc *m) {
 #ifdef FOGRT_NO_GLASS
     FOGRT__REFUSE_IF(m->type == FOGRT_BSDF_REFRACTION || m->type == FOGRT_BSDF_GLASS, UNSUPPORTED,
                      "material.type: refraction and glass need a build without FOGRT_NO_GLASS");
 #endif
+#ifdef FOGRT_NO_SHAPES
+    FOGRT__REFUSE_IF(m->type == FOGRT_BSDF_INTERFACE, UNSUPPORTED,
+                     "material.type: interface needs a build without FOGRT_NO_SHAPES, FOGRT_NO_MEDIA and FOGRT_MINIMAL");
+#endif
     (void)s; (void)m;
     return FOGRT_RESULT_OK;
 }
-FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_medium(const fogrt_scene *s, const fogrt_medium_desc *m) {
+FOGRT__PRIVATE fogrt_result fogrt__beyond_medium(const fogrt_scene *s, const fogrt_medium_desc *m) {
 #ifdef FOGRT_NO_ESTIMATION
     FOGRT__REFUSE_IF(m->bounded && m->sigma_t > 0.0f, UNSUPPORTED,
                      "medium.bounded: fog in a box needs a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
@@ -7074,15 +7633,21 @@ FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_medium(const fogrt_scene *s, 
     (void)s; (void)m;
     return FOGRT_RESULT_OK;
 }
-FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_build(const fogrt_scene *s, const fogrt_build_desc *d) {
+FOGRT__PRIVATE fogrt_result fogrt__beyond_build(const fogrt_scene *s, const fogrt_build_desc *d) {
 #ifdef FOGRT_NO_WIDE_BVH
     FOGRT__REFUSE_IF(d->layout == FOGRT_BVH_LAYOUT_WIDE, UNSUPPORTED,
                      "build desc: layout wide needs a build without FOGRT_NO_WIDE_BVH (and FOGRT_MINIMAL)");
 #endif
-    (void)s; (void)d;
+    (void)d;
+#ifndef FOGRT_NO_SHAPES
+    return fogrt__shapes_check(s);                       /* H */
+#else
+    (void)s;
     return FOGRT_RESULT_OK;
+#endif
 }
-FOGRT__PRIVATE fogrt_result fogrt__refuse_stripped_render(const fogrt_scene *s, const fogrt_render_desc *d) {
+
+FOGRT__PRIVATE fogrt_result fogrt__beyond_render(const fogrt_scene *s, const fogrt_render_desc *d) {
 #ifdef FOGRT_NO_EXACT_FRESNEL
     FOGRT__REFUSE_IF(d->fresnel == FOGRT_FRESNEL_EXACT, UNSUPPORTED,
                      "render desc: fresnel exact needs a build without FOGRT_NO_EXACT_FRESNEL, FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
