@@ -136,6 +136,13 @@ def all_scenes():
     fog_cube["interiors"] = [dict(shape="fogcube", interface=True,
                                   medium=dict(sigma_t=2.0, albedo=(0.85, 0.85, 0.85), g=-0.3))]
     scenes += [smoke, fog_cube]
+    # Appendix G's phase functions: two HG lobes (Mitsuba's blendphase) and Rayleigh.
+    scenes += [
+        box_scene("fog_hg2", "Two-lobe HG fog, 0.7 HG(+0.8) + 0.3 HG(-0.5)",
+                  dict(sigma_t=0.5, albedo=(0.85, 0.85, 0.85), g=0.8, g2=-0.5, w=0.7), diffuse_ball),
+        box_scene("fog_rayleigh", "Rayleigh fog",
+                  dict(sigma_t=0.5, albedo=(0.85, 0.85, 0.85), g=0.0, phase="rayleigh"), diffuse_ball),
+    ]
     # Single scattering in unbounded fog, no geometry: the closed-form check (quadrature).
     cam = dict(position=(0.0, 0.0, 3.0), target=(0.0, 0.0, 0.0), up=(0.0, 1.0, 0.0), vfov=40.0)
     for nm, g, light in (
@@ -298,8 +305,12 @@ def fogrt_args(scene):
     """Fog and method flags of the fogrt command for this scene."""
     a = ["-m", str(scene["max_depth"]), "--fresnel", scene.get("fresnel", "exact")]
     def fog_flags(fog):
-        return ["--density", "%.9g" % fog["sigma_t"], "--albedo", ",".join("%.9g" % x for x in fog["albedo"]),
-                "--g", "%.9g" % fog["g"]]
+        a = ["--density", "%.9g" % fog["sigma_t"], "--albedo", ",".join("%.9g" % x for x in fog["albedo"])]
+        if fog.get("phase") == "rayleigh":
+            return a + ["--phase", "rayleigh"]
+        if "g2" in fog:
+            return a + ["--g", "%.9g,%.9g,%.9g" % (fog["g"], fog["g2"], fog["w"])]
+        return a + ["--g", "%.9g" % fog["g"]]
     if scene["fog"]:
         a += fog_flags(scene["fog"])
     for it in scene.get("interiors", []):           # media inside shapes: after the world's fog
@@ -324,6 +335,17 @@ def write_obj(shape, path):
             f.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
 
 
+def mitsuba_phase(fog):
+    """Mitsuba's phase function for a fog dict: hg, blendphase of two hg (weight = the second
+    lobe's share), or rayleigh."""
+    if fog.get("phase") == "rayleigh":
+        return {"type": "rayleigh"}
+    if "g2" in fog:
+        return {"type": "blendphase", "weight": 1.0 - fog["w"],
+                "phase1": {"type": "hg", "g": fog["g"]}, "phase2": {"type": "hg", "g": fog["g2"]}}
+    return {"type": "hg", "g": fog["g"]}
+
+
 def mitsuba_dict(mi, scene, width, height, mesh_dir, fog_box=50.0):
     T = mi.ScalarTransform4f
     c = scene["camera"]
@@ -339,7 +361,7 @@ def mitsuba_dict(mi, scene, width, height, mesh_dir, fog_box=50.0):
     inside = {}
     if fog:
         d["fog"] = {"type": "homogeneous", "sigma_t": fog["sigma_t"], "albedo": _rgb(fog["albedo"]),
-                    "phase": {"type": "hg", "g": fog["g"]}}
+                    "phase": mitsuba_phase(fog)}
         ref = {"type": "ref", "id": "fog"}
         d["sensor"]["medium"] = ref
         d["fog_boundary"] = {"type": "cube", "to_world": T().scale(fog_box), "bsdf": {"type": "null"},
@@ -377,7 +399,7 @@ def mitsuba_dict(mi, scene, width, height, mesh_dir, fog_box=50.0):
             if it["shape"] == s["name"]:
                 f = it["medium"]
                 sh["interior"] = {"type": "homogeneous", "sigma_t": f["sigma_t"], "albedo": _rgb(f["albedo"]),
-                                  "phase": {"type": "hg", "g": f["g"]}}
+                                  "phase": mitsuba_phase(f)}
         d["shape_" + s["name"]] = sh
     for i, l in enumerate(scene["lights"]):
         if l["type"] == "point":
