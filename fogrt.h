@@ -417,7 +417,9 @@ FOGRT_API fogrt_result fogrt_scene_set_medium(fogrt_scene *scene, const fogrt_me
    media whose shapes overlap without one holding the other, and finds the medium the camera
    is in. The world's medium (fogrt_scene_set_medium) fills the space no shape holds; the
    inside of a refractive shape without a medium of its own is empty (as in Part I), that of
-   an interface shape without one is its surroundings' medium (the shape is invisible).
+   an interface shape without one is its surroundings' medium (the shape is invisible). A
+   shape's surface must not lie in another surface (a fog box standing exactly on the floor):
+   a ray crossing both there meets them in either order.
    A scene with such media is rendered by H's path tracer (light sampling and MIS as
    Algorithm 1, shadow rays through interface surfaces with each medium's transmittance). */
 typedef enum fogrt_shape_kind { FOGRT_SHAPE_MESH = 0, FOGRT_SHAPE_SPHERE, FOGRT_SHAPE_NUM } fogrt_shape_kind;

@@ -48,8 +48,9 @@ static void fog_u(fogrt_scene *scene, uint32_t mesh)
     uint32_t idx[3 * (20 + 16)];
     fogrt_mesh_desc md;
     int i, t = 0;
-    for (i = 0; i < 10; ++i) {                     /* 0.3 units a cell, centred, 0.4 deep */
-        float x = -0.45f + 0.3f * outline[i][0], y = 0.3f * outline[i][1];
+    for (i = 0; i < 10; ++i) {   /* 0.3 units a cell, centred, 0.4 deep, just above the floor
+                                    (an interface must not lie in another surface's plane) */
+        float x = -0.45f + 0.3f * outline[i][0], y = 0.005f + 0.3f * outline[i][1];
         pos[3 * i] = x; pos[3 * i + 1] = y; pos[3 * i + 2] = -0.5f;
         pos[30 + 3 * i] = x; pos[30 + 3 * i + 1] = y; pos[30 + 3 * i + 2] = -0.1f;
     }
