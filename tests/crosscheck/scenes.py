@@ -130,11 +130,11 @@ def all_scenes():
                            None, [((0.0, 0.6, 0.0), 0.6, "glass")]),
                  interiors=[])
     smoke["interiors"].append(dict(shape=smoke["shapes"][-1]["name"], medium=dict(sigma_t=2.0, albedo=(0.9, 0.9, 0.9), g=0.5)))
-    fog_cube = box_scene("fog_cube", "A fog cube (interface surface, sigma_t 2, g -0.3) in the box's thin fog (0.15)",
+    fog_cube = box_scene("fog_cube", "A fog cube (interface surface, sigma_t 3, albedo 0.6, g -0.3) in the box's thin fog (0.15)",
                          dict(sigma_t=0.15, albedo=(0.9, 0.9, 0.9), g=0.3), [])
     fog_cube["shapes"].append(cube("fogcube", (-0.5, 0.2, -0.6), (0.4, 1.1, 0.2), "interface"))
     fog_cube["interiors"] = [dict(shape="fogcube", interface=True,
-                                  medium=dict(sigma_t=2.0, albedo=(0.85, 0.85, 0.85), g=-0.3))]
+                                  medium=dict(sigma_t=3.0, albedo=(0.6, 0.6, 0.6), g=-0.3))]
     scenes += [smoke, fog_cube]
     # Appendix G's phase functions: two HG lobes (Mitsuba's blendphase) and Rayleigh.
     scenes += [
