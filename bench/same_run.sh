@@ -18,19 +18,8 @@ if [ -z "$BASE" ]; then
     echo "usage: sh bench/same_run.sh BASE [RUNS] [ARGS]   (BASE: a commit, tag or branch)" >&2
     exit 2
 fi
-if ! SHA=$(git rev-parse --verify -q "$BASE^{commit}"); then
-    echo "bench-base: $BASE is not a commit of this repository's history: give another, or run from a git clone" >&2
-    exit 2
-fi
-OUT=build/bench-base/$SHA
-if [ ! -x "$OUT/build/bench/fogrt_bench_alone" ]; then
-    echo "bench-base: building $BASE's bench program ($SHA) in $OUT"
-    rm -rf "$OUT" && mkdir -p "$OUT"
-    git archive "$SHA" | tar -x -C "$OUT"
-    # BASE's tree sits deeper than this one: it reads the same scenes by an absolute path
-    shared_abs=$(cd "$SHARED" 2>/dev/null && pwd || echo "$SHARED")
-    make -s -C "$OUT" build/bench/fogrt_bench_alone BENCH_EMBREE=0 SHARED="$shared_abs" >/dev/null
-fi
+BASE_BENCH=$(sh bench/base_build.sh "$BASE" build/bench/fogrt_bench_alone "$SHARED" BENCH_EMBREE=0)
+OUT=${BASE_BENCH%/build/bench/fogrt_bench_alone}
 make -s build/bench/fogrt_bench_alone BENCH_EMBREE=0 SHARED="$SHARED" >/dev/null
 # One line per figure, "name value", from a bench report (higher is faster).
 figures() {
@@ -45,7 +34,7 @@ i=1
 : > "$OUT/ratios.txt"
 while [ "$i" -le "$RUNS" ]; do
     echo "bench-base: round $i of $RUNS ($BASE, then this tree)"
-    "$OUT/build/bench/fogrt_bench_alone" $ARGS > "$OUT/base.txt" 2>&1
+    "$BASE_BENCH" $ARGS > "$OUT/base.txt" 2>&1
     ./build/bench/fogrt_bench_alone $ARGS > "$OUT/this.txt" 2>&1
     figures < "$OUT/base.txt" > "$OUT/base.fig"
     figures < "$OUT/this.txt" > "$OUT/this.fig"

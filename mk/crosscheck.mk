@@ -10,6 +10,9 @@
 # without it the script falls back to the scalar_rgb variant and says so.
 #   make bench-mitsuba                the same run, read as a benchmark (docs/benchmarks.md): it ends with
 #                                     relMSE x CPU seconds of both renderers and their ratio
+#   make bench-mitsuba MITSUBA_BASE=<commit>   also that commit's fogrt (built from its tree by
+#                                     bench/base_build.sh), after this one on every scene of the
+#                                     same run, and the two builds' equal-time ratio at the end
 #   make chi2-mitsuba                 fogrt's direction samplers in Mitsuba's own chi-square
 #                                     harness, Mitsuba's samplers beside them (docs/testing.md;
 #                                     about 30 s; writes $(BUILD)/chi2-mitsuba/results.md)
@@ -26,7 +29,11 @@ crosscheck: $(CROSSCHECK_FOGRT) crosscheck-deps
 	python3 tests/crosscheck/crosscheck.py --fogrt $(CROSSCHECK_FOGRT) --out $(BUILD)/crosscheck \
 	  --venv $(BUILD)/crosscheck-venv $(CROSSCHECK_ARGS)
 
-bench-mitsuba: crosscheck
+MITSUBA_BASE ?=
+bench-mitsuba: $(CROSSCHECK_FOGRT) crosscheck-deps
+	@base=""; if [ -n "$(MITSUBA_BASE)" ]; then base=$$(sh bench/base_build.sh $(MITSUBA_BASE) build/fogrt $(SHARED)) || exit 2; fi; \
+	python3 tests/crosscheck/crosscheck.py --fogrt $(CROSSCHECK_FOGRT) --out $(BUILD)/crosscheck \
+	  --venv $(BUILD)/crosscheck-venv $${base:+--fogrt-base $$base} $(CROSSCHECK_ARGS)
 
 chi2-mitsuba: crosscheck-deps
 	python3 tests/crosscheck/chi2_mitsuba.py --out $(BUILD)/chi2-mitsuba --venv $(BUILD)/crosscheck-venv --cc $(CC)

@@ -221,7 +221,7 @@ if have "$GCC"; then
     for defs in -DFOGRT_NO_WIDE_BVH -DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_NO_ESTIMATION \
                 "-DFOGRT_NO_WIDE_BVH -DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_NO_ESTIMATION" \
                 "-DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_NO_MEDIUM" "-DFOGRT_NO_ESTIMATION -DFOGRT_TRACE" \
-                -DFOGRT_NO_MEDIA "-DFOGRT_NO_MEDIA -DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_TRACE" \
+                -DFOGRT_NO_MEDIA "-DFOGRT_NO_MEDIA -DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_TRACE" -DFOGRT_NO_SHAPES \
                 -DFOGRT_WBVH_NO_AVX2 -DFOGRT_WBVH_NO_SIMD; do
         run "$GCC appendix removed: $defs" $GCC $CWARN -fopenmp $defs -I"$ROOT" -c "$TMP/impl.c" -o "$TMP/app.o"
     done
@@ -297,6 +297,8 @@ if have "$GCC" && have nm; then
         fogrt__x_pixel_position fogrt__build_light_pick
     run "nm: FOGRT_NO_MEDIA removes appendix G" appendix_nm FOGRT_NO_MEDIA \
         fogrt_sample_hg2 fogrt_sample_rayleigh fogrt_sample_phase fogrt__x_check_media fogrt__media_emission
+    run "nm: FOGRT_NO_SHAPES removes appendix H" appendix_nm FOGRT_NO_SHAPES \
+        fogrt_scene_set_interior fogrt__h_radiance fogrt__shapes_build fogrt__find_boundaries fogrt__h_shadow
 else
     skip "appendix nm checks: gcc or nm not installed"
 fi

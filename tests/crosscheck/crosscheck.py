@@ -139,7 +139,7 @@ def run_fogrt(exe, dae, cam, args, width, height, spp, seed, out, threads):
     return read_pfm(out), seconds, cpu, " ".join(os.path.relpath(c) if os.path.exists(c) else c for c in cmd)
 
 
-def render_fogrt(exe, sc, dae, cam, width, height, budget, workdir, threads, batches):
+def render_fogrt(exe, sc, dae, cam, width, height, budget, workdir, threads, batches, tag="fogrt"):
     """Independent batches (seeds 1..batches) of the same spp, about budget / batches seconds each."""
     args = sc["fogrt_args"]
     _, t, _, _ = run_fogrt(exe, dae, cam, args, width, height, 8, 99, os.path.join(workdir, "cal.pfm"), threads)
@@ -147,7 +147,7 @@ def render_fogrt(exe, sc, dae, cam, width, height, budget, workdir, threads, bat
     halves, secs, cpu, cmd = [], 0.0, 0.0, None
     for seed in range(1, batches + 1):
         img, t, c, cmd = run_fogrt(exe, dae, cam, args, width, height, spp, seed,
-                                   os.path.join(workdir, "%s_fogrt_%d.pfm" % (sc["name"], seed)), threads)
+                                   os.path.join(workdir, "%s_%s_%d.pfm" % (sc["name"], tag, seed)), threads)
         halves.append(img)
         secs += t
         cpu += c
@@ -393,6 +393,9 @@ def main():
     ap.add_argument("--scenes", default="", help="comma-separated scene names (default: all)")
     ap.add_argument("--variant", choices=("auto", "llvm", "scalar"), default="auto")
     ap.add_argument("--threads", type=int, default=2, help="fogrt threads (default 2)")
+    ap.add_argument("--fogrt-base", default="",
+                    help="another fogrt command (another commit's build) rendered after --fogrt on every scene of the run, "
+                         "with the same batches and budget; its equal-time error ends the report")
     ap.add_argument("--batches", type=int, default=4,
                     help="independent batches per renderer, for the noise estimate (default 4)")
     a = ap.parse_args()
@@ -403,8 +406,9 @@ def main():
         a.budget = 2.0
     if a.batches < 2:
         sys.exit("crosscheck: --batches must be at least 2 (the noise estimate needs two)")
-    if not os.access(a.fogrt, os.X_OK):
-        sys.exit("crosscheck: %s is not an executable (make BUILD=... first)" % a.fogrt)
+    for exe in [a.fogrt] + ([a.fogrt_base] if a.fogrt_base else []):
+        if not os.access(exe, os.X_OK):
+            sys.exit("crosscheck: %s is not an executable (make BUILD=... first)" % exe)
     variant, llvm = choose_variant(a.variant)
     import mitsuba as mi
     mi.set_variant(variant)
@@ -431,6 +435,9 @@ def main():
         scenes.write_dae(sc, dae)
         scenes.write_camera(sc, W, H, cam)
         fh, f_spp, f_sec, f_cpu, f_cmd = render_fogrt(a.fogrt, sc, dae, cam, W, H, a.budget, a.out, a.threads, a.batches)
+        if a.fogrt_base:
+            bh, b_spp, b_sec, b_cpu, _ = render_fogrt(a.fogrt_base, sc, dae, cam, W, H, a.budget, a.out, a.threads,
+                                                      a.batches, tag="base")
         mh, m_spp, m_sec, m_cpu, m_setup = render_mitsuba(mi, sc, W, H, a.budget, a.out, a.batches)
         F, vF, sF = batch_stats(fh)
         M, vM, sM = batch_stats(mh)
@@ -444,6 +451,8 @@ def main():
              "fogrt": {"spp": f_spp, "seconds": f_sec, "cpu_seconds": f_cpu},
              "mitsuba": {"spp": m_spp, "seconds": m_sec, "cpu_seconds": m_cpu, "setup_seconds": m_setup},
              "masked_pixels": int((~mask).sum())}
+        if a.fogrt_base:
+            r["fogrt_base"] = {"spp": b_spp, "seconds": b_sec, "cpu_seconds": b_cpu}
         r["fogrt_vs_mitsuba"] = compare(F, vF, sF, M, vM, sM, mask)
         ref = 0.5 * (F + M)
         den = (ref ** 2 * mask[..., None]).sum()
@@ -454,7 +463,10 @@ def main():
             r["fogrt_vs_quadrature"] = compare(F, vF, sF, Q, 0 * Q, 0 * sF, mask)
             r["mitsuba_vs_quadrature"] = compare(M, vM, sM, Q, 0 * Q, 0 * sM, mask)
             den = (Q ** 2 * mask[..., None]).sum()
-        for key, v, sec, cpu in (("fogrt", vF, f_sec, f_cpu), ("mitsuba", vM, m_sec, m_cpu)):
+        runs = [("fogrt", vF, f_sec, f_cpu), ("mitsuba", vM, m_sec, m_cpu)]
+        if a.fogrt_base:
+            runs.append(("fogrt_base", batch_stats(bh)[1], b_sec, b_cpu))
+        for key, v, sec, cpu in runs:
             rel = float((v * mask[..., None]).sum() / den)
             r[key]["relmse"] = rel
             r[key]["relmse_10s"] = rel * sec / 10.0          # equal wall time (10 s)
@@ -496,6 +508,14 @@ def main():
         me = r["mitsuba"]["relmse"] * r["mitsuba"]["cpu_seconds"]
         ratio = fe / me if me > 0 else float("inf")
         print("%-20s %12.3e %12.3e %10.3f  %s" % (r["name"], fe, me, ratio, "met" if ratio <= 0.5 else "NOT met"))
+    if a.fogrt_base:
+        # The same figure for the two fogrt builds, rendered alternately in this run: above 1,
+        # --fogrt reaches a given error in less CPU time than --fogrt-base.
+        print("this build against %s: relMSE x CPU seconds, base / this (above 1: this build is better)" % a.fogrt_base)
+        for r in results["scenes"]:
+            fe = r["fogrt"]["relmse"] * r["fogrt"]["cpu_seconds"]
+            be = r["fogrt_base"]["relmse"] * r["fogrt_base"]["cpu_seconds"]
+            print("%-20s %12.3e %12.3e %10.3f" % (r["name"], be, fe, be / fe if fe > 0 else float("inf")))
 
 
 def verdict(c):

@@ -68,7 +68,19 @@ BOX_MATERIALS = {
     "grey": dict(type="diffuse", reflectance=(0.6, 0.6, 0.6)),
     "mirror": dict(type="mirror", reflectance=(0.95, 0.95, 0.95)),
     "glass": dict(type="glass", ior=1.5, reflectance=(1.0, 1.0, 1.0), transmittance=(1.0, 1.0, 1.0)),
+    # the surface of a fog volume: fogrt's --interface, Mitsuba's null BSDF (the .dae holds a
+    # diffuse stand-in, which --interface replaces)
+    "interface": dict(type="interface"),
 }
+
+
+def cube(name, lo, hi, material):
+    """A closed axis-aligned box mesh, its faces wound outward."""
+    (x0, y0, z0), (x1, y1, z1) = lo, hi
+    v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0), (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
+    f = [(0, 3, 2), (0, 2, 1), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4),
+         (3, 7, 6), (3, 6, 2), (0, 4, 7), (0, 7, 3), (1, 2, 6), (1, 6, 5)]
+    return dict(kind="mesh", name=name, material=material, verts=v, faces=f)
 
 BOX_CAMERA = dict(position=(0.0, 1.0, 3.2), target=(0.0, 1.0, 0.0), up=(0.0, 1.0, 0.0), vfov=40.0)
 
@@ -111,6 +123,25 @@ def all_scenes():
              fresnel="schlick"),
         box_scene("cornell_nofog", "Fog-free box with a mirror and a glass sphere, ceiling lamp",
                   None, spheres2),
+    ]
+    # Media inside shapes (fogrt.h, appendix H): smoke in a glass sphere in a fog-free box,
+    # and a fog cube behind an interface inside the box's thinner fog.
+    smoke = dict(box_scene("smoke_in_glass", "Glass sphere (ior 1.5) filled with smoke, no fog outside, ceiling lamp",
+                           None, [((0.0, 0.6, 0.0), 0.6, "glass")]),
+                 interiors=[])
+    smoke["interiors"].append(dict(shape=smoke["shapes"][-1]["name"], medium=dict(sigma_t=2.0, albedo=(0.9, 0.9, 0.9), g=0.5)))
+    fog_cube = box_scene("fog_cube", "A fog cube (interface surface, sigma_t 3, albedo 0.6, g -0.3) in the box's thin fog (0.15)",
+                         dict(sigma_t=0.15, albedo=(0.9, 0.9, 0.9), g=0.3), [])
+    fog_cube["shapes"].append(cube("fogcube", (-0.5, 0.2, -0.6), (0.4, 1.1, 0.2), "interface"))
+    fog_cube["interiors"] = [dict(shape="fogcube", interface=True,
+                                  medium=dict(sigma_t=3.0, albedo=(0.6, 0.6, 0.6), g=-0.3))]
+    scenes += [smoke, fog_cube]
+    # Appendix G's phase functions: two HG lobes (Mitsuba's blendphase) and Rayleigh.
+    scenes += [
+        box_scene("fog_hg2", "Two-lobe HG fog, 0.7 HG(+0.8) + 0.3 HG(-0.5)",
+                  dict(sigma_t=0.5, albedo=(0.85, 0.85, 0.85), g=0.8, g2=-0.5, w=0.7), diffuse_ball),
+        box_scene("fog_rayleigh", "Rayleigh fog",
+                  dict(sigma_t=0.5, albedo=(0.85, 0.85, 0.85), g=0.0, phase="rayleigh"), diffuse_ball),
     ]
     # Single scattering in unbounded fog, no geometry: the closed-form check (quadrature).
     cam = dict(position=(0.0, 0.0, 3.0), target=(0.0, 0.0, 0.0), up=(0.0, 1.0, 0.0), vfov=40.0)
@@ -174,6 +205,9 @@ def write_dae(scene, path):
             body = ("<extra><technique profile=\"CGL\"><glass><reflectance>%s</reflectance>"
                     "<transmittance>%s</transmittance><roughness>0</roughness><ior>%.9g</ior></glass>"
                     "</technique></extra>" % (_f(m["reflectance"]), _f(m["transmittance"]), m["ior"]))
+        elif m["type"] == "interface":
+            body = ("<profile_COMMON><technique sid=\"common\"><lambert><diffuse><color>0.5 0.5 0.5 1</color>"
+                    "</diffuse></lambert></technique></profile_COMMON>")
         else:
             raise ValueError("unknown material type " + m["type"])
         fx.append("    <effect id=\"%s-fx\">%s</effect>" % (mname, body))
@@ -200,15 +234,15 @@ def write_dae(scene, path):
                 "    </mesh></geometry>"
                 % (n, n, n, len(flat), _f(flat), n, len(s["verts"]), n, n, len(s["faces"]), n,
                    " ".join(str(i) for i in idx)))
-            nodes.append("      <node id=\"%s\"><instance_geometry url=\"#%s-geo\">%s</instance_geometry></node>"
-                         % (n, n, bind(s["material"])))
+            nodes.append("      <node id=\"%s\" name=\"%s\"><instance_geometry url=\"#%s-geo\">%s</instance_geometry></node>"
+                         % (n, n, n, bind(s["material"])))
         else:
             geoms.append("    <geometry id=\"%s-geo\"><extra><technique profile=\"CGL\"><sphere><radius>%.9g"
                          "</radius></sphere></technique></extra></geometry>" % (n, s["radius"]))
             c = s["center"]
-            nodes.append("      <node id=\"%s\"><matrix>1 0 0 %.9g  0 1 0 %.9g  0 0 1 %.9g  0 0 0 1</matrix>"
+            nodes.append("      <node id=\"%s\" name=\"%s\"><matrix>1 0 0 %.9g  0 1 0 %.9g  0 0 1 %.9g  0 0 0 1</matrix>"
                          "<instance_geometry url=\"#%s-geo\">%s</instance_geometry></node>"
-                         % (n, c[0], c[1], c[2], n, bind(s["material"])))
+                         % (n, n, c[0], c[1], c[2], n, bind(s["material"])))
     for i, l in enumerate(scene["lights"]):
         lid = "light%d" % i
         p = l["position"]
@@ -270,10 +304,17 @@ def write_camera(scene, width, height, path):
 def fogrt_args(scene):
     """Fog and method flags of the fogrt command for this scene."""
     a = ["-m", str(scene["max_depth"]), "--fresnel", scene.get("fresnel", "exact")]
-    fog = scene["fog"]
-    if fog:
-        a += ["--density", "%.9g" % fog["sigma_t"], "--albedo", ",".join("%.9g" % x for x in fog["albedo"]),
-              "--g", "%.9g" % fog["g"]]
+    def fog_flags(fog):
+        a = ["--density", "%.9g" % fog["sigma_t"], "--albedo", ",".join("%.9g" % x for x in fog["albedo"])]
+        if fog.get("phase") == "rayleigh":
+            return a + ["--phase", "rayleigh"]
+        if "g2" in fog:
+            return a + ["--g", "%.9g,%.9g,%.9g" % (fog["g"], fog["g2"], fog["w"])]
+        return a + ["--g", "%.9g" % fog["g"]]
+    if scene["fog"]:
+        a += fog_flags(scene["fog"])
+    for it in scene.get("interiors", []):           # media inside shapes: after the world's fog
+        a += ["--medium", it["shape"]] + (["--interface"] if it.get("interface") else []) + fog_flags(it["medium"])
     return a
 
 
@@ -294,6 +335,17 @@ def write_obj(shape, path):
             f.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
 
 
+def mitsuba_phase(fog):
+    """Mitsuba's phase function for a fog dict: hg, blendphase of two hg (weight = the second
+    lobe's share), or rayleigh."""
+    if fog.get("phase") == "rayleigh":
+        return {"type": "rayleigh"}
+    if "g2" in fog:
+        return {"type": "blendphase", "weight": 1.0 - fog["w"],
+                "phase1": {"type": "hg", "g": fog["g"]}, "phase2": {"type": "hg", "g": fog["g2"]}}
+    return {"type": "hg", "g": fog["g"]}
+
+
 def mitsuba_dict(mi, scene, width, height, mesh_dir, fog_box=50.0):
     T = mi.ScalarTransform4f
     c = scene["camera"]
@@ -309,7 +361,7 @@ def mitsuba_dict(mi, scene, width, height, mesh_dir, fog_box=50.0):
     inside = {}
     if fog:
         d["fog"] = {"type": "homogeneous", "sigma_t": fog["sigma_t"], "albedo": _rgb(fog["albedo"]),
-                    "phase": {"type": "hg", "g": fog["g"]}}
+                    "phase": mitsuba_phase(fog)}
         ref = {"type": "ref", "id": "fog"}
         d["sensor"]["medium"] = ref
         d["fog_boundary"] = {"type": "cube", "to_world": T().scale(fog_box), "bsdf": {"type": "null"},
@@ -324,6 +376,8 @@ def mitsuba_dict(mi, scene, width, height, mesh_dir, fog_box=50.0):
         elif m["type"] == "glass":
             b = {"type": "dielectric", "int_ior": m["ior"], "ext_ior": 1.0,
                  "specular_reflectance": _rgb(m["reflectance"]), "specular_transmittance": _rgb(m["transmittance"])}
+        elif m["type"] == "interface":
+            b = {"type": "null"}
         else:   # an emitter reflects nothing
             b = {"type": "diffuse", "reflectance": _rgb((0.0, 0.0, 0.0))}
         d["bsdf_" + mname] = dict(b, id="bsdf_" + mname)
@@ -339,8 +393,13 @@ def mitsuba_dict(mi, scene, width, height, mesh_dir, fog_box=50.0):
         if m["type"] == "emitter":
             sh["emitter"] = {"type": "area", "radiance": _rgb(m["radiance"])}
         sh.update(inside)
-        if fog and m["type"] != "glass":
+        if fog and m["type"] not in ("glass", "interface"):
             sh["interior"] = inside["exterior"]      # opaque: the fog on both sides
+        for it in scene.get("interiors", []):       # a medium of its own inside the shape
+            if it["shape"] == s["name"]:
+                f = it["medium"]
+                sh["interior"] = {"type": "homogeneous", "sigma_t": f["sigma_t"], "albedo": _rgb(f["albedo"]),
+                                  "phase": mitsuba_phase(f)}
         d["shape_" + s["name"]] = sh
     for i, l in enumerate(scene["lights"]):
         if l["type"] == "point":
