@@ -1308,7 +1308,7 @@ CLI_FN int cli_apply_media(fogrt_scene *scene, cli_common *c, const cli_shapes *
 }
 /* A build the scene refused while --medium is in force: the core's message, which numbers
    the shapes it names ("mesh 3", "sphere 0"), told by the --medium flags of those shapes
-   (else by --medium). One line; returns 2 (1: out of memory). */
+   (else by every --medium). One line; returns 2 (1: out of memory). */
 CLI_FN int cli_media_build_failed(const cli_common *c, const char *msg, fogrt_result r)
 {
     cli_membuf b;
@@ -1329,7 +1329,11 @@ CLI_FN int cli_media_build_failed(const cli_common *c, const char *msg, fogrt_re
                 cli_put_name(&b, c->media[i].name);
             }
     }
-    cli_put(&b, "%s: %s", named ? "" : "--medium", msg[0] ? msg : fogrt_result_string(r));
+    for (i = 0; !named && i < c->media_count; ++i) {     /* no shape named: every --medium */
+        cli_put(&b, i ? " and --medium " : "--medium ");
+        cli_put_name(&b, c->media[i].name);
+    }
+    cli_put(&b, ": %s", msg[0] ? msg : fogrt_result_string(r));
     cli_put_line(&b);
     return r == FOGRT_RESULT_OUT_OF_MEMORY ? 1 : 2;
 }

@@ -1490,7 +1490,13 @@ __attribute__((noinline))
 static int build_failed(const cli_options *o, cli_log *L, const fogrt_scene *scene, fogrt_result r)
 {
     if (o->c.media_count && r != FOGRT_RESULT_OUT_OF_MEMORY && r != FOGRT_RESULT_EMPTY_SCENE) {
-        int st = cli_media_build_failed(&o->c, L->error[0] ? L->error : fogrt_scene_last_error(scene), r);
+        const char *msg = L->error[0] ? L->error : fogrt_scene_last_error(scene);
+        int st;
+        if (r == FOGRT_RESULT_UNSUPPORTED && (o->fog_where == CLI_FOG_BOX || o->fog_where == CLI_FOG_SCENE))
+            msg = "media inside objects need the world's fog to fill all space: drop --fog-bounds (or the world's fog: --density 0 before --medium)";
+        else if (r == FOGRT_RESULT_UNSUPPORTED && o->env_map)
+            msg = "media inside objects need the world's fog to fill all space, and with -e it fills the box of the geometry: drop -e or the world's fog (--density 0 before --medium)";
+        st = cli_media_build_failed(&o->c, msg, r);
         L->error[0] = 0;
         return st;
     }
