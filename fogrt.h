@@ -53,8 +53,9 @@
     FOGRT_NO_MEDIA         leave out appendix G, media beyond the paper: the two-lobe HG and
                            Rayleigh phase functions, emitting fog (a medium desc that asks
                            for them fails)
-    FOGRT_NO_SHAPES        leave out appendix H, media inside shapes (fogrt_scene_set_interior
-                           and the interface material fail; implied by FOGRT_NO_MEDIA)
+    FOGRT_NO_SHAPES        leave out appendix H, media inside shapes (fogrt_scene_set_interior,
+                           fogrt_scene_set_shape_material; the interface material fails;
+                           implied by FOGRT_NO_MEDIA)
     FOGRT_NO_MEDIUM        strip the fog: no free-flight, transmittance, phase or equiangular
                            code (fogrt_scene_set_medium with sigma_t > 0 fails; implies
                            FOGRT_NO_MEDIA)
@@ -7118,8 +7119,8 @@ FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__set
    H. Media inside shapes
    What it adds: a homogeneous medium inside any closed mesh or sphere
    (fogrt_scene_set_interior): smoke in a glass, a fog volume of any shape behind an
-   index-matched surface (FOGRT_BSDF_INTERFACE), media inside media, the camera inside any
-   of them.
+   index-matched surface (FOGRT_BSDF_INTERFACE, given to a shape already added by
+   fogrt_scene_set_shape_material), media inside media, the camera inside any of them.
    What it costs: nothing for a scene without such media (seam 7 tests one pointer); a scene
    with them is rendered by the path tracer below, which samples lights with MIS as
    Algorithm 1 (3.4) does, but has none of B's or C's variance reduction.
