@@ -53,8 +53,9 @@
     FOGRT_NO_MEDIA         leave out appendix G, media beyond the paper: the two-lobe HG and
                            Rayleigh phase functions, emitting fog (a medium desc that asks
                            for them fails)
-    FOGRT_NO_SHAPES        leave out appendix H, media inside shapes (fogrt_scene_set_interior
-                           and the interface material fail; implied by FOGRT_NO_MEDIA)
+    FOGRT_NO_SHAPES        leave out appendix H, media inside shapes (fogrt_scene_set_interior,
+                           fogrt_scene_set_shape_material; the interface material fails;
+                           implied by FOGRT_NO_MEDIA)
     FOGRT_NO_MEDIUM        strip the fog: no free-flight, transmittance, phase or equiangular
                            code (fogrt_scene_set_medium with sigma_t > 0 fails; implies
                            FOGRT_NO_MEDIA)
@@ -426,6 +427,11 @@ typedef enum fogrt_shape_kind { FOGRT_SHAPE_MESH = 0, FOGRT_SHAPE_SPHERE, FOGRT_
 #ifndef FOGRT_NO_SHAPES
 FOGRT_API fogrt_result fogrt_scene_set_interior(fogrt_scene *scene, fogrt_shape_kind kind, uint32_t index,
                                                const fogrt_medium_desc *desc);   /* Part II, H */
+/* Gives every triangle of mesh index (or sphere index) the material: a shape that a loader
+   added can become an interface (FOGRT_BSDF_INTERFACE) once its number is known, without
+   adding it again. */
+FOGRT_API fogrt_result fogrt_scene_set_shape_material(fogrt_scene *scene, fogrt_shape_kind kind, uint32_t index,
+                                                     uint32_t material);   /* Part II, H */
 #endif
 
 /* Adds the embedded default scene: the CS184 Cornell box (walls x = +-1, z = +-1, floor
@@ -7293,8 +7299,8 @@ FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__set
    H. Media inside shapes
    What it adds: a homogeneous medium inside any closed mesh or sphere
    (fogrt_scene_set_interior): smoke in a glass, a fog volume of any shape behind an
-   index-matched surface (FOGRT_BSDF_INTERFACE), media inside media, the camera inside any
-   of them.
+   index-matched surface (FOGRT_BSDF_INTERFACE, given to a shape already added by
+   fogrt_scene_set_shape_material), media inside media, the camera inside any of them.
    What it costs: nothing for a scene without such media (seam 7 tests one pointer); a scene
    with them is rendered by the path tracer below, which samples lights with MIS as
    Algorithm 1 (3.4) does, but has none of B's or C's variance reduction.
@@ -7377,6 +7383,23 @@ FOGRT__PRIVATE uint32_t fogrt__mesh_first(const fogrt_scene *s, uint32_t j) {
     uint32_t lo = 0, hi = s->tri_count;
     while (lo < hi) { uint32_t mid = lo + (hi - lo) / 2; if (s->tri_mesh[mid] < j) lo = mid + 1; else hi = mid; }
     return lo;
+}
+FOGRT__PUBLIC fogrt_result fogrt_scene_set_shape_material(fogrt_scene *s, fogrt_shape_kind kind, uint32_t index,
+                                                         uint32_t material) {
+    uint32_t t, end;
+    FOGRT_ASSERT(s);
+    FOGRT__REFUSE_IF((unsigned)kind >= (unsigned)FOGRT_SHAPE_NUM, INVALID_ARGUMENT, "shape material: kind is not FOGRT_SHAPE_MESH or FOGRT_SHAPE_SPHERE");
+    FOGRT__REFUSE_IF(index >= (kind == FOGRT_SHAPE_MESH ? s->mesh_count : s->sph_count), INVALID_ARGUMENT,
+                     "shape material: the scene has no mesh or sphere of that number");
+    FOGRT__REFUSE_IF(material >= s->material_count, INVALID_MATERIAL, "shape material: material id out of range");
+    if (kind == FOGRT_SHAPE_SPHERE) {
+        s->sph_material[index] = material;
+    } else {
+        end = fogrt__mesh_first(s, index + 1);
+        for (t = fogrt__mesh_first(s, index); t < end; ++t) s->tri_material[t] = material;
+    }
+    s->built = false;
+    return FOGRT_RESULT_OK;
 }
 FOGRT__PRIVATE bool fogrt__transmits(const fogrt_scene *s, uint32_t material) {
     return fogrt__bsdf_type(&s->materials[material]) >= FOGRT_BSDF_REFRACTION;

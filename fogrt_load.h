@@ -126,7 +126,8 @@
     OBJ AND PLY
     ===========
     OBJ: v, vn and f (v, v/t, v//n, v/t/n, negative = relative indices); polygons are fan-
-    triangulated; everything else (vt, o, g, s, usemtl, mtllib, l, p) is ignored. A UTF-8
+    triangulated; o, g and usemtl give names (NAMES, below) and everything else (vt, s,
+    mtllib, l, p) is ignored. A UTF-8
     byte-order mark is skipped; lines may end in LF, CRLF or CR. A file without a single
     'v' statement is not an OBJ mesh (parse error). PLY: ascii,
     binary_little_endian and binary_big_endian; a "vertex" element with x y z (and optionally
@@ -138,6 +139,28 @@
     uniformly and moved to stand on the floor of fogrt's default Cornell box (see
     fogrt_load_options.place), so `fogrt_scene_add_default` + `fogrt_load_ply` renders any
     model in one go.
+
+    NAMES
+    =====
+    A program that fills shapes with media (fogrt_scene_set_interior) or makes them interfaces
+    (fogrt_scene_set_shape_material) by name sets options.on_shape: once the load has
+    succeeded, it is called for every mesh and sphere the load added, in the order they were
+    added, with the scene's number of the shape and three names ("" where there is none):
+      .dae  node      the <node> that instances the geometry: its name attribute, else its id
+            material  the <material> bound to the geometry's first primitive list (name, else
+                      id); "" for the default grey
+            geometry  the <geometry> (name, else id): shared by every node that instances it
+            A CGL <area> light added as an emissive rectangle is a mesh named by its node.
+      OBJ   node      the `o` object name, material the `usemtl` name in force at the mesh's
+                      first face, geometry the `g` group name (each the rest of its line,
+                      blanks trimmed; `o` starts without a group). With on_shape set, every
+                      `o` or `g` statement followed by faces starts a mesh of its own, so
+                      that each object or group can hold a medium; a name used by two such
+                      statements names two meshes. Without on_shape an OBJ is one mesh, as
+                      always. Either way the vertices, normals, placement and triangle order
+                      are the same.
+      PLY   one mesh, without names.
+    A load that fails calls on_shape for nothing.
 
     LICENSE
     =======
@@ -175,7 +198,15 @@ typedef enum fogrt_load_place {
      use_material, material     OBJ/PLY: the material of the mesh; else a new diffuse 0.75 grey
      allocator                  the loader's memory; NULL functions: FOGRT_LOAD_MALLOC / _FREE
      max_file_bytes             larger files are refused unread; 0: FOGRT_LOAD_MAX_FILE_BYTES
-     max_triangles              files asking for more are refused early; 0: FOGRT_LOAD_MAX_TRIANGLES */
+     max_triangles              files asking for more are refused early; 0: FOGRT_LOAD_MAX_TRIANGLES
+     on_shape, on_shape_user    the names of every mesh and sphere the load adds (see NAMES above);
+                                NULL: none asked for, and an OBJ stays one mesh */
+/* on_shape: called once per mesh or sphere the load added, after the whole load succeeded,
+   with the number the scene gave it (the index fogrt_scene_set_interior and
+   fogrt_scene_set_shape_material take) and its names, NUL-terminated, "" for none. The
+   strings live until the callback returns. */
+typedef void (*fogrt_load_shape_fn)(void *user, fogrt_shape_kind kind, uint32_t index,
+                                    const char *node, const char *material, const char *geometry);
 typedef struct fogrt_load_options {
     int image_width, image_height;
     fogrt_logger logger;
@@ -187,6 +218,8 @@ typedef struct fogrt_load_options {
     fogrt_allocator allocator;
     uint64_t max_file_bytes;
     uint32_t max_triangles;
+    fogrt_load_shape_fn on_shape;
+    void *on_shape_user;
 } fogrt_load_options;
 
 /* The default box OBJ/PLY models are fitted into: the free front-left corner of the floor of
@@ -363,9 +396,12 @@ typedef struct fogrt__ld_geom {
     int32_t *lists; uint32_t *list_tris; uint32_t list_count;
     unsigned char *open;
 } fogrt__ld_geom;
-typedef struct fogrt__ld_inst { uint32_t geom, mat_first; int line; double M[16]; } fogrt__ld_inst;
-typedef struct fogrt__ld_sphere { fogrt_vec3 c; float r; uint32_t mat; } fogrt__ld_sphere;
-typedef struct fogrt__ld_rect { fogrt_vec3 p[4]; fogrt_vec3 colour; } fogrt__ld_rect;
+typedef struct fogrt__ld_inst { uint32_t geom, mat_first; int line; int32_t node; double M[16]; } fogrt__ld_inst;
+typedef struct fogrt__ld_sphere { fogrt_vec3 c; float r; uint32_t mat; int32_t node, geom; } fogrt__ld_sphere;
+typedef struct fogrt__ld_rect { fogrt_vec3 p[4]; fogrt_vec3 colour; int32_t node; } fogrt__ld_rect;
+/* A shape for options.on_shape: its names (offsets into the loader's names, 0 = "") in the
+   order node, material, geometry; for an OBJ mesh of its own, its first triangle. */
+typedef struct fogrt__ld_shape { fogrt_shape_kind kind; uint32_t name[3], first; } fogrt__ld_shape;
 
 typedef struct fogrt__ld {
     const char *name;
@@ -391,6 +427,11 @@ typedef struct fogrt__ld {
     double cam_dir[3];                /* CS184's c (unnormalised) */
     float frame_tan_half_y;
     double bmin[3], bmax[3]; bool has_bounds;
+    /* names for options.on_shape (only when it is set) */
+    int32_t node;                     /* .dae: the <node> whose instance is being read */
+    char *names; uint32_t names_len, names_cap;   /* NUL-terminated, offset 0 is "" */
+    fogrt__ld_shape *shapes; uint32_t shape_count, shape_cap;
+    uint32_t first_mesh, first_sphere;   /* the scene's numbers of the first ones added */
     /* warnings, held back until the load succeeds (a refusal is one message, nothing else) */
     char *warn; uint32_t warn_len, warn_cap; bool warn_oom;
 } fogrt__ld;
@@ -512,6 +553,46 @@ FOGRT__LD fogrt_result fogrt__ld_grow(fogrt__ld *L, void **arr, uint32_t *cap, u
 #define FOGRT__LD_PUSH(L, arr, count, cap) \
     fogrt__ld_grow((L), (void **)&(arr), &(cap), (uint64_t)(count) + 1, sizeof *(arr))
 
+/* ---- names for options.on_shape: collected before the first scene call (so that running out
+   of memory changes nothing), handed over once the load has succeeded ---- */
+/* Copies the name [s, s + len) into L->names; *out its offset (0: the empty name). */
+FOGRT__LD fogrt_result fogrt__ld_name(fogrt__ld *L, const char *s, uint32_t len, uint32_t *out) {
+    *out = 0;
+    if (!s || len == 0) return FOGRT_RESULT_OK;
+    FOGRT__LD_TRY(fogrt__ld_grow(L, (void **)&L->names, &L->names_cap, (uint64_t)L->names_len + len + 2, 1));
+    if (L->names_len == 0) L->names[L->names_len++] = '\0';
+    *out = L->names_len;
+    memcpy(L->names + L->names_len, s, len);
+    L->names[L->names_len + len] = '\0';
+    L->names_len += len + 1;
+    return FOGRT_RESULT_OK;
+}
+FOGRT__LD fogrt_result fogrt__ld_push_shape(fogrt__ld *L, fogrt_shape_kind kind, const uint32_t name[3], uint32_t first) {
+    fogrt__ld_shape *S;
+    FOGRT__LD_TRY(FOGRT__LD_PUSH(L, L->shapes, L->shape_count, L->shape_cap));
+    S = &L->shapes[L->shape_count++];
+    S->kind = kind; S->first = first;
+    memcpy(S->name, name, sizeof S->name);
+    return FOGRT_RESULT_OK;
+}
+/* options.on_shape for every shape added, numbered from the scene's first ones. */
+FOGRT__LD void fogrt__ld_report_shapes(const fogrt__ld *L) {
+    uint32_t i, mesh = L->first_mesh, sphere = L->first_sphere;
+    for (i = 0; L->opt.on_shape && i < L->shape_count; ++i) {
+        const fogrt__ld_shape *S = &L->shapes[i];
+        const char *n = L->names ? L->names : "";
+        L->opt.on_shape(L->opt.on_shape_user, S->kind, S->kind == FOGRT_SHAPE_MESH ? mesh++ : sphere++,
+                        n + S->name[0], n + S->name[1], n + S->name[2]);
+    }
+}
+/* Where the shapes of this load start: the scene's counts before its first one is added. */
+FOGRT__LD void fogrt__ld_first_shapes(fogrt__ld *L, const fogrt_scene *scene) {
+    fogrt_scene_info info;
+    fogrt_scene_get_info(scene, &info);
+    L->first_mesh = info.mesh_count;
+    L->first_sphere = info.sphere_count;
+}
+
 FOGRT__LD void fogrt__ld_free_mesh(fogrt__ld *L, fogrt__ld_meshbuf *m) {
     fogrt__ld_free(L, m->pos); fogrt__ld_free(L, m->nrm); fogrt__ld_free(L, m->idx);
     memset(m, 0, sizeof *m);
@@ -526,6 +607,7 @@ FOGRT__LD void fogrt__ld_destroy(fogrt__ld *L) {
     fogrt__ld_free(L, L->buf); fogrt__ld_free(L, L->el); fogrt__ld_free(L, L->at); fogrt__ld_free(L, L->ids);
     fogrt__ld_free(L, L->mats); fogrt__ld_free(L, L->geoms); fogrt__ld_free(L, L->insts); fogrt__ld_free(L, L->inst_mats);
     fogrt__ld_free(L, L->sph); fogrt__ld_free(L, L->lights); fogrt__ld_free(L, L->rects); fogrt__ld_free(L, L->warn);
+    fogrt__ld_free(L, L->names); fogrt__ld_free(L, L->shapes);
     memset(L, 0, sizeof *L);
 }
 
@@ -543,6 +625,7 @@ FOGRT__LD fogrt_result fogrt__ld_init(fogrt__ld *L, const char *name, const fogr
     if (!L->opt.max_file_bytes) L->opt.max_file_bytes = FOGRT_LOAD_MAX_FILE_BYTES;
     if (!L->opt.max_triangles) L->opt.max_triangles = FOGRT_LOAD_MAX_TRIANGLES;
     L->root = -1;
+    L->node = -1;
     if ((L->opt.allocator.alloc_fn == NULL) != (L->opt.allocator.free_fn == NULL)) {
         memset(&L->opt.allocator, 0, sizeof L->opt.allocator);   /* so destroy frees nothing wrongly */
         return fogrt__ld_fail(L, FOGRT_RESULT_INVALID_ARGUMENT, 0, "options.allocator: set both alloc_fn and free_fn, or neither");
@@ -1762,7 +1845,7 @@ FOGRT__LD fogrt_result fogrt__ld_mesh_instance(fogrt__ld *L, int32_t geom, int32
     FOGRT__LD_TRY(FOGRT__LD_PUSH(L, L->insts, L->inst_count, L->inst_cap));
     FOGRT__LD_TRY(fogrt__ld_grow(L, (void **)&L->inst_mats, &L->inst_mat_cap, (uint64_t)L->inst_mat_count + g->list_count, sizeof(uint32_t)));
     I = &L->insts[L->inst_count++];
-    I->geom = gi; I->mat_first = L->inst_mat_count; I->line = node_line;
+    I->geom = gi; I->mat_first = L->inst_mat_count; I->line = node_line; I->node = L->node;
     memcpy(I->M, M, sizeof I->M);
     for (k = 0; k < L->geoms[gi].list_count; ++k)
         FOGRT__LD_TRY(fogrt__ld_bound_material(L, inst, L->geoms[gi].lists[k], &L->inst_mats[L->inst_mat_count++]));
@@ -1777,7 +1860,7 @@ FOGRT__LD void fogrt__ld_world(const double M[16], const float *p, double q[3]) 
 }
 
 /* A CGL sphere: centre M (0,0,0,1), radius scaled by the length of the transformed X axis. */
-FOGRT__LD fogrt_result fogrt__ld_sphere_instance(fogrt__ld *L, int32_t rad, int32_t inst, const double M[16], int node_line) {
+FOGRT__LD fogrt_result fogrt__ld_sphere_instance(fogrt__ld *L, int32_t geom, int32_t rad, int32_t inst, const double M[16], int node_line) {
     float r, cp[3];
     double c[3], x[3], rr;
     fogrt__ld_sphere s;
@@ -1790,6 +1873,7 @@ FOGRT__LD fogrt_result fogrt__ld_sphere_instance(fogrt__ld *L, int32_t rad, int3
     if (!(rr > 0.0) || rr > FOGRT__LD_MAX_COORD)
         return fogrt__ld_fail(L, FOGRT__LD_PARSE, L->el[rad].line, "sphere radius (times the node's X scale) must be > 0 and at most 1e30");
     s.r = (float)rr;
+    s.node = L->node; s.geom = geom;
     FOGRT__LD_TRY(fogrt__ld_bound_material(L, inst, -1, &s.mat));
     FOGRT__LD_TRY(FOGRT__LD_PUSH(L, L->sph, L->sph_count, L->sph_cap));
     L->sph[L->sph_count++] = s;
@@ -1807,7 +1891,7 @@ FOGRT__LD fogrt_result fogrt__ld_geometry(fogrt__ld *L, int32_t inst, const doub
     mesh = fogrt__ld_child(L, geom, "mesh");
     if (mesh >= 0) return fogrt__ld_mesh_instance(L, geom, mesh, inst, M, node_line);
     rad = fogrt__ld_path(L, fogrt__ld_cgl(L, geom), "sphere/radius");
-    if (rad >= 0) return fogrt__ld_sphere_instance(L, rad, inst, M, node_line);
+    if (rad >= 0) return fogrt__ld_sphere_instance(L, geom, rad, inst, M, node_line);
     fogrt__ld_warn(L, L->el[geom].line, "geometry is neither a <mesh> nor a CGL sphere: skipped");
     return FOGRT_RESULT_OK;
 }
@@ -1840,6 +1924,7 @@ FOGRT__LD fogrt_result fogrt__ld_area_light(fogrt__ld *L, int32_t type, const do
         fogrt_vec3 x = r.p[1]; r.p[1] = r.p[3]; r.p[3] = x;
     }
     r.colour = colour;
+    r.node = L->node;
     FOGRT__LD_TRY(FOGRT__LD_PUSH(L, L->rects, L->rect_count, L->rect_cap));
     L->rects[L->rect_count++] = r;
     return FOGRT_RESULT_OK;
@@ -2056,6 +2141,7 @@ FOGRT__LD fogrt_result fogrt__ld_node(fogrt__ld *L, int32_t node, const double p
         fogrt__ld_warn(L, L->el[node].line, "node with several instances: only the first camera, else light, else geometry is used (CS184)");
     if (fogrt__ld_child(L, node, "instance_node") >= 0)
         fogrt__ld_warn(L, L->el[node].line, "<instance_node> is not supported: ignored");
+    L->node = node;                                   /* names the shape it adds */
     if (ic >= 0) return fogrt__ld_camera(L, ic, world);
     if (il >= 0) return fogrt__ld_light(L, il, world, L->el[node].line);
     if (ig >= 0) return fogrt__ld_geometry(L, ig, world, L->el[node].line);
@@ -2303,11 +2389,43 @@ FOGRT__LD fogrt_result fogrt__ld_commit(fogrt__ld *L, fogrt_scene *scene, bool s
     return r;
 }
 
-/* A whole .dae: parse, check, place the camera, commit. */
+/* The name of a .dae element for options.on_shape: its name attribute, else its id. */
+FOGRT__LD fogrt_result fogrt__ld_el_name(fogrt__ld *L, int32_t e, uint32_t *out) {
+    uint32_t len = 0;
+    const char *s = e >= 0 ? fogrt__ld_attr(L, e, "name", &len) : NULL;
+    if (!s && e >= 0) s = fogrt__ld_attr(L, e, "id", &len);
+    return fogrt__ld_name(L, s, len, out);
+}
+FOGRT__LD fogrt_result fogrt__ld_dae_shape(fogrt__ld *L, fogrt_shape_kind kind, int32_t node, int32_t material, int32_t geometry) {
+    uint32_t name[3];
+    FOGRT__LD_TRY(fogrt__ld_el_name(L, node, &name[0]));
+    FOGRT__LD_TRY(fogrt__ld_el_name(L, material, &name[1]));
+    FOGRT__LD_TRY(fogrt__ld_el_name(L, geometry, &name[2]));
+    return fogrt__ld_push_shape(L, kind, name, 0);
+}
+/* The names of every shape the commit adds: each instance, each sphere, and the area
+   rectangles when they are added (no emissive mesh). */
+FOGRT__LD fogrt_result fogrt__ld_dae_names(fogrt__ld *L) {
+    uint32_t i;
+    if (!L->opt.on_shape) return FOGRT_RESULT_OK;
+    for (i = 0; i < L->inst_count; ++i) {
+        const fogrt__ld_inst *I = &L->insts[i];
+        FOGRT__LD_TRY(fogrt__ld_dae_shape(L, FOGRT_SHAPE_MESH, I->node, L->mats[L->inst_mats[I->mat_first]].key, L->geoms[I->geom].el));
+    }
+    for (i = 0; i < L->sph_count; ++i)
+        FOGRT__LD_TRY(fogrt__ld_dae_shape(L, FOGRT_SHAPE_SPHERE, L->sph[i].node, L->mats[L->sph[i].mat].key, L->sph[i].geom));
+    if (fogrt__ld_emissive_tris(L) == 0)
+        for (i = 0; i < L->rect_count; ++i) FOGRT__LD_TRY(fogrt__ld_dae_shape(L, FOGRT_SHAPE_MESH, L->rects[i].node, -1, -1));
+    return FOGRT_RESULT_OK;
+}
+
+/* A whole .dae: parse, check, place the camera, collect the names, commit. */
 FOGRT__LD fogrt_result fogrt__ld_dae(fogrt__ld *L, fogrt_scene *scene) {
     FOGRT__LD_TRY(fogrt__ld_dae_parse(L));
     FOGRT__LD_TRY(fogrt__ld_check_instances(L));
     FOGRT__LD_TRY(fogrt__ld_dae_camera(L));
+    FOGRT__LD_TRY(fogrt__ld_dae_names(L));
+    fogrt__ld_first_shapes(L, scene);
     return fogrt__ld_commit(L, scene, !L->opt.no_camera);
 }
 
@@ -2375,12 +2493,69 @@ FOGRT__LD bool fogrt__ld_flat(const fogrt__ld_meshbuf *m) {
     }
     return have;
 }
+/* A flat mesh's computed normals go (fogrt__ld_flat); the file's stay. */
+FOGRT__LD void fogrt__ld_drop_flat_normals(fogrt__ld *L, fogrt__ld_meshbuf *m) {
+    if (m->smooth && fogrt__ld_flat(m)) { fogrt__ld_free(L, m->nrm); m->nrm = NULL; }
+}
 
-/* Places the single mesh (already compacted), checks it against the scene's limits and
-   adds it with its material (and its normals, unless they were computed and it is flat). */
+/* An OBJ split into a mesh per object or group (options.on_shape): each part's vertices are
+   gathered into scratch arrays sized for the whole mesh, remap[v] being vertex v's number in
+   the part (UINT32_MAX: not in it), so that each part costs its own size, not the whole's. */
+typedef struct fogrt__ld_parts { float *pos, *nrm; uint32_t *idx, *remap; } fogrt__ld_parts;
+
+FOGRT__LD void fogrt__ld_parts_free(fogrt__ld *L, fogrt__ld_parts *P) {
+    fogrt__ld_free(L, P->pos); fogrt__ld_free(L, P->nrm); fogrt__ld_free(L, P->idx); fogrt__ld_free(L, P->remap);
+}
+FOGRT__LD uint32_t fogrt__ld_part_end(const fogrt__ld *L, const fogrt__ld_meshbuf *m, uint32_t k) {
+    return k + 1 < L->shape_count ? L->shapes[k + 1].first : m->nt;
+}
+FOGRT__LD fogrt_result fogrt__ld_parts_alloc(fogrt__ld *L, const fogrt__ld_meshbuf *m, fogrt__ld_parts *P) {
+    uint32_t k, most = 0, v;
+    memset(P, 0, sizeof *P);
+    for (k = 0; k < L->shape_count; ++k)
+        if (fogrt__ld_part_end(L, m, k) - L->shapes[k].first > most) most = fogrt__ld_part_end(L, m, k) - L->shapes[k].first;
+    P->pos = (float *)fogrt__ld_alloc(L, 3 * (uint64_t)m->nv, sizeof(float));
+    P->nrm = P->pos ? (float *)fogrt__ld_alloc(L, 3 * (uint64_t)m->nv, sizeof(float)) : NULL;
+    P->idx = P->nrm ? (uint32_t *)fogrt__ld_alloc(L, 3 * (uint64_t)most, sizeof(uint32_t)) : NULL;
+    P->remap = P->idx ? (uint32_t *)fogrt__ld_alloc(L, m->nv, sizeof(uint32_t)) : NULL;
+    if (!P->remap) return FOGRT_RESULT_OUT_OF_MEMORY;
+    for (v = 0; v < m->nv; ++v) P->remap[v] = UINT32_MAX;
+    return FOGRT_RESULT_OK;
+}
+/* Part k as a mesh description of its own (the scratch is left ready for the next part). */
+FOGRT__LD void fogrt__ld_part(const fogrt__ld *L, const fogrt__ld_meshbuf *m, uint32_t k, fogrt__ld_parts *P, fogrt_mesh_desc *d) {
+    uint32_t first = L->shapes[k].first, end = fogrt__ld_part_end(L, m, k), t, nv = 0;
+    for (t = 3 * first; t < 3 * end; ++t) {
+        uint32_t v = m->idx[t];
+        if (P->remap[v] == UINT32_MAX) {
+            memcpy(P->pos + 3 * (size_t)nv, m->pos + 3 * (size_t)v, 3 * sizeof(float));
+            if (m->nrm) memcpy(P->nrm + 3 * (size_t)nv, m->nrm + 3 * (size_t)v, 3 * sizeof(float));
+            P->remap[v] = nv++;
+        }
+        P->idx[t - 3 * first] = P->remap[v];
+    }
+    for (t = 3 * first; t < 3 * end; ++t) P->remap[m->idx[t]] = UINT32_MAX;
+    d->positions = P->pos; d->normals = m->nrm ? P->nrm : NULL; d->vertex_count = nv;
+    d->indices = P->idx; d->triangle_count = end - first;
+}
+/* The mesh's material: options.material, else a new diffuse 0.75 grey. */
+FOGRT__LD fogrt_result fogrt__ld_mesh_material(fogrt__ld *L, fogrt_scene *scene, uint32_t *mat) {
+    fogrt_material_desc md = fogrt__ld_diffuse(0.75f, 0.75f, 0.75f);
+    fogrt_result r;
+    if (L->opt.use_material) { *mat = L->opt.material; return FOGRT_RESULT_OK; }
+    r = fogrt_scene_add_material(scene, &md, mat);
+    if (r) return fogrt__ld_rejected(L, r, "material");
+    L->rep->materials = 1;
+    return FOGRT_RESULT_OK;
+}
+/* Places the mesh (already compacted), checks it against the scene's limits and adds it
+   with its material (and its normals, unless they were computed and it is flat): whole, or
+   with options.on_shape a mesh per OBJ object or group. */
 FOGRT__LD fogrt_result fogrt__ld_commit_mesh(fogrt__ld *L, fogrt_scene *scene, fogrt__ld_meshbuf *m) {
+    const uint32_t unnamed[3] = { 0, 0, 0 };
+    fogrt__ld_parts P;
     fogrt_mesh_desc d;
-    uint32_t mat, v;
+    uint32_t mat = 0, v, k;
     fogrt_result r;
     if (L->opt.place != FOGRT_LOAD_PLACE_AS_IS) fogrt__ld_place(L, m);
     for (v = 0; v < 3 * m->nv; ++v)
@@ -2388,22 +2563,24 @@ FOGRT__LD fogrt_result fogrt__ld_commit_mesh(fogrt__ld *L, fogrt_scene *scene, f
             return fogrt__ld_fail(L, FOGRT__LD_PARSE, 0, "placed vertex %u lies beyond fogrt's limit of 1e30 (see options.fit_min/fit_max)", v / 3);
     if (m->nt == 0) fogrt__ld_warn(L, 0, "the file has no faces: nothing added");
     if (fogrt__ld_ready(L) || m->nt == 0) return fogrt__ld_ready(L);
-    if (L->opt.use_material) {
-        mat = L->opt.material;
-    } else {
-        fogrt_material_desc md = fogrt__ld_diffuse(0.75f, 0.75f, 0.75f);
-        r = fogrt_scene_add_material(scene, &md, &mat);
-        if (r) return fogrt__ld_rejected(L, r, "material");
-        L->rep->materials = 1;
-    }
-    if (m->smooth && fogrt__ld_flat(m)) { fogrt__ld_free(L, m->nrm); m->nrm = NULL; }
+    fogrt__ld_drop_flat_normals(L, m);
+    if (L->opt.on_shape && L->shape_count == 0) FOGRT__LD_TRY(fogrt__ld_push_shape(L, FOGRT_SHAPE_MESH, unnamed, 0));
+    memset(&P, 0, sizeof P);
+    r = L->shape_count > 1 ? fogrt__ld_parts_alloc(L, m, &P) : FOGRT_RESULT_OK;
+    fogrt__ld_first_shapes(L, scene);
+    if (!r) r = fogrt__ld_mesh_material(L, scene, &mat);             /* the first call into the scene */
     memset(&d, 0, sizeof d);
     d.positions = m->pos; d.normals = m->nrm; d.vertex_count = m->nv;
-    d.indices = m->idx; d.triangle_count = m->nt; d.material = mat;
-    r = fogrt_scene_add_mesh(scene, &d);
-    if (r) return fogrt__ld_rejected(L, r, "mesh");
-    L->rep->triangles = m->nt;
-    return FOGRT_RESULT_OK;
+    d.indices = m->idx; d.triangle_count = m->nt;
+    for (k = 0; !r && k < (L->shape_count > 1 ? L->shape_count : 1); ++k) {
+        if (L->shape_count > 1) fogrt__ld_part(L, m, k, &P, &d);
+        d.material = mat;
+        r = fogrt_scene_add_mesh(scene, &d);
+        if (r) r = fogrt__ld_rejected(L, r, "mesh");
+    }
+    fogrt__ld_parts_free(L, &P);
+    if (!r) L->rep->triangles = m->nt;
+    return r;
 }
 
 /* Compacts, normals (file or computed), places, adds. Takes ownership of file_nrm. */
@@ -2481,6 +2658,8 @@ typedef struct fogrt__obj {
     uint32_t nvp, nvn, nt, faces;
     uint64_t want_v, want_n, want_t;  /* the first pass's counts */
     bool all_normals;                 /* every face so far gave normals (tn is kept) */
+    uint32_t name[3];                 /* with options.on_shape: o, usemtl and g in force */
+    bool in_part;                     /* the faces so far belong to the last shape started */
 } fogrt__obj;
 
 /* Pass 1: counts v, vn and the triangles of f (words - 2), so the arrays are exact and a
@@ -2593,8 +2772,20 @@ FOGRT__LD fogrt_result fogrt__obj_face(fogrt__ld *L, fogrt__obj *O, const char *
     return FOGRT_RESULT_OK;
 }
 
-/* Pass 2: the statements. Everything but v, vn and f (vt, vp, o, g, s, usemtl, mtllib, l,
-   p, ...) is ignored. */
+/* With options.on_shape: o, g and usemtl name what follows (the rest of the line, blanks
+   trimmed); an o or a g ends the current mesh, and the next face starts one. */
+FOGRT__LD fogrt_result fogrt__obj_name(fogrt__ld *L, fogrt__obj *O, const char *kw, size_t kl, const char *q, const char *le) {
+    int k = fogrt__obj_is(kw, kl, "o") ? 0 : fogrt__obj_is(kw, kl, "usemtl") ? 1 : fogrt__obj_is(kw, kl, "g") ? 2 : -1;
+    if (k < 0) return FOGRT_RESULT_OK;
+    while (q < le && fogrt__obj_blank(*q)) ++q;
+    while (le > q && fogrt__obj_blank(le[-1])) --le;
+    FOGRT__LD_TRY(fogrt__ld_name(L, q, (uint32_t)(le - q), &O->name[k]));
+    if (k == 0) O->name[2] = 0;                  /* an object starts without a group */
+    if (k != 1) O->in_part = false;
+    return FOGRT_RESULT_OK;
+}
+/* Pass 2: the statements. Everything but v, vn and f (and o, g, usemtl with on_shape: vt,
+   vp, s, mtllib, l, p, ...) is ignored. */
 FOGRT__LD fogrt_result fogrt__obj_statements(fogrt__ld *L, const char *p, const char *end, fogrt__obj *O) {
     const char *ls, *le, *kw, *q;
     size_t kl;
@@ -2603,7 +2794,12 @@ FOGRT__LD fogrt_result fogrt__obj_statements(fogrt__ld *L, const char *p, const 
         line++;
         if (!fogrt__obj_keyword(ls, le, &kw, &kl, &q)) continue;
         if (fogrt__obj_is(kw, kl, "v") || fogrt__obj_is(kw, kl, "vn")) FOGRT__LD_TRY(fogrt__obj_vertex(L, O, q, le, line, kl == 2));
-        else if (fogrt__obj_is(kw, kl, "f")) FOGRT__LD_TRY(fogrt__obj_face(L, O, q, le, line));
+        else if (fogrt__obj_is(kw, kl, "f")) {
+            if (L->opt.on_shape && !O->in_part) FOGRT__LD_TRY(fogrt__ld_push_shape(L, FOGRT_SHAPE_MESH, O->name, O->nt));
+            O->in_part = true;
+            FOGRT__LD_TRY(fogrt__obj_face(L, O, q, le, line));
+        }
+        else if (L->opt.on_shape) FOGRT__LD_TRY(fogrt__obj_name(L, O, kw, kl, q, le));
     }
     return FOGRT_RESULT_OK;
 }
@@ -3096,6 +3292,7 @@ FOGRT__LD fogrt_result fogrt__ld_entry(const fogrt__ld_job *J, bool from_file, c
     if (!r && J->format == FOGRT__LD_PLY) r = fogrt__ld_mesh_file(&L, J->scene, fogrt__ply_parse);
     if (!r && J->format == FOGRT__LD_CAMERA) r = fogrt__ld_camera_file(&L, J->width, J->height, J->camera);
     if (!r) fogrt__ld_flush_warnings(&L);
+    if (!r) fogrt__ld_report_shapes(&L);
     fogrt__ld_destroy(&L);
     return r;
 }

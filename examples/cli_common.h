@@ -3,8 +3,11 @@
    threads and standard streams alike:
 
    - the parser of the flags they have in common (-r -t -l -m -H -g --g --density --albedo
-     --integrator --fresnel --seed --exposure), their help lines, `--flag=value`, and "did
-     you mean" for a misspelt flag;
+     --phase --emission --medium --interface --integrator --fresnel --seed --exposure), their
+     help lines, `--flag=value`, and "did you mean" for a misspelt flag;
+   - media inside the scene's objects (--medium NAME): the names the loader reports, NAME
+     found among them, the media and interfaces handed to the scene, and the scene build's
+     refusals told by the flag;
    - standard descriptors 0-2 reopened on /dev/null when closed, SIGPIPE ignored;
    - the thread count: capped, checked against OMP_STACKSIZE, and lowered when the system
      cannot start that many threads;
@@ -291,18 +294,34 @@ CLI_FN bool cli_ends_with(const char *s, const char *ext)
 /* ------------------------------------------------------------------------------------------
    The flags both programs take
    ------------------------------------------------------------------------------------------ */
-typedef struct cli_common {
-    int width, height;                   /* -r */
-    int threads;                         /* -t, 0 = all */
-    int light_samples;                   /* -l */
-    int max_depth;                       /* -m */
-    bool hemisphere;                     /* -H */
+/* The fog flags: the world's before any --medium, after --medium NAME those of NAME's medium. */
+typedef struct cli_fog {
     float g; bool g_set, paper_g;        /* --g, -g */
     float g2, w; bool two_lobes;         /* --g G1,G2,W (appendix G) */
     fogrt_phase_type phase; bool phase_set;   /* --phase (G) */
     fogrt_vec3 emission; bool emission_set;   /* --emission (G) */
     float density; bool density_set;     /* --density */
     fogrt_vec3 albedo; bool albedo_set;  /* --albedo */
+} cli_fog;
+/* --medium NAME (appendix H), with the fog flags and --interface that follow it; the shape
+   NAME is found to be once the scene is loaded. */
+typedef struct cli_medium {
+    const char *name;
+    bool interface;                      /* --interface */
+    cli_fog fog;
+    bool found; fogrt_shape_kind kind; uint32_t index;
+} cli_medium;
+#define CLI_MAX_MEDIA 64
+
+typedef struct cli_common {
+    int width, height;                   /* -r */
+    int threads;                         /* -t, 0 = all */
+    int light_samples;                   /* -l */
+    int max_depth;                       /* -m */
+    bool hemisphere;                     /* -H */
+    cli_fog fog;                         /* the world's fog: the fog flags before any --medium */
+    cli_medium media[CLI_MAX_MEDIA];     /* --medium NAME ... in the order given */
+    int media_count;
     fogrt_integrator integrator;         /* --integrator */
     fogrt_fresnel fresnel;               /* --fresnel */
     uint64_t seed;                       /* --seed */
@@ -310,8 +329,8 @@ typedef struct cli_common {
 } cli_common;
 
 static const char *const cli_common_names[] = {
-    "-r", "-t", "-l", "-m", "-H", "-g", "--g", "--density", "--albedo", "--phase", "--emission", "--integrator",
-    "--fresnel", "--seed", "--exposure", "-h", "--help", NULL
+    "-r", "-t", "-l", "-m", "-H", "-g", "--g", "--density", "--albedo", "--phase", "--emission", "--medium",
+    "--interface", "--integrator", "--fresnel", "--seed", "--exposure", "-h", "--help", NULL
 };
 
 /* The build that left out appendix G of fogrt.h (media beyond the paper), for the one line
@@ -322,6 +341,12 @@ static const char *const cli_common_names[] = {
 #define CLI_NO_MEDIA_MACRO "FOGRT_NO_MEDIUM"
 #else
 #define CLI_NO_MEDIA_MACRO "FOGRT_NO_MEDIA"
+#endif
+/* ... and the one that left out appendix H (media inside shapes), for --medium's line. */
+#if defined(FOGRT_NO_MEDIA)
+#define CLI_NO_SHAPES_MACRO CLI_NO_MEDIA_MACRO   /* (fogrt.h: FOGRT_NO_MEDIA implies FOGRT_NO_SHAPES) */
+#else
+#define CLI_NO_SHAPES_MACRO "FOGRT_NO_SHAPES"
 #endif
 
 /* The defaults (the image size is the program's: fogrt 800x600, the preview 320x240). */
@@ -335,12 +360,100 @@ CLI_FN void cli_common_defaults(cli_common *c, int width, int height)
     c->fresnel = FOGRT_FRESNEL_SCHLICK;
 }
 
+#define CLI_NEED(n) do { if (!cli_has(A, (n))) return cli_bad_flag(a, "needs %d value%s", (n), (n) > 1 ? "s" : ""); } while (0)
+/* --medium NAME and --interface: a new medium, whose fog flags follow; its surface an
+   interface. Returns 0, 2 or -1 as cli_common_flag. */
+CLI_FN int cli_medium_flag(cli_arg *A, cli_common *c)
+{
+    const char *a = A->name, *v = "";
+    int i;
+    if (!cli_is(A, "--medium") && !cli_is(A, "--interface")) return -1;
+    if (cli_is(A, "--medium")) CLI_NEED(1);
+    if (cli_is(A, "--medium")) v = cli_next(A);
+#ifdef FOGRT_NO_SHAPES
+    (void)c; (void)i; (void)v;
+    return cli_bad_flag(a, "needs appendix H of fogrt.h (media inside shapes): this %s was built with %s", cli_prog, CLI_NO_SHAPES_MACRO);
+#else
+    if (cli_is(A, "--interface")) {
+        if (c->media_count == 0) return cli_bad_flag(a, "must follow --medium NAME: it makes NAME's surface an interface (invisible, bounding its medium)");
+        c->media[c->media_count - 1].interface = true;
+        return 0;
+    }
+    if (!v[0]) return cli_bad_flag(a, "needs the name of an object of the scene (a node, material or geometry name)");
+    for (i = 0; i < c->media_count; ++i)
+        if (strcmp(c->media[i].name, v) == 0) return cli_bad_flag(a, "'%s' is given twice: one --medium per object", v);
+    if (c->media_count == CLI_MAX_MEDIA) return cli_bad_flag(a, "at most %d objects may hold media", CLI_MAX_MEDIA);
+    memset(&c->media[c->media_count], 0, sizeof c->media[0]);
+    c->media[c->media_count++].name = v;
+    return 0;
+#endif
+}
+/* The fog flags, into f: the world's fog or the last --medium's. Returns 0, 2 or -1 as
+   cli_common_flag. */
+CLI_FN int cli_fog_flag(cli_arg *A, cli_fog *f)
+{
+    const char *a = A->name, *v;
+    if (cli_is(A, "-g") || cli_is(A, "--g")) {
+        double l[3];
+        CLI_NEED(1); v = cli_next(A);
+        if (strchr(v, ',')) {                     /* two lobes: w HG(G1) + (1 - w) HG(G2) */
+#ifdef FOGRT_NO_MEDIA
+            return cli_bad_flag(a, "two lobes G1,G2,W need appendix G of fogrt.h: this %s was built with %s", cli_prog, CLI_NO_MEDIA_MACRO);
+#endif
+            if (!cli_parse_list(v, l, 3) || !(l[0] >= -1 && l[0] <= 1 && l[1] >= -1 && l[1] <= 1 && l[2] >= 0 && l[2] <= 1))
+                return cli_bad_flag(a, "two lobes must be G1,G2,W with G1 and G2 in [-1, 1] and W in [0, 1], got '%s'", v);
+            f->g = (float)l[0]; f->g2 = (float)l[1]; f->w = (float)l[2]; f->two_lobes = true;
+        } else if (!cli_parse_float(v, &f->g) || f->g < -1 || f->g > 1) {
+            return cli_bad_flag(a, "g must be a number in [-1, 1] (or G1,G2,W for two lobes), got '%s'", v);
+        } else {
+            f->two_lobes = false;
+        }
+        f->g_set = true;
+        if (cli_is(A, "-g")) f->paper_g = true;
+        return 0;
+    }
+    if (cli_is(A, "--density")) {
+        CLI_NEED(1); v = cli_next(A);
+        if (!cli_parse_float(v, &f->density) || f->density < 0)
+            return cli_bad_flag(a, "density must be a finite number >= 0 (float: at most 3.4e38), got '%s'", v);
+        f->density_set = true;
+        return 0;
+    }
+    if (cli_is(A, "--albedo")) {
+        CLI_NEED(1); v = cli_next(A);
+        if (!cli_parse_albedo(v, &f->albedo)) return cli_bad_flag(a, "albedo must be a number in [0, 1] or r,g,b with each in [0, 1], got '%s'", v);
+        f->albedo_set = true;
+        return 0;
+    }
+    if (cli_is(A, "--phase") || cli_is(A, "--emission")) {
+        CLI_NEED(1); v = cli_next(A);
+#ifdef FOGRT_NO_MEDIA
+        return cli_bad_flag(a, "needs appendix G of fogrt.h (media beyond the paper): this %s was built with %s", cli_prog, CLI_NO_MEDIA_MACRO);
+#else
+        if (cli_is(A, "--phase")) {
+            if (strcmp(v, "hg") == 0) f->phase = FOGRT_PHASE_HG;
+            else if (strcmp(v, "rayleigh") == 0) f->phase = FOGRT_PHASE_RAYLEIGH;
+            else return cli_bad_flag(a, "must be hg or rayleigh, got '%s'", v);
+            f->phase_set = true;
+            return 0;
+        }
+        if (!cli_parse_emission(v, &f->emission))
+            return cli_bad_flag(a, "emission must be R,G,B (or one number for all three), each finite and >= 0, got '%s'", v);
+        f->emission_set = true;
+        return 0;
+#endif
+    }
+    return -1;
+}
+
 /* Parses one common flag at the cursor. Returns 0 (taken), 2 (refused, message printed) or
-   -1 (not a common flag). -h is the caller's. */
+   -1 (not a common flag). -h is the caller's. The fog flags after --medium NAME are NAME's. */
 CLI_FN int cli_common_flag(cli_arg *A, cli_common *c)
 {
     const char *a = A->name, *v;
-#define CLI_NEED(n) do { if (!cli_has(A, (n))) return cli_bad_flag(a, "needs %d value%s", (n), (n) > 1 ? "s" : ""); } while (0)
+    int k;
+    if ((k = cli_medium_flag(A, c)) >= 0) return k;
+    if ((k = cli_fog_flag(A, c->media_count ? &c->media[c->media_count - 1].fog : &c->fog)) >= 0) return k;
     if (cli_is(A, "-r")) {
         const char *w, *h;
         CLI_NEED(2);
@@ -366,56 +479,6 @@ CLI_FN int cli_common_flag(cli_arg *A, cli_common *c)
         return 0;
     }
     if (cli_is(A, "-H")) { c->hemisphere = true; return 0; }
-    if (cli_is(A, "-g") || cli_is(A, "--g")) {
-        double l[3];
-        CLI_NEED(1); v = cli_next(A);
-        if (strchr(v, ',')) {                     /* two lobes: w HG(G1) + (1 - w) HG(G2) */
-#ifdef FOGRT_NO_MEDIA
-            return cli_bad_flag(a, "two lobes G1,G2,W need appendix G of fogrt.h: this %s was built with %s", cli_prog, CLI_NO_MEDIA_MACRO);
-#endif
-            if (!cli_parse_list(v, l, 3) || !(l[0] >= -1 && l[0] <= 1 && l[1] >= -1 && l[1] <= 1 && l[2] >= 0 && l[2] <= 1))
-                return cli_bad_flag(a, "two lobes must be G1,G2,W with G1 and G2 in [-1, 1] and W in [0, 1], got '%s'", v);
-            c->g = (float)l[0]; c->g2 = (float)l[1]; c->w = (float)l[2]; c->two_lobes = true;
-        } else if (!cli_parse_float(v, &c->g) || c->g < -1 || c->g > 1) {
-            return cli_bad_flag(a, "g must be a number in [-1, 1] (or G1,G2,W for two lobes), got '%s'", v);
-        } else {
-            c->two_lobes = false;
-        }
-        c->g_set = true;
-        if (cli_is(A, "-g")) c->paper_g = true;
-        return 0;
-    }
-    if (cli_is(A, "--density")) {
-        CLI_NEED(1); v = cli_next(A);
-        if (!cli_parse_float(v, &c->density) || c->density < 0)
-            return cli_bad_flag(a, "density must be a finite number >= 0 (float: at most 3.4e38), got '%s'", v);
-        c->density_set = true;
-        return 0;
-    }
-    if (cli_is(A, "--albedo")) {
-        CLI_NEED(1); v = cli_next(A);
-        if (!cli_parse_albedo(v, &c->albedo)) return cli_bad_flag(a, "albedo must be a number in [0, 1] or r,g,b with each in [0, 1], got '%s'", v);
-        c->albedo_set = true;
-        return 0;
-    }
-    if (cli_is(A, "--phase") || cli_is(A, "--emission")) {
-        CLI_NEED(1); v = cli_next(A);
-#ifdef FOGRT_NO_MEDIA
-        return cli_bad_flag(a, "needs appendix G of fogrt.h (media beyond the paper): this %s was built with %s", cli_prog, CLI_NO_MEDIA_MACRO);
-#else
-        if (cli_is(A, "--phase")) {
-            if (strcmp(v, "hg") == 0) c->phase = FOGRT_PHASE_HG;
-            else if (strcmp(v, "rayleigh") == 0) c->phase = FOGRT_PHASE_RAYLEIGH;
-            else return cli_bad_flag(a, "must be hg or rayleigh, got '%s'", v);
-            c->phase_set = true;
-            return 0;
-        }
-        if (!cli_parse_emission(v, &c->emission))
-            return cli_bad_flag(a, "emission must be R,G,B (or one number for all three), each finite and >= 0, got '%s'", v);
-        c->emission_set = true;
-        return 0;
-#endif
-    }
     if (cli_is(A, "--integrator")) {
         CLI_NEED(1); v = cli_next(A);
         if (strcmp(v, "path") == 0) c->integrator = FOGRT_INTEGRATOR_PATH;
@@ -445,19 +508,31 @@ CLI_FN int cli_common_flag(cli_arg *A, cli_common *c)
     return -1;
 }
 
-/* What the fog flags of appendix G ask of the medium desc (after the parsing: --phase
-   rayleigh with two lobes is refused, exit 2). */
+/* What the fog flags ask, checked once they are all parsed (exit 2): --phase rayleigh with
+   two lobes, the world's or a medium's; a --medium followed by nothing, or by fog flags
+   without the --density that makes its medium. */
 CLI_FN int cli_common_media_check(const cli_common *c)
 {
-    if (c->phase_set && c->phase == FOGRT_PHASE_RAYLEIGH && c->two_lobes)
-        return cli_bad_flag("--phase", "rayleigh cannot be combined with two lobes (--g G1,G2,W): the lobes are Henyey-Greenstein's");
+    char flag[96];
+    int i;
+    for (i = -1; i < c->media_count; ++i) {
+        const cli_fog *f = i < 0 ? &c->fog : &c->media[i].fog;
+        bool any = f->g_set || f->phase_set || f->emission_set || f->density_set || f->albedo_set;
+        if (f->phase_set && f->phase == FOGRT_PHASE_RAYLEIGH && f->two_lobes)
+            return cli_bad_flag("--phase", "rayleigh cannot be combined with two lobes (--g G1,G2,W): the lobes are Henyey-Greenstein's");
+        if (i >= 0) snprintf(flag, sizeof flag, "--medium %.80s", c->media[i].name);
+        if (i >= 0 && !any && !c->media[i].interface)
+            return cli_bad_flag(flag, "no fog flag (--density, --albedo, --g, --phase, --emission) or --interface follows it");
+        if (i >= 0 && any && !f->density_set && !f->paper_g)
+            return cli_bad_flag(flag, "its fog flags need --density, the density of its medium (0 leaves it empty)");
+    }
     return 0;
 }
-CLI_FN void cli_common_media_apply(const cli_common *c, fogrt_medium_desc *md)
+CLI_FN void cli_common_media_apply(const cli_fog *f, fogrt_medium_desc *md)
 {
-    if (c->g_set) { md->phase = c->two_lobes ? FOGRT_PHASE_HG2 : FOGRT_PHASE_HG; md->g2 = c->g2; md->w = c->w; }
-    if (c->phase_set && (c->phase == FOGRT_PHASE_RAYLEIGH || md->phase == FOGRT_PHASE_RAYLEIGH)) md->phase = c->phase;
-    if (c->emission_set) md->emission = c->emission;
+    if (f->g_set) { md->phase = f->two_lobes ? FOGRT_PHASE_HG2 : FOGRT_PHASE_HG; md->g2 = f->g2; md->w = f->w; }
+    if (f->phase_set && (f->phase == FOGRT_PHASE_RAYLEIGH || md->phase == FOGRT_PHASE_RAYLEIGH)) md->phase = f->phase;
+    if (f->emission_set) md->emission = f->emission;
 }
 
 /* The help lines of the common flags, the same words in both programs. */
@@ -490,6 +565,15 @@ CLI_FN void cli_common_usage(FILE *f, int width, int height)
         "  --emission E   radiance the fog emits, R,G,B or one number, each >= 0, added as\n"
         "                 sigma_a E per unit length with sigma_a = density x (1 - albedo)\n"
         "                 (default 0: no emission)\n"
+        "  --medium NAME  the fog flags that follow (up to the next --medium) describe a medium\n"
+        "                 inside the closed object NAME instead of the world's fog: a node name\n"
+        "                 of a .dae (else a material, else a geometry name), an o name of an\n"
+        "                 OBJ (else usemtl, else g); a name several objects share is refused.\n"
+        "                 Needs --density (its albedo 0.9 and g 0 unless given); the world's\n"
+        "                 fog must then fill all space (default: no media in objects)\n"
+        "  --interface    after --medium NAME: NAME's surface only bounds its medium (it\n"
+        "                 neither reflects nor refracts: a fog volume of NAME's shape; without\n"
+        "                 --density NAME is invisible) (default: NAME keeps its material)\n"
         "  --integrator I path (global illumination, the paper's Algorithm 1) or direct (one\n"
         "                 bounce, the paper's baseline) (default path)\n"
         "  --fresnel F    schlick or exact (default schlick)\n"
@@ -983,6 +1067,292 @@ CLI_FN bool cli_encode_pfm(int W, int H, const float *rgb, cli_membuf *out)
 #endif
     }
     return !out->failed;
+}
+
+/* ------------------------------------------------------------------------------------------
+   Media inside the scene's objects (--medium NAME): the names the loader reports, NAME found
+   among them, the media and interfaces handed to the scene, the build's refusals
+   ------------------------------------------------------------------------------------------ */
+/* A shape the loader added (fogrt_load_options.on_shape) and its node, material and
+   geometry names ("" for none). */
+typedef struct cli_shape { fogrt_shape_kind kind; uint32_t index; char *name[3]; } cli_shape;
+typedef struct cli_shapes {
+    cli_shape *items; size_t count, cap;
+    bool oom;
+    const char *level[3];        /* what the three names are in the scene's format */
+    const char *scene;           /* the scene file, or "the default scene", for messages */
+} cli_shapes;
+
+CLI_FN void cli_shapes_init(cli_shapes *S, const char *scene)
+{
+    static const char *const dae[3] = { "node", "material", "geometry" };
+    static const char *const obj[3] = { "object (o)", "material (usemtl)", "group (g)" };
+    int k;
+    memset(S, 0, sizeof *S);
+    for (k = 0; k < 3; ++k) S->level[k] = scene && cli_ends_with(scene, ".obj") ? obj[k] : dae[k];
+    S->scene = scene ? scene : "the default scene";
+}
+CLI_FN void cli_shapes_free(cli_shapes *S)
+{
+    size_t i;
+    int k;
+    for (i = 0; i < S->count; ++i)
+        for (k = 0; k < 3; ++k) free(S->items[i].name[k]);
+    free(S->items);
+    S->items = NULL; S->count = S->cap = 0;
+}
+/* fogrt_load_options.on_shape: keeps a copy of the names (the loader's live only during the
+   call). Running out of memory is remembered and told by cli_apply_media. */
+CLI_FN void cli_on_shape(void *user, fogrt_shape_kind kind, uint32_t index, const char *node, const char *material,
+                         const char *geometry)
+{
+    cli_shapes *S = (cli_shapes *)user;
+    const char *n[3];
+    cli_shape *sh;
+    int k;
+    n[0] = node; n[1] = material; n[2] = geometry;
+    if (S->oom) return;
+    if (S->count == S->cap) {
+        size_t cap = S->cap ? 2 * S->cap : 64;
+        cli_shape *p = (cli_shape *)realloc(S->items, cap * sizeof *p);
+        if (!p) { S->oom = true; return; }
+        S->items = p; S->cap = cap;
+    }
+    sh = &S->items[S->count];
+    sh->kind = kind; sh->index = index;
+    for (k = 0; k < 3; ++k) {
+        size_t len = strlen(n[k]) + 1;
+        sh->name[k] = (char *)malloc(len);
+        if (sh->name[k]) memcpy(sh->name[k], n[k], len);
+        else S->oom = true;
+    }
+    if (S->oom) { for (k = 0; k < 3; ++k) free(sh->name[k]); return; }
+    S->count++;
+}
+
+/* A name as a message may quote it: control bytes and bytes that are not well-formed UTF-8
+   become '?', so a scene file never writes raw bytes to the terminal. */
+CLI_FN void cli_put_name(cli_membuf *b, const char *name)
+{
+    const unsigned char *p = (const unsigned char *)name;
+    while (*p) {
+        int n = *p < 0x80 ? 0 : (*p & 0xE0) == 0xC0 && *p >= 0xC2 ? 1 : (*p & 0xF0) == 0xE0 ? 2 : (*p & 0xF8) == 0xF0 && *p <= 0xF4 ? 3 : -1, k;
+        for (k = 1; k <= n; ++k) if ((p[k] & 0xC0) != 0x80) n = -1;
+        if (n < 0 || (n == 0 && (*p < 0x20 || *p == 0x7F))) { cli_membuf_put(b, "?", 1); p++; continue; }
+        cli_membuf_put(b, p, (size_t)n + 1);
+        p += n + 1;
+    }
+}
+CLI_FN void cli_put(cli_membuf *b, const char *fmt, ...)
+{
+    char tmp[256];
+    va_list ap;
+    int n;
+    va_start(ap, fmt);
+    n = vsnprintf(tmp, sizeof tmp, fmt, ap);
+    va_end(ap);
+    if (n > 0) cli_membuf_put(b, tmp, (size_t)n < sizeof tmp ? (size_t)n : sizeof tmp - 1);
+}
+/* Prints the message being built as one line on stderr and frees it. */
+CLI_FN void cli_put_line(cli_membuf *b)
+{
+    cli_membuf_put(b, "\n", 1);
+    if (!b->failed) fwrite(b->data, 1, b->size, stderr);
+    else fprintf(stderr, "%s: out of memory\n", cli_prog);
+    free(b->data);
+    memset(b, 0, sizeof *b);
+}
+/* "mesh 3 (node a, material red)": a shape and its other names than level's. */
+CLI_FN void cli_put_shape(cli_membuf *b, const cli_shapes *S, const cli_shape *sh, int level)
+{
+    int k, told = 0;
+    cli_put(b, "%s %u", sh->kind == FOGRT_SHAPE_MESH ? "mesh" : "sphere", (unsigned)sh->index);
+    for (k = 0; k < 3; ++k) {
+        if (k == level || !sh->name[k][0]) continue;
+        cli_put(b, "%s%s ", told++ ? ", " : " (", S->level[k]);
+        cli_put_name(b, sh->name[k]);
+    }
+    if (told) cli_put(b, ")");
+}
+/* The scene's names, level by level, each once (at most 24 a level). */
+CLI_FN void cli_put_names(cli_membuf *b, const cli_shapes *S)
+{
+    int k;
+    for (k = 0; k < 3; ++k) {
+        size_t i, j, shown = 0, more = 0;
+        for (i = 0; i < S->count; ++i) {
+            const char *n = S->items[i].name[k];
+            for (j = 0; j < i && strcmp(S->items[j].name[k], n) != 0; ++j) {}
+            if (!n[0] || j < i) continue;
+            if (shown == 24) { more++; continue; }
+            cli_put(b, shown++ ? ", " : "; %s names: ", S->level[k]);
+            cli_put_name(b, n);
+        }
+        if (more) cli_put(b, " and %lu more", (unsigned long)more);
+    }
+}
+/* The shape NAME names: a node name first, then a material name, then a geometry name
+   (OBJ: object, usemtl, group); one shape at the first level that has the name. Returns 0
+   (*out its place in S) or 2 after one line: no such name (the scene's names listed), or a
+   name several shapes share at its level (they are listed). */
+CLI_FN int cli_find_shape(const cli_shapes *S, const char *name, size_t *out)
+{
+    cli_membuf b;
+    size_t i, n = 0, first = 0;
+    int level;
+    memset(&b, 0, sizeof b);
+    for (level = 0; level < 3 && n == 0; ++level)
+        for (i = 0; i < S->count; ++i)
+            if (strcmp(S->items[i].name[level], name) == 0 && n++ == 0) first = i;
+    if (n == 1) { *out = first; return 0; }
+    cli_put(&b, "%s: --medium ", cli_prog);
+    cli_put_name(&b, name);
+    if (n > 1) {
+        level--;
+        cli_put(&b, ": %u objects of %s share the %s name ", (unsigned)n, S->scene, S->level[level]);
+        cli_put_name(&b, name);
+        for (i = first; i < S->count; ++i) {
+            if (strcmp(S->items[i].name[level], name) != 0) continue;
+            cli_put(&b, i == first ? ": " : ", ");
+            cli_put_shape(&b, S, &S->items[i], level);
+        }
+        cli_put(&b, "; give a name only one of them has");
+    } else {
+        for (i = 0; i < S->count && !S->items[i].name[0][0] && !S->items[i].name[1][0] && !S->items[i].name[2][0]; ++i) {}
+        if (i == S->count) cli_put(&b, ": %s has no named objects (a .dae names its nodes, materials and geometries, an OBJ its o, usemtl and g)", S->scene);
+        else {
+            cli_put(&b, ": %s has no %s, %s or %s named ", S->scene, S->level[0], S->level[1], S->level[2]);
+            cli_put_name(&b, name);
+            cli_put_names(&b, S);
+        }
+    }
+    cli_put_line(&b);
+    return 2;
+}
+
+#ifndef FOGRT_NO_SHAPES
+/* The medium of --medium NAME: fogrt's defaults for a fog a scene does not have (albedo
+   0.9, g 0), changed by its flags (-g alone: the paper's density 0.2). */
+CLI_FN fogrt_medium_desc cli_medium_desc(const cli_fog *f)
+{
+    fogrt_medium_desc md;
+    memset(&md, 0, sizeof md);
+    md.albedo.x = md.albedo.y = md.albedo.z = 0.9f;
+    md.sigma_t = f->density_set ? f->density : 0.2f;
+    if (f->albedo_set) md.albedo = f->albedo;
+    if (f->g_set) md.g = f->g;
+    cli_common_media_apply(f, &md);
+    return md;
+}
+/* One --medium handed to the scene: its surface an interface, its medium inside. */
+CLI_FN fogrt_result cli_set_medium(fogrt_scene *scene, const cli_medium *m, uint32_t *iface)
+{
+    fogrt_result r = FOGRT_RESULT_OK;
+    if (m->interface && *iface == UINT32_MAX) {
+        fogrt_material_desc md;
+        memset(&md, 0, sizeof md);
+        md.type = FOGRT_BSDF_INTERFACE;
+        r = fogrt_scene_add_material(scene, &md, iface);
+    }
+    if (!r && m->interface) r = fogrt_scene_set_shape_material(scene, m->kind, m->index, *iface);
+    if (!r && (m->fog.density_set || m->fog.paper_g)) {
+        fogrt_medium_desc md = cli_medium_desc(&m->fog);
+        r = fogrt_scene_set_interior(scene, m->kind, m->index, &md);
+    }
+    return r;
+}
+#endif
+/* Every --medium: its object found by name in S (the loader's names), two --medium of one
+   object refused, then the interfaces and media handed to the scene. Returns 0, 2 after one
+   line (a name not found or shared, a medium the scene refuses) or 1 (out of memory). */
+CLI_FN int cli_apply_media(fogrt_scene *scene, cli_common *c, const cli_shapes *S)
+{
+    int i, j, st;
+    if (c->media_count == 0) return 0;
+    if (S->oom) { fprintf(stderr, "%s: --medium: out of memory keeping the scene's names\n", cli_prog); return 1; }
+    for (i = 0; i < c->media_count; ++i) {
+        cli_medium *m = &c->media[i];
+        size_t k;
+        if ((st = cli_find_shape(S, m->name, &k)) != 0) return st;
+        m->found = true; m->kind = S->items[k].kind; m->index = S->items[k].index;
+        for (j = 0; j < i; ++j)
+            if (c->media[j].kind == m->kind && c->media[j].index == m->index) {
+                cli_membuf b;
+                memset(&b, 0, sizeof b);
+                cli_put(&b, "%s: --medium ", cli_prog); cli_put_name(&b, m->name);
+                cli_put(&b, ": names the same object as --medium "); cli_put_name(&b, c->media[j].name);
+                cli_put(&b, " (%s %u): one --medium per object", m->kind == FOGRT_SHAPE_MESH ? "mesh" : "sphere", (unsigned)m->index);
+                cli_put_line(&b);
+                return 2;
+            }
+    }
+#ifndef FOGRT_NO_SHAPES
+    {
+        uint32_t iface = UINT32_MAX;
+        for (i = 0; i < c->media_count; ++i) {
+            fogrt_result r = cli_set_medium(scene, &c->media[i], &iface);
+            if (r) {
+                cli_membuf b;
+                memset(&b, 0, sizeof b);
+                cli_put(&b, "%s: --medium ", cli_prog); cli_put_name(&b, c->media[i].name);
+                cli_put(&b, ": %s", fogrt_scene_last_error(scene)[0] ? fogrt_scene_last_error(scene) : fogrt_result_string(r));
+                cli_put_line(&b);
+                return r == FOGRT_RESULT_OUT_OF_MEMORY ? 1 : 2;
+            }
+        }
+    }
+#else
+    (void)scene;
+#endif
+    return 0;
+}
+/* A build the scene refused while --medium is in force: the core's message, which numbers
+   the shapes it names ("mesh 3", "sphere 0"), told by the --medium flags of those shapes
+   (else by every --medium). One line; returns 2 (1: out of memory). */
+CLI_FN int cli_media_build_failed(const cli_common *c, const char *msg, fogrt_result r)
+{
+    cli_membuf b;
+    const char *p;
+    int named = 0, i;
+    memset(&b, 0, sizeof b);
+    cli_put(&b, "%s: ", cli_prog);
+    for (p = msg; *p; ++p) {
+        bool mesh = strncmp(p, "mesh ", 5) == 0, sphere = strncmp(p, "sphere ", 7) == 0;
+        unsigned long v;
+        char *end;
+        if (!mesh && !sphere) continue;
+        v = strtoul(p + (mesh ? 5 : 7), &end, 10);
+        if (end == p + (mesh ? 5 : 7)) continue;
+        for (i = 0; i < c->media_count; ++i)
+            if (c->media[i].found && c->media[i].kind == (mesh ? FOGRT_SHAPE_MESH : FOGRT_SHAPE_SPHERE) && c->media[i].index == v) {
+                cli_put(&b, named++ ? " and --medium " : "--medium ");
+                cli_put_name(&b, c->media[i].name);
+            }
+    }
+    for (i = 0; !named && i < c->media_count; ++i) {     /* no shape named: every --medium */
+        cli_put(&b, i ? " and --medium " : "--medium ");
+        cli_put_name(&b, c->media[i].name);
+    }
+    cli_put(&b, ": %s", msg[0] ? msg : fogrt_result_string(r));
+    cli_put_line(&b);
+    return r == FOGRT_RESULT_OUT_OF_MEMORY ? 1 : 2;
+}
+/* "; media in objects: Sphere1 (density 2), box (interface, empty)" for the header and
+   summary lines (nothing without --medium). */
+CLI_FN void cli_describe_media(const cli_common *c, char *buf, size_t n)
+{
+    size_t len;
+    int i;
+    buf[0] = '\0';
+    for (i = 0; i < c->media_count; ++i) {
+        const cli_medium *m = &c->media[i];
+        bool filled = m->fog.density_set || m->fog.paper_g;
+        len = strlen(buf);
+        snprintf(buf + len, n - len, "%s%s (%s%s", i ? ", " : "; media in objects: ", m->name, m->interface ? "interface, " : "",
+                 filled ? "density " : "empty)");
+        len = strlen(buf);
+        if (filled) snprintf(buf + len, n - len, "%g)", (double)(m->fog.density_set ? m->fog.density : 0.2f));
+    }
 }
 
 #endif /* FOGRT_CLI_COMMON_H */

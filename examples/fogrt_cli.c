@@ -5,8 +5,9 @@
    meanings, so `fogrt -t 8 -s 64 -l 16 -m 6 -r 480 360 -f out.png scene.dae` works as the
    students type it; the fog and method flags are fogrt's own. `fogrt -h` lists them all with
    their syntax and defaults. The flags the preview shares (-r -t -l -m -H -g --g --density
-   --albedo --integrator --fresnel --seed --exposure) are parsed by examples/cli_common.h,
-   once for both programs. Long flags also take `--flag=value`.
+   --albedo --phase --emission --medium --interface --integrator --fresnel --seed --exposure)
+   are parsed by examples/cli_common.h, once for both programs. Long flags also take
+   `--flag=value`.
 
    Exit status: 0 on success, 2 for bad input (an unknown flag, a value out of range, a
    missing, malformed or non-regular scene, camera, environment or reference file, an output
@@ -132,8 +133,8 @@ typedef struct cli_options {
 /* Every flag the parser takes, for "did you mean" (tests/test_cli.sh checks that -h and the
    README's table list the same ones). */
 static const char *const cli_flag_names[] = {
-    "-r", "-t", "-l", "-m", "-H", "-g", "--g", "--density", "--albedo", "--phase", "--emission", "--integrator",
-    "--fresnel", "--seed", "--exposure", "-h", "--help",
+    "-r", "-t", "-l", "-m", "-H", "-g", "--g", "--density", "--albedo", "--phase", "--emission", "--medium",
+    "--interface", "--integrator", "--fresnel", "--seed", "--exposure", "-h", "--help",
     "-s", "-o", "-f", "-b", "-d", "-a", "-c", "-e",
     "--camera-pos", "--look-at", "--up", "--fov", "--cs184-framing", "--print-camera",
     "--fog-bounds", "--equiangular", "--lights", "--glow", "--footprint", "--expected-emission", "--mis",
@@ -434,9 +435,9 @@ static int parse_args(int argc, char **argv, cli_options *o)
     /* the flags shared with the preview, under the names the rest of this file uses */
     o->width = o->c.width; o->height = o->c.height; o->threads = o->c.threads;
     o->light_samples = o->c.light_samples; o->max_depth = o->c.max_depth; o->hemisphere = o->c.hemisphere;
-    o->g = o->c.g; o->g_set = o->c.g_set; o->paper_g = o->c.paper_g;
-    o->density = o->c.density; o->density_set = o->c.density_set;
-    o->albedo = o->c.albedo; o->albedo_set = o->c.albedo_set;
+    o->g = o->c.fog.g; o->g_set = o->c.fog.g_set; o->paper_g = o->c.fog.paper_g;
+    o->density = o->c.fog.density; o->density_set = o->c.fog.density_set;
+    o->albedo = o->c.fog.albedo; o->albedo_set = o->c.fog.albedo_set;
     o->integrator = o->c.integrator; o->fresnel = o->c.fresnel; o->seed = o->c.seed;
     o->exposure_ev = o->c.exposure_ev;
 
@@ -1525,6 +1526,25 @@ static void print_camera(const fogrt_camera_desc *c, int W, int H)
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
+/* A refused build: one line, and the exit status (2: the scene or the flags, 1: memory). A
+   refusal of media inside objects is told by their --medium flags. */
+static int build_failed(const cli_options *o, cli_log *L, const fogrt_scene *scene, fogrt_result r)
+{
+    if (o->c.media_count && r != FOGRT_RESULT_OUT_OF_MEMORY && r != FOGRT_RESULT_EMPTY_SCENE) {
+        const char *msg = L->error[0] ? L->error : fogrt_scene_last_error(scene);
+        int st;
+        if (r == FOGRT_RESULT_UNSUPPORTED && (o->fog_where == CLI_FOG_BOX || o->fog_where == CLI_FOG_SCENE))
+            msg = "media inside objects need the world's fog to fill all space: drop --fog-bounds (or the world's fog: --density 0 before --medium)";
+        else if (r == FOGRT_RESULT_UNSUPPORTED && o->env_map)
+            msg = "media inside objects need the world's fog to fill all space, and with -e it fills the box of the geometry: drop -e or the world's fog (--density 0 before --medium)";
+        st = cli_media_build_failed(&o->c, msg, r);
+        L->error[0] = 0;
+        return st;
+    }
+    fail_line(L, o->scene ? o->scene : "default scene", r);
+    return r == FOGRT_RESULT_EMPTY_SCENE ? 2 : 1;
+}
+
 static int run(int argc, char **argv)
 {
     cli_options o;
@@ -1543,7 +1563,8 @@ static int run(int argc, char **argv)
     render_state ps;
     cli_output out, rate_out;
     cli_membuf enc;
-    char rate_name[4096], where[4200], err_a[64], err_b[64], reason[256], target[64], fog_text[256];
+    cli_shapes shapes;
+    char rate_name[4096], where[4200], err_a[64], err_b[64], reason[256], target[64], fog_text[1024];
     const char *why, *stopped_by = NULL, *cam_where;
     float *rgb = NULL, *ref = NULL, *rates = NULL;
     unsigned char *rgb8 = NULL;
@@ -1556,6 +1577,7 @@ static int run(int argc, char **argv)
     memset(&ps, 0, sizeof ps);
     memset(&enc, 0, sizeof enc);
     memset(&img, 0, sizeof img);
+    cli_shapes_init(&shapes, NULL);
     status = parse_args(argc, argv, &o);
     if (status == -1) return 0;
     if (status) return status;
@@ -1612,6 +1634,8 @@ static int run(int argc, char **argv)
     frame_h = o.cs184_framing ? 600 : o.height;
     lo.image_width = frame_w; lo.image_height = frame_h;
     lo.logger.func = log_load;
+    cli_shapes_init(&shapes, o.scene);
+    if (o.c.media_count) { lo.on_shape = cli_on_shape; lo.on_shape_user = &shapes; }   /* --medium's names */
     if (!o.scene) {
         r = fogrt_scene_add_default(scene);
         if (r) { fail_line(&logbuf, "default scene", r); status = 1; goto done; }
@@ -1635,11 +1659,12 @@ static int run(int argc, char **argv)
     else if (o.paper_g && md.sigma_t == 0.0f) md.sigma_t = 0.2f;   /* the paper's -g switches fog on */
     if (o.albedo_set) md.albedo = o.albedo;
     if (o.g_set) md.g = o.g;
-    cli_common_media_apply(&o.c, &md);           /* --g G1,G2,W, --phase, --emission */
+    cli_common_media_apply(&o.c.fog, &md);       /* --g G1,G2,W, --phase, --emission */
     if (o.fog_where == CLI_FOG_BOX) { md.bounded = true; md.bounds_min = o.fog_lo; md.bounds_max = o.fog_hi; }
     if (o.fog_where == CLI_FOG_ALL) md.bounded = false;
     r = fogrt_scene_set_medium(scene, &md);
     if (r) { fail_line(&logbuf, o.fog_where == CLI_FOG_BOX ? "--density/--albedo/--g/--phase/--emission/--fog-bounds" : "--density/--albedo/--g/--phase/--emission", r); status = 2; goto done; }
+    if ((status = cli_apply_media(scene, &o.c, &shapes)) != 0) goto done;   /* --medium NAME ... */
     if (o.env_map) {                             /* -e: the environment map light */
         int ew = 0, eh = 0;
         float *env;
@@ -1707,7 +1732,7 @@ static int run(int argc, char **argv)
         fogrt_build_desc quick = bd;
         quick.roulette_pilot = false;
         r = fogrt_scene_build(scene, &quick);
-        if (r) { fail_line(&logbuf, o.scene ? o.scene : "default scene", r); status = r == FOGRT_RESULT_EMPTY_SCENE ? 2 : 1; goto done; }
+        if (r) { status = build_failed(&o, &logbuf, scene, r); goto done; }
         fogrt_scene_get_info(scene, &info);
         if (!scene_box(&info, &md.bounds_min, &md.bounds_max)) {
             fprintf(stderr, "fogrt: --fog-bounds scene: %s has no finite geometry to bound the fog\n", o.scene ? o.scene : "the scene");
@@ -1718,7 +1743,7 @@ static int run(int argc, char **argv)
         if (r) { fail_line(&logbuf, "--fog-bounds scene", r); status = 2; goto done; }
     }
     r = fogrt_scene_build(scene, &bd);
-    if (r) { fail_line(&logbuf, o.scene ? o.scene : "default scene", r); status = r == FOGRT_RESULT_EMPTY_SCENE ? 2 : 1; goto done; }
+    if (r) { status = build_failed(&o, &logbuf, scene, r); goto done; }
     t_load = now_seconds() - t0;
 
     /* Can anything light the image? (A black render's error is n/a, never 0.00%.) */
@@ -1752,6 +1777,7 @@ static int run(int argc, char **argv)
     }
     /* Render: a header line saying what is rendered and where the fog is */
     describe_fog(&md, &info, fog_text, sizeof fog_text);
+    cli_describe_media(&o.c, fog_text + strlen(fog_text), sizeof fog_text - strlen(fog_text));
     if (!o.quiet)
         fprintf(stderr, "fogrt: rendering %s (%dx%d, %s, %d thread%s): %s\n", o.scene ? o.scene : "the default scene",
                 o.width, o.height, o.adaptive ? "adaptive" : ps_target_text(&o, target, sizeof target), threads, threads == 1 ? "" : "s", fog_text);
@@ -1847,6 +1873,7 @@ done:
     free(rgb); free(rgb8); free(ref); free(rates);
     release_image(&img);
     fogrt_scene_destroy(scene);
+    cli_shapes_free(&shapes);
     return status;
 }
 

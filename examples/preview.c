@@ -86,7 +86,8 @@ typedef struct preview_options {
     float density; bool density_set;
     fogrt_vec3 albedo; bool albedo_set;
     float g; bool g_set; bool paper_g;
-    cli_common fog;           /* the common flags as parsed: appendix G's --g G1,G2,W, --phase, --emission */
+    cli_common common;        /* the common flags as parsed: appendix G's --g G1,G2,W, --phase, --emission,
+                                 appendix H's --medium NAME and --interface */
     float exposure;           /* --exposure, as the multiplier 2^EV */
     const char *scene;
     const char *save_dir;
@@ -198,8 +199,8 @@ static bool to_int(const char *s, int lo, int hi, int *out) { return cli_parse_i
 
 /* The flags the preview takes, for "did you mean"; and fogrt's own, which do not apply. */
 static const char *const preview_flag_names[] = {
-    "-r", "-t", "-l", "-m", "-H", "-g", "--g", "--density", "--albedo", "--integrator", "--fresnel",
-    "--seed", "--exposure", "-h", "--help",
+    "-r", "-t", "-l", "-m", "-H", "-g", "--g", "--density", "--albedo", "--phase", "--emission", "--medium",
+    "--interface", "--integrator", "--fresnel", "--seed", "--exposure", "-h", "--help",
     "--scale", "--batch", "--save-dir", "--frames", "--keys", "--screenshot", NULL
 };
 static const char *const fogrt_only_flags[] = {
@@ -251,10 +252,10 @@ static int parse_flags(int argc, char **argv, preview_options *o)
     }
     o->width = c.width; o->height = c.height; o->threads = c.threads; o->light_samples = c.light_samples;
     o->max_depth = c.max_depth; o->hemisphere = c.hemisphere; o->integrator = c.integrator; o->fresnel = c.fresnel;
-    o->seed = c.seed; o->density = c.density; o->density_set = c.density_set; o->albedo = c.albedo;
-    o->albedo_set = c.albedo_set; o->g = c.g; o->g_set = c.g_set; o->paper_g = c.paper_g;
+    o->seed = c.seed; o->density = c.fog.density; o->density_set = c.fog.density_set; o->albedo = c.fog.albedo;
+    o->albedo_set = c.fog.albedo_set; o->g = c.fog.g; o->g_set = c.fog.g_set; o->paper_g = c.fog.paper_g;
     o->exposure = exp2f(c.exposure_ev);           /* --exposure is stops, as in fogrt */
-    o->fog = c;
+    o->common = c;
     if ((k = cli_common_media_check(&c)) != 0) return k;
     if (o->keys && o->frames == 0) return bad_flag("--keys", "needs --frames (scripted mode)");
     if (o->width * o->scale > 16384 || o->height * o->scale > 16384)
@@ -457,6 +458,8 @@ static int load_scene(app *a)
     fogrt_result r;
     bool is_dae = false;
     view_params *v = &a->want;
+    cli_shapes shapes;
+    int st;
 
     memset(&sd, 0, sizeof sd);
     sd.logger.func = log_line;
@@ -464,6 +467,8 @@ static int load_scene(app *a)
     memset(&lo, 0, sizeof lo);
     lo.image_width = o->width; lo.image_height = o->height;
     lo.logger.func = load_note;
+    cli_shapes_init(&shapes, o->scene);
+    if (o->common.media_count) { lo.on_shape = cli_on_shape; lo.on_shape_user = &shapes; }   /* --medium's names */
     if (o->scene) {
         const char *kind = cli_sniff_kind(o->scene, false);
         is_dae = cli_ends_with(o->scene, ".dae");
@@ -488,6 +493,9 @@ static int load_scene(app *a)
             return r == FOGRT_RESULT_OUT_OF_MEMORY ? 1 : 2;
         }
     }
+    st = cli_apply_media(a->scene, &a->opt.common, &shapes);   /* --medium NAME ... */
+    cli_shapes_free(&shapes);
+    if (st) return st;
     {   /* a short name for saved files: the scene file's base name without extension */
         const char *base = o->scene ? o->scene : "default";
         const char *slash = strrchr(base, '/');
@@ -508,10 +516,12 @@ static int load_scene(app *a)
     else if (o->paper_g && md.sigma_t == 0.0f) md.sigma_t = 0.2f;
     if (o->albedo_set) md.albedo = o->albedo;
     if (o->g_set) md.g = o->g;
-    cli_common_media_apply(&o->fog, &md);         /* --g G1,G2,W, --phase, --emission */
+    cli_common_media_apply(&o->common.fog, &md);  /* --g G1,G2,W, --phase, --emission */
     r = fogrt_scene_set_medium(a->scene, &md);
     if (r) { fprintf(stderr, "preview: --density/--albedo/--g/--phase/--emission: %s\n", fogrt_result_string(r)); return 2; }
     r = preview_build(a->scene);
+    if (r && o->common.media_count && r != FOGRT_RESULT_OUT_OF_MEMORY)
+        return cli_media_build_failed(&o->common, fogrt_scene_last_error(a->scene), r);
     if (r) {
         fprintf(stderr, "preview: %s: %s\n", o->scene ? o->scene : "default scene", fogrt_result_string(r));
         return r == FOGRT_RESULT_EMPTY_SCENE ? 2 : 1;

@@ -298,7 +298,7 @@ if have "$GCC" && have nm; then
     run "nm: FOGRT_NO_MEDIA removes appendix G" appendix_nm FOGRT_NO_MEDIA \
         fogrt_sample_hg2 fogrt_sample_rayleigh fogrt_sample_phase fogrt__x_check_media fogrt__media_emission
     run "nm: FOGRT_NO_SHAPES removes appendix H" appendix_nm FOGRT_NO_SHAPES \
-        fogrt_scene_set_interior fogrt__h_radiance fogrt__shapes_build fogrt__find_boundaries fogrt__h_shadow
+        fogrt_scene_set_interior fogrt_scene_set_shape_material fogrt__h_radiance fogrt__shapes_build fogrt__find_boundaries fogrt__h_shadow
 else
     skip "appendix nm checks: gcc or nm not installed"
 fi

@@ -115,7 +115,7 @@ expect 2 "short.cam:2:" "malformed -c file"       -- -f "$out" -c "$tmp/short.ca
 
 # ---- help ----
 expect 0 "" "help" -- -h
-for flag in -s -l -t -m -o -r -f -b -d -a -H -c -g -h --density --albedo --g --phase --emission --integrator --fresnel --bvh --seed --time --target-error --quiet \
+for flag in -s -l -t -m -o -r -f -b -d -a -H -c -g -h --density --albedo --g --phase --emission --medium --interface --integrator --fresnel --bvh --seed --time --target-error --quiet \
             --camera-pos --look-at --up --fov --cs184-framing --print-camera --exposure --log --reference --equiangular --mis --glow --footprint --expected-emission --lights; do
     check "grep -qF -- ' $flag ' '$tmp/out'" "-h does not document $flag"
 done
@@ -696,6 +696,65 @@ lat=$(echo "$t_end $t_sig" | awk '{ printf "%.2f", $1 - $2 }')
 echo "test_cli.sh: stop_while_loading: stopped $lat s after SIGTERM (exit $st)"
 check "[ $st -eq 130 ] && grep -q 'before rendering' '$tmp/fan.err' && awk 'BEGIN { exit !($lat < 1.0) }' && [ ! -e '$tmp/hup/fan.pfm' ]" "stop_while_loading: exit $st, $lat s: $(cat "$tmp/fan.err")"
 # ==== end of hostile runs, second round ====
+
+# -- media_in_objects (appendix H): --medium NAME gives the fog flags after it to the object
+#    NAME; --interface makes its surface an interface; names are checked against the scene --
+# cube OBJ: a closed cube (object "cube", group "box"); two_cubes: two closed cubes, both in a
+# group "box"; sheet: an open quad
+cube_faces() {   # cube_faces FIRST: the 6 faces of the cube whose 8 vertices start at FIRST
+    a=$1
+    echo "f $a $((a + 3)) $((a + 2)) $((a + 1))"; echo "f $((a + 4)) $((a + 5)) $((a + 6)) $((a + 7))"
+    echo "f $a $((a + 1)) $((a + 5)) $((a + 4))"; echo "f $((a + 1)) $((a + 2)) $((a + 6)) $((a + 5))"
+    echo "f $((a + 2)) $((a + 3)) $((a + 7)) $((a + 6))"; echo "f $((a + 3)) $a $((a + 4)) $((a + 7))"
+}
+{ echo "o cube"; echo "g box"; for p in "0 0 0" "1 0 0" "1 0 1" "0 0 1" "0 1 0" "1 1 0" "1 1 1" "0 1 1"; do echo "v $p"; done; cube_faces 1; } >"$tmp/cube.obj"
+{ for p in "0 0 0" "1 0 0" "1 0 1" "0 0 1" "0 1 0" "1 1 0" "1 1 1" "0 1 1"; do echo "v $p"; done
+  for p in "2 0 0" "3 0 0" "3 0 1" "2 0 1" "2 1 0" "3 1 0" "3 1 1" "2 1 1"; do echo "v $p"; done
+  echo "o left"; echo "g box"; cube_faces 1; echo "o right"; echo "g box"; cube_faces 9; } >"$tmp/two_cubes.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\no sheet\nf 1 2 3 4\n' >"$tmp/sheet.obj"
+mio="--quiet -s 2 -r 24 18 --seed 5"
+expect 0 "" "media_in_objects: an interface cube holding fog" -- $mio --medium cube --interface --density 3 --albedo 0.5 -f "$tmp/mo_fog.pfm" "$tmp/cube.obj"
+"$fogrt" $mio -f "$tmp/mo_plain.pfm" "$tmp/cube.obj"
+check "pfm_ok '$tmp/mo_fog.pfm' 24 18 && ! cmp -s '$tmp/mo_fog.pfm' '$tmp/mo_plain.pfm'" "media_in_objects: --medium cube --interface --density 3 renders as the plain cube"
+expect 0 "" "media_in_objects: by group name" -- $mio --medium box --interface --density 3 --albedo 0.5 -f "$tmp/mo_group.pfm" "$tmp/cube.obj"
+check "cmp -s '$tmp/mo_fog.pfm' '$tmp/mo_group.pfm'" "media_in_objects: the group name box did not name the object cube"
+# the fog flags before --medium are the world's, those after it the object's: without world
+# fog the world's albedo changes nothing, the object's does; the header says which is which
+expect 0 "no fog; media in objects: cube (interface, density 2)" "media_in_objects: the header names the world's fog and the object's" -- \
+    -s 2 -r 24 18 --seed 5 --density 0 --medium cube --interface --density 2 -f "$tmp/mo_a.pfm" "$tmp/cube.obj"
+"$fogrt" $mio --density 0 --albedo 0.2 --g -0.5 --medium cube --interface --density 2 -f "$tmp/mo_b.pfm" "$tmp/cube.obj"
+"$fogrt" $mio --density 0 --medium cube --interface --density 2 --albedo 0.2 --g -0.5 -f "$tmp/mo_c.pfm" "$tmp/cube.obj"
+"$fogrt" $mio --medium cube --interface --density 2 -f "$tmp/mo_d.pfm" "$tmp/cube.obj"
+check "cmp -s '$tmp/mo_a.pfm' '$tmp/mo_b.pfm'" "media_in_objects: --albedo/--g before --medium changed the object's medium"
+check "! cmp -s '$tmp/mo_a.pfm' '$tmp/mo_c.pfm'" "media_in_objects: --albedo/--g after --medium did not reach the object's medium"
+check "! cmp -s '$tmp/mo_a.pfm' '$tmp/mo_d.pfm'" "media_in_objects: --density 0 before --medium did not clear the world's fog"
+# refusals: one line naming the flag, exit 2, no image
+refused "--medium nothere" "has no object (o), material (usemtl) or group (g) named nothere" "media_in_objects: an unknown name" -- --medium nothere --density 1 -f "$out" "$tmp/cube.obj"
+check "grep -q 'object (o) names: cube; group (g) names: box' '$tmp/err' && [ ! -e '$out' ]" "media_in_objects: the unknown name's message does not list the scene's names: $(cat "$tmp/err")"
+refused "--medium nothere" "node names: a, b, c; material names: red, green; geometry names: quad" "media_in_objects: an unknown name in a .dae" -- --medium nothere --density 1 -f "$out" tests/data/dae_instances.dae
+refused "--medium box" "2 objects of $tmp/two_cubes.obj share the group (g) name box" "media_in_objects: a name two objects share" -- --medium box --density 1 -f "$out" "$tmp/two_cubes.obj"
+check "grep -q '(object (o) left).*(object (o) right)' '$tmp/err'" "media_in_objects: the shared name's message does not list both objects: $(cat "$tmp/err")"
+refused "--medium red" "share the material name red: mesh 0 (node a, geometry quad), mesh 2 (node c, geometry quad)" "media_in_objects: a material two nodes share" -- --medium red --density 1 -f "$out" tests/data/dae_instances.dae
+expect 0 "" "media_in_objects: the node name comes first" -- $mio --medium left --density 1 -f "$tmp/mo_left.pfm" "$tmp/two_cubes.obj"
+refused "--medium sheet" "open edge" "media_in_objects: a medium in an open mesh (the build's refusal)" -- --medium sheet --density 1 -f "$out" "$tmp/sheet.obj"
+refused "--medium x" "the default scene has no named objects" "media_in_objects: names in the default scene" -- --medium x --density 1 -f "$out"
+refused "--interface" "must follow --medium NAME" "media_in_objects: --interface alone" -- --interface -f "$out" "$tmp/cube.obj"
+refused "--medium cube" "no fog flag" "media_in_objects: --medium with nothing after it" -- --medium cube -f "$out" "$tmp/cube.obj"
+refused "--medium cube" "need --density" "media_in_objects: fog flags without --density" -- --medium cube --albedo 0.5 -f "$out" "$tmp/cube.obj"
+refused "--medium box" "names the same object as --medium cube" "media_in_objects: two names of one object" -- --medium cube --density 1 --medium box --density 2 -f "$out" "$tmp/cube.obj"
+refused "--phase" "rayleigh cannot be combined" "media_in_objects: a medium's own flags are checked" -- --medium cube --density 1 --phase rayleigh --g 0.5,0.1,0.5 -f "$out" "$tmp/cube.obj"
+refused "--medium cube" "fill all space: drop --fog-bounds" "media_in_objects: with the world's fog in a box" -- --fog-bounds 0,0,0,1,1,1 --medium cube --density 1 -f "$out" "$tmp/cube.obj"
+# the CS184 example: smoke in the glass sphere (node Sphere1; both spheres share geometry Sphere1)
+if [ -f ../shared/scenes/cs184/CBspheres.dae ]; then
+    cbs=../shared/scenes/cs184/CBspheres.dae
+    expect 0 "Sphere1 (density 2)" "media_in_objects: smoke in CBspheres' glass sphere" -- -s 4 -r 32 24 --seed 1 --medium Sphere1 --density 2 --albedo 0.9 --g 0.5 -f "$tmp/mo_cb.pfm" "$cbs"
+    "$fogrt" --quiet -s 4 -r 32 24 --seed 1 -f "$tmp/mo_cb0.pfm" "$cbs"
+    check "pfm_ok '$tmp/mo_cb.pfm' 32 24 && ! cmp -s '$tmp/mo_cb.pfm' '$tmp/mo_cb0.pfm'" "media_in_objects: the smoke-filled sphere renders as the empty one"
+    "$fogrt" --quiet -s 4 -r 32 24 --seed 1 --medium refract --density 2 --albedo 0.9 --g 0.5 -f "$tmp/mo_cb1.pfm" "$cbs"
+    check "cmp -s '$tmp/mo_cb.pfm' '$tmp/mo_cb1.pfm'" "media_in_objects: the material name refract does not name the node Sphere1"
+else
+    echo "test_cli.sh: media_in_objects on CBspheres.dae skipped (../shared/scenes/cs184 absent)"
+fi
 
 # ==== what a new user trips over: the fog's extent, -h, one meaning per flag,
 #      EXR output, friendlier parsing, the README's examples ====

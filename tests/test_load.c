@@ -6,6 +6,9 @@
    - malformed and truncated input: an error naming file and line, never a crash, and the
      scene untouched;
    - the fuzzers' regression inputs (tests/fuzz/regress/);
+   - the names options.on_shape reports (.dae nodes, materials, geometries; OBJ objects,
+     groups and materials, an OBJ split per group only when names are asked for), and that
+     asking for them changes no primitive;
    - the Stanford bunny PLY, and the load time of CBbunny.dae. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
@@ -1752,6 +1755,218 @@ static void test_warnings_only_on_success(void)
     free(d);
 }
 
+/* ------------------------------------------------------------------------------------------
+   Names: options.on_shape
+   ------------------------------------------------------------------------------------------ */
+/* What on_shape was told, one "mesh 7 node|material|geometry" line per call. */
+typedef struct shape_log { int n; char line[16][200]; } shape_log;
+static void log_shape(void *user, fogrt_shape_kind kind, uint32_t index, const char *node, const char *material,
+                      const char *geometry)
+{
+    shape_log *log = (shape_log *)user;
+    if (log->n < 16)
+        snprintf(log->line[log->n], sizeof log->line[0], "%s %u %s|%s|%s", kind == FOGRT_SHAPE_MESH ? "mesh" : "sphere",
+                 (unsigned)index, node, material, geometry);
+    log->n++;
+}
+static fogrt_load_options naming(shape_log *log)
+{
+    fogrt_load_options o = as_is();
+    memset(log, 0, sizeof *log);
+    o.on_shape = log_shape; o.on_shape_user = log;
+    return o;
+}
+/* Loads tests/data/name into s with on_shape and expects the lines want (NULL-terminated;
+   "%m" and "%s" in them stand for the scene's mesh and sphere counts before the load). */
+static void expect_names(fogrt_scene *s, const char *name, const char *const *want)
+{
+    char path[512], msg[900];
+    shape_log log;
+    fogrt_load_options o = naming(&log);
+    fogrt_load_report rep;
+    fogrt_scene_info before;
+    int k;
+    fogrt_scene_get_info(s, &before);
+    snprintf(path, sizeof path, DATA_DIR "%s", name);
+    snprintf(msg, sizeof msg, "%s", name);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_load_file(s, path, &o, &rep), msg);
+    for (k = 0; want[k]; ++k) {
+        char line[200];
+        const char *w = want[k];
+        int m = w[0] == 'm', base = (int)(m ? before.mesh_count : before.sphere_count);
+        snprintf(line, sizeof line, "%s %d %s", m ? "mesh" : "sphere", base + atoi(strchr(w, ' ') + 1), strchr(strchr(w, ' ') + 1, ' ') + 1);
+        snprintf(msg, sizeof msg, "%s: call %d: got '%s'", name, k, k < log.n ? log.line[k] : "(none)");
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(line, k < log.n ? log.line[k] : "", msg);
+    }
+    snprintf(msg, sizeof msg, "%s: %d calls, expected %d", name, log.n, k);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(k, log.n, msg);
+}
+
+/* .dae: the node, the bound material and the geometry, by name attribute or else id; the
+   numbers continue the scene's own; a shared geometry is named by every instance. */
+static void test_dae_shape_names(void)
+{
+    static const char *const instances[] = { "m 0 a|red|quad", "m 1 b|green|quad", "m 2 c|red|quad", NULL };
+    static const char *const spheres[] = { "s 0 s1|chrome|ball", "s 1 s2||ball", NULL };
+    static const char *const area[] = { "m 0 floor||floor", "m 1 Area||", NULL };
+    static const char *const cb[] = { "m 0 ceiling|ceiling|ceiling", "m 1 light|light|light", "m 2 floor|floor|floor",
+                                      "m 3 leftWall|leftWall|leftWall", "m 4 rightWall|rightWall|rightWall",
+                                      "m 5 backWall|backWall|backWall", "s 0 Sphere1|refract|Sphere1", "s 1 Sphere2|chrome|Sphere1", NULL };
+    fogrt_scene *s = content_scene();
+    shape_log log;
+    fogrt_load_options o = naming(&log);
+    fogrt_load_report rep;
+    expect_names(s, "dae_instances.dae", instances);
+    expect_names(s, "dae_sphere.dae", spheres);        /* after the box's spheres and a.dae's meshes */
+    fogrt_scene_destroy(s);
+    s = new_scene();
+    expect_names(s, "dae_area_light.dae", area);       /* the CGL <area> rectangle: its node */
+    fogrt_scene_destroy(s);
+    s = new_scene();                                    /* a refused load names nothing */
+    TEST_ASSERT_NOT_EQUAL(FOGRT_RESULT_OK, fogrt_load_file(s, DATA_DIR "bad_index.dae", &o, &rep));
+    TEST_ASSERT_EQUAL_INT(0, log.n);
+    fogrt_scene_destroy(s);
+    if (!file_exists(CS184_DIR "CBspheres.dae")) TEST_IGNORE_MESSAGE("../shared absent: CBspheres.dae's names not checked");
+    s = new_scene();
+    o = naming(&log);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_load_file(s, CS184_DIR "CBspheres.dae", &o, &rep));
+    {
+        int k;
+        for (k = 0; cb[k]; ++k) {
+            char line[200];
+            snprintf(line, sizeof line, "%s %s", cb[k][0] == 'm' ? "mesh" : "sphere", cb[k] + 2);
+            TEST_ASSERT_EQUAL_STRING(line, log.line[k]);
+        }
+        TEST_ASSERT_EQUAL_INT(k, log.n);
+    }
+    fogrt_scene_destroy(s);
+}
+
+/* OBJ: a mesh per o or g followed by faces (o, usemtl at its first face, g; an empty group
+   is no mesh, a group name used twice two meshes); without on_shape one mesh; PLY: one mesh
+   without names. */
+static void test_obj_group_names(void)
+{
+    static const char *const groups[] = { "m 0 boxes|red|", "m 1 boxes|red|left tet", "m 2 boxes|blue|right",
+                                          "m 3 floor|blue|", "m 4 floor|blue|right", NULL };
+    static const char *const ply[] = { "m 0 ||", NULL };
+    static const uint32_t tris[5] = { 1, 3, 4, 2, 1 };
+    fogrt_scene *s = content_scene();
+    fogrt_scene_info before, after;
+    fogrt_load_report rep;
+    fogrt_load_options o = as_is();
+    uint32_t t, k;
+    fogrt_scene_get_info(s, &before);
+    expect_names(s, "obj_groups.obj", groups);
+    fogrt_scene_get_info(s, &after);
+    TEST_ASSERT_EQUAL_UINT32(before.mesh_count + 5, after.mesh_count);
+    for (k = 0; k < 5; ++k) {                           /* each mesh holds its group's triangles */
+        uint32_t n = 0;
+        for (t = before.triangle_count; t < after.triangle_count; ++t) n += s->tri_mesh[t] == before.mesh_count + k;
+        TEST_ASSERT_EQUAL_UINT32(tris[k], n);
+    }
+    fogrt_scene_destroy(s);
+    s = new_scene();
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_OK, fogrt_load_file(s, DATA_DIR "obj_groups.obj", &o, &rep));
+    fogrt_scene_get_info(s, &after);
+    TEST_ASSERT_EQUAL_UINT32(1, after.mesh_count);      /* without names: one mesh, as ever */
+    TEST_ASSERT_EQUAL_UINT32(11, after.triangle_count);
+    fogrt_scene_destroy(s);
+    s = content_scene();
+    expect_names(s, "ply_ascii.ply", ply);
+    fogrt_scene_destroy(s);
+}
+
+/* Asking for names changes no triangle, normal, material or sphere, nor their order: every
+   file of tests/data that loads gives the same primitives with and without on_shape, placed
+   and as is (only an OBJ's meshes are numbered differently). */
+static void test_names_change_no_primitive(void)
+{
+    DIR *dir = opendir("tests/data");
+    struct dirent *e;
+    int compared = 0, p;
+    char msg[700];
+    TEST_ASSERT_NOT_NULL(dir);
+    while ((e = readdir(dir)) != NULL) {
+        char path[600];
+        size_t n = strlen(e->d_name);
+        if (n < 5 || !(strcmp(e->d_name + n - 4, ".dae") == 0 || strcmp(e->d_name + n - 4, ".obj") == 0 || strcmp(e->d_name + n - 4, ".ply") == 0)) continue;
+        snprintf(path, sizeof path, DATA_DIR "%s", e->d_name);
+        for (p = 0; p < 2; ++p) {
+            shape_log log;
+            fogrt_load_options plain = as_is(), named = naming(&log);
+            fogrt_scene *a = new_scene(), *b = new_scene();
+            fogrt_load_report rep;
+            if (!p) plain.place = named.place = FOGRT_LOAD_PLACE_DEFAULT;
+            snprintf(msg, sizeof msg, "%s (%s)", e->d_name, p ? "as is" : "placed");
+            if (fogrt_load_file(a, path, &plain, &rep) == FOGRT_RESULT_OK) {
+                TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_load_file(b, path, &named, &rep), msg);
+                TEST_ASSERT_EQUAL_UINT32_MESSAGE(a->tri_count, b->tri_count, msg);
+                TEST_ASSERT_EQUAL_UINT32_MESSAGE(a->sph_count, b->sph_count, msg);
+                TEST_ASSERT_EQUAL_UINT32_MESSAGE(a->material_count, b->material_count, msg);
+                TEST_ASSERT_TRUE_MESSAGE(a->tri_count == 0 || memcmp(a->tri_v, b->tri_v, sizeof *a->tri_v * 3 * a->tri_count) == 0, msg);
+                TEST_ASSERT_TRUE_MESSAGE((a->tri_n == NULL) == (b->tri_n == NULL), msg);
+                TEST_ASSERT_TRUE_MESSAGE(!a->tri_n || memcmp(a->tri_n, b->tri_n, sizeof *a->tri_n * 3 * a->tri_count) == 0, msg);
+                TEST_ASSERT_TRUE_MESSAGE(a->tri_count == 0 || memcmp(a->tri_material, b->tri_material, sizeof(uint32_t) * a->tri_count) == 0, msg);
+                TEST_ASSERT_TRUE_MESSAGE(a->sph_count == 0 || (memcmp(a->sph_c, b->sph_c, sizeof *a->sph_c * a->sph_count) == 0 &&
+                                                              memcmp(a->sph_r, b->sph_r, sizeof(float) * a->sph_count) == 0), msg);
+                TEST_ASSERT_EQUAL_INT_MESSAGE((int)(a->mesh_count + a->sph_count), log.n + (strstr(e->d_name, "groups") ? -4 : 0), msg);
+                if (!strstr(e->d_name, "groups")) TEST_ASSERT_EQUAL_UINT32_MESSAGE(a->mesh_count, b->mesh_count, msg);
+                compared++;
+            }
+            fogrt_scene_destroy(a); fogrt_scene_destroy(b);
+        }
+    }
+    closedir(dir);
+    snprintf(msg, sizeof msg, "%d loads compared with and without names", compared);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_GREATER_OR_EQUAL(2 * 20, compared);
+}
+
+/* With names asked for, every allocation still goes through options.allocator and is freed,
+   and an allocator failing at the N-th call, for every N, leaves the scene as it was and
+   names nothing. */
+static void test_names_counting_allocator(void)
+{
+    static const char *files[] = { "dae_instances.dae", "dae_area_light.dae", "dae_sphere.dae", "obj_groups.obj", "ply_ascii.ply" };
+    size_t i, n;
+    char msg[700];
+    for (i = 0; i < sizeof files / sizeof files[0]; ++i) {
+        count_alloc c;
+        shape_log log;
+        fogrt_load_options o = counted(&c, FOGRT_LOAD_PLACE_DEFAULT);
+        fogrt_load_report rep;
+        fogrt_scene *s = content_scene();
+        size_t size, total;
+        char *data = data_file(files[i], &size);
+        load_fn fn = loader_for(files[i]);
+        memset(&log, 0, sizeof log);
+        o.on_shape = log_shape; o.on_shape_user = &log;
+        TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fn(s, data, size, files[i], &o, &rep), files[i]);
+        TEST_ASSERT_EQUAL_UINT_MESSAGE(0, c.live, files[i]);
+        TEST_ASSERT_TRUE_MESSAGE(log.n > 0, files[i]);
+        fogrt_scene_destroy(s);
+        total = c.calls;
+        for (n = 1; n <= total; ++n) {
+            scene_snap before, after;
+            s = content_scene();
+            snap_scene(s, &before);
+            o = counted(&c, FOGRT_LOAD_PLACE_DEFAULT);
+            memset(&log, 0, sizeof log);
+            o.on_shape = log_shape; o.on_shape_user = &log;
+            c.fail_at = n;
+            snprintf(msg, sizeof msg, "%s with names, failing at allocation %u of %u", files[i], (unsigned)n, (unsigned)total);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OUT_OF_MEMORY, fn(s, data, size, files[i], &o, &rep), msg);
+            TEST_ASSERT_EQUAL_UINT_MESSAGE(0, c.live, msg);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(0, log.n, msg);
+            snap_scene(s, &after);
+            assert_same_scene(&before, &after, msg);
+            fogrt_scene_destroy(s);
+        }
+        free(data);
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -1800,5 +2015,9 @@ int main(void)
     RUN_TEST(test_bytes_per_triangle);
     RUN_TEST(test_camera_file_refusals);
     RUN_TEST(test_warnings_only_on_success);
+    RUN_TEST(test_dae_shape_names);
+    RUN_TEST(test_obj_group_names);
+    RUN_TEST(test_names_change_no_primitive);
+    RUN_TEST(test_names_counting_allocator);
     return UNITY_END();
 }

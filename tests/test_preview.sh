@@ -4,7 +4,8 @@
 #
 #   sh tests/test_preview.sh build/preview        (make test-preview)
 #
-# Checks: bad flags and bad --keys give exit status 2 and one line; a run exits 0, prints its
+# Checks: bad flags, bad --keys and a --medium name the scene lacks give exit status 2 and
+# one line; --medium fills an interface cube with fog; a run exits 0, prints its
 # summary line and leaves a screenshot that is not black; the same arguments give the same
 # screenshot; a key that changes g, the density or the fog, and a scripted mouse drag, change
 # the picture by much more than a change of random seed does (the noise floor); `s` writes a
@@ -139,6 +140,15 @@ run bigdrag --frames 5 --keys "3:drag:1e9,0"
 check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/bigdrag.err') -eq 1 ] && grep -q '1e6' '$tmp/bigdrag.err'" "--keys with a drag of 1e9 pixels: exit $rc, expected 2 and one line giving the range" bigdrag
 run badscene "$tmp/nothere.obj"
 check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/badscene.err') -eq 1 ]" "missing scene file: exit $rc, expected 2 and one line" badscene
+# --medium, parsed and applied by cli_common.h as in fogrt: a closed cube (object cube) holds
+# fog behind an interface; a name the scene lacks is one line listing its names
+{ echo "o cube"; for p in "0 0 0" "1 0 0" "1 0 1" "0 0 1" "0 1 0" "1 1 0" "1 1 1" "0 1 1"; do echo "v $p"; done
+  printf 'f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n'; } >"$tmp/cube.obj"
+run badmedium --frames 1 --medium nothere --density 1 "$tmp/cube.obj"
+check "[ $rc -eq 2 ] && [ \$(wc -l <'$tmp/badmedium.err') -eq 1 ] && grep -q -- '--medium nothere: .*object (o) names: cube' '$tmp/badmedium.err'" \
+      "--medium with a name the scene lacks: exit $rc, expected 2 and one line listing the names" badmedium
+run medium -r 64 48 --frames 2 --medium cube --interface --density 3 --albedo 0.5 "$tmp/cube.obj"
+check "[ $rc -eq 0 ] && grep -q 'frames/s' '$tmp/medium.out'" "--medium cube --interface --density 3: exit status $rc, expected 0" medium
 
 # ---- the default scene: runs, exits 0, not black, reproducible ----
 run base $common --screenshot "$tmp/base.png"

@@ -380,6 +380,36 @@ static void test_refusals(void)
 #endif
 }
 
+/* fogrt_scene_set_shape_material: every triangle of the one mesh, or the one sphere, takes
+   the material, and nothing else does (how a loaded shape becomes an interface). */
+static void test_set_shape_material(void)
+{
+    SHAPES_ONLY();
+#ifndef FOGRT_NO_SHAPES
+    fogrt_scene *s = new_scene();
+    uint32_t grey = add_material(s, FOGRT_BSDF_DIFFUSE, 0.0f), iface = add_material(s, FOGRT_BSDF_INTERFACE, 0.0f);
+    fogrt_scene_info info;
+    uint32_t t;
+    add_quad(s, v3(-1, 0, -1), v3(2, 0, 0), v3(0, 0, 2), grey);   /* mesh 0 */
+    add_quad(s, v3(-1, 1, -1), v3(2, 0, 0), v3(0, 0, 2), grey);   /* mesh 1 */
+    add_quad(s, v3(-1, 2, -1), v3(2, 0, 0), v3(0, 0, 2), grey);   /* mesh 2 */
+    (void)add_filled_sphere(s, grey, v3(0, 1, 0), 0.5f, NULL);      /* sphere 0 */
+    (void)add_filled_sphere(s, grey, v3(0, 3, 0), 0.5f, NULL);      /* sphere 1 */
+    CHECK_OK(fogrt_scene_set_shape_material(s, FOGRT_SHAPE_MESH, 1, iface));
+    CHECK_OK(fogrt_scene_set_shape_material(s, FOGRT_SHAPE_SPHERE, 1, iface));
+    fogrt_scene_get_info(s, &info);
+    for (t = 0; t < info.triangle_count; ++t)
+        TEST_ASSERT_EQUAL_UINT(t / 2 == 1 ? iface : grey, fogrt_scene_get_prim_material(s, t));
+    TEST_ASSERT_EQUAL_UINT(grey, fogrt_scene_get_prim_material(s, info.triangle_count));
+    TEST_ASSERT_EQUAL_UINT(iface, fogrt_scene_get_prim_material(s, info.triangle_count + 1));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_ARGUMENT, fogrt_scene_set_shape_material(s, FOGRT_SHAPE_MESH, 3, iface));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_ARGUMENT, fogrt_scene_set_shape_material(s, FOGRT_SHAPE_SPHERE, 2, iface));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_ARGUMENT, fogrt_scene_set_shape_material(s, (fogrt_shape_kind)7, 0, iface));
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_INVALID_MATERIAL, fogrt_scene_set_shape_material(s, FOGRT_SHAPE_MESH, 0, 2));
+    fogrt_scene_destroy(s);
+#endif
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -392,5 +422,6 @@ int main(void)
     RUN_TEST(test_denser_interior_is_visible);
     RUN_TEST(test_light_sampling_and_mis_agree);
     RUN_TEST(test_refusals);
+    RUN_TEST(test_set_shape_material);
     return UNITY_END();
 }
