@@ -734,35 +734,52 @@ static void test_obj_polygons(void)
     fogrt_scene_destroy(s);
 }
 
-/* Loads the OBJ text obj (default placement unless as_is) into a fresh scene. */
-static fogrt_scene *load_obj_text(const char *obj, bool place_as_is)
+/* Counts the meshes a load with options.on_shape adds. */
+static void count_meshes(void *user, fogrt_shape_kind kind, uint32_t index, const char *node, const char *material,
+                         const char *geometry)
+{
+    (void)index; (void)node; (void)material; (void)geometry;
+    if (kind == FOGRT_SHAPE_MESH) ++*(int *)user;
+}
+/* Loads the OBJ text obj (default placement unless as_is; with split, a mesh per group,
+   counted in *meshes) into a fresh scene. */
+static fogrt_scene *load_obj_text(const char *obj, bool place_as_is, bool split, int *meshes)
 {
     fogrt_load_options opt = as_is();
     fogrt_load_report rep;
     fogrt_scene *s = new_scene();
+    *meshes = 0;
+    if (split) { opt.on_shape = count_meshes; opt.on_shape_user = meshes; }
     if (!place_as_is) opt.place = FOGRT_LOAD_PLACE_DEFAULT;
     TEST_ASSERT_EQUAL_INT_MESSAGE(FOGRT_RESULT_OK, fogrt_load_obj_memory(s, obj, strlen(obj), "flat.obj", &opt, &rep), rep.message);
     return s;
 }
 /* A flat mesh (every face with an area facing one way in one plane) gets no computed
-   normals, placed or not, in an axis plane or in a tilted one (z = x, exact in float); a
-   mesh lifted 1e-3 out of its plane, or with one face turned over, gets them. */
+   normals, placed or not, in an axis plane or in a tilted one (z = x, exact in float), whole
+   or split into a mesh per group (options.on_shape); a mesh lifted 1e-3 out of its plane, or
+   with one face turned over, gets them (its groups too, each corner its vertex's normal). */
 static void test_flat_mesh_without_normals(void)
 {
-    static const char *flat = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 1 1 2\n";
+    static const char *flat = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\ng a\nf 1 2 5\nf 2 3 5\ng b\nf 3 4 5\nf 4 1 5\nf 1 1 2\n";
     static const char *tilted = "v 0 0 0\nv 1 0 1\nv 1 1 1\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
-    static const char *lifted = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0.001\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n";
+    static const char *lifted = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0.001\ng a\nf 1 2 5\nf 2 3 5\ng b\nf 3 4 5\nf 4 1 5\n";
     static const char *turned = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 1 4 5\n";
-    static const struct { const char **obj; bool as_is, normals; } cases[] = {
-        { &flat, true, false }, { &flat, false, false }, { &tilted, true, false },
-        { &lifted, true, true }, { &lifted, false, true }, { &turned, true, true } };
+    static const struct { const char **obj; bool as_is, split, normals; int meshes; } cases[] = {
+        { &flat, true, false, false, 0 }, { &flat, false, false, false, 0 }, { &flat, true, true, false, 2 },
+        { &tilted, true, false, false, 0 }, { &lifted, true, false, true, 0 }, { &lifted, false, false, true, 0 },
+        { &lifted, true, true, true, 2 }, { &turned, true, false, true, 0 } };
     size_t i;
     for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
-        fogrt_scene *s = load_obj_text(*cases[i].obj, cases[i].as_is);
+        int meshes;
+        fogrt_scene *s = load_obj_text(*cases[i].obj, cases[i].as_is, cases[i].split, &meshes);
         char msg[64];
         snprintf(msg, sizeof msg, "case %u", (unsigned)i);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(cases[i].meshes, meshes, msg);
         TEST_ASSERT_EQUAL_INT_MESSAGE(cases[i].normals, s->tri_n != NULL, msg);
         TEST_ASSERT_EQUAL_INT_MESSAGE(cases[i].normals, s->tri_has_n[0], msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(cases[i].normals, s->tri_has_n[s->tri_count - 1], msg);
+        if (cases[i].normals && cases[i].split)      /* the centre's normal, tilted toward none of the sides' */
+            assert_vec3(1e-6f, 0, 0, 1, tri_n(s, s->tri_count - 1, 2), "the last group's centre vertex");
         fogrt_scene_destroy(s);
     }
 }
