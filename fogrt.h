@@ -4614,10 +4614,10 @@ FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n
    vertex, so every ray there tests them all. Such a triangle enters the tree as several
    references, each with the box of the part of it inside one of k equal slabs of its box
    (across its longest side): each part's box is about 1/k of the length across, so the
-   boxes a ray meets shrink about k-fold (a 200,000-triangle fan, random rays: 2.3 times
-   the rays per second with k = 2, 3.8 with 4; docs/benchmarks.md, "Slivers"). A reference
-   finds the whole triangle's hits, so the answers do not change, only which boxes lead
-   there.
+   boxes a ray meets shrink about k-fold (make bench's fan of 100,000 slivers, k = 2: 2.1 to
+   2.4 times the closest-hit rays per second, 1.4 times the shadow rays, at 2.4 times the
+   build time; docs/benchmarks.md, "Slivers"). A reference finds the whole triangle's hits,
+   so the answers do not change, only which boxes lead there.
    Which: k = (box area / triangle area) / FOGRT__WBVH_SPLIT_RATIO, at most
    FOGRT__WBVH_SPLIT_MAX; a well-shaped triangle's box is 4 to 12 times its area (the CS184
    bunny's at most 11), so ordinary meshes are not cut at all and build the same tree. How
