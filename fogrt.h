@@ -51,8 +51,8 @@
                            a box, lights by power, the roulette's pilot, stratified pixel
                            positions, per-pixel rates (fogrt_image_sample_rates)
     FOGRT_NO_MEDIA         leave out appendix G, media beyond the paper: the two-lobe HG and
-                           Rayleigh phase functions, emitting fog (a medium desc that asks
-                           for them fails)
+                           Rayleigh phase functions, emitting fog, sigma_t per colour channel
+                           (a medium desc that asks for them fails)
     FOGRT_NO_MEDIUM        strip the fog: no free-flight, transmittance, phase or equiangular
                            code (fogrt_scene_set_medium with sigma_t > 0 fails; implies
                            FOGRT_NO_MEDIA)
@@ -116,7 +116,7 @@
 
     WHAT FOGRT DOES NOT DO
     ======================
-    Heterogeneous or chromatic media (sigma_t is one number), textures, microfacet BSDFs,
+    Heterogeneous media (sigma_t is the same everywhere), textures, microfacet BSDFs,
     spectral rendering, instancing, motion blur, GPU. Nested refractive objects are not
     tracked (leaving any refractive object puts the ray back into the fog).
 
@@ -175,7 +175,7 @@ extern "C" {
     X(INVALID_GEOMETRY,  "invalid geometry (non-finite position, index out of range, or radius <= 0)") \
     X(INVALID_LIGHT,     "invalid light (non-finite or negative intensity, or bad angles)") \
     X(INVALID_CAMERA,    "invalid camera (fov outside (0,180), eye equals target, or negative lens)") \
-    X(INVALID_MEDIUM,    "invalid medium (sigma_t negative or non-finite, albedo outside [0,1], |g| > 1, or a bad phase or emission)") \
+    X(INVALID_MEDIUM,    "invalid medium (sigma_t negative or non-finite, albedo outside [0,1], |g| > 1, or a bad phase, emission or sigma_t_rgb)") \
     X(TOO_LARGE,         "too large (more primitives, lights or pixels than fogrt can index)") \
     X(NOT_BUILT,         "scene not built: call fogrt_scene_build after the last change") \
     X(EMPTY_SCENE,       "the scene has no geometry and no light") \
@@ -373,8 +373,14 @@ FOGRT_API fogrt_result fogrt_scene_set_camera(fogrt_scene *scene, const fogrt_ca
      emission  radiance Le the fog emits (linear RGB, >= 0), added as sigma_a Le per unit
                length with sigma_a = sigma_t (1 - albedo): unbounded fog of any albedo below 1
                seen from inside looks Le, an absorbing slab of optical depth tau Le (1 - e^-tau)
-   Fog with another phase function or emission is rendered by the full integrator (Part II,
-   E) also under fogrt_render_paper_defaults(): Part I knows HG alone.                       */
+     sigma_t_rgb  sigma_t per colour channel (each >= 0, finite): chromatic fog, whose light
+               of each channel is attenuated and scattered at that channel's rate (coloured
+               haze). Zero: sigma_t for all three. Set, it replaces sigma_t, which reads back
+               as its largest component; three equal components are grey fog of that sigma_t
+               (stored as sigma_t, this field zeroed), rendered as such bit for bit
+   Fog with another phase function, emission or sigma_t per channel is rendered by the full
+   integrator (Part II, E) also under fogrt_render_paper_defaults(): Part I knows grey HG fog
+   alone.                                                                                     */
 typedef enum fogrt_phase_type {
     FOGRT_PHASE_HG = 0,        /* Henyey-Greenstein (3.3) */
     FOGRT_PHASE_HG2,           /* two HG lobes (G) */
@@ -391,6 +397,7 @@ typedef struct fogrt_medium_desc {
     fogrt_phase_type phase;    /* G */
     float g2, w;               /* G: FOGRT_PHASE_HG2's second lobe and the first lobe's weight */
     fogrt_vec3 emission;       /* G: Le, radiance */
+    fogrt_vec3 sigma_t_rgb;    /* G: sigma_t per channel (zero: sigma_t in all three) */
 } fogrt_medium_desc;
 
 #define FOGRT_HG_G_MAX 0.9999f
@@ -1618,11 +1625,11 @@ FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medi
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
     }
 #ifdef FOGRT_NO_MEDIA
-    FOGRT__REFUSE_IF(m->phase || m->g2 != 0.0f || m->w != 0.0f || !fogrt__is_black(m->emission), UNSUPPORTED,
-                     "medium.phase/g2/w/emission: media beyond the paper need a build without FOGRT_NO_MEDIA, FOGRT_NO_MEDIUM and FOGRT_MINIMAL");
+    FOGRT__REFUSE_IF(m->phase || m->g2 != 0.0f || m->w != 0.0f || !fogrt__is_black(m->emission) || !fogrt__is_black(m->sigma_t_rgb),
+                     UNSUPPORTED, "medium.phase/g2/w/emission/sigma_t_rgb: media beyond the paper need a build without FOGRT_NO_MEDIA, FOGRT_NO_MEDIUM and FOGRT_MINIMAL");
     return FOGRT_RESULT_OK;
 #else
-    return fogrt__x_check_media(s, m);                   /* SEAM 6: the phase and emission of G */
+    return fogrt__x_check_media(s, m);                   /* SEAM 6: G's medium fields */
 #endif
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_medium_desc *desc)
@@ -3870,9 +3877,13 @@ struct fogrt__x {
     struct fogrt__footprint *footprints;   /* B: per point or spot light, the plane its cone lights most, or NULL */
     struct fogrt__hg_table *hg;   /* B: HG per unit angle for the medium's g, with lamps in fog */
 #ifndef FOGRT_NO_MEDIA
-    bool media;                /* G: the fog has another phase function than HG, or emits */
+    bool media;                /* G: the fog has another phase function than HG, emits, or has
+                                  sigma_t per channel (the path's steps are G's: fogrt__media_start) */
     bool emits;                /* G: the fog emits */
     fogrt__v3 emit;            /* G: sigma_a Le / sigma_t = (1 - albedo) Le, per collision */
+    bool chroma;               /* G: sigma_t differs between the colour channels */
+    fogrt__v3 sigma;           /* G, chroma: sigma_t per channel */
+    fogrt__v3 sigma_n;         /*   and over its largest component (the collision densities' scale) */
 #endif
 };
 #ifndef FOGRT_NO_MEDIA
@@ -3883,6 +3894,12 @@ FOGRT__PRIVATE float fogrt__media_pdf(const fogrt_medium_desc *m, fogrt__v3 wo, 
 FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
                                           fogrt__v3 beta, float t_end, bool collided);
 FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s);
+FOGRT__PRIVATE void fogrt__media_start(const fogrt_scene *s, struct fogrt__path *P);
+FOGRT__PRIVATE fogrt__v3 fogrt__media_light(const fogrt_scene *s, const struct fogrt__path *P, const fogrt__vertex *v,
+                                            const fogrt_light_sample *ls, float *pdf_b, float *tr);
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_collision(const fogrt_scene *s, float t, float pdf);
+FOGRT__PRIVATE bool fogrt__media_next_event(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
+                                            int limit);
 #endif
 
 #ifndef FOGRT_NO_WIDE_BVH
@@ -5211,8 +5228,8 @@ FOGRT__PRIVATE void fogrt__cos_sin(double x, float *c, float *s)
     *s = sinf(r);
     *c = x <= 0.5 * FOGRT__PI_D ? cosf(r) : -cosf(r);
 }
-FOGRT__PRIVATE float fogrt__sample_equiangular_hg(const fogrt__hg_table *T, float delta, float h, float a, float b,
-                                                  float u, float *pdf)
+FOGRT__HOT float fogrt__sample_equiangular_hg(const fogrt__hg_table *T, float delta, float h, float a, float b,
+                                              float u, float *pdf)
 {
     double ca = fogrt__hgt_at(T, T->c, fogrt__psi_of(a, delta, h), NULL), cb, psi, dens, dt;
     float t, cp, sp;
@@ -5460,7 +5477,7 @@ FOGRT__PRIVATE bool fogrt__find_footprints(fogrt_scene *s)
    (A > 0) is inside beyond the roots, the far side in the forward nappe when it runs the
    spot's way. Returns 1 with [*a, *b] clipped, 0 for a miss, -1 when the general case
    must decide (A = 0, or no real root with A > 0, which rounding alone can make). */
-FOGRT__PRIVATE int fogrt__clip_to_cone_quadratic(float A, float B, float C, float da, float wa, float *a, float *b)
+FOGRT__HOT int fogrt__clip_to_cone_quadratic(float A, float B, float C, float da, float wa, float *a, float *b)
 {
     float disc = B * B - A * C, q, r0, r1, lo, hi;
     if (A == 0.0f) return -1;
@@ -5476,7 +5493,7 @@ FOGRT__PRIVATE int fogrt__clip_to_cone_quadratic(float A, float B, float C, floa
     *a = lo; *b = hi;
     return 1;
 }
-FOGRT__PRIVATE bool fogrt__clip_to_cone(const fogrt_light_desc *l, float cos_c, fogrt__v3 o, fogrt__v3 d, float *a, float *b)
+FOGRT__HOT bool fogrt__clip_to_cone(const fogrt_light_desc *l, float cos_c, fogrt__v3 o, fogrt__v3 d, float *a, float *b)
 {
     fogrt__v3 w = fogrt__sub(o, l->position);
     float c2 = cos_c * cos_c;
@@ -6028,6 +6045,9 @@ typedef struct fogrt__xs {
     bool equiangular, glow, footprint, by_power, expected_emission;
 #ifndef FOGRT_NO_MEDIA
     bool emits;                /* G: the fog emits (fogrt__media_emission on every fog segment) */
+    bool hero_pdf;             /* G, chroma: weigh by the hero channel's density alone, not the
+                                  channels' mean: the wrong estimator, which fogrt never sets, for
+                                  the negative control of tests/test_chroma.c */
 #endif
     float rr_k;                /* the roulette survives with min(0.95, rr_k x throughput) (e) */
     bool rr_probe;             /* the pilot (C): note each path's first roulette */
@@ -6066,6 +6086,13 @@ typedef struct fogrt__path {
     fogrt_rng *rng;
     uint64_t *rays;
     const fogrt__xs *xs;
+#ifndef FOGRT_NO_MEDIA
+    bool media_light;          /* G: a light sample needs fogrt__media_light (another phase, chroma) */
+    bool chroma;               /* G: sigma_t per channel */
+    int hero;                  /* G, chroma: the channel whose sigma_t samples every free flight */
+    fogrt__v3 r;               /* G, chroma: each channel's density of the path's free flights so
+                                  far, relative to one another (fogrt__chroma_mix) */
+#endif
     float probe_lum, probe_b;  /* the pilot (xs->rr_probe): luminance gathered, throughput x */
     uint64_t probe_rays;       /*   rr_scale, and rays traced when the path met its first roulette */
     bool probed;
@@ -6126,10 +6153,10 @@ FOGRT__PRIVATE void fogrt__trace_light(const fogrt__path *P, const fogrt__vertex
     fogrt__emit(P, &e);
 }
 FOGRT__PRIVATE void fogrt__trace_equiangular(const fogrt__path *P, uint32_t light,
-                                             float u, float t, float pdf, float weight)
+                                             float u, float t, float pdf, fogrt__v3 weight)
 {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_EQUIANGULAR, P);
-    e.light = light; e.u[0] = u; e.t = t; e.pdf = pdf; e.value = fogrt__v(weight, weight, weight);
+    e.light = light; e.u[0] = u; e.t = t; e.pdf = pdf; e.value = weight;
     fogrt__emit(P, &e);
 }
 #ifndef FOGRT_NO_MEDIUM
@@ -6235,8 +6262,8 @@ FOGRT__HOT fogrt__v3 fogrt__fog_phase_sample(const fogrt_scene *s, fogrt__v3 wo,
     return fogrt__sample_hg_unit(s->medium.g, wo, u1, u2, pdf);
 }
 #endif
-FOGRT__PRIVATE void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fogrt__xs *xs, fogrt__v3 o,
-                                      fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
+FOGRT__HOT void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fogrt__xs *xs, fogrt__v3 o,
+                                  fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
 {
     memset(P, 0, sizeof *P);
     P->o = o; P->d = d; P->prev_p = o;
@@ -6246,6 +6273,9 @@ FOGRT__PRIVATE void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, cons
     P->in_medium = (s->features & FOGRT_FEATURE_MEDIUM) != 0;   /* the camera sits in the fog */
     P->type = FOGRT_BSDF_DIFFUSE;
     P->rng = rng; P->rays = rays; P->xs = xs;
+#ifndef FOGRT_NO_MEDIA
+    if (s->x->media) fogrt__media_start(s, P);          /* G: which steps need it, the hero channel */
+#endif
 }
 /* Light that reaches the camera after `bounces` scattering events (min_depth drops the
    shorter paths: CS184's -o 0). source says what it is, for the trace. */
@@ -6322,13 +6352,22 @@ FOGRT__PRIVATE void fogrt__trace_light(const fogrt__path *P, const fogrt__vertex
 #endif
 FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
                                                const fogrt__vertex *v, const fogrt__glow *g, uint32_t light,
-                                               const fogrt_light_sample *ls, float n)
-    /* n: the samples taken of this light, times the probability it was picked (by power) */
+                                               const fogrt_light_sample *ls, float n, bool media)
+    /* n: the samples taken of this light, times the probability it was picked (by power);
+       media (a constant): the path may be in G's media, which the paper's fog steps are not */
 {
     fogrt__v3 f, c = fogrt__v(0.0f, 0.0f, 0.0f);
     float pdf_b, tr = 0.0f, w = 0.0f;
-    f = fogrt__fog_vertex_f(s, v, ls->wi, &pdf_b);
-    if (!fogrt__is_black(f)) tr = fogrt__shadow(s, v, ls, P->rays);
+#ifndef FOGRT_NO_MEDIA
+    if (media && P->media_light) f = fogrt__media_light(s, P, v, ls, &pdf_b, &tr);   /* G: another phase function, T per channel */
+    else
+#else
+    (void)media;
+#endif
+    {
+        f = fogrt__vertex_f(s, v, ls->wi, &pdf_b);
+        if (!fogrt__is_black(f)) tr = fogrt__shadow(s, v, ls, P->rays);
+    }
     if (tr != 0.0f) {
 #ifdef FOGRT__LAMPS
         if (g && g->n > 0 && !ls->is_delta && st->mis) pdf_b = fogrt__glow_mix(s, v, g, ls->wi, pdf_b);   /* how scattering picks wi */
@@ -6360,7 +6399,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_light_n(const fogrt_scene *s, const fogrt
         float u[3];
         fogrt__draw(s, i, P->rng, u);
         if (fogrt__sample_light(s, i, P->v.p, u, &ls))
-            L = fogrt__add(L, fogrt__light_contribution(s, st, P, &P->v, &P->glow, i, &ls, (float)n * pick));
+            L = fogrt__add(L, fogrt__light_contribution(s, st, P, &P->v, &P->glow, i, &ls, (float)n * pick, true));
     }
     return L;
 }
@@ -6399,8 +6438,8 @@ FOGRT__PRIVATE void fogrt__fog_vertex(fogrt__vertex *v, fogrt__v3 p, fogrt__v3 w
 #ifdef FOGRT__LAMPS
 /* The point and spot lights a segment gathers, [*first, *last): all of them, or with
    light_by_power one, picked among them by power. Returns the probability of the pick. */
-FOGRT__PRIVATE float fogrt__equiangular_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
-                                               uint32_t *first, uint32_t *last)
+FOGRT__HOT float fogrt__equiangular_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
+                                           uint32_t *first, uint32_t *last)
 {
     float top, frac;
     (void)st;
@@ -6411,11 +6450,26 @@ FOGRT__PRIVATE float fogrt__equiangular_lights(const fogrt_scene *s, const fogrt
     *last = *first + 1;
     return fogrt__pick_prob(s, P->xs->by_power, *first) / top;
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
-                                            float t_min, float t_max)
+/* The weight of a point drawn at distance t into the fog with density pdf: sigma_t T(t) / pdf
+   (times the albedo: sigma_s T / pdf), per channel in chromatic fog (G). */
+FOGRT__HOT fogrt__v3 fogrt__equiangular_weight(const fogrt_scene *s, bool chroma, float t, float pdf)
+{
+    float w;
+#ifndef FOGRT_NO_MEDIA
+    if (chroma) return fogrt__chroma_collision(s, t, pdf);
+#else
+    (void)chroma;
+#endif
+    w = s->medium.sigma_t * fogrt_transmittance(s->medium.sigma_t, t) / pdf;
+    return fogrt__v(w, w, w);
+}
+/* media and chroma (constants: the paper's fog, G's media and chromatic fog get a copy each):
+   the path may be in G's media; sigma_t per channel in the weights (G). */
+FOGRT__HOT fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
+                                        float t_min, float t_max, bool media, bool chroma)
 {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
-    float sigma_t = s->medium.sigma_t, pick;
+    float pick;
     uint32_t i, last;
     fogrt__vertex v;
     fogrt__fog_vertex(&v, P->o, fogrt__neg(P->d));
@@ -6433,10 +6487,10 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
             t = fogrt__sample_equiangular_hg(s->x->hg, fogrt__dot(oc, P->d), h, t_lo, t_hi, u[0], &pdf_t);
             if (!(pdf_t > 0.0f)) continue;
             v.p = fogrt__madd(P->o, P->d, t);
-            FOGRT__HOOK(fogrt__trace_equiangular(P, i, u[0], t, pdf_t, sigma_t * fogrt_transmittance(sigma_t, t - t_min) / pdf_t));
+            FOGRT__HOOK(fogrt__trace_equiangular(P, i, u[0], t, pdf_t, fogrt__equiangular_weight(s, chroma, t - t_min, pdf_t)));
             if (!fogrt__sample_point_light(s, l, v.p, u + 1, &ls)) continue;
-            L = fogrt__add(L, fogrt__scale(fogrt__mul(fogrt__light_contribution(s, st, P, &v, NULL, i, &ls, (float)n * pick), s->medium.albedo),
-                                           sigma_t * fogrt_transmittance(sigma_t, t - t_min) / pdf_t));
+            L = fogrt__add(L, fogrt__mul(fogrt__mul(fogrt__light_contribution(s, st, P, &v, NULL, i, &ls, (float)n * pick, media), s->medium.albedo),
+                                         fogrt__equiangular_weight(s, chroma, t - t_min, pdf_t)));
         }
     }
     return L;
@@ -6447,9 +6501,10 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
    distance is sampled from where the ray is in the fog (t = a, 0 unless the fog is bounded
    and the ray starts outside its box) to where it leaves it (b). On a collision the vertex
    is set and the weight takes the albedo. may_scatter: the path may still bounce (else the
-   equiangular lights, which are light after one more bounce, are not gathered). */
-FOGRT__PRIVATE bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                       float t_surface, bool may_scatter, float *tr)
+   equiangular lights, which are light after one more bounce, are not gathered). media (a
+   constant): the path may be in G's media. */
+FOGRT__HOT bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                   float t_surface, bool may_scatter, float *tr, bool media)
 {
     float u, t, a, b;
     if (!P->in_medium) return false;
@@ -6460,9 +6515,9 @@ FOGRT__PRIVATE bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settin
     FOGRT__HOOK(fogrt__trace_free_flight(P, u, t, b, t < b));
 #ifdef FOGRT__LAMPS
     if (st->nee && P->xs->equiangular && s->light_count > 0 && may_scatter)
-        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, a, b)), "equiangular");
+        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, a, b, media, false)), "equiangular");
 #else
-    (void)st; (void)may_scatter;
+    (void)st; (void)may_scatter; (void)media;
 #endif
     if (!(t < b)) return false;                          /* leaves the fog or reaches the surface: T / T = 1 */
     P->beta = fogrt__mul(P->beta, s->medium.albedo);     /* sigma_s T / (sigma_t T) */
@@ -6547,9 +6602,9 @@ FOGRT__PRIVATE bool fogrt__light_behind_wanted(const fogrt_scene *s, const fogrt
     return tr >= FOGRT__BEHIND_MIN || fogrt_rng_float(P->rng) * FOGRT__BEHIND_MIN < tr;
 }
 /* The sample itself, at the surface point p with normals ng, ns (fogrt__surface_frame). */
-FOGRT__PRIVATE void fogrt__light_behind(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                        const fogrt_material_desc *m, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns,
-                                        fogrt__v3 beta, int limit)
+FOGRT__HOT void fogrt__light_behind(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                    const fogrt_material_desc *m, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns,
+                                    fogrt__v3 beta, int limit)
 {
     fogrt__vertex keep = P->v;
     fogrt__glow keep_glow = P->glow;
@@ -6586,8 +6641,8 @@ FOGRT__PRIVATE void fogrt__escape(const fogrt_scene *s, const fogrt__settings *s
 /* A ray that collided in the fog before its end (hit, or NULL: it escapes): what the end
    still adds, tr Le (b), and the lights behind the surface (b'). The path goes on at
    the collision. */
-FOGRT__PRIVATE bool fogrt__collided(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                    const fogrt_hit *hit, fogrt__v3 beta, float tr, int limit)
+FOGRT__HOT bool fogrt__collided(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                const fogrt_hit *hit, fogrt__v3 beta, float tr, int limit)
 {
     if (hit) {
         const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit->prim)];
@@ -6628,30 +6683,50 @@ FOGRT__HOT bool fogrt__ray_end(const fogrt_scene *s, const fogrt__settings *st, 
     FOGRT__HOOK(fogrt__trace_simple(P, FOGRT_TRACE_ESCAPE));
     return false;
 }
+#ifndef FOGRT_NO_MEDIUM
+/* a + b in the fog: the free flight, then what the end of the ray adds. media (a constant:
+   each caller gets its own copy): the path is in G's media (another phase function, or
+   emitting fog, whose light this adds along the way). */
+FOGRT__HOT bool fogrt__fog_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, bool found,
+                                 const fogrt_hit *hit, int limit, bool media)
+{
+    const fogrt__v3 beta = P->beta;                     /* before a collision's albedo */
+    float tr = 1.0f;                                    /* the fog's transmittance to the end of the ray */
+    bool collided = fogrt__free_flight(s, st, P, found ? hit->t : INFINITY, P->bounces < limit, &tr, media);
+    P->seg_tr = tr;
+#ifndef FOGRT_NO_MEDIA
+    if (media && P->xs->emits) fogrt__media_emission(s, st, P, beta, found ? hit->t : INFINITY, collided);   /* G */
+#endif
+    if (!P->xs->expected_emission) tr = collided ? 0.0f : 1.0f;   /* the paper's: Le when reached */
+    if (collided) return fogrt__collided(s, st, P, found ? hit : NULL, beta, tr, limit);
+    return fogrt__ray_end(s, st, P, found, hit, beta, tr, limit);
+}
+#endif
 /* a + b: follow the ray to its next event, a fog collision or a surface. False when the
    path ends: the ray escaped (the environment is added), or the surface ends it. */
 FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit)
 {
     fogrt_hit hit;
     bool found;
-    const fogrt__v3 beta = P->beta;                     /* before a collision's albedo */
     ++*P->rays;
     found = fogrt__traverse(s, P->o, P->d, 0.0f, INFINITY, &hit, false);
     P->seg_tr = 1.0f;
 #ifndef FOGRT_NO_MEDIUM
-    if (P->in_medium) {                                 /* (a fog-free ray skips all of this) */
-        float tr = 1.0f;                                /* the fog's transmittance to the end of the ray */
-        bool collided = fogrt__free_flight(s, st, P, found ? hit.t : INFINITY, P->bounces < limit, &tr);
-        P->seg_tr = tr;
+    if (P->in_medium) return fogrt__fog_event(s, st, P, found, &hit, limit, false);   /* (a fog-free ray skips it) */
+#endif
+    return fogrt__ray_end(s, st, P, found, &hit, P->beta, 1.0f, limit);
+}
+/* The path's a + b: G's (fogrt__media_next_event) in G's media, chosen once per path, so
+   that the paper's medium pays no test per segment. */
+typedef bool (*fogrt__step)(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit);
+FOGRT__PRIVATE fogrt__step fogrt__next_event_of(const fogrt_scene *s)
+{
 #ifndef FOGRT_NO_MEDIA
-        if (P->xs->emits) fogrt__media_emission(s, st, P, beta, found ? hit.t : INFINITY, collided);   /* G */
+    if (s->x->media) return fogrt__media_next_event;
+#else
+    (void)s;
 #endif
-        if (!P->xs->expected_emission) tr = collided ? 0.0f : 1.0f;   /* the paper's: Le when reached */
-        if (collided) return fogrt__collided(s, st, P, found ? &hit : NULL, beta, tr, limit);
-        return fogrt__ray_end(s, st, P, found, &hit, beta, tr, limit);
-    }
-#endif
-    return fogrt__ray_end(s, st, P, found, &hit, beta, 1.0f, limit);
+    return fogrt__next_event;
 }
 
 /* c. Light sampling at the scattering vertex (next-event estimation, 2.3); a mirror
@@ -6807,10 +6882,12 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path_probe(const fogrt_scene *s, const 
                                                     fogrt__v3 d, fogrt_rng *rng, uint64_t *rays, fogrt__probe *probe)
 {
     fogrt__path P;
+    fogrt__step next_event;
     uint32_t vertex;
     fogrt__path_start(s, &P, xs, o, d, rng, rays);
+    next_event = fogrt__next_event_of(s);
     for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
-        if (!fogrt__next_event(s, st, &P, st->max_depth)) break;              /* a, b */
+        if (!next_event(s, st, &P, st->max_depth)) break;                     /* a, b */
         if (P.bounces >= st->max_depth || fogrt__is_black(P.beta)) break;
         fogrt__light_step(s, st, &P);                                          /* c */
         if (!fogrt__scatter(s, st, &P)) break;                                 /* d */
@@ -6834,10 +6911,12 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance_direct(const fogrt_scene *s, const fogr
                                                 fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
 {
     fogrt__path P;
+    fogrt__step next_event;
     uint32_t vertex;
     fogrt__path_start(s, &P, xs, o, d, rng, rays);
+    next_event = fogrt__next_event_of(s);
     for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {   /* through mirrors and glass */
-        if (!fogrt__next_event(s, st, &P, st->max_depth)) return P.L;
+        if (!next_event(s, st, &P, st->max_depth)) return P.L;
         if (P.bounces >= st->max_depth || fogrt__is_black(P.beta)) return P.L;
         if (fogrt__is_scattering(&P)) break;
         if (!fogrt__scatter(s, st, &P) || !fogrt__roulette(st, &P)) return P.L;
@@ -6847,7 +6926,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance_direct(const fogrt_scene *s, const fogr
     /* One more step, which only adds the emission it finds (its MIS half: without it the
        light sample above would count area lights at half weight). */
     if (fogrt__scatter(s, st, &P) && fogrt__roulette(st, &P))
-        (void)fogrt__next_event(s, st, &P, P.bounces);
+        (void)next_event(s, st, &P, P.bounces);
     return P.L;
 }
 /* Point or spot lights in fog: what the glow of d' needs (without them the glow's checks
@@ -6984,6 +7063,7 @@ FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__setting
     xs->expected_emission = d->expected_emission;
 #ifndef FOGRT_NO_MEDIA
     xs->emits = s->x->emits;
+    xs->hero_pdf = false;
 #endif
     xs->by_power = d->light_by_power && s->x->light_pick && fogrt__light_total(s) > 1;
     xs->rr_k = FOGRT__MAX(s->x->rr_k, 1.0f);      /* 1 before the pilot has run */
@@ -7300,9 +7380,20 @@ FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_med
     FOGRT__REFUSE_IF(!(m->g2 >= -1.0f && m->g2 <= 1.0f), INVALID_MEDIUM, "medium.g2: outside [-1, 1] or not finite");
     FOGRT__REFUSE_IF(!(m->w >= 0.0f && m->w <= 1.0f), INVALID_MEDIUM, "medium.w: outside [0, 1] or not finite");
     FOGRT__REFUSE_IF(!fogrt__colour_ok(m->emission), INVALID_MEDIUM, "medium.emission: negative or not finite");
+    FOGRT__REFUSE_IF(!fogrt__colour_ok(m->sigma_t_rgb), INVALID_MEDIUM, "medium.sigma_t_rgb: a component negative or not finite");
+#ifdef FOGRT_NO_ESTIMATION
+    FOGRT__REFUSE_IF(m->bounded && !fogrt__is_black(m->sigma_t_rgb), UNSUPPORTED,
+                     "medium.bounded: fog in a box needs a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
+#endif
     if (fabsf(m->g2) >= FOGRT_HG_G_MAX && fabsf(m->g2) != FOGRT_HG_G_MAX) {
         m->g2 = copysignf(FOGRT_HG_G_MAX, m->g2);
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g2: |g2| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
+    }
+    /* sigma_t per channel replaces sigma_t, which keeps the largest component: Part I tells
+       fog from none by it. Three equal components are grey fog, which Part I renders. */
+    if (!fogrt__is_black(m->sigma_t_rgb)) {
+        m->sigma_t = fogrt__max3(m->sigma_t_rgb);
+        if (m->sigma_t_rgb.x == m->sigma_t_rgb.y && m->sigma_t_rgb.y == m->sigma_t_rgb.z) m->sigma_t_rgb = fogrt__v(0.0f, 0.0f, 0.0f);
     }
     return FOGRT_RESULT_OK;
 }
@@ -7420,7 +7511,10 @@ FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s)
     const fogrt_medium_desc *m = &s->medium;
     s->x->emit = fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), m->albedo), m->emission);
     s->x->emits = (s->features & FOGRT_FEATURE_MEDIUM) && !fogrt__is_black(s->x->emit);
-    s->x->media = (s->features & FOGRT_FEATURE_MEDIUM) && (m->phase != FOGRT_PHASE_HG || s->x->emits);
+    s->x->chroma = (s->features & FOGRT_FEATURE_MEDIUM) && !fogrt__is_black(m->sigma_t_rgb);
+    s->x->sigma = m->sigma_t_rgb;
+    s->x->sigma_n = s->x->chroma ? fogrt__scale(m->sigma_t_rgb, 1.0f / fogrt__max3(m->sigma_t_rgb)) : m->sigma_t_rgb;
+    s->x->media = (s->features & FOGRT_FEATURE_MEDIUM) && (m->phase != FOGRT_PHASE_HG || s->x->emits || s->x->chroma);
 }
 FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                           fogrt__v3 beta, float t_end, bool collided)
@@ -7431,6 +7525,176 @@ FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__set
         w = b < INFINITY ? -expm1f(-s->medium.sigma_t * (b - a)) : 1.0f;
     }
     if (w > 0.0f) fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, s->x->emit), w), "fog emission");
+}
+
+/* Chromatic media: sigma_t per colour channel, so that each channel's light is attenuated and
+   scattered at its own rate (coloured haze). A free flight can follow one rate only, so each
+   path picks one channel, the hero, uniformly when it starts, and samples all its free
+   flights with the hero's sigma_t. Had channel c been the hero, the path's free flights would
+   have had density P_c(x); with the hero drawn at random their density is mean_c P_c(x), and
+   the estimate divides the path's contribution f(x) (per channel) by that mean: one-sample MIS
+   over the channels with the balance heuristic, the spectral MIS of pbrt-v4's
+   VolPathIntegrator and Mitsuba 3's volpathmis. Each channel's estimate is then at most 3
+   times what grey fog of that channel's sigma_t gives (f_c / mean P <= 3 f_c / P_c). Dividing
+   by the hero's own P_h instead is unbiased only where the hero can sample every path the
+   other channels light (never a collision when its sigma_t is 0), and its weight has no
+   bound where P_h is small against the others' (xs->hero_pdf: the negative control).
+   The path keeps r_c, proportional to P_c (only ratios matter: its largest is kept at 1), and
+   its throughput beta = f / mean P, which every other step of E (light sampling, emission,
+   roulette) reads as in grey fog. An event of a free flight of density p_c in channel c (a
+   collision at t: sigma_t,c T_c(t); crossing a length d: T_c(d)) has density m = sum r_c p_c /
+   sum r_c under the mixture, relative to the path so far: beta takes f / m and r takes p
+   (fogrt__chroma_mix). With equal components every m is the grey p and beta the grey albedo,
+   but such a medium is stored as grey fog (fogrt__x_check_media) and never comes here.
+   What reads sigma_t reads it per channel:
+     - shadow rays (light sampling at fog and surface vertices, and at the points equiangular
+       sampling draws): T_c, folded into f (fogrt__chroma_shadow);
+     - equiangular sampling (B): its density does not depend on sigma_t; its weight is
+       sigma_s,c T_c(t) / pdf (fogrt__chroma_collision);
+     - expected emission (E b): the emitter or sky a ray reaches adds beta T_c Le whatever its
+       free flight does (no distance is sampled there, so no channel's density enters); the
+       paper's way adds Le when the flight gets there, with the weight of that crossing;
+     - the lamps' light at the surface behind a collision (E b'): beta T_c times it in both
+       cases, behind a collision directly (taken with probability min(1, 16 tau), tau the
+       largest T_c, as grey fog does with T) and at the surface, when the flight gets there,
+       through a lamp scale m (the crossing's weight is T_c / m);
+     - the fog's emission (G): (1 - albedo_c) Le_c (1 - T_c) per segment, or the paper's
+       collision estimator with the collision's weight;
+     - the MIS weights between light sampling and phase or BSDF sampling are those of the
+       directions: both strategies share the path's free flights, whose mixture over the
+       channels is a common factor, so the weights still add up to one per channel.
+   The glow and the footprint (d') aim directions and read no sigma_t. */
+/* A path in G's media: whether its light samples need G (so that the paper's medium pays
+   one test per light sample, where it had one anyway), and in chromatic fog its hero
+   channel. */
+FOGRT__PRIVATE void fogrt__media_start(const fogrt_scene *s, fogrt__path *P)
+{
+    P->media_light = s->medium.phase != FOGRT_PHASE_HG || s->x->chroma;
+    if (s->x->chroma) {
+        int hero = (int)(3.0f * fogrt_rng_float(P->rng));
+        P->chroma = true;
+        P->hero = FOGRT__MIN(hero, 2);
+        P->r = fogrt__v(1.0f, 1.0f, 1.0f);
+    }
+}
+/* T_c(d) per channel (d = +inf: 0 where sigma_t,c > 0, else 1). */
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_tr(const fogrt_scene *s, float d)
+{
+    const fogrt__v3 k = s->x->sigma;
+    return fogrt__v(fogrt_transmittance(k.x, d), fogrt_transmittance(k.y, d), fogrt_transmittance(k.z, d));
+}
+/* 1 - T_c(d) per channel, without cancellation (expm1) for small optical depths. */
+FOGRT__PRIVATE float fogrt__chroma_absorbed1(float sigma, float d)
+{
+    if (!(sigma > 0.0f)) return 0.0f;
+    return d < INFINITY ? -expm1f(-sigma * d) : 1.0f;
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_absorbed(const fogrt_scene *s, float d)
+{
+    const fogrt__v3 k = s->x->sigma;
+    return fogrt__v(fogrt__chroma_absorbed1(k.x, d), fogrt__chroma_absorbed1(k.y, d), fogrt__chroma_absorbed1(k.z, d));
+}
+/* A point drawn at distance t into the fog with density pdf, not by the free flight: its
+   weight sigma_t,c T_c(t) / pdf per channel. */
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_collision(const fogrt_scene *s, float t, float pdf)
+{
+    return fogrt__scale(fogrt__mul(s->x->sigma, fogrt__chroma_tr(s, t)), 1.0f / pdf);
+}
+/* Visibility by Part I's shadow ray (the vertex taken as clear air, so that it adds no grey
+   T), then T_c over the ray's length in the fog, as fogrt__fog_transmittance measures it. */
+FOGRT__PRIVATE float fogrt__chroma_shadow(const fogrt_scene *s, const fogrt__vertex *v, const fogrt_light_sample *ls,
+                                          uint64_t *rays, fogrt__v3 *f)
+{
+    fogrt__vertex clear = *v;
+    float a, b;
+    clear.in_medium = false;
+    if (fogrt__shadow(s, &clear, ls, rays) == 0.0f) return 0.0f;
+    if (fogrt__x_fog_span(s, v->p, ls->wi, ls->dist, &a, &b)) *f = fogrt__mul(*f, fogrt__chroma_tr(s, b - a));
+    return 1.0f;
+}
+/* A light sample's f (G's phase function at a fog vertex) and visibility times T (T_c in f
+   in chromatic fog), for fogrt__light_contribution. */
+FOGRT__PRIVATE fogrt__v3 fogrt__media_light(const fogrt_scene *s, const fogrt__path *P, const fogrt__vertex *v,
+                                            const fogrt_light_sample *ls, float *pdf_b, float *tr)
+{
+    fogrt__v3 f = fogrt__fog_vertex_f(s, v, ls->wi, pdf_b);
+    if (fogrt__is_black(f)) return f;
+    *tr = P->chroma && v->in_medium ? fogrt__chroma_shadow(s, v, ls, P->rays, &f) : fogrt__shadow(s, v, ls, P->rays);
+    return f;
+}
+/* One event of a free flight, of density p_c (any scale common to the channels) had channel
+   c sampled it: returns m = sum r_c p_c / sum r_c, its density under the mixture relative to
+   the path so far, and r takes p. 0 where no channel could have sampled it (the path ends). */
+FOGRT__PRIVATE float fogrt__chroma_mix(fogrt__path *P, fogrt__v3 p)
+{
+    fogrt__v3 rp = fogrt__mul(P->r, p);
+    float m = (rp.x + rp.y + rp.z) / (P->r.x + P->r.y + P->r.z), top = fogrt__max3(rp);
+    if (P->xs->hero_pdf) m = fogrt__comp(p, P->hero);
+    if (!(m > 0.0f) || !(top > 0.0f) || !fogrt__finite(m)) return 0.0f;
+    P->r = fogrt__scale(rp, 1.0f / top);
+    return m;
+}
+/* The fog's emission along this flight (fogrt__media_emission's, per channel): in closed
+   form with expected_emission, else at a collision with its weight k. */
+FOGRT__PRIVATE void fogrt__chroma_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, fogrt__v3 beta,
+                                           float d, bool collided, fogrt__v3 k)
+{
+    fogrt__v3 w = fogrt__v(0.0f, 0.0f, 0.0f);
+    if (P->xs->expected_emission) w = fogrt__chroma_absorbed(s, d);
+    else if (collided) w = k;
+    if (!fogrt__is_black(w)) fogrt__gather(P, st, P->bounces, fogrt__mul(fogrt__mul(beta, s->x->emit), w), "fog emission");
+}
+/* E's a and b for chromatic fog: the free flight [a, b] of the ray (as fogrt__free_flight,
+   with the hero's sigma_t), the equiangular lights along it, then what the end of the ray
+   adds (fogrt__collided, fogrt__ray_end) with beta T_c / tau and tr = tau, tau the largest
+   T_c (their product beta T_c is expected emission's), and the new throughput. */
+FOGRT__PRIVATE bool fogrt__chroma_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                             bool found, const fogrt_hit *hit, int limit)
+{
+    const fogrt__v3 beta = P->beta;                     /* before this flight */
+    fogrt__v3 T, p, k, end = fogrt__v(0.0f, 0.0f, 0.0f);
+    float u = fogrt_rng_float(P->rng), a, b, t, m, tau;
+    bool collided, expected = P->xs->expected_emission;
+    if (!fogrt__x_fog_span(s, P->o, P->d, found ? hit->t : INFINITY, &a, &b))   /* misses the fog's box */
+        return fogrt__ray_end(s, st, P, found, hit, beta, 1.0f, limit);
+    t = a + fogrt_sample_exponential(fogrt__comp(s->x->sigma, P->hero), u);
+    collided = t < b;
+    FOGRT__HOOK(fogrt__trace_free_flight(P, u, t, b, collided));
+#ifdef FOGRT__LAMPS
+    if (st->nee && P->xs->equiangular && s->light_count > 0 && P->bounces < limit)
+        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(beta, fogrt__equiangular(s, st, P, a, b, true, true)), "equiangular");
+#endif
+    T = fogrt__chroma_tr(s, b - a);
+    p = collided ? fogrt__mul(s->x->sigma_n, fogrt__chroma_tr(s, t - a)) : T;
+    m = fogrt__chroma_mix(P, p);
+    k = m > 0.0f ? fogrt__scale(p, 1.0f / m) : fogrt__v(0.0f, 0.0f, 0.0f);   /* the event's weight per channel */
+    if (P->xs->emits) fogrt__chroma_emission(s, st, P, beta, b - a, collided, k);
+    tau = fogrt__max3(T);
+    if (tau > 0.0f) end = fogrt__scale(fogrt__mul(beta, T), 1.0f / tau);
+    if (collided) {                                     /* sigma_s,c T_c / m = albedo_c k_c */
+        P->beta = fogrt__mul(fogrt__mul(beta, s->medium.albedo), k);
+        fogrt__fog_vertex(&P->v, fogrt__madd(P->o, P->d, t), fogrt__neg(P->d));
+        P->glow.n = 0;
+        P->seg_tr = tau;
+        return fogrt__collided(s, st, P, found ? hit : NULL, end, expected ? tau : 0.0f, limit);
+    }
+    P->beta = fogrt__mul(beta, k);                      /* T_c / m */
+    P->seg_tr = m;                                      /* the lamps at the surface: T_c / m, times m */
+    if (!expected) { end = P->beta; tau = 1.0f; }       /* the paper's: Le with the crossing's weight */
+    return fogrt__ray_end(s, st, P, found, hit, end, tau, limit);
+}
+/* E's a + b (fogrt__next_event) in G's media: another phase function, emitting fog, or
+   chromatic fog. */
+FOGRT__PRIVATE bool fogrt__media_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit)
+{
+    fogrt_hit hit;
+    bool found;
+    ++*P->rays;
+    found = fogrt__traverse(s, P->o, P->d, 0.0f, INFINITY, &hit, false);
+    P->seg_tr = 1.0f;
+    if (!P->in_medium) return fogrt__ray_end(s, st, P, found, &hit, P->beta, 1.0f, limit);
+    if (P->chroma) return fogrt__chroma_next_event(s, st, P, found, &hit, limit);
+    return fogrt__fog_event(s, st, P, found, &hit, limit, true);
 }
 #endif /* FOGRT_NO_MEDIA */
 #endif /* FOGRT_MINIMAL */
