@@ -301,7 +301,8 @@ typedef struct cli_common {
     float g2, w; bool two_lobes;         /* --g G1,G2,W (appendix G) */
     fogrt_phase_type phase; bool phase_set;   /* --phase (G) */
     fogrt_vec3 emission; bool emission_set;   /* --emission (G) */
-    float density; bool density_set;     /* --density */
+    float density; bool density_set;     /* --density (R,G,B: the largest) */
+    fogrt_vec3 density_rgb; bool chromatic;   /* --density R,G,B: sigma_t per channel (G) */
     fogrt_vec3 albedo; bool albedo_set;  /* --albedo */
     fogrt_integrator integrator;         /* --integrator */
     fogrt_fresnel fresnel;               /* --fresnel */
@@ -387,8 +388,20 @@ CLI_FN int cli_common_flag(cli_arg *A, cli_common *c)
     }
     if (cli_is(A, "--density")) {
         CLI_NEED(1); v = cli_next(A);
-        if (!cli_parse_float(v, &c->density) || c->density < 0)
-            return cli_bad_flag(a, "density must be a finite number >= 0 (float: at most 3.4e38), got '%s'", v);
+        if (strchr(v, ',')) {                     /* per channel: chromatic fog */
+#ifdef FOGRT_NO_MEDIA
+            return cli_bad_flag(a, "R,G,B (sigma_t per channel) needs appendix G of fogrt.h: this %s was built with %s", cli_prog, CLI_NO_MEDIA_MACRO);
+#endif
+            if (!cli_parse_emission(v, &c->density_rgb))
+                return cli_bad_flag(a, "density must be S or R,G,B, each a finite number >= 0 (float: at most 3.4e38), got '%s'", v);
+            c->density = c->density_rgb.x > c->density_rgb.y ? c->density_rgb.x : c->density_rgb.y;
+            if (c->density_rgb.z > c->density) c->density = c->density_rgb.z;
+            c->chromatic = true;
+        } else if (!cli_parse_float(v, &c->density) || c->density < 0) {
+            return cli_bad_flag(a, "density must be S or R,G,B, each a finite number >= 0 (float: at most 3.4e38), got '%s'", v);
+        } else {
+            c->chromatic = false;
+        }
         c->density_set = true;
         return 0;
     }
@@ -455,6 +468,10 @@ CLI_FN int cli_common_media_check(const cli_common *c)
 }
 CLI_FN void cli_common_media_apply(const cli_common *c, fogrt_medium_desc *md)
 {
+    if (c->density_set) {                       /* S replaces the scene's, R,G,B sets each channel */
+        fogrt_vec3 none = {0.0f, 0.0f, 0.0f};
+        md->sigma_t_rgb = c->chromatic ? c->density_rgb : none;
+    }
     if (c->g_set) { md->phase = c->two_lobes ? FOGRT_PHASE_HG2 : FOGRT_PHASE_HG; md->g2 = c->g2; md->w = c->w; }
     if (c->phase_set && (c->phase == FOGRT_PHASE_RAYLEIGH || md->phase == FOGRT_PHASE_RAYLEIGH)) md->phase = c->phase;
     if (c->emission_set) md->emission = c->emission;
@@ -485,6 +502,9 @@ CLI_FN void cli_common_usage(FILE *f, int width, int height)
         "                 scene's: 0.9; .dae files 0.9)\n"
         "  --g G1,G2,W    (also -g) two Henyey-Greenstein lobes, W HG(G1) + (1 - W) HG(G2), G1\n"
         "                 and G2 in [-1, 1], W in [0, 1] (default: one lobe, --g G)\n"
+        "  --density R,G,B\n"
+        "                 sigma_t per colour channel, each >= 0: chromatic fog, each channel\n"
+        "                 attenuated and scattered at its own rate (default: one number, grey)\n"
         "  --phase P      the fog's phase function: hg (Henyey-Greenstein, --g) or rayleigh\n"
         "                 (3/(16 pi) (1 + cos^2), --g unused) (default hg)\n"
         "  --emission E   radiance the fog emits, R,G,B or one number, each >= 0, added as\n"
