@@ -336,6 +336,27 @@ CLI_FN void cli_common_defaults(cli_common *c, int width, int height)
     c->fresnel = FOGRT_FRESNEL_SCHLICK;
 }
 
+/* --density S (grey fog) or R,G,B (sigma_t per channel, appendix G); density is then the
+   largest channel. Returns 0, or 2 with the message printed. */
+CLI_FN int cli_density_flag(const char *a, const char *v, cli_common *c)
+{
+    if (strchr(v, ',')) {                         /* per channel: chromatic fog */
+#ifdef FOGRT_NO_MEDIA
+        return cli_bad_flag(a, "R,G,B (sigma_t per channel) needs appendix G of fogrt.h: this %s was built with %s", cli_prog, CLI_NO_MEDIA_MACRO);
+#endif
+        if (!cli_parse_emission(v, &c->density_rgb))
+            return cli_bad_flag(a, "density must be S or R,G,B, each a finite number >= 0 (float: at most 3.4e38), got '%s'", v);
+        c->density = c->density_rgb.x > c->density_rgb.y ? c->density_rgb.x : c->density_rgb.y;
+        if (c->density_rgb.z > c->density) c->density = c->density_rgb.z;
+        c->chromatic = true;
+    } else if (!cli_parse_float(v, &c->density) || c->density < 0) {
+        return cli_bad_flag(a, "density must be S or R,G,B, each a finite number >= 0 (float: at most 3.4e38), got '%s'", v);
+    } else {
+        c->chromatic = false;
+    }
+    c->density_set = true;
+    return 0;
+}
 /* Parses one common flag at the cursor. Returns 0 (taken), 2 (refused, message printed) or
    -1 (not a common flag). -h is the caller's. */
 CLI_FN int cli_common_flag(cli_arg *A, cli_common *c)
@@ -387,23 +408,8 @@ CLI_FN int cli_common_flag(cli_arg *A, cli_common *c)
         return 0;
     }
     if (cli_is(A, "--density")) {
-        CLI_NEED(1); v = cli_next(A);
-        if (strchr(v, ',')) {                     /* per channel: chromatic fog */
-#ifdef FOGRT_NO_MEDIA
-            return cli_bad_flag(a, "R,G,B (sigma_t per channel) needs appendix G of fogrt.h: this %s was built with %s", cli_prog, CLI_NO_MEDIA_MACRO);
-#endif
-            if (!cli_parse_emission(v, &c->density_rgb))
-                return cli_bad_flag(a, "density must be S or R,G,B, each a finite number >= 0 (float: at most 3.4e38), got '%s'", v);
-            c->density = c->density_rgb.x > c->density_rgb.y ? c->density_rgb.x : c->density_rgb.y;
-            if (c->density_rgb.z > c->density) c->density = c->density_rgb.z;
-            c->chromatic = true;
-        } else if (!cli_parse_float(v, &c->density) || c->density < 0) {
-            return cli_bad_flag(a, "density must be S or R,G,B, each a finite number >= 0 (float: at most 3.4e38), got '%s'", v);
-        } else {
-            c->chromatic = false;
-        }
-        c->density_set = true;
-        return 0;
+        CLI_NEED(1);
+        return cli_density_flag(a, cli_next(A), c);
     }
     if (cli_is(A, "--albedo")) {
         CLI_NEED(1); v = cli_next(A);
