@@ -3854,8 +3854,8 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s)
      E. The full integrator: Algorithm 1 with B and C's steps added, as fogrt_render_defaults()
         runs it                                      (table "Strip cost")
      F. Inspecting a scene: its tree, the tree's cost, a brute-force query, its memory
-     G. Media beyond the paper: the two-lobe HG and Rayleigh phase functions, emitting fog
-                                                     (table "Strip cost")
+     G. Media beyond the paper: the two-lobe HG and Rayleigh phase functions, emitting fog,
+        sigma_t per colour channel                   (table "Strip cost")
    ========================================================================================== */
 #if !defined(FOGRT_NO_MEDIUM) && !defined(FOGRT_NO_LAMPS_IN_FOG)
 #define FOGRT__LAMPS 1             /* appendix B is compiled */
@@ -7353,7 +7353,8 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
 #ifndef FOGRT_NO_MEDIA
 /* ------------------------------------------------------------------------------------------
    G. Media beyond the paper
-   What it adds: two phase functions besides Henyey-Greenstein, and fog that emits light.
+   What it adds: two phase functions besides Henyey-Greenstein, fog that emits light, and fog
+   whose sigma_t differs per colour channel.
      - Two HG lobes, w HG(g) + (1 - w) HG(g2): a real droplet scatters mostly forward and a
        little backward, which one HG lobe cannot do at once. Rayleigh, 3 / (16 pi) (1 + mu^2):
        particles much smaller than the wavelength (haze). Each is sampled exactly (pdf =
@@ -7368,8 +7369,13 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
      - Emission: the fog adds sigma_a Le per unit length (sigma_a = sigma_t (1 - albedo),
        pbrt-v4's convention), in the full integrator (also under the paper's render desc:
        Part I knows neither, seam 7 sends such media to E).
-   What it costs: a scene with the paper's medium pays one compare per fog vertex and one
-   per fog segment, and renders bit for bit as before (make callgrind: the default scene
+     - Chromatic fog: sigma_t per channel, one hero channel per path sampling its free
+       flights and one-sample spectral MIS in the weights (below, "Chromatic media").
+   A path in any of these media takes G's step a + b (fogrt__media_next_event), chosen once
+   per path, and its light samples G's shadow and phase function (fogrt__media_light).
+   What it costs: a scene with the paper's medium pays one compare per camera sample (which
+   step a + b), one per light sample and one where a fog vertex samples or evaluates the
+   phase function, and renders bit for bit as before (make callgrind: the default scene
    against a FOGRT_NO_MEDIA build; docs/benchmarks.md, table "Strip cost"). Validation of
    the medium desc's fields is seam 6's second use.
    ------------------------------------------------------------------------------------------ */
