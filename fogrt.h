@@ -1108,8 +1108,7 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #define FOGRT__DEF(val, def) ((val) == 0 ? (def) : (val))   /* "zero means default" */
 #define FOGRT__MAX_PRIMS (1u << 28)   /* triangles + spheres: keeps every index and size in range */
 
-FOGRT__PUBLIC const char *fogrt_result_string(fogrt_result result)
-{
+FOGRT__PUBLIC const char *fogrt_result_string(fogrt_result result) {
     static const char *names[FOGRT_RESULT_NUM] = {
 #define FOGRT__RESULT_TEXT(name, text) text,
         FOGRT__RESULT_LIST(FOGRT__RESULT_TEXT)
@@ -1119,13 +1118,11 @@ FOGRT__PUBLIC const char *fogrt_result_string(fogrt_result result)
     return names[result];
 }
 
-FOGRT__PRIVATE void *fogrt__alloc(const fogrt_allocator *a, size_t size)
-{
+FOGRT__PRIVATE void *fogrt__alloc(const fogrt_allocator *a, size_t size) {
     if (a && a->alloc_fn) return a->alloc_fn(size, a->user_data);
     return FOGRT_MALLOC(size, a ? a->user_data : NULL);
 }
-FOGRT__PRIVATE void fogrt__free(const fogrt_allocator *a, void *ptr)
-{
+FOGRT__PRIVATE void fogrt__free(const fogrt_allocator *a, void *ptr) {
     if (!ptr) return;
     if (a && a->free_fn) a->free_fn(ptr, a->user_data);
     else FOGRT_FREE(ptr, a ? a->user_data : NULL);
@@ -1145,13 +1142,11 @@ FOGRT__PRIVATE fogrt__v3 fogrt__scale(fogrt__v3 a, float s) { return fogrt__v(a.
 FOGRT__PRIVATE fogrt__v3 fogrt__madd(fogrt__v3 a, fogrt__v3 b, float s) { return fogrt__v(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s); }
 FOGRT__PRIVATE fogrt__v3 fogrt__neg(fogrt__v3 a) { return fogrt__v(-a.x, -a.y, -a.z); }
 FOGRT__PRIVATE float fogrt__dot(fogrt__v3 a, fogrt__v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-FOGRT__PRIVATE fogrt__v3 fogrt__cross(fogrt__v3 a, fogrt__v3 b)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__cross(fogrt__v3 a, fogrt__v3 b) {
     return fogrt__v(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
 FOGRT__HOT float fogrt__length(fogrt__v3 a) { return sqrtf(fogrt__dot(a, a)); }
-FOGRT__HOT fogrt__v3 fogrt__normalize(fogrt__v3 a)
-{
+FOGRT__HOT fogrt__v3 fogrt__normalize(fogrt__v3 a) {
     float len = fogrt__length(a);
     return len > 0.0f ? fogrt__scale(a, 1.0f / len) : fogrt__v(0.0f, 0.0f, 1.0f);
 }
@@ -1164,8 +1159,7 @@ FOGRT__PRIVATE float fogrt__comp(fogrt__v3 a, int axis) { return axis == 0 ? a.x
 /* Orthonormal basis around a unit vector n (Duff et al. 2017, "Building an Orthonormal
    Basis, Revisited"): no branch on a threshold, exact for n = +-z, any axis-parallel n. */
 typedef struct fogrt__frame { fogrt__v3 s, t, n; } fogrt__frame;
-FOGRT__PRIVATE fogrt__frame fogrt__frame_from_z(fogrt__v3 n)
-{
+FOGRT__PRIVATE fogrt__frame fogrt__frame_from_z(fogrt__v3 n) {
     fogrt__frame f;
     float sign = copysignf(1.0f, n.z);
     float a = -1.0f / (sign + n.z);
@@ -1175,26 +1169,22 @@ FOGRT__PRIVATE fogrt__frame fogrt__frame_from_z(fogrt__v3 n)
     f.n = n;
     return f;
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__to_local(const fogrt__frame *f, fogrt__v3 v)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__to_local(const fogrt__frame *f, fogrt__v3 v) {
     return fogrt__v(fogrt__dot(v, f->s), fogrt__dot(v, f->t), fogrt__dot(v, f->n));
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__to_world(const fogrt__frame *f, fogrt__v3 v)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__to_world(const fogrt__frame *f, fogrt__v3 v) {
     return fogrt__add(fogrt__add(fogrt__scale(f->s, v.x), fogrt__scale(f->t, v.y)), fogrt__scale(f->n, v.z));
 }
 /* The direction at polar angle theta (given by its cosine and sine) from the frame's n and
    azimuth 2 pi u: how every sampler of a cone or lobe (HG eq. 12, spheres) turns its two
    angles into a direction. */
-FOGRT__HOT fogrt__v3 fogrt__around(const fogrt__frame *f, float cos_theta, float sin_theta, float u)
-{
+FOGRT__HOT fogrt__v3 fogrt__around(const fogrt__frame *f, float cos_theta, float sin_theta, float u) {
     float phi = 2.0f * FOGRT__PI * u;
     return fogrt__normalize(fogrt__to_world(f, fogrt__v(sin_theta * cosf(phi), sin_theta * sinf(phi), cos_theta)));
 }
 
 /* Random numbers: PCG32 (M. O'Neill, pcg-random.org), one stream per (pixel, sample). */
-FOGRT__PUBLIC uint32_t fogrt_rng_u32(fogrt_rng *rng)
-{
+FOGRT__PUBLIC uint32_t fogrt_rng_u32(fogrt_rng *rng) {
     uint64_t old = rng->state;
     uint32_t xorshifted, rot;
     rng->state = old * 6364136223846793005ULL + rng->inc;
@@ -1202,21 +1192,18 @@ FOGRT__PUBLIC uint32_t fogrt_rng_u32(fogrt_rng *rng)
     rot = (uint32_t)(old >> 59u);
     return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
 }
-FOGRT__PUBLIC void fogrt_rng_seed(fogrt_rng *rng, uint64_t seed, uint64_t stream)
-{
+FOGRT__PUBLIC void fogrt_rng_seed(fogrt_rng *rng, uint64_t seed, uint64_t stream) {
     rng->state = 0u;
     rng->inc = (stream << 1u) | 1u;
     (void)fogrt_rng_u32(rng);
     rng->state += seed;
     (void)fogrt_rng_u32(rng);
 }
-FOGRT__PUBLIC float fogrt_rng_float(fogrt_rng *rng)
-{
+FOGRT__PUBLIC float fogrt_rng_float(fogrt_rng *rng) {
     return (float)(fogrt_rng_u32(rng) >> 8) * 5.9604644775390625e-8f;   /* 24 bits times 2^-24: [0, 1 - 2^-24] */
 }
 /* A 64-bit mix (SplitMix64 finaliser) to turn (seed, pixel) into a well spread state. */
-FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x)
-{
+FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x) {
     x += 0x9E3779B97F4A7C15ULL;
     x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
     x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
@@ -1310,12 +1297,10 @@ struct fogrt_scene {
     char error_text[256];      /*   through a const scene, as a log line is) */
 };
 
-FOGRT__PRIVATE void fogrt__log(const fogrt_scene *s, fogrt_log_level level, const char *msg)
-{
+FOGRT__PRIVATE void fogrt__log(const fogrt_scene *s, fogrt_log_level level, const char *msg) {
     if (s && s->logger.func) s->logger.func(level, msg, s->logger.user_data);
 }
-FOGRT__PRIVATE fogrt_result fogrt__fail(const fogrt_scene *s, fogrt_result r, const char *msg)
-{
+FOGRT__PRIVATE fogrt_result fogrt__fail(const fogrt_scene *s, fogrt_result r, const char *msg) {
     size_t n = strlen(msg);
     fogrt__log(s, FOGRT_LOG_ERROR, msg);
     if (s && s->error) {
@@ -1332,23 +1317,20 @@ FOGRT__PUBLIC const char *fogrt_scene_last_error(const fogrt_scene *s) { FOGRT_A
 
 /* Move *ptr to a new array of new_cap elements, keeping its first used elements. Returns
    false when out of memory, leaving the old array untouched. */
-FOGRT__PRIVATE bool fogrt__reserve(fogrt_scene *s, void **ptr, uint32_t used, uint32_t new_cap, size_t elem)
-{
+FOGRT__PRIVATE bool fogrt__reserve(fogrt_scene *s, void **ptr, uint32_t used, uint32_t new_cap, size_t elem) {
     void *p = fogrt__alloc(&s->allocator, (size_t)new_cap * elem);
     if (!p) return false;
     if (*ptr) { memcpy(p, *ptr, (size_t)used * elem); fogrt__free(&s->allocator, *ptr); }
     *ptr = p;
     return true;
 }
-FOGRT__PRIVATE uint32_t fogrt__grow_cap(uint32_t cap, uint32_t need)
-{
+FOGRT__PRIVATE uint32_t fogrt__grow_cap(uint32_t cap, uint32_t need) {
     uint64_t c = cap ? cap : 16;
     while (c < need) c *= 2;
     return c > 0x7FFFFFFFu ? 0x7FFFFFFFu : (uint32_t)c;
 }
 
-FOGRT__PUBLIC fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogrt_scene **out_scene)
-{
+FOGRT__PUBLIC fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogrt_scene **out_scene) {
     fogrt_scene_desc d;
     fogrt_scene *s;
     FOGRT_ASSERT(out_scene);
@@ -1368,14 +1350,12 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogr
 }
 /* Drops the built data without freeing it (fogrt_scene_build keeps it until the new build
    has succeeded), or frees it. */
-FOGRT__PRIVATE void fogrt__forget_built(fogrt_scene *s)
-{
+FOGRT__PRIVATE void fogrt__forget_built(fogrt_scene *s) {
     s->nodes = NULL; s->node_count = 0; s->prim_index = NULL; s->prims = NULL;
     s->area_lights = NULL; s->area_light_count = 0; s->light_prims = NULL; s->light_cdf = NULL;
     s->prim_light = NULL; s->spot_cos = NULL; s->x = NULL; s->built = false;
 }
-FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s)
-{
+FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s) {
 #ifndef FOGRT_MINIMAL
     fogrt__x_release(s);                                 /* SEAM 4 */
 #endif
@@ -1385,8 +1365,7 @@ FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s)
     fogrt__free(&s->allocator, s->prim_light); fogrt__free(&s->allocator, s->spot_cos);
     fogrt__forget_built(s);
 }
-FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s)
-{
+FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s) {
     fogrt_allocator a;
     if (!s) return;
     a = s->allocator;
@@ -1400,13 +1379,11 @@ FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s)
     fogrt__free(&a, s);
 }
 
-FOGRT__PRIVATE bool fogrt__colour_ok(fogrt__v3 c)
-{
+FOGRT__PRIVATE bool fogrt__colour_ok(fogrt__v3 c) {
     return fogrt__v3_finite(c) && c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f;
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_material_desc *desc,
-                                                    uint32_t *out_id)
-{
+                                                    uint32_t *out_id) {
     fogrt_material_desc m;
     FOGRT_ASSERT(s && desc);
     m = *desc;
@@ -1436,8 +1413,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_
 }
 
 /* Everything a mesh must satisfy, checked before anything is copied. */
-FOGRT__PRIVATE fogrt_result fogrt__check_mesh(const fogrt_scene *s, const fogrt_mesh_desc *desc)
-{
+FOGRT__PRIVATE fogrt_result fogrt__check_mesh(const fogrt_scene *s, const fogrt_mesh_desc *desc) {
     uint32_t i, n = desc->triangle_count;
     if (!desc->positions) return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "mesh.positions: NULL");
     FOGRT__REFUSE_IF((uint64_t)s->tri_count + s->sph_count + n > FOGRT__MAX_PRIMS, TOO_LARGE, "mesh.triangle_count: too many triangles");
@@ -1458,8 +1434,7 @@ FOGRT__PRIVATE fogrt_result fogrt__check_mesh(const fogrt_scene *s, const fogrt_
 }
 /* Room for n more triangles in every per-triangle array. The normals' array exists only
    once a mesh has normals: without it a triangle takes 45 bytes instead of 81. */
-FOGRT__PRIVATE bool fogrt__reserve_triangles(fogrt_scene *s, uint32_t n, bool normals)
-{
+FOGRT__PRIVATE bool fogrt__reserve_triangles(fogrt_scene *s, uint32_t n, bool normals) {
     uint32_t c = s->tri_count;
     if (c + n > s->tri_cap) {
         uint32_t cap = fogrt__grow_cap(s->tri_cap, c + n);
@@ -1478,8 +1453,7 @@ FOGRT__PRIVATE bool fogrt__reserve_triangles(fogrt_scene *s, uint32_t n, bool no
     }
     return true;
 }
-FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh_desc *desc)
-{
+FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh_desc *desc) {
     uint32_t i, k, n, first;
     fogrt_result r;
     FOGRT_ASSERT(s && desc);
@@ -1509,8 +1483,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 center, float radius, uint32_t material)
-{
+FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 center, float radius, uint32_t material) {
     FOGRT_ASSERT(s);
     if (!fogrt__coord_ok(center.x) || !fogrt__coord_ok(center.y) || !fogrt__coord_ok(center.z) ||
         !fogrt__coord_ok(radius) || !(radius > 0.0f))
@@ -1533,8 +1506,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 cen
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__PUBLIC fogrt_result fogrt_scene_add_light(fogrt_scene *s, const fogrt_light_desc *desc)
-{
+FOGRT__PUBLIC fogrt_result fogrt_scene_add_light(fogrt_scene *s, const fogrt_light_desc *desc) {
     fogrt_light_desc l;
     FOGRT_ASSERT(s && desc);
     l = *desc;
@@ -1560,8 +1532,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_light(fogrt_scene *s, const fogrt_lig
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment(fogrt_scene *s, fogrt_vec3 radiance, bool upper_only)
-{
+FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment(fogrt_scene *s, fogrt_vec3 radiance, bool upper_only) {
     FOGRT_ASSERT(s);
     FOGRT__REFUSE_IF(!fogrt__colour_ok(radiance), INVALID_ARGUMENT, "environment radiance: negative or not finite");
     s->env = radiance;
@@ -1570,8 +1541,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment(fogrt_scene *s, fogrt_vec
     s->built = false;
     return FOGRT_RESULT_OK;
 }
-FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_camera_desc *desc)
-{
+FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_camera_desc *desc) {
     fogrt_camera_desc c;
     fogrt__v3 fwd, up;
     float m;
@@ -1599,15 +1569,13 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_ca
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__PRIVATE bool fogrt__box_ok(fogrt__v3 lo, fogrt__v3 hi)
-{
+FOGRT__PRIVATE bool fogrt__box_ok(fogrt__v3 lo, fogrt__v3 hi) {
     return fogrt__coord_ok(lo.x) && fogrt__coord_ok(lo.y) && fogrt__coord_ok(lo.z) &&
            fogrt__coord_ok(hi.x) && fogrt__coord_ok(hi.y) && fogrt__coord_ok(hi.z) &&
            lo.x < hi.x && lo.y < hi.y && lo.z < hi.z;
 }
 /* Checks a medium and clamps |g| to FOGRT_HG_G_MAX (with a warning). */
-FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medium_desc *m)
-{
+FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medium_desc *m) {
     FOGRT__REFUSE_IF(!fogrt__finite(m->sigma_t) || m->sigma_t < 0.0f, INVALID_MEDIUM, "medium.sigma_t: negative or not finite");
     FOGRT__REFUSE_IF(!fogrt__colour_ok(m->albedo) || fogrt__max3(m->albedo) > 1.0f, INVALID_MEDIUM, "medium.albedo: outside [0, 1]");
     FOGRT__REFUSE_IF(!(m->g >= -1.0f && m->g <= 1.0f), INVALID_MEDIUM, "medium.g: outside [-1, 1]");
@@ -1632,8 +1600,7 @@ FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medi
     return fogrt__x_check_media(s, m);                   /* SEAM 6: G's medium fields */
 #endif
 }
-FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_medium_desc *desc)
-{
+FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_medium_desc *desc) {
     fogrt_medium_desc m;
     fogrt_result r;
     FOGRT_ASSERT(s && desc);
@@ -1644,16 +1611,14 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_me
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__PUBLIC uint32_t fogrt_scene_get_prim_material(const fogrt_scene *s, uint32_t prim)
-{
+FOGRT__PUBLIC uint32_t fogrt_scene_get_prim_material(const fogrt_scene *s, uint32_t prim) {
     FOGRT_ASSERT(s);
     if (prim < s->tri_count) return s->tri_material[prim];
     if (prim - s->tri_count < s->sph_count) return s->sph_material[prim - s->tri_count];
     return UINT32_MAX;
 }
 FOGRT__PUBLIC uint32_t fogrt_scene_get_features(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->features; }
-FOGRT__PUBLIC void fogrt_scene_get_info(const fogrt_scene *s, fogrt_scene_info *info)
-{
+FOGRT__PUBLIC void fogrt_scene_get_info(const fogrt_scene *s, fogrt_scene_info *info) {
     FOGRT_ASSERT(s && info);
     memset(info, 0, sizeof *info);
     info->triangle_count = s->tri_count; info->sphere_count = s->sph_count;
@@ -1662,15 +1627,13 @@ FOGRT__PUBLIC void fogrt_scene_get_info(const fogrt_scene *s, fogrt_scene_info *
     info->bounds_min = s->bmin; info->bounds_max = s->bmax;
     info->has_environment = s->has_env; info->built = s->built;
 }
-FOGRT__PUBLIC fogrt_result fogrt_scene_get_material(const fogrt_scene *s, uint32_t id, fogrt_material_desc *out)
-{
+FOGRT__PUBLIC fogrt_result fogrt_scene_get_material(const fogrt_scene *s, uint32_t id, fogrt_material_desc *out) {
     FOGRT_ASSERT(s && out);
     if (id >= s->material_count) return FOGRT_RESULT_INVALID_ARGUMENT;
     *out = s->materials[id];
     return FOGRT_RESULT_OK;
 }
-FOGRT__PUBLIC fogrt_result fogrt_scene_get_light(const fogrt_scene *s, uint32_t index, fogrt_light_desc *out)
-{
+FOGRT__PUBLIC fogrt_result fogrt_scene_get_light(const fogrt_scene *s, uint32_t index, fogrt_light_desc *out) {
     FOGRT_ASSERT(s && out);
     if (index >= s->light_count) return FOGRT_RESULT_INVALID_ARGUMENT;
     *out = s->lights[index];
@@ -1698,30 +1661,25 @@ FOGRT__PUBLIC void fogrt_scene_get_medium(const fogrt_scene *s, fogrt_medium_des
    children of a node are neighbours), and a split appends its two children.
    ------------------------------------------------------------------------------------------ */
 typedef struct fogrt__aabb { fogrt__v3 lo, hi; } fogrt__aabb;
-FOGRT__PRIVATE fogrt__aabb fogrt__aabb_empty(void)
-{
+FOGRT__PRIVATE fogrt__aabb fogrt__aabb_empty(void) {
     fogrt__aabb b;
     b.lo = fogrt__v(FLT_MAX, FLT_MAX, FLT_MAX);
     b.hi = fogrt__v(-FLT_MAX, -FLT_MAX, -FLT_MAX);
     return b;
 }
-FOGRT__HOT void fogrt__aabb_grow(fogrt__aabb *b, fogrt__v3 p)
-{
+FOGRT__HOT void fogrt__aabb_grow(fogrt__aabb *b, fogrt__v3 p) {
     b->lo.x = FOGRT__MIN(b->lo.x, p.x); b->lo.y = FOGRT__MIN(b->lo.y, p.y); b->lo.z = FOGRT__MIN(b->lo.z, p.z);
     b->hi.x = FOGRT__MAX(b->hi.x, p.x); b->hi.y = FOGRT__MAX(b->hi.y, p.y); b->hi.z = FOGRT__MAX(b->hi.z, p.z);
 }
-FOGRT__HOT void fogrt__aabb_union(fogrt__aabb *b, const fogrt__aabb *o)   /* o may be empty */
-{
+FOGRT__HOT void fogrt__aabb_union(fogrt__aabb *b, const fogrt__aabb *o) {   /* o may be empty */
     b->lo.x = FOGRT__MIN(b->lo.x, o->lo.x); b->lo.y = FOGRT__MIN(b->lo.y, o->lo.y); b->lo.z = FOGRT__MIN(b->lo.z, o->lo.z);
     b->hi.x = FOGRT__MAX(b->hi.x, o->hi.x); b->hi.y = FOGRT__MAX(b->hi.y, o->hi.y); b->hi.z = FOGRT__MAX(b->hi.z, o->hi.z);
 }
-FOGRT__PRIVATE float fogrt__aabb_area(const fogrt__aabb *b)     /* 0 for the empty box */
-{
+FOGRT__PRIVATE float fogrt__aabb_area(const fogrt__aabb *b) {     /* 0 for the empty box */
     fogrt__v3 e = fogrt__sub(b->hi, b->lo);
     return e.x < 0.0f ? 0.0f : 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
 }
-FOGRT__PRIVATE float fogrt__aabb_volume(const fogrt__aabb *b)
-{
+FOGRT__PRIVATE float fogrt__aabb_volume(const fogrt__aabb *b) {
     fogrt__v3 e = fogrt__sub(b->hi, b->lo);
     return e.x < 0.0f ? 0.0f : e.x * e.y * e.z;
 }
@@ -1743,18 +1701,15 @@ typedef struct fogrt__build {
 typedef struct fogrt__bjob { uint32_t node, depth; fogrt__aabb cb; } fogrt__bjob;
 
 /* The heuristic's measure of one side: N A (SAH) or N V (the paper's eq. 1). */
-FOGRT__PRIVATE float fogrt__side_cost(const fogrt_build_desc *d, uint32_t n, const fogrt__aabb *box)
-{
+FOGRT__PRIVATE float fogrt__side_cost(const fogrt_build_desc *d, uint32_t n, const fogrt__aabb *box) {
     return (float)n * (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(box) : fogrt__aabb_area(box));
 }
-FOGRT__PRIVATE void fogrt__node_set_box(fogrt_bvh_node *node, const fogrt__aabb *b)
-{
+FOGRT__PRIVATE void fogrt__node_set_box(fogrt_bvh_node *node, const fogrt__aabb *b) {
     node->bmin[0] = b->lo.x; node->bmin[1] = b->lo.y; node->bmin[2] = b->lo.z;
     node->bmax[0] = b->hi.x; node->bmax[1] = b->hi.y; node->bmax[2] = b->hi.z;
 }
 /* Box and centroid bounds of count primitives (the root, and the halved nodes). */
-FOGRT__PRIVATE void fogrt__boxes_bounds(const fogrt__aabb *box, uint32_t count, fogrt_bvh_node *node, fogrt__aabb *cb)
-{
+FOGRT__PRIVATE void fogrt__boxes_bounds(const fogrt__aabb *box, uint32_t count, fogrt_bvh_node *node, fogrt__aabb *cb) {
     fogrt__aabb b = fogrt__aabb_empty();
     uint32_t i;
     *cb = fogrt__aabb_empty();
@@ -1775,8 +1730,7 @@ typedef struct fogrt__bins {
 } fogrt__bins;
 /* The bin of a centroid on axis ax: (c - origin) scale, clamped to [0, nb - 1] and
    truncated; a NaN (a flat axis: 0 x infinity) lands in bin 0. */
-FOGRT__HOT int fogrt__bin_of(const fogrt__bins *bins, fogrt__v3 c, int ax)
-{
+FOGRT__HOT int fogrt__bin_of(const fogrt__bins *bins, fogrt__v3 c, int ax) {
     float f = (fogrt__comp(c, ax) - fogrt__comp(bins->origin, ax)) * fogrt__comp(bins->scale, ax);
     f = f > 0.0f ? f : 0.0f;
     f = f < (float)(bins->nb - 1) ? f : (float)(bins->nb - 1);
@@ -1787,8 +1741,7 @@ FOGRT__HOT int fogrt__bin_of(const fogrt__bins *bins, fogrt__v3 c, int ax)
    has the same coordinate gets scale 0 (no plane to try there). Then every primitive goes
    into its bin on each axis. */
 FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt_build_desc *d, const fogrt__aabb *cb,
-                                     const fogrt__aabb *box, uint32_t count)
-{
+                                     const fogrt__aabb *box, uint32_t count) {
     float sc[3];
     uint32_t i;
     int ax, k, nb = count < (uint32_t)d->bins ? (int)count : d->bins;
@@ -1815,8 +1768,7 @@ FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt_build_desc *
    nb - 1 planes between the bins (plane k: bins 0..k-1 on the left). Improves *best, and
    *best_k, where a plane with primitives on both sides is cheaper. */
 FOGRT__PRIVATE bool fogrt__bins_sweep(const fogrt_build_desc *d, const fogrt__bins *bins, int ax, uint32_t count,
-                                      float *best, int *best_k)
-{
+                                      float *best, int *best_k) {
     fogrt__aabb b = fogrt__aabb_empty();
     uint32_t left_n = 0, right_n = 0;
     float left_cost[FOGRT__BVH_MAX_BINS];
@@ -1840,8 +1792,7 @@ FOGRT__PRIVATE bool fogrt__bins_sweep(const fogrt_build_desc *d, const fogrt__bi
 }
 /* The leaf rule: with the SAH, split when it is cheaper than a leaf, and always above the
    largest leaf size; with the volume heuristic, split down to the largest leaf size. */
-FOGRT__PRIVATE bool fogrt__split_pays(const fogrt_build_desc *d, const fogrt_bvh_node *node, uint32_t count, float best)
-{
+FOGRT__PRIVATE bool fogrt__split_pays(const fogrt_build_desc *d, const fogrt_bvh_node *node, uint32_t count, float best) {
     fogrt__aabb box;
     if (count > (uint32_t)d->max_leaf_size) return true;
     if (d->heuristic == FOGRT_BVH_VOLUME) return false;
@@ -1853,8 +1804,7 @@ FOGRT__PRIVATE bool fogrt__split_pays(const fogrt_build_desc *d, const fogrt_bvh
    both sides' centroid bounds; the children's boxes are the unions of their bins. Returns
    the number on the left. */
 FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__aabb *box, uint32_t *id, uint32_t count,
-                                              int ax, int k, fogrt_bvh_node *child, fogrt__bjob *left, fogrt__bjob *right)
-{
+                                              int ax, int k, fogrt_bvh_node *child, fogrt__bjob *left, fogrt__bjob *right) {
     fogrt__aabb side[2];
     uint32_t lo = 0, hi = count;
     int j;
@@ -1882,8 +1832,7 @@ FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__aa
    primitives on the left, or 0 when the node stays a leaf, or must be halved instead
    (*halve: its centroids coincide but it is too big). */
 FOGRT__PRIVATE uint32_t fogrt__bvh_split_binned(fogrt__build *b, const fogrt__bjob *job, fogrt_bvh_node *child,
-                                                fogrt__bjob *left, fogrt__bjob *right, bool *halve)
-{
+                                                fogrt__bjob *left, fogrt__bjob *right, bool *halve) {
     const fogrt_bvh_node *node = &b->nodes[job->node];
     uint32_t first = node->left_first, count = node->prim_count;
     fogrt__bins bins;
@@ -1904,8 +1853,7 @@ FOGRT__PRIVATE uint32_t fogrt__bvh_split_binned(fogrt__build *b, const fogrt__bj
     return fogrt__bins_partition(&bins, b->box + first, b->idx + first, count, best_ax, best_k, child, left, right);
 }
 /* Split job's node into the next two nodes, or leave it a leaf (returns false). */
-FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fogrt__bjob *left, fogrt__bjob *right)
-{
+FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fogrt__bjob *left, fogrt__bjob *right) {
     fogrt_bvh_node *node = &b->nodes[job->node], *child = &b->nodes[b->node_count];
     uint32_t first = node->left_first, count = node->prim_count, left_count = 0;
     bool halve = job->depth >= FOGRT__BVH_SAH_DEPTH;
@@ -1929,8 +1877,7 @@ FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fo
 }
 /* The tree over b->box[0 .. prim_count) (b->idx their primitive ids), depth first with an
    explicit stack. */
-FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count)
-{
+FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count) {
     fogrt__bjob stack[FOGRT__BVH_MAX_DEPTH + 2];
     uint32_t sp = 1;
     fogrt_bvh_node *root = &b->nodes[0];
@@ -1956,8 +1903,7 @@ FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count)
    parallel to the triangle's plane (|cos| below 1e-6, where the distance is numerically
    meaningless) misses it too. */
 FOGRT__HOT bool fogrt__hit_triangle(fogrt__v3 o, fogrt__v3 d, fogrt__v3 v0, fogrt__v3 e1, fogrt__v3 e2,
-                                        float tmin, float tmax, float *t, float *u, float *v)
-{
+                                        float tmin, float tmax, float *t, float *u, float *v) {
     fogrt__v3 pvec = fogrt__cross(d, e2), tvec, qvec;
     float det = fogrt__dot(e1, pvec), inv_det, uu, vv, tt;
     if (!(det * det > 1e-12f * fogrt__dot(e1, e1) * fogrt__dot(e2, e2))) return false;
@@ -1976,8 +1922,7 @@ FOGRT__HOT bool fogrt__hit_triangle(fogrt__v3 o, fogrt__v3 d, fogrt__v3 v0, fogr
 /* Ray-sphere for a unit direction. The discriminant is formed as r^2 - |oc - b d|^2 (the
    squared distance of the centre from the line), which does not cancel for distant spheres,
    and the nearer root comes from q = -b - sign(b) sqrt(disc) (no cancellation either). */
-FOGRT__HOT bool fogrt__hit_sphere(fogrt__v3 o, fogrt__v3 d, fogrt__v3 c, float r, float tmin, float tmax, float *t)
-{
+FOGRT__HOT bool fogrt__hit_sphere(fogrt__v3 o, fogrt__v3 d, fogrt__v3 c, float r, float tmin, float tmax, float *t) {
     fogrt__v3 oc = fogrt__sub(o, c), f;
     float b = fogrt__dot(oc, d), disc, sq, q, cc, t0, t1;
     f = fogrt__madd(oc, d, -b);
@@ -1994,13 +1939,11 @@ FOGRT__HOT bool fogrt__hit_sphere(fogrt__v3 o, fogrt__v3 d, fogrt__v3 c, float r
     return false;
 }
 FOGRT__PUBLIC bool fogrt_intersect_triangle(fogrt_vec3 v0, fogrt_vec3 v1, fogrt_vec3 v2, fogrt_vec3 o,
-                                            fogrt_vec3 d, float tmin, float tmax, float *t, float *u, float *v)
-{
+                                            fogrt_vec3 d, float tmin, float tmax, float *t, float *u, float *v) {
     return fogrt__hit_triangle(o, d, v0, fogrt__sub(v1, v0), fogrt__sub(v2, v0), tmin, tmax, t, u, v);
 }
 FOGRT__PUBLIC bool fogrt_intersect_sphere(fogrt_vec3 center, float radius, fogrt_vec3 o, fogrt_vec3 d,
-                                          float tmin, float tmax, float *t)
-{
+                                          float tmin, float tmax, float *t) {
     return fogrt__hit_sphere(o, d, center, radius, tmin, tmax, t);
 }
 
@@ -2017,8 +1960,7 @@ typedef struct fogrt__ray { fogrt__v3 o, inv; } fogrt__ray;
    for that face; every comparison below is written so that a NaN bound is ignored (the
    ray is inside that slab), as in pbrt. The exit distance is widened by 2 ulps so a ray
    grazing a face is not lost to rounding. */
-FOGRT__HOT float fogrt__slab(const fogrt_bvh_node *n, const fogrt__ray *r, float tmin, float tmax)
-{
+FOGRT__HOT float fogrt__slab(const fogrt_bvh_node *n, const fogrt__ray *r, float tmin, float tmax) {
     float t0 = tmin, t1 = tmax;
     int a;
     for (a = 0; a < 3; ++a) {
@@ -2039,16 +1981,14 @@ FOGRT__HOT float fogrt__slab(const fogrt_bvh_node *n, const fogrt__ray *r, float
    by bench/wide_dev.c). The slack gives the brute-force answer there and costs nothing
    measurable; a hit itself still needs t < tmax exactly. */
 #define FOGRT__CULL_SLACK 1e-5f
-FOGRT__HOT float fogrt__cull(float tmax)   /* tmax, widened; +-inf and NaN unchanged */
-{
+FOGRT__HOT float fogrt__cull(float tmax) {   /* tmax, widened; +-inf and NaN unchanged */
     return tmax * (tmax > 0.0f ? 1.0f + FOGRT__CULL_SLACK : 1.0f - FOGRT__CULL_SLACK);
 }
 /* Iterative traversal of the binary tree with a fixed stack: visit the nearer child first,
    push the farther, and skip a popped node whose entry lies beyond the closest hit found so
    far. any_hit: return at the first hit (shadow rays). */
 FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
-                                         fogrt_hit *hit, bool any_hit)
-{
+                                         fogrt_hit *hit, bool any_hit) {
     uint32_t stack[FOGRT__BVH_MAX_DEPTH + 2], sp = 0, tri_count = s->tri_count;
     float stack_t[FOGRT__BVH_MAX_DEPTH + 2];
     const fogrt_bvh_node *nodes = s->nodes, *node;
@@ -2099,22 +2039,19 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 /* The scene's ray query: the binary tree above, or the wide tree of Part II (A) when the
    build made one. */
 FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
-                                fogrt_hit *hit, bool any_hit)
-{
+                                fogrt_hit *hit, bool any_hit) {
 #ifndef FOGRT_NO_WIDE_BVH
     bool done, found = fogrt__x_traverse(s, o, d, tmin, tmax, hit, any_hit, &done);   /* SEAM 1 */
     if (done) return found;
 #endif
     return fogrt__bvh2_traverse(s, o, d, tmin, tmax, hit, any_hit);
 }
-FOGRT__PUBLIC bool fogrt_scene_intersect(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax, fogrt_hit *hit)
-{
+FOGRT__PUBLIC bool fogrt_scene_intersect(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax, fogrt_hit *hit) {
     fogrt_hit tmp;
     FOGRT_ASSERT(s);
     return fogrt__traverse(s, o, d, tmin, tmax, hit ? hit : &tmp, false);
 }
-FOGRT__PUBLIC bool fogrt_scene_occluded(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax)
-{
+FOGRT__PUBLIC bool fogrt_scene_occluded(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax) {
     fogrt_hit tmp;
     FOGRT_ASSERT(s);
     return fogrt__traverse(s, o, d, tmin, tmax, &tmp, true);
@@ -2126,8 +2063,7 @@ FOGRT__PUBLIC bool fogrt_scene_occluded(const fogrt_scene *s, fogrt_vec3 o, fogr
    both sides (they answer on the side wo is on); refraction and glass use the sign of wo.z
    to tell entering (wo.z > 0) from leaving (wo.z < 0).
    ------------------------------------------------------------------------------------------ */
-FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *y)
-{
+FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *y) {
     float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f, r, phi;
     if (a == 0.0f && b == 0.0f) { *x = 0.0f; *y = 0.0f; return; }
     if (fabsf(a) > fabsf(b)) { r = a; phi = (FOGRT__PI / 4.0f) * (b / a); }
@@ -2136,26 +2072,22 @@ FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *
     *y = r * sinf(phi);
 }
 /* Cosine-weighted hemisphere: the disk lifted to the hemisphere (Malley). pdf = cos / pi. */
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_cosine_hemisphere(float u1, float u2)
-{
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_cosine_hemisphere(float u1, float u2) {
     float x, y;
     fogrt__concentric_disk(u1, u2, &x, &y);
     return fogrt__v(x, y, sqrtf(FOGRT__MAX(0.0f, 1.0f - x * x - y * y)));
 }
-FOGRT__PUBLIC float fogrt_cosine_hemisphere_pdf(float cos_theta)
-{
+FOGRT__PUBLIC float fogrt_cosine_hemisphere_pdf(float cos_theta) {
     return cos_theta > 0.0f ? cos_theta * FOGRT__INV_PI : 0.0f;
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_reflect(fogrt_vec3 n, fogrt_vec3 wo)
-{
+FOGRT__PUBLIC fogrt_vec3 fogrt_reflect(fogrt_vec3 n, fogrt_vec3 wo) {
     return fogrt__sub(fogrt__scale(n, 2.0f * fogrt__dot(wo, n)), wo);
 }
 #ifndef FOGRT_NO_GLASS
 /* Schlick: F = R0 + (1 - R0)(1 - c)^5 with R0 = ((eta-1)/(eta+1))^2, and c the cosine on the
    optically thinner side: the incident cosine when entering, the transmitted one when
    leaving (using cos_i there would be wrong). Total internal reflection is tested first. */
-FOGRT__PUBLIC float fogrt_fresnel_schlick(float eta, float cos_i)
-{
+FOGRT__PUBLIC float fogrt_fresnel_schlick(float eta, float cos_i) {
     float r0 = (eta - 1.0f) / (eta + 1.0f), c, m;
     r0 *= r0;
     cos_i = FOGRT__CLAMP(cos_i, -1.0f, 1.0f);
@@ -2171,8 +2103,7 @@ FOGRT__PUBLIC float fogrt_fresnel_schlick(float eta, float cos_i)
     return r0 + (1.0f - r0) * m * m * m * m * m;
 }
 /* Snell's law: wi = -wo/eta + (cos_i/eta - cos_t) n, after flipping n (and eta) to wo's side. */
-FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 n, float eta, fogrt_vec3 wo, fogrt_vec3 *wi)
-{
+FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 n, float eta, fogrt_vec3 wo, fogrt_vec3 *wi) {
     float cos_i = fogrt__dot(n, wo), sin2_i, sin2_t, cos_t;
     if (cos_i < 0.0f) { eta = 1.0f / eta; cos_i = -cos_i; n = fogrt__neg(n); }
     sin2_i = FOGRT__MAX(0.0f, 1.0f - cos_i * cos_i);
@@ -2182,8 +2113,7 @@ FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 n, float eta, fogrt_vec3 wo, fogrt_v
     *wi = fogrt__normalize(fogrt__add(fogrt__scale(wo, -1.0f / eta), fogrt__scale(n, cos_i / eta - cos_t)));
     return true;
 }
-FOGRT__PRIVATE float fogrt__fresnel(fogrt_fresnel mode, float eta, float cos_i)
-{
+FOGRT__PRIVATE float fogrt__fresnel(fogrt_fresnel mode, float eta, float cos_i) {
 #ifndef FOGRT_NO_EXACT_FRESNEL
     if (mode == FOGRT_FRESNEL_EXACT) return fogrt_fresnel_dielectric(eta, cos_i);   /* SEAM 5 (C) */
 #else
@@ -2194,8 +2124,7 @@ FOGRT__PRIVATE float fogrt__fresnel(fogrt_fresnel mode, float eta, float cos_i)
 /* Refraction and glass: reflect with probability F (glass) or only on total internal
    reflection (refraction), else refract. The probability is the lobe's discrete pdf. */
 FOGRT__PRIVATE void fogrt__sample_dielectric(const fogrt_material_desc *m, fogrt_fresnel fresnel, fogrt__v3 wo,
-                                             float u_lobe, fogrt_bsdf_sample *out)
-{
+                                             float u_lobe, fogrt_bsdf_sample *out) {
     fogrt__v3 wt;
     float eta = FOGRT__DEF(m->ior, 1.5f);
     bool can_refract = fogrt_refract(fogrt__v(0.0f, 0.0f, 1.0f), eta, wo, &wt);
@@ -2214,16 +2143,14 @@ FOGRT__PRIVATE void fogrt__sample_dielectric(const fogrt_material_desc *m, fogrt
     }
 }
 #endif /* FOGRT_NO_GLASS */
-FOGRT__PRIVATE fogrt_bsdf_type fogrt__bsdf_type(const fogrt_material_desc *m)
-{
+FOGRT__PRIVATE fogrt_bsdf_type fogrt__bsdf_type(const fogrt_material_desc *m) {
     return m->type == FOGRT_BSDF_DEFAULT ? FOGRT_BSDF_DIFFUSE : m->type;
 }
 FOGRT__PRIVATE bool fogrt__bsdf_is_delta(fogrt_bsdf_type t) { return t != FOGRT_BSDF_DIFFUSE; }
 
 FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel fresnel,
                                      fogrt_vec3 wo, float u_lobe, float u1, float u2,
-                                     fogrt_bsdf_sample *out)
-{
+                                     fogrt_bsdf_sample *out) {
     fogrt_bsdf_type type = fogrt__bsdf_type(m);
     fogrt__v3 wi;
     memset(out, 0, sizeof *out);
@@ -2250,13 +2177,11 @@ FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel
     out->pdf = fabsf(wi.z) * FOGRT__INV_PI;
     return true;
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_bsdf_eval(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi)
-{
+FOGRT__PUBLIC fogrt_vec3 fogrt_bsdf_eval(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi) {
     if (fogrt__bsdf_is_delta(fogrt__bsdf_type(m)) || !(wo.z * wi.z > 0.0f)) return fogrt__v(0.0f, 0.0f, 0.0f);
     return fogrt__scale(m->reflectance, FOGRT__INV_PI);
 }
-FOGRT__PUBLIC float fogrt_bsdf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi)
-{
+FOGRT__PUBLIC float fogrt_bsdf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi) {
     if (fogrt__bsdf_is_delta(fogrt__bsdf_type(m)) || !(wo.z * wi.z > 0.0f)) return 0.0f;
     return fabsf(wi.z) * FOGRT__INV_PI;
 }
@@ -2297,8 +2222,7 @@ typedef struct fogrt__vertex {
     fogrt__v3 ng;              /* surface: geometric normal on the side of wo */
     const fogrt_material_desc *m;
 } fogrt__vertex;
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_uniform_sphere(float u1, float u2)
-{
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_uniform_sphere(float u1, float u2) {
     float z = 1.0f - 2.0f * u1;
     float r = sqrtf(FOGRT__MAX(0.0f, (1.0f - z) * (1.0f + z)));
     float phi = 2.0f * FOGRT__PI * u2;
@@ -2306,16 +2230,14 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_sample_uniform_sphere(float u1, float u2)
 }
 FOGRT__PUBLIC float fogrt_uniform_sphere_pdf(void) { return FOGRT__INV_4PI; }
 /* Uniform on a triangle: b0 = 1 - sqrt(u1), b1 = sqrt(u1)(1 - u2), b2 = sqrt(u1) u2. */
-FOGRT__PUBLIC void fogrt_sample_triangle(float u1, float u2, float *b1, float *b2)
-{
+FOGRT__PUBLIC void fogrt_sample_triangle(float u1, float u2, float *b1, float *b2) {
     float su = sqrtf(FOGRT__MAX(0.0f, u1));
     *b1 = su * (1.0f - u2);
     *b2 = su * u2;
 }
 /* Cone of directions subtended by a sphere: cos(theta_max) = sqrt(1 - r^2/d^2). 1 - cos is
    formed as sin^2 / (1 + cos), which stays accurate for a small or distant sphere. */
-FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 c, float r, fogrt__v3 p, float *dist)
-{
+FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 c, float r, fogrt__v3 p, float *dist) {
     fogrt__v3 pc = fogrt__sub(c, p);
     float d2 = fogrt__dot(pc, pc), sin2_max, cos_max;
     *dist = sqrtf(d2);
@@ -2328,13 +2250,11 @@ FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 c, float r, fogrt
    2 pi u: sin theta from omc (2 - omc), which stays accurate next to the axis. Drawing omc
    uniformly in [0, 1 - cos theta_max) samples a cone uniformly (spheres here, spot lights'
    footprints below). */
-FOGRT__HOT fogrt__v3 fogrt__in_cone(const fogrt__frame *f, float omc, float u)
-{
+FOGRT__HOT fogrt__v3 fogrt__in_cone(const fogrt__frame *f, float omc, float u) {
     return fogrt__around(f, 1.0f - omc, sqrtf(FOGRT__MAX(0.0f, omc * (2.0f - omc))), u);
 }
 FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 center, float radius, fogrt_vec3 p,
-                                                         float u1, float u2, float *pdf)
-{
+                                                         float u1, float u2, float *pdf) {
     float dist, omc = fogrt__sphere_one_minus_cos_max(center, radius, p, &dist), one_minus_cos;
     fogrt__frame f;
     if (omc <= 0.0f) {   /* inside: every direction sees the sphere */
@@ -2346,14 +2266,12 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 center, floa
     if (pdf) *pdf = 1.0f / (2.0f * FOGRT__PI * omc);
     return fogrt__in_cone(&f, one_minus_cos, u2);
 }
-FOGRT__PUBLIC float fogrt_sphere_solid_angle_pdf(fogrt_vec3 center, float radius, fogrt_vec3 p)
-{
+FOGRT__PUBLIC float fogrt_sphere_solid_angle_pdf(fogrt_vec3 center, float radius, fogrt_vec3 p) {
     float dist, omc = fogrt__sphere_one_minus_cos_max(center, radius, p, &dist);
     return omc <= 0.0f ? FOGRT__INV_4PI : 1.0f / (2.0f * FOGRT__PI * omc);
 }
 /* Spot profile: full inside the beam, linear in the angle down to zero at the cutoff. */
-FOGRT__PUBLIC float fogrt_spot_falloff(float cutoff_deg, float beam_deg, float cos_theta)
-{
+FOGRT__PUBLIC float fogrt_spot_falloff(float cutoff_deg, float beam_deg, float cos_theta) {
     float theta = acosf(FOGRT__CLAMP(cos_theta, -1.0f, 1.0f)) * (180.0f / FOGRT__PI);
     if (!(cutoff_deg > beam_deg)) return theta <= cutoff_deg ? 1.0f : 0.0f;   /* hard cone */
     return FOGRT__CLAMP((cutoff_deg - theta) / (cutoff_deg - beam_deg), 0.0f, 1.0f);
@@ -2362,14 +2280,12 @@ FOGRT__PUBLIC float fogrt_spot_falloff(float cutoff_deg, float beam_deg, float c
 /* The same profile for a light of a built scene, from its two cosines (s->spot_cos: the
    cutoff's, the beam's): outside the band between them, by a margin far above acosf's
    rounding, it is 0 or 1 without the acos. */
-FOGRT__PRIVATE float fogrt__spot_profile(const fogrt_light_desc *l, const float *cosines, float cos_theta)
-{
+FOGRT__PRIVATE float fogrt__spot_profile(const fogrt_light_desc *l, const float *cosines, float cos_theta) {
     if (cos_theta < cosines[0] - 1e-4f) return 0.0f;
     if (cos_theta > cosines[1] + 1e-4f) return 1.0f;
     return fogrt_spot_falloff(l->cutoff_deg, l->beam_deg, cos_theta);
 }
-FOGRT__PRIVATE float fogrt__power_heuristic(float a, float b)
-{
+FOGRT__PRIVATE float fogrt__power_heuristic(float a, float b) {
     float r;
     if (!(a > 0.0f)) return 0.0f;
     r = b / a;
@@ -2377,12 +2293,10 @@ FOGRT__PRIVATE float fogrt__power_heuristic(float a, float b)
     return 1.0f / (1.0f + r * r);     /* = a^2 / (a^2 + b^2), without overflow */
 }
 /* Distance to push a new ray's origin off a surface: scale-aware, a few ulps of |p|. */
-FOGRT__PRIVATE float fogrt__offset_size(const fogrt_scene *s, fogrt__v3 p)
-{
+FOGRT__PRIVATE float fogrt__offset_size(const fogrt_scene *s, fogrt__v3 p) {
     return s->eps + 1e-5f * FOGRT__MAX(fabsf(p.x), FOGRT__MAX(fabsf(p.y), fabsf(p.z)));
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt__v3 n, fogrt__v3 w)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt__v3 n, fogrt__v3 w) {
     float e = fogrt__offset_size(s, p);
     return fogrt__madd(p, n, fogrt__dot(w, n) > 0.0f ? e : -e);
 }
@@ -2390,8 +2304,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt_
 /* What the vertex sends toward -wi from light arriving along wi: f |cos| at a surface (in
    world space, with the geometric-side test against light leaks), the phase function in the
    fog. *pdf is the density with which BSDF / phase sampling would have chosen wi. */
-FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf)
-{
+FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf) {
     fogrt__v3 wo_l, wi_l;
 #ifndef FOGRT_NO_MEDIUM
     if (v->is_medium) {
@@ -2415,8 +2328,7 @@ FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *
    evaluated from the light's centre. Returns false when x gets nothing. (Forced inline:
    as calls, with Part II's second caller, they cost a fog-free render time.) */
 FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l, fogrt__v3 x,
-                                          const float *u, fogrt_light_sample *ls)
-{
+                                          const float *u, fogrt_light_sample *ls) {
     fogrt__v3 to = fogrt__sub(l->position, x), I = l->intensity;
     float d2 = fogrt__dot(to, to), d, pdf, t;
     if (!(d2 > 0.0f)) return false;                    /* x is the light: no direction */
@@ -2443,8 +2355,7 @@ FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_ligh
 /* Discrete sampling from a CDF (a mesh light's triangles by area, the environment map's
    rows and columns): the index of the first CDF entry above u in cdf[0..n), and the fraction of u inside
    that entry (for a continuous position within it). */
-FOGRT__PRIVATE int fogrt__cdf_find(const float *cdf, int n, float u, float *frac)
-{
+FOGRT__PRIVATE int fogrt__cdf_find(const float *cdf, int n, float u, float *frac) {
     int lo = 0, hi = n - 1;
     float c0;
     while (lo < hi) { int mid = (lo + hi) / 2; if (cdf[mid] <= u) lo = mid + 1; else hi = mid; }
@@ -2455,8 +2366,7 @@ FOGRT__PRIVATE int fogrt__cdf_find(const float *cdf, int n, float u, float *frac
 /* A point y on a mesh light: a triangle chosen by area (fogrt__cdf_find), then a uniform
    point on it. *ny is its geometric normal. */
 FOGRT__HOT uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__area_light *a, const float *u,
-                                                 fogrt__v3 *y, fogrt__v3 *ny)
-{
+                                                 fogrt__v3 *y, fogrt__v3 *ny) {
     const fogrt__v3 *v;
     float b1, b2, frac;
     uint32_t tri = s->light_prims[a->first + (uint32_t)fogrt__cdf_find(s->light_cdf + a->first, (int)a->count, u[0], &frac)];
@@ -2470,8 +2380,7 @@ FOGRT__HOT uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__
    by area (pdf 1/A, turned into solid angle). False when the sample is unusable: the back
    of a one-sided emitter, or p inside an emitting sphere. */
 FOGRT__HOT bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area_light *a, fogrt__v3 p,
-                                             const float *u, fogrt_light_sample *ls)
-{
+                                             const float *u, fogrt_light_sample *ls) {
     fogrt__v3 y, ny, to;
     float d2, cos_l;
     ls->is_delta = false;
@@ -2498,8 +2407,7 @@ FOGRT__HOT bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area
 }
 /* The solid-angle pdf with which light sampling would have chosen the emitter point y (on
    primitive prim, geometric normal ny) from p: the MIS partner of BSDF sampling. */
-FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, fogrt__v3 p, fogrt__v3 y, fogrt__v3 ny)
-{
+FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, fogrt__v3 p, fogrt__v3 y, fogrt__v3 ny) {
     uint32_t li = s->prim_light[prim];
     const fogrt__area_light *a;
     fogrt__v3 to;
@@ -2520,8 +2428,7 @@ FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, 
 /* One numbering of all lights (point and spot, then area), so that one call samples any. */
 FOGRT__PUBLIC uint32_t fogrt_scene_light_total(const fogrt_scene *s) { return s->light_count + s->area_light_count; }
 FOGRT__PUBLIC bool fogrt_scene_sample_light(const fogrt_scene *s, uint32_t light, fogrt_vec3 p, float u1, float u2,
-                                            float u3, fogrt_light_sample *ls)
-{
+                                            float u3, fogrt_light_sample *ls) {
     float u[3];
     FOGRT_ASSERT(s && s->built && ls && light < fogrt_scene_light_total(s));
     u[0] = u1; u[1] = u2; u[2] = u3;
@@ -2529,8 +2436,7 @@ FOGRT__PUBLIC bool fogrt_scene_sample_light(const fogrt_scene *s, uint32_t light
     return fogrt__sample_area_light(s, &s->area_lights[light - s->light_count], p, u, ls);
 }
 /* The environment's radiance in direction d (a constant; Part II, C, adds maps). */
-FOGRT__PRIVATE fogrt__v3 fogrt__env_radiance(const fogrt_scene *s, fogrt__v3 d)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__env_radiance(const fogrt_scene *s, fogrt__v3 d) {
     return s->env_upper_only && !(d.y > 0.0f) ? fogrt__v(0.0f, 0.0f, 0.0f) : s->env;
 }
 
@@ -2546,19 +2452,16 @@ FOGRT__PRIVATE fogrt__v3 fogrt__env_radiance(const fogrt_scene *s, fogrt__v3 d)
    uniforms (multiples of 2^-24), and logf is cheaper.
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_NO_MEDIUM
-FOGRT__PUBLIC float fogrt_sample_exponential(float sigma_t, float u)
-{
+FOGRT__PUBLIC float fogrt_sample_exponential(float sigma_t, float u) {
     if (!(sigma_t > 0.0f)) return INFINITY;            /* no medium: never collide */
     u = FOGRT__MIN(u, FOGRT__ONE_MINUS_EPS);
     return -(u < 0.00390625f ? log1pf(-u) : logf(1.0f - u)) / sigma_t;
 }
-FOGRT__PUBLIC float fogrt_exponential_pdf(float sigma_t, float t)
-{
+FOGRT__PUBLIC float fogrt_exponential_pdf(float sigma_t, float t) {
     if (!(sigma_t > 0.0f) || t < 0.0f) return 0.0f;
     return sigma_t * expf(-sigma_t * t);
 }
-FOGRT__PUBLIC float fogrt_invert_exponential(float sigma_t, float t)
-{
+FOGRT__PUBLIC float fogrt_invert_exponential(float sigma_t, float t) {
     if (!(sigma_t > 0.0f) || t <= 0.0f) return 0.0f;
     return -expm1f(-sigma_t * t);
 }
@@ -2573,14 +2476,12 @@ FOGRT__PUBLIC float fogrt_invert_exponential(float sigma_t, float t)
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_NO_MEDIUM
 /* Beer-Lambert: the fraction of light that crosses a distance without colliding. */
-FOGRT__PUBLIC float fogrt_transmittance(float sigma_t, float distance)
-{
+FOGRT__PUBLIC float fogrt_transmittance(float sigma_t, float distance) {
     if (!(sigma_t > 0.0f) || !(distance > 0.0f)) return 1.0f;
     return expf(-sigma_t * distance);   /* underflows to 0 for optical depth > ~87: correct */
 }
 /* Eq. 8 along o + t d for t in [0, dist]: exp(-sigma_t x the length in fog). */
-FOGRT__HOT float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float dist)
-{
+FOGRT__HOT float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float dist) {
 #ifndef FOGRT_MINIMAL
     float a, b;
     if (s->x && !fogrt__x_fog_span(s, o, d, dist, &a, &b)) return 1.0f;    /* SEAM 6: fog in a box */
@@ -2596,8 +2497,7 @@ FOGRT__HOT float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fog
    The shadow ray starts at the offset origin and aims at the target itself, stopping a ray
    offset short of it (the target may lie on a surface: the emitter). */
 FOGRT__HOT float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, const fogrt_light_sample *ls,
-                                   uint64_t *rays)
-{
+                                   uint64_t *rays) {
     fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, ls->wi);
     ++*rays;
     if (!(ls->dist < INFINITY)) {                        /* toward the environment */
@@ -2617,8 +2517,7 @@ FOGRT__HOT float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, con
    3.3 Fog scattering: the Henyey-Greenstein phase function (paper eq. 9-12)
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_NO_MEDIUM
-FOGRT__PRIVATE float fogrt__clamp_g(float g)
-{
+FOGRT__PRIVATE float fogrt__clamp_g(float g) {
     if (!(g == g)) return 0.0f;
     return FOGRT__CLAMP(g, -FOGRT_HG_G_MAX, FOGRT_HG_G_MAX);
 }
@@ -2626,14 +2525,12 @@ FOGRT__PRIVATE float fogrt__clamp_g(float g)
    as a sum of non-negative terms, so it does not cancel near the peak when |g| -> 1:
    g >= 0: (1 - g)^2 + 2g(1 - mu);  g < 0: (1 + g)^2 - 2g(1 + mu).  The arguments are 1 - mu
    and 1 + mu, so a caller that knows them exactly (the sampler) loses nothing.            */
-FOGRT__PRIVATE float fogrt__hg_phase_pm(float g, float one_minus_mu, float one_plus_mu)
-{
+FOGRT__PRIVATE float fogrt__hg_phase_pm(float g, float one_minus_mu, float one_plus_mu) {
     float base = g >= 0.0f ? (1.0f - g) * (1.0f - g) + 2.0f * g * one_minus_mu
                            : (1.0f + g) * (1.0f + g) - 2.0f * g * one_plus_mu;
     return FOGRT__INV_4PI * (1.0f - g) * (1.0f + g) / (base * sqrtf(base));
 }
-FOGRT__PUBLIC float fogrt_hg_phase(float g, float mu)
-{
+FOGRT__PUBLIC float fogrt_hg_phase(float g, float mu) {
     mu = FOGRT__CLAMP(mu, -1.0f, 1.0f);
     return fogrt__hg_phase_pm(fogrt__clamp_g(g), 1.0f - mu, 1.0f + mu);
 }
@@ -2642,8 +2539,7 @@ FOGRT__PUBLIC float fogrt_hg_phase(float g, float mu)
    At g = 0 it divides 0 by 0 (the limit is isotropic, 2u - 1), and for small |g| it
    subtracts nearly equal numbers and divides the rounding by 2g: its error grows like
    1e-7 / |g|. test_hg_eq11_matches_stable_form shows where it agrees with the form below. */
-FOGRT__PRIVATE float fogrt__sample_hg_mu_eq11(float g, float u)
-{
+FOGRT__PRIVATE float fogrt__sample_hg_mu_eq11(float g, float u) {
     float s;
     if (g == 0.0f) return 2.0f * u - 1.0f;
     s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
@@ -2654,12 +2550,10 @@ FOGRT__PRIVATE float fogrt__sample_hg_mu_eq11(float g, float u)
    g = 0 gives mu = 2u - 1 (isotropic) with no special branch; u = 0 gives -1, u -> 1 gives 1. */
 /* D = (1 - g) + 2 g u, as a sum of two non-negative terms: for g < 0 and u -> 1 the direct
    form would cancel, so it is written (1 + g) - 2 g (1 - u) there. */
-FOGRT__PRIVATE float fogrt__hg_D(float g, float u)
-{
+FOGRT__PRIVATE float fogrt__hg_D(float g, float u) {
     return g >= 0.0f ? (1.0f - g) + 2.0f * g * u : (1.0f + g) - 2.0f * g * (1.0f - u);
 }
-FOGRT__PUBLIC float fogrt_sample_hg_mu(float g, float u)
-{
+FOGRT__PUBLIC float fogrt_sample_hg_mu(float g, float u) {
     float D, mu;
     g = fogrt__clamp_g(g);
     u = FOGRT__CLAMP(u, 0.0f, 1.0f);
@@ -2672,15 +2566,13 @@ FOGRT__PUBLIC float fogrt_sample_hg_mu(float g, float u)
    the distances to both ends as products, with nothing that cancels:
      1 - mu = (1 - g)^2 (1 - u) (1 + g + D) / D^2,   1 + mu = (1 + g)^2 u (1 - g + D) / D^2,
    so sin(theta) = sqrt((1 - mu)(1 + mu)) keeps its full precision (eq. 11, rearranged). */
-FOGRT__PRIVATE void fogrt__sample_hg_pm(float g, float u, float *one_minus_mu, float *one_plus_mu)
-{
+FOGRT__PRIVATE void fogrt__sample_hg_pm(float g, float u, float *one_minus_mu, float *one_plus_mu) {
     float D = fogrt__hg_D(g, u), D2 = D * D;
     *one_minus_mu = FOGRT__CLAMP((1.0f - g) * (1.0f - g) * (1.0f - u) * (1.0f + g + D) / D2, 0.0f, 2.0f);
     *one_plus_mu = FOGRT__CLAMP((1.0f + g) * (1.0f + g) * u * (1.0f - g + D) / D2, 0.0f, 2.0f);
 }
 /* The same for a unit wo (the integrator's, which skips the normalisation). */
-FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg_unit(float g, fogrt__v3 wo, float u1, float u2, float *pdf)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg_unit(float g, fogrt__v3 wo, float u1, float u2, float *pdf) {
     fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));   /* z: propagation */
     float omm, opm, mu;
     g = fogrt__clamp_g(g);
@@ -2689,15 +2581,13 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg_unit(float g, fogrt__v3 wo, float u1, 
     if (pdf) *pdf = fogrt__hg_phase_pm(g, omm, opm);
     return fogrt__around(&f, mu, sqrtf(omm * opm), u2);
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf)
-{
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf) {
     return fogrt__sample_hg_unit(g, fogrt__normalize(wo), u1, u2, pdf);
 }
 /* mu = cos(d, wi) with d = -wo. Near the peaks 1 - mu and 1 + mu are taken from the chord
    lengths, |wi + wo|^2 / 2 and |wi - wo|^2 / 2, which keep their precision where a rounded
    dot product would not (at g = 0.999 the phase function changes 12% per ulp of mu there). */
-FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi)
-{
+FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi) {
     fogrt__v3 a = fogrt__add(wi, wo), b = fogrt__sub(wi, wo);
     return fogrt__hg_phase_pm(fogrt__clamp_g(g), FOGRT__CLAMP(0.5f * fogrt__dot(a, a), 0.0f, 2.0f),
                               FOGRT__CLAMP(0.5f * fogrt__dot(b, b), 0.0f, 2.0f));
@@ -2731,8 +2621,7 @@ FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi)
    ------------------------------------------------------------------------------------------ */
 /* A ray's hit as a surface point: the point, its geometric normal and its shading normal. */
 FOGRT__HOT void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, const fogrt_hit *h,
-                                     fogrt__v3 *p, fogrt__v3 *ng, fogrt__v3 *ns)
-{
+                                     fogrt__v3 *p, fogrt__v3 *ng, fogrt__v3 *ns) {
     *p = fogrt__madd(o, d, h->t);
     if (h->prim < s->tri_count) {
         const fogrt__v3 *v = &s->tri_v[3 * h->prim];
@@ -2759,8 +2648,7 @@ FOGRT__HOT void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v
    keep the outward normal, so wo.z < 0 in the frame means "inside". Returns whether wo is
    on the front side. */
 FOGRT__HOT bool fogrt__surface_vertex_set(fogrt__vertex *v, const fogrt_material_desc *m, fogrt__v3 wo,
-                                          fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns, bool in_medium)
-{
+                                          fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns, bool in_medium) {
     fogrt_bsdf_type type = fogrt__bsdf_type(m);
     bool entering = fogrt__dot(wo, ng) > 0.0f;
     if (type != FOGRT_BSDF_REFRACTION && type != FOGRT_BSDF_GLASS) {
@@ -2776,8 +2664,7 @@ FOGRT__HOT bool fogrt__surface_vertex_set(fogrt__vertex *v, const fogrt_material
 /* Lines 19-20: a new direction from the BSDF at surface vertex v, in world space. A shading
    normal can send a direction through the geometric surface: such a sample is dropped. */
 FOGRT__HOT bool fogrt__sample_surface(const fogrt__settings *st, const fogrt__vertex *v, const float *u,
-                                      fogrt_bsdf_sample *bs, fogrt__v3 *wi, float *cos_o)
-{
+                                      fogrt_bsdf_sample *bs, fogrt__v3 *wi, float *cos_o) {
     fogrt__v3 wo_l = fogrt__to_local(&v->frame, v->wo);
     float side;
     *cos_o = wo_l.z;
@@ -2789,8 +2676,7 @@ FOGRT__HOT bool fogrt__sample_surface(const fogrt__settings *st, const fogrt__ve
 /* The building blocks of an integrator, public (declared with fogrt_surface): Algorithm 1's
    surface vertex, ray offset and shadow ray, as a caller of its own sees them. */
 FOGRT__PUBLIC void fogrt_scene_surface(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, const fogrt_hit *hit,
-                                       fogrt_surface *out)
-{
+                                       fogrt_surface *out) {
     fogrt__vertex v;
     fogrt__v3 p, ng, ns;
     FOGRT_ASSERT(s && s->built && hit && out && hit->prim < s->tri_count + s->sph_count);
@@ -2800,18 +2686,15 @@ FOGRT__PUBLIC void fogrt_scene_surface(const fogrt_scene *s, fogrt_vec3 o, fogrt
     out->p = p; out->ng = v.ng; out->material = *v.m;
     out->s = v.frame.s; out->t = v.frame.t; out->n = v.frame.n;
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_surface_offset(const fogrt_scene *s, const fogrt_surface *sf, fogrt_vec3 w)
-{
+FOGRT__PUBLIC fogrt_vec3 fogrt_surface_offset(const fogrt_scene *s, const fogrt_surface *sf, fogrt_vec3 w) {
     return fogrt__offset(s, sf->p, sf->ng, w);
 }
 FOGRT__PUBLIC float fogrt_scene_light_pdf(const fogrt_scene *s, fogrt_vec3 from, const fogrt_hit *hit,
-                                          const fogrt_surface *sf)
-{
+                                          const fogrt_surface *sf) {
     return fogrt__area_light_pdf(s, hit->prim, from, sf->p, sf->ng);
 }
 FOGRT__PUBLIC bool fogrt_scene_visible(const fogrt_scene *s, const fogrt_surface *sf, fogrt_vec3 p,
-                                       const fogrt_light_sample *ls)
-{
+                                       const fogrt_light_sample *ls) {
     fogrt__vertex v;
     uint64_t rays = 0;
     memset(&v, 0, sizeof v);
@@ -2824,8 +2707,7 @@ FOGRT__PUBLIC bool fogrt_scene_visible(const fogrt_scene *s, const fogrt_surface
    light_samples times), each sample f Le T w / (n pdf) with w the MIS weight (1 for a point
    or spot light, which BSDF sampling can never hit). */
 FOGRT__PRIVATE fogrt__v3 fogrt__nee(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v,
-                                    fogrt_rng *rng, uint64_t *rays)
-{
+                                    fogrt_rng *rng, uint64_t *rays) {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
     uint32_t i, total = s->light_count + s->area_light_count;
     for (i = 0; i < total; ++i) {
@@ -2849,8 +2731,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__nee(const fogrt_scene *s, const fogrt__settings 
    produce; 0 with MIS off, where light sampling alone counts area lights). */
 FOGRT__PRIVATE float fogrt__emission_weight(const fogrt_scene *s, const fogrt__settings *st, bool prev_delta,
                                             float prev_pdf, fogrt__v3 prev_p, const fogrt_hit *hit, fogrt__v3 p,
-                                            fogrt__v3 ng)
-{
+                                            fogrt__v3 ng) {
     if (prev_delta || !st->nee) return 1.0f;
     if (!st->mis) return 0.0f;
     return fogrt__power_heuristic(prev_pdf, (float)st->light_samples * fogrt__area_light_pdf(s, hit->prim, prev_p, p, ng));
@@ -2869,8 +2750,7 @@ typedef struct fogrt__walk {
    ray, with the emission the ray reaches on the way. Returns false when the path ends
    there (it left the scene, or hit a black diffuse surface). */
 FOGRT__PRIVATE bool fogrt__a1_vertex(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w, fogrt__vertex *v,
-                                     fogrt_rng *rng, uint64_t *rays)
-{
+                                     fogrt_rng *rng, uint64_t *rays) {
     fogrt_hit hit;
     float t_fog = INFINITY;
     bool found;
@@ -2907,8 +2787,7 @@ FOGRT__PRIVATE bool fogrt__a1_vertex(const fogrt_scene *s, const fogrt__settings
    the BSDF on an object (19-21, weight f cos / pdf: eq. 13, line 22). Returns false when
    no direction could be drawn. */
 FOGRT__PRIVATE bool fogrt__a1_scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w,
-                                      const fogrt__vertex *v, fogrt_rng *rng)
-{
+                                      const fogrt__vertex *v, fogrt_rng *rng) {
     fogrt_bsdf_sample bs;
     fogrt__v3 wi;
     float u[3], cos_o;
@@ -2936,8 +2815,7 @@ FOGRT__PRIVATE bool fogrt__a1_scatter(const fogrt_scene *s, const fogrt__setting
    followed through mirrors and glass to the first scattering vertex, which samples the
    lights and takes one more step that only adds the emission it finds (its MIS half). */
 FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
-                                           fogrt_rng *rng, uint64_t *rays, bool one_bounce)
-{
+                                           fogrt_rng *rng, uint64_t *rays, bool one_bounce) {
     fogrt__walk w;
     bool last = false;
     uint32_t vertex;
@@ -2971,8 +2849,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__se
    ------------------------------------------------------------------------------------------ */
 typedef struct fogrt__camera { fogrt__v3 pos, right, up, fwd; float tan_x, tan_y, lens, focal; } fogrt__camera;
 
-FOGRT__PRIVATE fogrt__camera fogrt__camera_setup(const fogrt_scene *s, int width, int height)
-{
+FOGRT__PRIVATE fogrt__camera fogrt__camera_setup(const fogrt_scene *s, int width, int height) {
     fogrt__camera c;
     fogrt_camera_desc d = s->camera;
     float aspect = (float)width / (float)FOGRT__MAX(height, 1), t;
@@ -2997,8 +2874,7 @@ FOGRT__PRIVATE fogrt__camera fogrt__camera_setup(const fogrt_scene *s, int width
     return c;
 }
 FOGRT__PRIVATE void fogrt__camera_generate(const fogrt__camera *c, int width, int height, float px, float py,
-                                           float lu1, float lu2, fogrt__v3 *o, fogrt__v3 *d)
-{
+                                           float lu1, float lu2, fogrt__v3 *o, fogrt__v3 *d) {
     float x = (2.0f * px / (float)width - 1.0f) * c->tan_x;
     float y = (1.0f - 2.0f * py / (float)height) * c->tan_y;
     fogrt__v3 dir = fogrt__normalize(fogrt__add(c->fwd, fogrt__add(fogrt__scale(c->right, x), fogrt__scale(c->up, y))));
@@ -3013,8 +2889,7 @@ FOGRT__PRIVATE void fogrt__camera_generate(const fogrt__camera *c, int width, in
     *d = dir;
 }
 FOGRT__PUBLIC void fogrt_camera_ray(const fogrt_scene *s, int width, int height, float px, float py,
-                                    float lens_u1, float lens_u2, fogrt_vec3 *o, fogrt_vec3 *d)
-{
+                                    float lens_u1, float lens_u2, fogrt_vec3 *o, fogrt_vec3 *d) {
     fogrt__camera c;
     FOGRT_ASSERT(s && o && d);
     c = fogrt__camera_setup(s, width, height);
@@ -3029,8 +2904,7 @@ FOGRT__PUBLIC void fogrt_camera_ray(const fogrt_scene *s, int width, int height,
    ------------------------------------------------------------------------------------------ */
 /* Whether a primitive uses a material of this type: the materials are looked at first, so
    that a scene without one does not scan its million triangles. */
-FOGRT__PRIVATE bool fogrt__material_used(const fogrt_scene *s, fogrt_bsdf_type type)
-{
+FOGRT__PRIVATE bool fogrt__material_used(const fogrt_scene *s, fogrt_bsdf_type type) {
     uint32_t i;
     for (i = 0; i < s->material_count && fogrt__bsdf_type(&s->materials[i]) != type; ++i) {}
     if (i == s->material_count) return false;
@@ -3038,30 +2912,25 @@ FOGRT__PRIVATE bool fogrt__material_used(const fogrt_scene *s, fogrt_bsdf_type t
     for (i = 0; i < s->sph_count; ++i) if (fogrt__bsdf_type(&s->materials[s->sph_material[i]]) == type) return true;
     return false;
 }
-FOGRT__PRIVATE float fogrt__tri_area(const fogrt_scene *s, uint32_t t)
-{
+FOGRT__PRIVATE float fogrt__tri_area(const fogrt_scene *s, uint32_t t) {
     const fogrt__v3 *v = &s->tri_v[3 * t];
     return 0.5f * fogrt__length(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
 }
 /* An emissive triangle that can be sampled: emission and a non-zero area. */
-FOGRT__PRIVATE bool fogrt__tri_emits(const fogrt_scene *s, uint32_t t)
-{
+FOGRT__PRIVATE bool fogrt__tri_emits(const fogrt_scene *s, uint32_t t) {
     return !fogrt__is_black(s->materials[s->tri_material[t]].emission) && fogrt__tri_area(s, t) > 0.0f;
 }
-FOGRT__PRIVATE bool fogrt__sphere_emits(const fogrt_scene *s, uint32_t i)
-{
+FOGRT__PRIVATE bool fogrt__sphere_emits(const fogrt_scene *s, uint32_t i) {
     return !fogrt__is_black(s->materials[s->sph_material[i]].emission);
 }
 /* Whether any material emits (if none, no triangle needs looking at). */
-FOGRT__PRIVATE bool fogrt__some_material_emits(const fogrt_scene *s)
-{
+FOGRT__PRIVATE bool fogrt__some_material_emits(const fogrt_scene *s) {
     uint32_t i;
     for (i = 0; i < s->material_count; ++i) if (!fogrt__is_black(s->materials[i].emission)) return true;
     return false;
 }
 /* Emissive triangles of one mesh form one light; a CDF over their areas picks one. */
-FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s, uint32_t tri_count)
-{
+FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s, uint32_t tri_count) {
     uint32_t i, g = 0, k = 0, prev_mesh = UINT32_MAX;
     for (i = 0; i < tri_count; ++i) {
         fogrt__area_light *L;
@@ -3088,8 +2957,7 @@ FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s, uint32_t tri_count)
     }
     return g;
 }
-FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s)
-{
+FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s) {
     uint32_t i, n_tri = 0, n_groups = 0, n_sph = 0, g, prev_mesh = UINT32_MAX;
     uint32_t n_prims = s->tri_count + s->sph_count, tri_count = fogrt__some_material_emits(s) ? s->tri_count : 0;
     for (i = 0; i < tri_count; ++i) {
@@ -3118,8 +2986,7 @@ FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s)
 }
 
 /* The box of primitive i (triangles first, then spheres). */
-FOGRT__PRIVATE fogrt__aabb fogrt__prim_box(const fogrt_scene *s, uint32_t i)
-{
+FOGRT__PRIVATE fogrt__aabb fogrt__prim_box(const fogrt_scene *s, uint32_t i) {
     fogrt__aabb bb = fogrt__aabb_empty();
     uint32_t k;
     if (i < s->tri_count) {
@@ -3134,8 +3001,7 @@ FOGRT__PRIVATE fogrt__aabb fogrt__prim_box(const fogrt_scene *s, uint32_t i)
 }
 /* The build's record of every primitive (its box), the scene's bounds, and the sizes
    derived from them: the ray offset floor and the point-light distance clamp (2.3). */
-FOGRT__PRIVATE void fogrt__bounds(fogrt_scene *s, fogrt__build *b, uint32_t n)
-{
+FOGRT__PRIVATE void fogrt__bounds(fogrt_scene *s, fogrt__build *b, uint32_t n) {
     fogrt__aabb sb = fogrt__aabb_empty();
     uint32_t i;
     float diag;
@@ -3153,8 +3019,7 @@ FOGRT__PRIVATE void fogrt__bounds(fogrt_scene *s, fogrt__build *b, uint32_t n)
     s->r2_min = (1e-4f * diag) * (1e-4f * diag);
 }
 /* Primitives in BVH order, in the form the traversal wants. */
-FOGRT__PRIVATE void fogrt__pack_prims(fogrt_scene *s, uint32_t n)
-{
+FOGRT__PRIVATE void fogrt__pack_prims(fogrt_scene *s, uint32_t n) {
     uint32_t i;
     for (i = 0; i < n; ++i) {
         uint32_t id = s->prim_index[i];
@@ -3174,8 +3039,7 @@ FOGRT__PRIVATE void fogrt__pack_prims(fogrt_scene *s, uint32_t n)
    the rest are a report (the code they name runs only where a primitive or light of that
    kind exists anyway: no glass, no Fresnel; no spheres, no sphere test; no light, no
    shadow ray). make callgrind measures both claims against the strip macros.             */
-FOGRT__PRIVATE uint32_t fogrt__features(const fogrt_scene *s)
-{
+FOGRT__PRIVATE uint32_t fogrt__features(const fogrt_scene *s) {
     uint32_t f = 0, i;
 #ifndef FOGRT_NO_MEDIUM
     if (s->medium.sigma_t > 0.0f) f |= FOGRT_FEATURE_MEDIUM;
@@ -3194,16 +3058,14 @@ FOGRT__PRIVATE uint32_t fogrt__features(const fogrt_scene *s)
 }
 
 
-FOGRT__PUBLIC fogrt_build_desc fogrt_build_defaults(void)
-{
+FOGRT__PUBLIC fogrt_build_desc fogrt_build_defaults(void) {
     /* heuristic, bins, c_trav, c_int, max_leaf_size, layout, roulette_pilot, resolved */
     static const fogrt_build_desc d = { FOGRT_BVH_SAH, FOGRT_BVH_BINS, 1.0f, 1.0f, 4, FOGRT_BVH_LAYOUT_DEFAULT, true, true };
     return d;
 }
 /* The desc (NULL: the defaults), checked. Like the render desc it must come from
    fogrt_build_defaults(): in a zeroed desc, c_trav 0 would mean "traversal is free". */
-FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fogrt_build_desc *in, fogrt_build_desc *d)
-{
+FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fogrt_build_desc *in, fogrt_build_desc *d) {
     *d = in ? *in : fogrt_build_defaults();
     FOGRT__REFUSE_IF(!d->resolved, INVALID_ARGUMENT, "build desc: not from fogrt_build_defaults()");
     if ((unsigned)d->heuristic >= (unsigned)FOGRT_BVH_NUM || (unsigned)d->layout >= (unsigned)FOGRT_BVH_LAYOUT_NUM ||
@@ -3221,8 +3083,7 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fog
 /* The tree, and the primitives in BVH order in the form the traversal reads. leaf_keep:
    nodes of at most this many primitives stay leaves (0: the heuristic decides). Returns
    false when out of memory. */
-FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n, uint32_t leaf_keep)
-{
+FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n, uint32_t leaf_keep) {
     fogrt__build b;
     bool ok;
     memset(&b, 0, sizeof b);
@@ -3248,8 +3109,7 @@ FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d,
     return ok;
 }
 /* The spot cones' cosines, once. */
-FOGRT__PRIVATE bool fogrt__build_spots(fogrt_scene *s)
-{
+FOGRT__PRIVATE bool fogrt__build_spots(fogrt_scene *s) {
     uint32_t i;
     if (s->light_count == 0) return true;
     s->spot_cos = (float *)fogrt__alloc(&s->allocator, sizeof(float) * 2 * s->light_count);
@@ -3261,8 +3121,7 @@ FOGRT__PRIVATE bool fogrt__build_spots(fogrt_scene *s)
     return true;
 }
 /* The build, into fresh arrays: the scene as it was comes back if it fails. */
-FOGRT__PRIVATE bool fogrt__build_all(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n)
-{
+FOGRT__PRIVATE bool fogrt__build_all(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n) {
     uint32_t leaf_keep = 0;
 #ifndef FOGRT_NO_WIDE_BVH
     leaf_keep = fogrt__x_leaf_keep(d, n);               /* SEAM 2: what the wide tree needs of it */
@@ -3276,8 +3135,7 @@ FOGRT__PRIVATE bool fogrt__build_all(fogrt_scene *s, const fogrt_build_desc *d, 
 #endif
     return true;
 }
-FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc)
-{
+FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc) {
     fogrt_build_desc d;
     fogrt_scene old;
     uint32_t n;
@@ -3310,8 +3168,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
    stream (Part II, C, makes each stream a stratified pattern).
    ------------------------------------------------------------------------------------------ */
 /* The paper's method: Algorithm 1 with light sampling and MIS, Schlick's Fresnel. */
-FOGRT__PUBLIC fogrt_render_desc fogrt_render_paper_defaults(void)
-{
+FOGRT__PUBLIC fogrt_render_desc fogrt_render_paper_defaults(void) {
     static const fogrt_render_desc d = {
         0, 0,                                           /* width, height: the image's */
         FOGRT_INTEGRATOR_PATH, FOGRT_FRESNEL_SCHLICK,
@@ -3325,8 +3182,7 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_paper_defaults(void)
     return d;
 }
 /* Part II's defaults: lamps in fog (B) on, as far as the build has them. */
-FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void)
-{
+FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void) {
     fogrt_render_desc d = fogrt_render_paper_defaults();
 #ifndef FOGRT_NO_LAMPS_IN_FOG
     d.equiangular = d.glow = d.footprint = d.expected_emission = true;
@@ -3337,8 +3193,7 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void)
    from fogrt_render_defaults(): a zeroed one would silently mean "max depth 0, no light
    sampling", so it is refused with a message saying so. */
 /* What a desc asks of a build that left out the part of fogrt.h it needs. */
-FOGRT__PRIVATE fogrt_result fogrt__check_build_has(const fogrt_scene *s, const fogrt_render_desc *d)
-{
+FOGRT__PRIVATE fogrt_result fogrt__check_build_has(const fogrt_scene *s, const fogrt_render_desc *d) {
 #ifdef FOGRT_NO_EXACT_FRESNEL
     FOGRT__REFUSE_IF(d->fresnel == FOGRT_FRESNEL_EXACT, UNSUPPORTED,
                      "render desc: fresnel exact needs a build without FOGRT_NO_EXACT_FRESNEL, FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
@@ -3355,8 +3210,7 @@ FOGRT__PRIVATE fogrt_result fogrt__check_build_has(const fogrt_scene *s, const f
     return FOGRT_RESULT_OK;
 }
 FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fogrt_render_desc *in,
-                                                  fogrt__settings *st, fogrt_render_desc *out)
-{
+                                                  fogrt__settings *st, fogrt_render_desc *out) {
     fogrt_render_desc d = in ? *in : fogrt_render_defaults();
     fogrt_result r;
     FOGRT__REFUSE_IF(!d.resolved, INVALID_ARGUMENT,
@@ -3379,8 +3233,7 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
 }
 /* One sample of the radiance arriving at o along -d. */
 FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
-                                         fogrt_rng *rng, uint64_t *rays)
-{
+                                         fogrt_rng *rng, uint64_t *rays) {
     if (st->desc.radiance) return st->desc.radiance(s, o, d, rng, st->desc.user_data);   /* the caller's */
 #ifndef FOGRT_MINIMAL
     if (fogrt__x_wanted(s, st)) return fogrt__x_radiance(s, st, o, d, rng, rays);   /* SEAM 7 */
@@ -3388,8 +3241,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__sett
     return fogrt__algorithm1(s, st, o, d, rng, rays, st->integrator == FOGRT_INTEGRATOR_DIRECT);
 }
 FOGRT__PUBLIC fogrt_vec3 fogrt_trace(const fogrt_scene *s, const fogrt_render_desc *desc, fogrt_vec3 o, fogrt_vec3 d,
-                                     fogrt_rng *rng, uint64_t *ray_count)
-{
+                                     fogrt_rng *rng, uint64_t *ray_count) {
     fogrt__settings st;
     uint64_t rays = 0;
     FOGRT_ASSERT(s && rng);
@@ -3399,8 +3251,7 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_trace(const fogrt_scene *s, const fogrt_render_de
     return o;
 }
 
-FOGRT__PUBLIC fogrt_result fogrt_image_alloc(fogrt_image *img, int width, int height, const fogrt_allocator *a)
-{
+FOGRT__PUBLIC fogrt_result fogrt_image_alloc(fogrt_image *img, int width, int height, const fogrt_allocator *a) {
     size_t n;
     FOGRT_ASSERT(img);
     memset(img, 0, sizeof *img);
@@ -3424,8 +3275,7 @@ FOGRT__PUBLIC fogrt_result fogrt_image_alloc(fogrt_image *img, int width, int he
     fogrt_image_clear(img);
     return FOGRT_RESULT_OK;
 }
-FOGRT__PUBLIC void fogrt_image_free(fogrt_image *img)
-{
+FOGRT__PUBLIC void fogrt_image_free(fogrt_image *img) {
     fogrt_allocator a;
     if (!img) return;
     a = img->allocator;
@@ -3434,8 +3284,7 @@ FOGRT__PUBLIC void fogrt_image_free(fogrt_image *img)
     memset(img, 0, sizeof *img);
     img->allocator = a;
 }
-FOGRT__PUBLIC void fogrt_image_clear(fogrt_image *img)
-{
+FOGRT__PUBLIC void fogrt_image_clear(fogrt_image *img) {
     size_t n;
     FOGRT_ASSERT(img);
     n = (size_t)img->width * (size_t)img->height;
@@ -3447,8 +3296,7 @@ FOGRT__PUBLIC void fogrt_image_clear(fogrt_image *img)
     img->rejected = 0;
     img->rated_spp = 0;
 }
-FOGRT__PUBLIC void fogrt_image_resolve(const fogrt_image *img, float *rgb)
-{
+FOGRT__PUBLIC void fogrt_image_resolve(const fogrt_image *img, float *rgb) {
     size_t i, n;
     FOGRT_ASSERT(img && rgb);
     n = (size_t)img->width * (size_t)img->height;
@@ -3470,8 +3318,7 @@ FOGRT__PRIVATE double fogrt__luminance_d(double r, double g, double b) { return 
    with one sample per stream it is exactly s^2 / n. Streams without samples are left out;
    an image without stream sums gets the plain s^2 / n. Rejected samples count as zeros,
    as in the mean. */
-FOGRT__PUBLIC double fogrt_image_pixel_variance(const fogrt_image *img, size_t pixel)
-{
+FOGRT__PUBLIC double fogrt_image_pixel_variance(const fogrt_image *img, size_t pixel) {
     double c, mean, var;
     FOGRT_ASSERT(img);
     c = img->count[pixel];
@@ -3497,8 +3344,7 @@ FOGRT__PUBLIC double fogrt_image_pixel_variance(const fogrt_image *img, size_t p
      relative error = sqrt(sum_p Var[mean_p]) / sqrt(sum_p mean_p^2).
    It falls as 1/sqrt(samples) (faster where stratification helps): this is the number to
    plot against seconds. */
-FOGRT__PUBLIC void fogrt_image_error(const fogrt_image *img, fogrt_error_estimate *out)
-{
+FOGRT__PUBLIC void fogrt_image_error(const fogrt_image *img, fogrt_error_estimate *out) {
     double var_sum = 0.0, mean_sq_sum = 0.0, lum_sum = 0.0;
     size_t i, n;
     FOGRT_ASSERT(img && out);
@@ -3534,8 +3380,7 @@ typedef struct fogrt__job {
    depend on the thread that renders it. The pixel filter is a box: the ray goes through a
    uniform point of the pixel (jx, jy), stratified per stream by Part II (C). */
 FOGRT__PRIVATE void fogrt__pixel_ray(const fogrt__job *job, int width, int height, int x, int y, uint32_t index,
-                                     fogrt_rng *rng, fogrt__v3 *o, fogrt__v3 *d, float *jx, float *jy)
-{
+                                     fogrt_rng *rng, fogrt__v3 *o, fogrt__v3 *d, float *jx, float *jy) {
     uint64_t pix = (uint64_t)y * (uint64_t)width + (uint64_t)x;
     uint64_t key = (pix << 32) | (uint64_t)index;
     float l1, l2;
@@ -3549,8 +3394,7 @@ FOGRT__PRIVATE void fogrt__pixel_ray(const fogrt__job *job, int width, int heigh
     fogrt__camera_generate(&job->cam, width, height, (float)x + *jx, (float)y + *jy, l1, l2, o, d);
 }
 FOGRT__PRIVATE fogrt__v3 fogrt__sample_pixel(const fogrt__job *job, int width, int height, int x, int y,
-                                             uint32_t index, uint64_t *rays)
-{
+                                             uint32_t index, uint64_t *rays) {
     fogrt_rng rng;
     fogrt__v3 o, d;
     float jx, jy;
@@ -3558,8 +3402,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_pixel(const fogrt__job *job, int width, i
     return fogrt__radiance(job->s, &job->st, o, d, &rng, rays);
 }
 /* How many samples pixel pix takes in this call: spp, or as its rate says (Part II, C). */
-FOGRT__PRIVATE uint32_t fogrt__pixel_spp(const fogrt__job *job, size_t pix)
-{
+FOGRT__PRIVATE uint32_t fogrt__pixel_spp(const fogrt__job *job, size_t pix) {
 #ifndef FOGRT_NO_ESTIMATION
     if (job->rate) return fogrt__x_pixel_spp(job, pix);                      /* SEAM 8 */
 #else
@@ -3571,8 +3414,7 @@ FOGRT__PRIVATE uint32_t fogrt__pixel_spp(const fogrt__job *job, size_t pix)
    a non-finite sample is counted, never added (a zero in the mean, in its stream's mean
    too). Sample `index` adds its luminance to stream index mod FOGRT_IMAGE_STREAMS. */
 FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *rays, uint64_t *rejected,
-                                      uint64_t *samples, const volatile int *cancel)
-{
+                                      uint64_t *samples, const volatile int *cancel) {
     fogrt_image *img = job->img;
     int x, width = img->width, height = img->height;
     bool streams = img->stream_sum && img->stream_count;
@@ -3598,14 +3440,12 @@ FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *ra
         img->count[pix] += spp;
     }
 }
-FOGRT__PRIVATE bool fogrt__report(const fogrt_render_desc *d, int rows_done, int rows_total, int spp)
-{
+FOGRT__PRIVATE bool fogrt__report(const fogrt_render_desc *d, int rows_done, int rows_total, int spp) {
     fogrt_progress p;
     p.rows_done = rows_done; p.rows_total = rows_total; p.samples_per_pixel = spp;
     return d->progress(&p, d->user_data);
 }
-FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt_render_desc *d, const fogrt_image *img, int spp)
-{
+FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt_render_desc *d, const fogrt_image *img, int spp) {
     if (!s->built) return fogrt__fail(s, FOGRT_RESULT_NOT_BUILT, "render: the scene changed since fogrt_scene_build");
     if (img->width <= 0 || img->height <= 0 || !img->sum || !img->sum_sq || !img->count ||
         (d->width && d->width != img->width) || (d->height && d->height != img->height))
@@ -3627,16 +3467,14 @@ FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt
 #ifdef _OPENMP
 /* The threads to render with: the desc's count, or OpenMP's, cut to FOGRT_MAX_THREADS and
    4 per processor (an absurd OMP_NUM_THREADS would otherwise crash the runtime). */
-FOGRT__PRIVATE int fogrt__threads(int asked)
-{
+FOGRT__PRIVATE int fogrt__threads(int asked) {
     int n = asked > 0 ? asked : omp_get_max_threads();
     return FOGRT__MIN(n, FOGRT__MIN(FOGRT_MAX_THREADS, 4 * omp_get_num_procs()));
 }
 #endif
 FOGRT__PRIVATE bool fogrt__cancel_asked(const fogrt_render_desc *d) { return d->cancel && *d->cancel; }
 FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render_desc *d, uint64_t *rays_out,
-                                       uint64_t *rejected_out, uint64_t *samples_out)
-{
+                                       uint64_t *rejected_out, uint64_t *samples_out) {
     uint64_t rays = 0, rejected = 0, samples = 0;
     int y, height = job->img->height, block = height >= 32 ? height / 32 : 1;
     int rows_done = 0, cancelled = 0, last_report = 0;
@@ -3674,8 +3512,7 @@ FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render
 }
 
 FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render_desc *desc, fogrt_image *img,
-                                        int spp, fogrt_render_stats *stats)
-{
+                                        int spp, fogrt_render_stats *stats) {
     fogrt__job job;
     fogrt_render_desc d;
     fogrt_result result;
@@ -3703,8 +3540,7 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
 
 /* Output helpers. The sRGB curve: 12.92 x below 0.0031308, else 1.055 x^(1/2.4) - 0.055. */
 FOGRT__PUBLIC void fogrt_tonemap_rgb8(const float *rgb, int width, int height, float exposure,
-                                      fogrt_tonemap mode, unsigned char *out)
-{
+                                      fogrt_tonemap mode, unsigned char *out) {
     size_t i, n = (size_t)FOGRT__MAX(width, 0) * (size_t)FOGRT__MAX(height, 0) * 3;
     float e = exp2f(fogrt__finite(exposure) ? FOGRT__CLAMP(exposure, -64.0f, 64.0f) : 0.0f);
     for (i = 0; i < n; ++i) {
@@ -3717,8 +3553,7 @@ FOGRT__PUBLIC void fogrt_tonemap_rgb8(const float *rgb, int width, int height, f
     }
 }
 #ifndef FOGRT_NO_STDIO
-FOGRT__PUBLIC fogrt_result fogrt_write_pfm(const char *path, int width, int height, const float *rgb)
-{
+FOGRT__PUBLIC fogrt_result fogrt_write_pfm(const char *path, int width, int height, const float *rgb) {
     FILE *f;
     int y;
     bool ok;
@@ -3734,8 +3569,7 @@ FOGRT__PUBLIC fogrt_result fogrt_write_pfm(const char *path, int width, int heig
     if (fclose(f) != 0) ok = false;
     return ok ? FOGRT_RESULT_OK : FOGRT_RESULT_IO_ERROR;
 }
-FOGRT__PUBLIC fogrt_result fogrt_write_ppm(const char *path, int width, int height, const unsigned char *rgb8)
-{
+FOGRT__PUBLIC fogrt_result fogrt_write_ppm(const char *path, int width, int height, const unsigned char *rgb8) {
     FILE *f;
     bool ok;
     if (!path || !rgb8 || width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
@@ -3754,8 +3588,7 @@ FOGRT__PUBLIC fogrt_result fogrt_write_ppm(const char *path, int width, int heig
    ------------------------------------------------------------------------------------------ */
 FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s);
 /* All of the default scene or nothing: a failure midway takes back what was added. */
-FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s)
-{
+FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s) {
     fogrt_scene keep;
     fogrt_result r;
     FOGRT_ASSERT(s);
@@ -3777,8 +3610,7 @@ static const float fogrt__default_quads[6][12] = {
     { -1, 0, -1,   -1, 1.5f, -1,   -1, 1.5f, 1,   -1, 0, 1 },                            /* left */
     { 1, 0, -1,   1, 0, 1,   1, 1.5f, 1,   1, 1.5f, -1 },                                /* right */
     { -0.35f, 1.49f, -0.35f,   0.35f, 1.49f, -0.35f,   0.35f, 1.49f, 0.35f,   -0.35f, 1.49f, 0.35f } };   /* lamp */
-FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s)
-{
+FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
     static const uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
     fogrt_material_desc md;
     fogrt_mesh_desc mesh;
@@ -3995,8 +3827,7 @@ int madvise(void *addr, size_t length, int advice);   /* hidden by a strict -std
 #define FOGRT__MADV_HUGEPAGE 14                        /* its value on Linux */
 #endif
 #endif
-FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size)
-{
+FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size) {
     void *p = fogrt__alloc(a, size);
 #ifdef FOGRT__MADV_HUGEPAGE
     const uintptr_t page = (uintptr_t)2 << 20;
@@ -4114,27 +3945,23 @@ typedef struct fogrt__wbvh {
     bool avx2;                    /* traced by the AVX2 path (the build asks the processor) */
 } fogrt__wbvh;
 
-FOGRT__PRIVATE void fogrt__wbvh_free(fogrt__wbvh *w, const fogrt_allocator *a)
-{
+FOGRT__PRIVATE void fogrt__wbvh_free(fogrt__wbvh *w, const fogrt_allocator *a) {
     fogrt__free(a, w->nodes_mem);
     fogrt__free(a, w->tris_mem);
     memset(w, 0, sizeof *w);
 }
 /* size bytes starting on a 64-byte cache line (so that a 256-byte node spans 4 lines, not
    5), inside a block of the allocator stored in *mem. */
-FOGRT__PRIVATE void *fogrt__wbvh_alloc_lines(const fogrt_allocator *a, size_t size, void **mem)
-{
+FOGRT__PRIVATE void *fogrt__wbvh_alloc_lines(const fogrt_allocator *a, size_t size, void **mem) {
     *mem = fogrt__alloc_big(a, size + 64);
     return *mem ? (void *)(((uintptr_t)*mem + 63) & ~(uintptr_t)63) : NULL;
 }
 
-FOGRT__PRIVATE size_t fogrt__wbvh_bytes(const fogrt__wbvh *w)
-{
+FOGRT__PRIVATE size_t fogrt__wbvh_bytes(const fogrt__wbvh *w) {
     return sizeof(fogrt__wnode) * (size_t)w->node_count + sizeof(fogrt__wtri) * (size_t)w->tri_packets;
 }
 
-FOGRT__PRIVATE float fogrt__wbvh_node_area(const fogrt_bvh_node *n)
-{
+FOGRT__PRIVATE float fogrt__wbvh_node_area(const fogrt_bvh_node *n) {
     fogrt__aabb b;
     b.lo = fogrt__v(n->bmin[0], n->bmin[1], n->bmin[2]);
     b.hi = fogrt__v(n->bmax[0], n->bmax[1], n->bmax[2]);
@@ -4145,8 +3972,7 @@ FOGRT__PRIVATE float fogrt__wbvh_node_area(const fogrt_bvh_node *n)
    straight from the scene's triangles and spheres (v0 and the edges as fogrt__pack_prims
    forms them, so the triangle test sees the same floats). */
 FOGRT__PRIVATE void fogrt__wbvh_pack_leaf(const fogrt_scene *s, fogrt__wbvh *w, uint32_t first, uint32_t count,
-                                          uint32_t *next)
-{
+                                          uint32_t *next) {
     uint32_t i;
     for (i = 0; i < count; ++i) {
         uint32_t id = s->prim_index[first + i], j = i % 4;
@@ -4174,15 +4000,13 @@ FOGRT__PRIVATE void fogrt__wbvh_pack_leaf(const fogrt_scene *s, fogrt__wbvh *w, 
 
 /* The primitives below binary node b if there are at most limit of them (their count,
    from the subtree sizes of fogrt__wbvh_sizes; a binary leaf always counts), else 0. */
-FOGRT__PRIVATE uint32_t fogrt__wbvh_small(const fogrt_bvh_node *bn, const uint32_t *size, uint32_t b, uint32_t limit)
-{
+FOGRT__PRIVATE uint32_t fogrt__wbvh_small(const fogrt_bvh_node *bn, const uint32_t *size, uint32_t b, uint32_t limit) {
     if (bn[b].prim_count > 0) return bn[b].prim_count;
     return limit >= 2 && size[b] <= limit ? size[b] : 0;
 }
 /* Where the primitives below binary node b start in s->prim_index: a subtree's primitives
    are contiguous there, the left child's first, so they start at its leftmost leaf. */
-FOGRT__PRIVATE uint32_t fogrt__wbvh_first(const fogrt_bvh_node *bn, uint32_t b)
-{
+FOGRT__PRIVATE uint32_t fogrt__wbvh_first(const fogrt_bvh_node *bn, uint32_t b) {
     while (bn[b].prim_count == 0) b = bn[b].left_first;
     return bn[b].left_first;
 }
@@ -4196,8 +4020,7 @@ typedef struct fogrt__wlanes {
     uint32_t leaf, leaf2;      /* the merge limits: FOGRT__WBVH_LEAF and _LEAF2, or 0 in a small scene */
 } fogrt__wlanes;
 FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, const uint32_t *size, fogrt__wlanes *L, uint32_t j,
-                                     uint32_t node)
-{
+                                     uint32_t node) {
     L->lane[j] = node;
     L->small[j] = fogrt__wbvh_small(bn, size, node, L->leaf);
     L->area[j] = L->small[j] ? 0.0f : fogrt__wbvh_node_area(&bn[node]);
@@ -4206,8 +4029,7 @@ FOGRT__PRIVATE void fogrt__wbvh_lane(const fogrt_bvh_node *bn, const uint32_t *s
    open the lane with the largest surface area (the one a ray is most likely to enter) into
    its two children, keeping the tree's left-to-right order, until W lanes are collected or
    none can be opened. */
-FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, const uint32_t *size, uint32_t b, fogrt__wlanes *L)
-{
+FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, const uint32_t *size, uint32_t b, fogrt__wlanes *L) {
     uint32_t j;
     if (fogrt__wbvh_small(bn, size, b, L->leaf)) {
         fogrt__wbvh_lane(bn, size, L, 0, b); L->count = 1;   /* only a small root gets here */
@@ -4236,8 +4058,7 @@ FOGRT__PRIVATE void fogrt__wbvh_collect(const fogrt_bvh_node *bn, const uint32_t
 }
 /* The number of primitives below every binary node (one pass from the last node back:
    children come after their parent; node 1 is unused). NULL when out of memory. */
-FOGRT__PRIVATE uint32_t *fogrt__wbvh_sizes(const fogrt_scene *s, const fogrt_allocator *a)
-{
+FOGRT__PRIVATE uint32_t *fogrt__wbvh_sizes(const fogrt_scene *s, const fogrt_allocator *a) {
     uint32_t i = s->node_count;
     uint32_t *size = (uint32_t *)fogrt__alloc(a, sizeof(uint32_t) * (size_t)s->node_count);
     if (!size) return NULL;
@@ -4253,23 +4074,20 @@ FOGRT__PRIVATE uint32_t *fogrt__wbvh_sizes(const fogrt_scene *s, const fogrt_all
    and for binary subtrees of more than FOGRT__WBVH_LEAF2 primitives only. The nodes and
    packets then get blocks of exactly the size counted. */
 typedef struct fogrt__wrec { uint32_t lane[FOGRT__WBVH_W], child[FOGRT__WBVH_W], count[FOGRT__WBVH_W]; } fogrt__wrec;
-FOGRT__PRIVATE uint32_t fogrt__wbvh_bound(const fogrt_scene *s, const uint32_t *size, uint32_t leaf2)
-{
+FOGRT__PRIVATE uint32_t fogrt__wbvh_bound(const fogrt_scene *s, const uint32_t *size, uint32_t leaf2) {
     uint32_t i, big = 1;
     for (i = 2; i < s->node_count; ++i) big += s->nodes[i].prim_count == 0 && size[i] > leaf2;
     return big;
 }
 /* Whether the scene is small enough to build without merged leaves (FOGRT_WBVH_SMALL_SCENE). */
-FOGRT__PRIVATE bool fogrt__wbvh_small_scene(uint32_t prims)
-{
+FOGRT__PRIVATE bool fogrt__wbvh_small_scene(uint32_t prims) {
     return prims <= FOGRT_WBVH_SMALL_SCENE;
 }
 /* Step 1 for every wide node, from a stack: the records rec[0 .. *nodes) in the order the
    nodes will be stored, and the number of packets; leaf and leaf2 are the merge limits
    (FOGRT__WBVH_LEAF and FOGRT__WBVH_LEAF2, or 0 in a small scene). */
 FOGRT__PRIVATE void fogrt__wbvh_layout(const fogrt_scene *s, const uint32_t *size, uint32_t leaf, uint32_t leaf2,
-                                       fogrt__wrec *rec, uint32_t cap, uint32_t *nodes, uint32_t *packets)
-{
+                                       fogrt__wrec *rec, uint32_t cap, uint32_t *nodes, uint32_t *packets) {
     uint32_t stack_b[FOGRT__BVH_MAX_DEPTH * FOGRT__WBVH_W + 2], stack_w[FOGRT__BVH_MAX_DEPTH * FOGRT__WBVH_W + 2];
     uint32_t sp = 0, j;
     *nodes = 1; *packets = 0;
@@ -4295,8 +4113,7 @@ FOGRT__PRIVATE void fogrt__wbvh_layout(const fogrt_scene *s, const uint32_t *siz
 }
 /* Whether this processor runs the AVX2 path: asked once per build where the file is not
    compiled for AVX2 anyway (the answer is cached by the compiler's runtime). */
-FOGRT__PRIVATE bool fogrt__wbvh_avx2_usable(void)
-{
+FOGRT__PRIVATE bool fogrt__wbvh_avx2_usable(void) {
 #if defined(FOGRT__WBVH_HAS_AVX2) && FOGRT_WBVH_AVX2 == 2
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx2") != 0;
@@ -4313,8 +4130,7 @@ FOGRT__PRIVATE bool fogrt__wbvh_avx2_usable(void)
    the packets and the nodes); the others become new wide nodes, handled the same way from
    a stack. Then each node gets its lanes' boxes and each leaf its packets. Returns false
    when out of memory (w is then empty). */
-FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a)
-{
+FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, const fogrt_allocator *a) {
     uint32_t *size, i, j, cap, leaf, leaf2;
     bool small;
     fogrt__wrec *rec = NULL;
@@ -4355,14 +4171,12 @@ FOGRT__PRIVATE bool fogrt__wbvh_build(const fogrt_scene *s, fogrt__wbvh *w, cons
 }
 /* The scene's wide tree: built by fogrt_scene_build (seam 3), released with the rest of
    the built data (seam 4). */
-FOGRT__PRIVATE bool fogrt__wide_build(fogrt_scene *s)
-{
+FOGRT__PRIVATE bool fogrt__wide_build(fogrt_scene *s) {
     s->x->wide = (fogrt__wbvh *)fogrt__alloc(&s->allocator, sizeof *s->x->wide);
     if (!s->x->wide) return false;
     return fogrt__wbvh_build(s, s->x->wide, &s->allocator);
 }
-FOGRT__PRIVATE void fogrt__wide_release(fogrt_scene *s)
-{
+FOGRT__PRIVATE void fogrt__wide_release(fogrt_scene *s) {
     if (!s->x->wide) return;
     fogrt__wbvh_free(s->x->wide, &s->allocator);
     fogrt__free(&s->allocator, s->x->wide);
@@ -4373,8 +4187,7 @@ FOGRT__PRIVATE void fogrt__wide_release(fogrt_scene *s)
    10's, so the same values) and the rows of box[] holding the near and far face per axis:
    the minimum unless the ray goes down that axis. */
 typedef struct fogrt__wray { fogrt__v3 o, inv; int near_row[3], far_row[3]; } fogrt__wray;
-FOGRT__HOT void fogrt__wray_setup(fogrt__wray *r, fogrt__v3 o, fogrt__v3 d)
-{
+FOGRT__HOT void fogrt__wray_setup(fogrt__wray *r, fogrt__v3 o, fogrt__v3 d) {
     int a;
     r->o = o;
     r->inv = fogrt__v(fogrt__safe_rcp(d.x), fogrt__safe_rcp(d.y), fogrt__safe_rcp(d.z));
@@ -4391,8 +4204,7 @@ FOGRT__HOT void fogrt__wray_setup(fogrt__wray *r, fogrt__v3 o, fogrt__v3 d)
    largest entry (a NaN entry ignored), t1 = the smallest exit, hit iff t0 <= t1 (1 + 2 ulp). */
 #ifdef FOGRT_WBVH_SSE
 FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__wray *r, float tmin, float tmax,
-                                      float *t)
-{
+                                      float *t) {
     unsigned mask = 0;
     int g;
     for (g = 0; g < FOGRT__WBVH_W; g += 4) {
@@ -4416,8 +4228,7 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__wray *
 }
 #else
 FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__wray *r, float tmin, float tmax,
-                                      float *t)
-{
+                                      float *t) {
     float t1[FOGRT__WBVH_W];
     unsigned mask = 0;
     int i, a;
@@ -4439,8 +4250,7 @@ FOGRT__HOT unsigned fogrt__wbvh_slabs(const fogrt__wnode *n, const fogrt__wray *
 /* The same W = 8 slab tests in one pass of 8-lane AVX instructions (the SSE version above
    makes two passes of 4): the same operations in the same order, so the same bits. */
 FOGRT__AVX2_FN unsigned fogrt__wbvh_slabs8(const fogrt__wnode *n, const fogrt__wray *r, float tmin, float tmax,
-                                           float *t)
-{
+                                           float *t) {
     __m256 t0 = _mm256_set1_ps(tmin), t1 = _mm256_set1_ps(tmax), tn, tf, o, inv;
     o = _mm256_set1_ps(r->o.x); inv = _mm256_set1_ps(r->inv.x);
     tn = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(n->box[r->near_row[0]]), o), inv);
@@ -4460,8 +4270,7 @@ FOGRT__AVX2_FN unsigned fogrt__wbvh_slabs8(const fogrt__wnode *n, const fogrt__w
 #endif
 /* The box test of the chosen path. */
 FOGRT__HOT unsigned fogrt__wbvh_test(const fogrt__wnode *n, const fogrt__wray *r, float tmin, float tmax, float *t,
-                                     bool avx2)
-{
+                                     bool avx2) {
 #ifdef FOGRT__WBVH_HAS_AVX2
     if (avx2) return fogrt__wbvh_slabs8(n, r, tmin, tmax, t);
 #endif
@@ -4473,8 +4282,7 @@ FOGRT__HOT unsigned fogrt__wbvh_test(const fogrt__wnode *n, const fogrt__wray *r
    lanes hit in (tmin, tmax) and their t, u, v. */
 #ifdef FOGRT_WBVH_SSE
 FOGRT__HOT unsigned fogrt__wbvh_tri4(const fogrt__wtri *q, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
-                                     float *t, float *u, float *v)
-{
+                                     float *t, float *u, float *v) {
 #define FOGRT__L(x) _mm_loadu_ps(x)
     const __m128 dx = _mm_set1_ps(d.x), dy = _mm_set1_ps(d.y), dz = _mm_set1_ps(d.z);
     const __m128 e1x = FOGRT__L(q->e1[0]), e1y = FOGRT__L(q->e1[1]), e1z = FOGRT__L(q->e1[2]);
@@ -4527,8 +4335,7 @@ FOGRT__HOT unsigned fogrt__wbvh_tri4(const fogrt__wtri *q, fogrt__v3 o, fogrt__v
 }
 #else
 FOGRT__HOT unsigned fogrt__wbvh_tri4(const fogrt__wtri *q, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
-                                     float *t, float *u, float *v)
-{
+                                     float *t, float *u, float *v) {
     unsigned mask = 0;
     int j;
     for (j = 0; j < 4; ++j) {
@@ -4553,8 +4360,7 @@ FOGRT__HOT unsigned fogrt__wbvh_tri4(const fogrt__wtri *q, fogrt__v3 o, fogrt__v
 }
 #endif
 
-FOGRT__HOT unsigned fogrt__wbvh_ctz(unsigned m)       /* index of the lowest set bit (m != 0) */
-{
+FOGRT__HOT unsigned fogrt__wbvh_ctz(unsigned m) {       /* index of the lowest set bit (m != 0) */
 #if defined(__GNUC__) || defined(__clang__)
     return (unsigned)__builtin_ctz(m);
 #else
@@ -4568,8 +4374,7 @@ FOGRT__HOT unsigned fogrt__wbvh_ctz(unsigned m)       /* index of the lowest set
    (tmin, *tmax), found as fogrt__traverse finds it (in leaf order, so of two hits at the same
    distance the earlier primitive wins). Returns true on a hit, with *tmax lowered to it. */
 FOGRT__HOT bool fogrt__wbvh_leaf(const fogrt_scene *s, const fogrt__wbvh *w, uint32_t first, uint32_t count,
-                                 fogrt__v3 o, fogrt__v3 d, float tmin, float *tmax, fogrt_hit *hit, bool any_hit)
-{
+                                 fogrt__v3 o, fogrt__v3 d, float tmin, float *tmax, fogrt_hit *hit, bool any_hit) {
     uint32_t p, end = first + (count + 3) / 4;
     bool found = false;
     for (p = first; p < end; ++p) {
@@ -4629,8 +4434,7 @@ typedef struct fogrt__wentry { float t; uint32_t ref, cnt; } fogrt__wentry;   /*
    child comes first, as fogrt__traverse orders them), so the nearest is on top; for any hit
    the order does not matter and the sort is skipped. */
 FOGRT__HOT fogrt__wentry fogrt__wbvh_push(const fogrt__wbvh *w, const fogrt__wnode *n, const float *t, unsigned m,
-                                          bool any_hit, fogrt__wentry *stack, uint32_t *sp)
-{
+                                          bool any_hit, fogrt__wentry *stack, uint32_t *sp) {
     uint32_t base = *sp, i = base;
     unsigned rest = m & (m - 1);
     if (!any_hit && !(rest & (rest - 1))) {    /* exactly two lanes, the common case: no sort */
@@ -4658,8 +4462,7 @@ FOGRT__HOT fogrt__wentry fogrt__wbvh_push(const fogrt__wbvh *w, const fogrt__wno
 /* The traversal loop, one body for both paths: avx2 (a constant in each caller below)
    picks the box test. tcull is fogrt__cull(tmax), updated when tmax shrinks. */
 FOGRT__HOT bool fogrt__wbvh_walk(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
-                                 float tmin, float tmax, fogrt_hit *hit, bool any_hit, bool avx2)
-{
+                                 float tmin, float tmax, fogrt_hit *hit, bool any_hit, bool avx2) {
     fogrt__wentry stack[FOGRT__WBVH_STACK];
     uint32_t sp = 0, ref = 0, cnt = 0;
     float tcull = fogrt__cull(tmax);
@@ -4710,8 +4513,7 @@ FOGRT__WBVH_ENTRY(FOGRT__AVX2_FN, fogrt__wbvh_any_avx2, true, true)
 #endif
 #undef FOGRT__WBVH_ENTRY
 FOGRT__HOT bool fogrt__wbvh_traverse(const fogrt_scene *s, const fogrt__wbvh *w, fogrt__v3 o, fogrt__v3 d,
-                                     float tmin, float tmax, fogrt_hit *hit, bool any_hit)
-{
+                                     float tmin, float tmax, fogrt_hit *hit, bool any_hit) {
     if (!s->built || w->node_count == 0) return false;
 #ifdef FOGRT__WBVH_HAS_AVX2
     if (w->avx2) return any_hit ? fogrt__wbvh_any_avx2(s, w, o, d, tmin, tmax, hit)
@@ -4723,16 +4525,14 @@ FOGRT__HOT bool fogrt__wbvh_traverse(const fogrt_scene *s, const fogrt__wbvh *w,
 
 /* The layout to trace: the wide tree when asked for, or by default from FOGRT_WBVH_MIN_PRIMS
    primitives (below that the binary tree is as fast). */
-FOGRT__PRIVATE bool fogrt__wants_wide(const fogrt_build_desc *d, uint32_t n)
-{
+FOGRT__PRIVATE bool fogrt__wants_wide(const fogrt_build_desc *d, uint32_t n) {
     return d->layout == FOGRT_BVH_LAYOUT_WIDE || (d->layout == FOGRT_BVH_LAYOUT_DEFAULT && n >= FOGRT_WBVH_MIN_PRIMS);
 }
 /* Seam 2: with the wide layout, the binary tree need not split nodes of at most
    FOGRT_WBVH_LEAF primitives (and max_leaf_size): the collapse makes each one leaf packet
    whatever its shape, so the wide tree is the same and the build skips its most numerous
    nodes. */
-FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n)
-{
+FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n) {
     if (!fogrt__wants_wide(d, n) || fogrt__wbvh_small_scene(n)) return 0;
     return FOGRT__MIN((uint32_t)d->max_leaf_size, (uint32_t)FOGRT__WBVH_LEAF);
 }
@@ -4757,12 +4557,10 @@ typedef struct fogrt__xbins {
     __m128 org, sc;
     int nb;
 } fogrt__xbins;
-FOGRT__HOT __m128 fogrt__x_centre(const fogrt__aabb *b)
-{
+FOGRT__HOT __m128 fogrt__x_centre(const fogrt__aabb *b) {
     return _mm_mul_ps(_mm_add_ps(_mm_loadu_ps(&b->lo.x), _mm_loadu_ps(&b->hi.x)), _mm_set1_ps(0.5f));
 }
-FOGRT__PRIVATE fogrt__aabb fogrt__x_box(__m128 lo, __m128 hi)
-{
+FOGRT__PRIVATE fogrt__aabb fogrt__x_box(__m128 lo, __m128 hi) {
     fogrt__aabb b;
     float l[4], h[4];
     _mm_storeu_ps(l, lo); _mm_storeu_ps(h, hi);
@@ -4772,8 +4570,7 @@ FOGRT__PRIVATE fogrt__aabb fogrt__x_box(__m128 lo, __m128 hi)
 }
 /* fogrt__bins_fill's set-up: as many bins, the same scales. False when every axis has
    scale 0 (all centroids coincide: no plane to try). */
-FOGRT__PRIVATE bool fogrt__xbins_init(fogrt__xbins *x, const fogrt_build_desc *d, const fogrt__aabb *cb, uint32_t count)
-{
+FOGRT__PRIVATE bool fogrt__xbins_init(fogrt__xbins *x, const fogrt_build_desc *d, const fogrt__aabb *cb, uint32_t count) {
     int ax, k, nb = count < (uint32_t)d->bins ? (int)count : d->bins;
     if (nb == 1) nb = 2;
     x->scale[3] = 0.0f;
@@ -4793,8 +4590,7 @@ FOGRT__PRIVATE bool fogrt__xbins_init(fogrt__xbins *x, const fogrt_build_desc *d
     return x->scale[0] > 0.0f || x->scale[1] > 0.0f || x->scale[2] > 0.0f;
 }
 /* A box [l, h] into bin k (of the flat numbering). */
-FOGRT__HOT void fogrt__xbins_add(fogrt__xbin *bin, uint32_t *n, uint32_t k, __m128 l, __m128 h)
-{
+FOGRT__HOT void fogrt__xbins_add(fogrt__xbin *bin, uint32_t *n, uint32_t k, __m128 l, __m128 h) {
     _mm_storeu_ps(bin[k].lo, _mm_min_ps(_mm_loadu_ps(bin[k].lo), l));
     _mm_storeu_ps(bin[k].hi, _mm_max_ps(_mm_loadu_ps(bin[k].hi), h));
     n[k]++;
@@ -4803,8 +4599,7 @@ FOGRT__HOT void fogrt__xbins_add(fogrt__xbin *bin, uint32_t *n, uint32_t k, __m1
    max then min with the operands in its order, so a NaN lands in bin 0 there too), each
    lane's bin offset by its axis. The three axes are written out: a loop over them costs as
    much as the binning itself. */
-FOGRT__HOT void fogrt__xbins_put(fogrt__xbins *x, const fogrt__aabb *b, __m128 org, __m128 sc, __m128 top)
-{
+FOGRT__HOT void fogrt__xbins_put(fogrt__xbins *x, const fogrt__aabb *b, __m128 org, __m128 sc, __m128 top) {
     const __m128i axis = _mm_setr_epi32(0, FOGRT__BVH_MAX_BINS, 2 * FOGRT__BVH_MAX_BINS, 0);
     __m128 l = _mm_loadu_ps(&b->lo.x), h = _mm_loadu_ps(&b->hi.x);
     __m128 f = _mm_mul_ps(_mm_sub_ps(fogrt__x_centre(b), org), sc);
@@ -4820,8 +4615,7 @@ FOGRT__HOT void fogrt__xbins_put(fogrt__xbins *x, const fogrt__aabb *b, __m128 o
    over its two halves and then of the two, because the first half comes first. The
    lanes' constants live in locals, not reloaded after every store to the bins. */
 #define FOGRT__X_TWO_SETS 64
-FOGRT__PRIVATE void fogrt__xbins_fill(fogrt__xbins *x, const fogrt__aabb *box, uint32_t count)
-{
+FOGRT__PRIVATE void fogrt__xbins_fill(fogrt__xbins *x, const fogrt__aabb *box, uint32_t count) {
     const __m128 org = x->org, sc = x->sc, top = _mm_set1_ps((float)(x->nb - 1));
     fogrt__xbins y;
     uint32_t i, half = count >= FOGRT__X_TWO_SETS ? count / 2 : 0;
@@ -4849,8 +4643,7 @@ FOGRT__PRIVATE void fogrt__xbins_fill(fogrt__xbins *x, const fogrt__aabb *box, u
 }
 /* fogrt__side_cost of n primitives in the box [lo, hi], with fogrt__aabb_area's and
    fogrt__aabb_volume's expressions. */
-FOGRT__HOT float fogrt__x_side_cost(const fogrt_build_desc *d, uint32_t n, __m128 lo, __m128 hi)
-{
+FOGRT__HOT float fogrt__x_side_cost(const fogrt_build_desc *d, uint32_t n, __m128 lo, __m128 hi) {
     float e[4];
     _mm_storeu_ps(e, _mm_sub_ps(hi, lo));
     if (e[0] < 0.0f) return 0.0f;                        /* the empty box: n times 0 */
@@ -4859,8 +4652,7 @@ FOGRT__HOT float fogrt__x_side_cost(const fogrt_build_desc *d, uint32_t n, __m12
 }
 /* fogrt__bins_sweep on the lane records of axis ax. */
 FOGRT__PRIVATE bool fogrt__xbins_sweep(const fogrt_build_desc *d, const fogrt__xbins *x, int ax, uint32_t count,
-                                       float *best, int *best_k)
-{
+                                       float *best, int *best_k) {
     const fogrt__xbin *bin = &x->bin[ax * FOGRT__BVH_MAX_BINS];
     const uint32_t *n = &x->n[ax * FOGRT__BVH_MAX_BINS];
     __m128 lo = _mm_set1_ps(FLT_MAX), hi = _mm_set1_ps(-FLT_MAX);
@@ -4886,8 +4678,7 @@ FOGRT__PRIVATE bool fogrt__xbins_sweep(const fogrt_build_desc *d, const fogrt__x
 }
 /* The children's boxes: the unions of the bins of axis ax on either side of plane k, in
    bin order (as fogrt__bins_partition forms them). */
-FOGRT__PRIVATE void fogrt__xbins_child_boxes(const fogrt__xbins *x, int ax, int k, fogrt_bvh_node *child)
-{
+FOGRT__PRIVATE void fogrt__xbins_child_boxes(const fogrt__xbins *x, int ax, int k, fogrt_bvh_node *child) {
     const fogrt__xbin *bin = &x->bin[ax * FOGRT__BVH_MAX_BINS];
     __m128 lo = _mm_set1_ps(FLT_MAX), hi = _mm_set1_ps(-FLT_MAX);
     fogrt__aabb b;
@@ -4907,13 +4698,11 @@ FOGRT__PRIVATE void fogrt__xbins_child_boxes(const fogrt__xbins *x, int ax, int 
    store stays inside its box, so a load after the partition's stores to the neighbouring
    box is never held up by them (a load across two earlier stores must wait for both to
    reach the cache). */
-FOGRT__HOT void fogrt__x_load(const fogrt__aabb *b, __m128 *a, __m128 *z)
-{
+FOGRT__HOT void fogrt__x_load(const fogrt__aabb *b, __m128 *a, __m128 *z) {
     *a = _mm_loadu_ps(&b->lo.x);
     *z = _mm_loadu_ps(&b->lo.z);
 }
-FOGRT__HOT void fogrt__x_store(fogrt__aabb *b, __m128 a, __m128 z)
-{
+FOGRT__HOT void fogrt__x_store(fogrt__aabb *b, __m128 a, __m128 z) {
     _mm_storeu_ps(&b->lo.x, a);
     _mm_storeu_ps(&b->lo.z, z);
 }
@@ -4923,8 +4712,7 @@ FOGRT__HOT void fogrt__x_store(fogrt__aabb *b, __m128 a, __m128 z)
    clamped at 0, is (k is a whole number from 1 to nb - 1), so one comparison stands for
    the bin number. count is at least 1. */
 FOGRT__PRIVATE uint32_t fogrt__xbins_partition(const fogrt__xbins *x, fogrt__aabb *box, uint32_t *id, uint32_t count,
-                                               int ax, int k, fogrt__bjob *left, fogrt__bjob *right)
-{
+                                               int ax, int k, fogrt__bjob *left, fogrt__bjob *right) {
     const __m128 org = x->org, sc = x->sc, kk = _mm_set1_ps((float)k), zero = _mm_setzero_ps(), half = _mm_set1_ps(0.5f);
     __m128 llo = _mm_set1_ps(FLT_MAX), lhi = _mm_set1_ps(-FLT_MAX), rlo = llo, rhi = lhi, a, z;
     uint32_t l = 0, r = count;
@@ -4956,8 +4744,7 @@ FOGRT__PRIVATE uint32_t fogrt__xbins_partition(const fogrt__xbins *x, fogrt__aab
 /* The seam: fogrt__bvh_split_binned's answer (*left_count, *halve) from the lanes, or false
    without SSE (Part I's scalar split then runs). */
 FOGRT__PRIVATE bool fogrt__x_split_binned(fogrt__build *b, const fogrt__bjob *job, fogrt_bvh_node *child,
-                                          fogrt__bjob *left, fogrt__bjob *right, bool *halve, uint32_t *left_count)
-{
+                                          fogrt__bjob *left, fogrt__bjob *right, bool *halve, uint32_t *left_count) {
 #ifdef FOGRT_WBVH_SSE
     const fogrt_bvh_node *node = &b->nodes[job->node];
     uint32_t first = node->left_first, count = node->prim_count;
@@ -4985,8 +4772,7 @@ FOGRT__PRIVATE bool fogrt__x_split_binned(fogrt__build *b, const fogrt__bjob *jo
 }
 /* Seam 1: the wide tree when there is one (*done), else Part I's binary tree. */
 FOGRT__HOT bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
-                                      fogrt_hit *hit, bool any_hit, bool *done)
-{
+                                      fogrt_hit *hit, bool any_hit, bool *done) {
     *done = s->x && s->x->wide && s->x->wide->node_count;
     return *done && fogrt__wbvh_traverse(s, s->x->wide, o, d, tmin, tmax, hit, any_hit);
 }
@@ -5035,17 +4821,14 @@ typedef struct fogrt__hg_table {
     float k_norm;                       /* 1 / (2 pi K(pi)): the glow's density per steradian (below) */
     float inv_x0, sn;                   /* 1 / x0 and s N: the bin guess of fogrt__hgt_bin */
 } fogrt__hg_table;
-FOGRT__PRIVATE double fogrt__hg_angle(double g, double psi)   /* HG(cos psi), base formed without cancellation */
-{
+FOGRT__PRIVATE double fogrt__hg_angle(double g, double psi) {   /* HG(cos psi), base formed without cancellation */
     double s = sin(0.5 * psi), base = (1.0 - g) * (1.0 - g) + 4.0 * g * s * s;
     return (1.0 - g) * (1.0 + g) / (4.0 * FOGRT__PI_D * base * sqrt(base));
 }
-FOGRT__PRIVATE double fogrt__hgt_dist(const fogrt__hg_table *t, int i)   /* distance of edge i (from the peak side) */
-{
+FOGRT__PRIVATE double fogrt__hgt_dist(const fogrt__hg_table *t, int i) {   /* distance of edge i (from the peak side) */
     return i >= FOGRT__HGT_N ? FOGRT__PI_D : t->x0 * expm1((double)i / FOGRT__HGT_N / t->s);
 }
-FOGRT__PRIVATE void fogrt__hgt_index(const double *cum, uint16_t *start)
-{
+FOGRT__PRIVATE void fogrt__hgt_index(const double *cum, uint16_t *start) {
     int i = 0, j;
     for (j = 0; j <= FOGRT__HGT_N; ++j) {                 /* first bin whose top reaches j/N of the total */
         double v = cum[FOGRT__HGT_N] * j / FOGRT__HGT_N;
@@ -5053,8 +4836,7 @@ FOGRT__PRIVATE void fogrt__hgt_index(const double *cum, uint16_t *start)
         start[j] = (uint16_t)i;
     }
 }
-FOGRT__PRIVATE void fogrt__hg_table_build(fogrt__hg_table *t, float g)
-{
+FOGRT__PRIVATE void fogrt__hg_table_build(fogrt__hg_table *t, float g) {
     int i, j;
     g = fogrt__clamp_g(g);
     t->back = g < 0.0f;
@@ -5081,8 +4863,7 @@ FOGRT__PRIVATE void fogrt__hg_table_build(fogrt__hg_table *t, float g)
    mantissa. A bin is 0.008 or more wide in ln units, so this only guesses the bin, and the
    exact edges decide (fogrt__hgt_bin); a library log1pf here cost a tenth of a spot-lit
    render's time. */
-FOGRT__HOT float fogrt__fast_log(float x)
-{
+FOGRT__HOT float fogrt__fast_log(float x) {
     uint32_t bits;
     float m;
     int e;
@@ -5095,8 +4876,7 @@ FOGRT__HOT float fogrt__fast_log(float x)
            m * (0.99949556f + m * (-0.49190896f + m * (0.28947478f + m * (-0.13606275f + m * 0.03215845f))));
 }
 /* The bin holding angle x: guessed from the warp, then moved until the exact edges hold x. */
-FOGRT__PRIVATE int fogrt__hgt_bin(const fogrt__hg_table *t, double x)
-{
+FOGRT__PRIVATE int fogrt__hgt_bin(const fogrt__hg_table *t, double x) {
     double d = t->back ? FOGRT__PI_D - x : x;
     int j = (int)(fogrt__fast_log(1.0f + (float)FOGRT__MAX(d, 0.0) * t->inv_x0) * t->sn), i;
     j = FOGRT__CLAMP(j, 0, FOGRT__HGT_N - 1);
@@ -5107,16 +4887,14 @@ FOGRT__PRIVATE int fogrt__hgt_bin(const fogrt__hg_table *t, double x)
 }
 /* A cumulative cum over the edges (C or K): its value at x and the density there, and its
    inverse at v. */
-FOGRT__PRIVATE double fogrt__hgt_at(const fogrt__hg_table *t, const double *cum, double x, double *density)
-{
+FOGRT__PRIVATE double fogrt__hgt_at(const fogrt__hg_table *t, const double *cum, double x, double *density) {
     int i = fogrt__hgt_bin(t, x);
     double d = (cum[i + 1] - cum[i]) / (t->edge[i + 1] - t->edge[i]);
     if (density) *density = d;
     return cum[i] + d * (FOGRT__CLAMP(x, t->edge[i], t->edge[i + 1]) - t->edge[i]);
 }
 FOGRT__PRIVATE double fogrt__hgt_invert(const fogrt__hg_table *t, const double *cum, const uint16_t *start, double v,
-                                        double *density)
-{
+                                        double *density) {
     int j = FOGRT__CLAMP((int)(v / cum[FOGRT__HGT_N] * FOGRT__HGT_N), 0, FOGRT__HGT_N - 1);
     int lo = start[j], hi = FOGRT__MAX((int)start[j + 1], lo), i;
     double d;
@@ -5135,18 +4913,15 @@ FOGRT__PRIVATE double fogrt__hgt_invert(const fogrt__hg_table *t, const double *
    would lose the digits tan needs; in double the result is exact to float resolution down to
    h ~ 1e-7 |t - delta|. The pdf, h / ((theta_b - theta_a)(h^2 + (t - delta)^2)), is written
    as 1 / ((theta_b - theta_a)(h + (t - delta)^2 / h)) so h^2 cannot underflow.            */
-FOGRT__PRIVATE double fogrt__equiangular_span(double delta, double h, double a, double b, double *theta_a)
-{
+FOGRT__PRIVATE double fogrt__equiangular_span(double delta, double h, double a, double b, double *theta_a) {
     *theta_a = atan2(a - delta, h);
     return atan2(b - delta, h) - *theta_a;
 }
-FOGRT__PRIVATE float fogrt__equiangular_density(double span, float delta, float h, float t)
-{
+FOGRT__PRIVATE float fogrt__equiangular_density(double span, float delta, float h, float t) {
     double dt = (double)t - (double)delta;
     return (float)(1.0 / (span * ((double)h + dt * (dt / (double)h))));
 }
-FOGRT__PUBLIC float fogrt_sample_equiangular(float delta, float h, float a, float b, float u, float *pdf)
-{
+FOGRT__PUBLIC float fogrt_sample_equiangular(float delta, float h, float a, float b, float u, float *pdf) {
     double theta_a, span = fogrt__equiangular_span(delta, h, a, b, &theta_a), x;
     float t;
     if (!(span > 0.0) || !(h > 0.0f)) { if (pdf) *pdf = 0.0f; return a; }
@@ -5158,8 +4933,7 @@ FOGRT__PUBLIC float fogrt_sample_equiangular(float delta, float h, float a, floa
     if (pdf) *pdf = fogrt__equiangular_density(span, delta, h, t);   /* at the t returned */
     return t;
 }
-FOGRT__PUBLIC float fogrt_equiangular_pdf(float delta, float h, float a, float b, float t)
-{
+FOGRT__PUBLIC float fogrt_equiangular_pdf(float delta, float h, float a, float b, float t) {
     double theta_a, span = fogrt__equiangular_span(delta, h, a, b, &theta_a);
     if (!(span > 0.0) || !(h > 0.0f) || t < a || t > b) return 0.0f;
     return fogrt__equiangular_density(span, delta, h, t);
@@ -5168,22 +4942,19 @@ FOGRT__PUBLIC float fogrt_equiangular_pdf(float delta, float h, float a, float b
    (each from a chord): (pi - alpha) / sin(alpha) = beta / sin(beta) tends to 1 at the
    antipode, and 1 / pi^3 normalises it (the integral over the sphere is 2 pi (pi^2 / 2)). */
 #define FOGRT__INV_PI3 0.032251534433199495f
-FOGRT__PRIVATE float fogrt__glow_density(float alpha, float beta)
-{
+FOGRT__PRIVATE float fogrt__glow_density(float alpha, float beta) {
     float s = sinf(FOGRT__MIN(alpha, beta));
     if (beta < 1e-4f) return FOGRT__INV_PI3;             /* beta / sin(beta) = 1 + beta^2/6 */
     return beta / FOGRT__MAX(s, 1e-30f) * FOGRT__INV_PI3;
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_glow(fogrt_vec3 to_light, float u1, float u2, float *pdf)
-{
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_glow(fogrt_vec3 to_light, float u1, float u2, float *pdf) {
     fogrt__frame f = fogrt__frame_from_z(fogrt__normalize(to_light));
     float r = sqrtf(FOGRT__MAX(0.0f, 1.0f - FOGRT__CLAMP(u1, 0.0f, 1.0f)));   /* beta = pi r */
     float alpha = FOGRT__PI * (1.0f - r), beta = FOGRT__PI * r;
     if (pdf) *pdf = fogrt__glow_density(alpha, beta);
     return fogrt__around(&f, cosf(alpha), sinf(FOGRT__MIN(alpha, beta)), u2);
 }
-FOGRT__PUBLIC float fogrt_glow_pdf(fogrt_vec3 to_light, fogrt_vec3 wi)
-{
+FOGRT__PUBLIC float fogrt_glow_pdf(fogrt_vec3 to_light, fogrt_vec3 wi) {
     fogrt__v3 a = fogrt__sub(wi, to_light), b = fogrt__add(wi, to_light);
     float la = fogrt__length(a), lb = fogrt__length(b);
     return fogrt__glow_density(2.0f * atan2f(la, lb), 2.0f * atan2f(lb, la));
@@ -5199,8 +4970,7 @@ FOGRT__PUBLIC float fogrt_glow_pdf(fogrt_vec3 to_light, fogrt_vec3 wi)
    (P of degree 8, fitted here for the least relative error: 1.5e-8 in exact arithmetic, 2
    ulp in float), and pi/2 minus it when y > x. A small angle keeps its relative precision,
    as atan2f's does; the library's atanf, correctly rounded, cost 5% of a spot-lit render. */
-FOGRT__PRIVATE float fogrt__atan2_pos(float y, float x)
-{
+FOGRT__PRIVATE float fogrt__atan2_pos(float y, float x) {
     bool swap = y > x;
     float r = swap ? x / y : (x > 0.0f ? y / x : 0.0f), z = r * r, p;
     p = 2.850117773e-03f;
@@ -5216,21 +4986,18 @@ FOGRT__PRIVATE float fogrt__atan2_pos(float y, float x)
    atan2(h, t - delta) above, and fogrt__atan2_pos keeps its relative precision for small
    angles (so HG's peak, at psi = 0 for g >= 0 and pi for g < 0, is resolved as in double,
    at a fraction of double atan2's cost). */
-FOGRT__PRIVATE double fogrt__psi_of(float t, float delta, float h)
-{
+FOGRT__PRIVATE double fogrt__psi_of(float t, float delta, float h) {
     float y = (float)((double)t - (double)delta);
     return y <= 0.0f ? (double)fogrt__atan2_pos(h, -y) : FOGRT__PI_D - (double)fogrt__atan2_pos(h, y);
 }
 /* cos x and sin x of an angle in [0, pi], each from the distance to the nearer end. */
-FOGRT__PRIVATE void fogrt__cos_sin(double x, float *c, float *s)
-{
+FOGRT__PRIVATE void fogrt__cos_sin(double x, float *c, float *s) {
     float r = (float)(x <= 0.5 * FOGRT__PI_D ? x : FOGRT__PI_D - x);
     *s = sinf(r);
     *c = x <= 0.5 * FOGRT__PI_D ? cosf(r) : -cosf(r);
 }
 FOGRT__HOT float fogrt__sample_equiangular_hg(const fogrt__hg_table *T, float delta, float h, float a, float b,
-                                              float u, float *pdf)
-{
+                                              float u, float *pdf) {
     double ca = fogrt__hgt_at(T, T->c, fogrt__psi_of(a, delta, h), NULL), cb, psi, dens, dt;
     float t, cp, sp;
     cb = b < INFINITY ? fogrt__hgt_at(T, T->c, fogrt__psi_of(b, delta, h), NULL) : T->c[FOGRT__HGT_N];
@@ -5246,14 +5013,12 @@ FOGRT__HOT float fogrt__sample_equiangular_hg(const fogrt__hg_table *T, float de
 }
 /* The glow with HG: alpha from K (density G per unit alpha, then 1 / (2 pi sin alpha) per
    steradian). */
-FOGRT__PRIVATE float fogrt__glow_hg_density(const fogrt__hg_table *T, double sin_alpha, double dens)   /* per steradian */
-{
+FOGRT__PRIVATE float fogrt__glow_hg_density(const fogrt__hg_table *T, double sin_alpha, double dens) {   /* per steradian */
     return (float)dens * T->k_norm / FOGRT__MAX((float)sin_alpha, 1e-30f);
 }
 /* *pdf: the density at the angle drawn (the direction returned is that angle to float
    rounding), which spares fogrt__glow_hg_pdf's atan2 and table look-up. */
-FOGRT__PRIVATE fogrt__v3 fogrt__sample_glow_hg(const fogrt__hg_table *T, fogrt__v3 to_light, float u1, float u2, float *pdf)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_glow_hg(const fogrt__hg_table *T, fogrt__v3 to_light, float u1, float u2, float *pdf) {
     fogrt__frame f = fogrt__frame_from_z(to_light);
     double dens, alpha = fogrt__hgt_invert(T, T->k, T->k_start, (double)u1 * T->k[FOGRT__HGT_N], &dens);
     float ca, sa;
@@ -5263,8 +5028,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_glow_hg(const fogrt__hg_table *T, fogrt__
 }
 /* alpha from the chords |wi - l| = 2 sin(alpha/2) and |wi + l| = 2 cos(alpha/2), as the
    angle to the nearer end (fogrt__psi_of); sin(alpha) is half their product. */
-FOGRT__PRIVATE float fogrt__glow_hg_pdf(const fogrt__hg_table *T, fogrt__v3 to_light, fogrt__v3 wi)
-{
+FOGRT__PRIVATE float fogrt__glow_hg_pdf(const fogrt__hg_table *T, fogrt__v3 to_light, fogrt__v3 wi) {
     fogrt__v3 a = fogrt__sub(wi, to_light), b = fogrt__add(wi, to_light);
     float la = fogrt__length(a), lb = fogrt__length(b);
     double alpha = la <= lb ? 2.0 * (double)fogrt__atan2_pos(la, lb) : FOGRT__PI_D - 2.0 * (double)fogrt__atan2_pos(lb, la), dens;
@@ -5303,8 +5067,7 @@ typedef struct fogrt__footprint {
 } fogrt__footprint;
 /* Where the lamp's direction w meets the plane (also the rim points of fogrt__footprint_bound's
    bound); false when w runs parallel to the plane or away from it. */
-FOGRT__PRIVATE bool fogrt__footprint_hit(const fogrt__footprint *F, fogrt__v3 w, fogrt__v3 *y)
-{
+FOGRT__PRIVATE bool fogrt__footprint_hit(const fogrt__footprint *F, fogrt__v3 w, fogrt__v3 *y) {
     float dn = fogrt__dot(w, F->n), t;
     if (!(dn < 0.0f)) return false;
     t = fogrt__dot(fogrt__sub(F->p, F->light), F->n) / dn;
@@ -5312,8 +5075,7 @@ FOGRT__PRIVATE bool fogrt__footprint_hit(const fogrt__footprint *F, fogrt__v3 w,
     *y = fogrt__madd(F->light, w, t);
     return true;
 }
-FOGRT__PRIVATE bool fogrt__sample_footprint_cone(const fogrt__footprint *F, fogrt__v3 x, float u1, float u2, fogrt__v3 *wi)
-{
+FOGRT__PRIVATE bool fogrt__sample_footprint_cone(const fogrt__footprint *F, fogrt__v3 x, float u1, float u2, fogrt__v3 *wi) {
     float len2;
     fogrt__v3 y, xy;
     if (!fogrt__footprint_hit(F, fogrt__in_cone(&F->cone, u1 * F->one_minus_cos, u2), &y)) return false;
@@ -5328,8 +5090,7 @@ FOGRT__PRIVATE bool fogrt__sample_footprint_cone(const fogrt__footprint *F, fogr
    intermediate overflows; 0 where the result would not be finite (grazing directions from
    a point next to the plane, where the true density is astronomically large on a vanishing
    set of directions). */
-FOGRT__PRIVATE float fogrt__footprint_cone_pdf(const fogrt__footprint *F, fogrt__v3 x, fogrt__v3 wi)
-{
+FOGRT__PRIVATE float fogrt__footprint_cone_pdf(const fogrt__footprint *F, fogrt__v3 x, fogrt__v3 wi) {
     float dn = fogrt__dot(wi, F->n), t, d2, d, cos_y, pdf;
     fogrt__v3 ly;
     if (dn == 0.0f) return 0.0f;
@@ -5346,8 +5107,7 @@ FOGRT__PRIVATE float fogrt__footprint_cone_pdf(const fogrt__footprint *F, fogrt_
 }
 /* The second way: the cone the sphere subtends from x, its axis and 1 - cos of its
    half-angle; false where x is inside the sphere (or there is none). */
-FOGRT__PRIVATE bool fogrt__footprint_sphere(const fogrt__footprint *F, fogrt__v3 x, fogrt__v3 *axis, float *omc)
-{
+FOGRT__PRIVATE bool fogrt__footprint_sphere(const fogrt__footprint *F, fogrt__v3 x, fogrt__v3 *axis, float *omc) {
     float dist;
     if (!(F->radius > 0.0f)) return false;
     *omc = fogrt__sphere_one_minus_cos_max(F->center, F->radius, x, &dist);
@@ -5359,8 +5119,7 @@ FOGRT__PRIVATE bool fogrt__footprint_sphere(const fogrt__footprint *F, fogrt__v3
    from outside, the rest through the lamp's cone; the density is the same mixture. A
    direction is inside the sphere's cone when 1 - cos of its angle to the axis, half the
    squared chord |wi - axis|^2 (exact for small angles), is at most omc. */
-FOGRT__PRIVATE bool fogrt__sample_footprint(const fogrt__footprint *F, fogrt__v3 x, float u1, float u2, fogrt__v3 *wi)
-{
+FOGRT__PRIVATE bool fogrt__sample_footprint(const fogrt__footprint *F, fogrt__v3 x, float u1, float u2, fogrt__v3 *wi) {
     fogrt__v3 axis;
     float omc;
     if (!fogrt__footprint_sphere(F, x, &axis, &omc)) return fogrt__sample_footprint_cone(F, x, u1, u2, wi);
@@ -5370,8 +5129,7 @@ FOGRT__PRIVATE bool fogrt__sample_footprint(const fogrt__footprint *F, fogrt__v3
     }
     return fogrt__sample_footprint_cone(F, x, (u1 - FOGRT__FOOTPRINT_CAP) / (1.0f - FOGRT__FOOTPRINT_CAP), u2, wi);
 }
-FOGRT__PRIVATE float fogrt__footprint_pdf(const fogrt__footprint *F, fogrt__v3 x, fogrt__v3 wi)
-{
+FOGRT__PRIVATE float fogrt__footprint_pdf(const fogrt__footprint *F, fogrt__v3 x, fogrt__v3 wi) {
     fogrt__v3 axis, chord;
     float omc, sphere = 0.0f;
     if (!fogrt__footprint_sphere(F, x, &axis, &omc)) return fogrt__footprint_cone_pdf(F, x, wi);
@@ -5397,8 +5155,7 @@ FOGRT__PRIVATE float fogrt__footprint_pdf(const fogrt__footprint *F, fogrt__v3 x
    rim meets the plane, and their largest distance from it, 2% more (the rim between them
    bulges a little past the points when the cone meets the plane at a slant). No sphere
    when part of the rim misses the plane: the patch is then unbounded. */
-FOGRT__PRIVATE void fogrt__footprint_bound(fogrt__footprint *F)
-{
+FOGRT__PRIVATE void fogrt__footprint_bound(fogrt__footprint *F) {
     fogrt__v3 rim[FOGRT__FOOTPRINT_RIM], c = fogrt__v(0.0f, 0.0f, 0.0f);
     float r = 0.0f;
     int j;
@@ -5414,8 +5171,7 @@ FOGRT__PRIVATE void fogrt__footprint_bound(fogrt__footprint *F)
     F->center = c;
     F->radius = 1.02f * r;
 }
-FOGRT__PRIVATE bool fogrt__find_footprints(fogrt_scene *s)
-{
+FOGRT__PRIVATE bool fogrt__find_footprints(fogrt_scene *s) {
     enum { RAYS = FOGRT__FOOTPRINT_GRID * FOGRT__FOOTPRINT_GRID };
     float tol = 1e-4f * fogrt__length(fogrt__sub(s->bmax, s->bmin));
     uint32_t i;
@@ -5477,8 +5233,7 @@ FOGRT__PRIVATE bool fogrt__find_footprints(fogrt_scene *s)
    (A > 0) is inside beyond the roots, the far side in the forward nappe when it runs the
    spot's way. Returns 1 with [*a, *b] clipped, 0 for a miss, -1 when the general case
    must decide (A = 0, or no real root with A > 0, which rounding alone can make). */
-FOGRT__HOT int fogrt__clip_to_cone_quadratic(float A, float B, float C, float da, float wa, float *a, float *b)
-{
+FOGRT__HOT int fogrt__clip_to_cone_quadratic(float A, float B, float C, float da, float wa, float *a, float *b) {
     float disc = B * B - A * C, q, r0, r1, lo, hi;
     if (A == 0.0f) return -1;
     if (!(disc >= 0.0f)) return A < 0.0f ? 0 : -1;      /* A < 0: misses both nappes (most rays) */
@@ -5493,8 +5248,7 @@ FOGRT__HOT int fogrt__clip_to_cone_quadratic(float A, float B, float C, float da
     *a = lo; *b = hi;
     return 1;
 }
-FOGRT__HOT bool fogrt__clip_to_cone(const fogrt_light_desc *l, float cos_c, fogrt__v3 o, fogrt__v3 d, float *a, float *b)
-{
+FOGRT__HOT bool fogrt__clip_to_cone(const fogrt_light_desc *l, float cos_c, fogrt__v3 o, fogrt__v3 d, float *a, float *b) {
     fogrt__v3 w = fogrt__sub(o, l->position);
     float c2 = cos_c * cos_c;
     float da = fogrt__dot(d, l->direction), wa = fogrt__dot(w, l->direction);
@@ -5549,8 +5303,7 @@ FOGRT__HOT bool fogrt__clip_to_cone(const fogrt_light_desc *l, float cos_c, fogr
 /* Exact unpolarised Fresnel of a dielectric: the mean of the s and p reflectances. The
    transmitted cosine comes from cos_t^2 = (cos_i^2 + eta^2 - 1) / eta^2, which does not
    round 1 - cos_i^2 to 1 at grazing angles (so eta = 1 gives cos_t = cos_i and F = 0). */
-FOGRT__PUBLIC float fogrt_fresnel_dielectric(float eta, float cos_i)
-{
+FOGRT__PUBLIC float fogrt_fresnel_dielectric(float eta, float cos_i) {
     float cos2_t, cos_t, r_par, r_perp;
     cos_i = FOGRT__CLAMP(cos_i, -1.0f, 1.0f);
     if (cos_i < 0.0f) { eta = 1.0f / eta; cos_i = -cos_i; }   /* from inside */
@@ -5568,8 +5321,7 @@ FOGRT__PUBLIC float fogrt_fresnel_dielectric(float eta, float cos_i)
 /* Environment maps: the map replaces the constant environment (the scene keeps the pixels,
    times scale), is looked up in CS184's mapping, and is sampled by next-event estimation in
    proportion to luminance x sin(theta). */
-FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment_map(fogrt_scene *s, int width, int height, const float *rgb, float scale)
-{
+FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment_map(fogrt_scene *s, int width, int height, const float *rgb, float scale) {
     size_t i, n;
     float *copy;
     FOGRT_ASSERT(s);
@@ -5597,16 +5349,14 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment_map(fogrt_scene *s, int w
     s->built = false;
     return FOGRT_RESULT_OK;
 }
-FOGRT__PRIVATE size_t fogrt__env_pixel(const fogrt_scene *s, fogrt__v3 d, float *sin_theta)
-{
+FOGRT__PRIVATE size_t fogrt__env_pixel(const fogrt_scene *s, fogrt__v3 d, float *sin_theta) {
     float y = acosf(FOGRT__CLAMP(d.y, -1.0f, 1.0f)) * FOGRT__INV_PI;
     float x = (atan2f(-d.z, d.x) + FOGRT__PI) * (0.5f * FOGRT__INV_PI);
     int i = FOGRT__CLAMP((int)(x * (float)s->env_w), 0, s->env_w - 1), j = FOGRT__CLAMP((int)(y * (float)s->env_h), 0, s->env_h - 1);
     *sin_theta = sqrtf(FOGRT__MAX(0.0f, (1.0f - d.y) * (1.0f + d.y)));
     return (size_t)j * (size_t)s->env_w + (size_t)i;
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__env_map_radiance(const fogrt_scene *s, fogrt__v3 d)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__env_map_radiance(const fogrt_scene *s, fogrt__v3 d) {
     float sin_t;
     const float *c;
     if (!s->env_map) return fogrt__env_radiance(s, d);
@@ -5617,31 +5367,27 @@ FOGRT__PRIVATE fogrt__v3 fogrt__env_map_radiance(const fogrt_scene *s, fogrt__v3
    theta = pi y from +y, phi = 2 pi x with phi = atan2(-z, x) + pi. The sampling density of
    a pixel is its table weight over the total, per unit (x, y); per solid angle it is divided
    by the Jacobian d omega / dx dy = 2 pi^2 sin(theta). */
-FOGRT__PRIVATE fogrt__v3 fogrt__env_dir(float x, float y, float *sin_theta)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__env_dir(float x, float y, float *sin_theta) {
     float theta = FOGRT__PI * y, phi = 2.0f * FOGRT__PI * x;
     *sin_theta = sinf(theta);
     return fogrt__v(-*sin_theta * cosf(phi), cosf(theta), *sin_theta * sinf(phi));
 }
 /* The probability (per unit x, y) of pixel p in the sampling tables. */
-FOGRT__PRIVATE float fogrt__env_cell_pdf(const fogrt_scene *s, size_t p)
-{
+FOGRT__PRIVATE float fogrt__env_cell_pdf(const fogrt_scene *s, size_t p) {
     const float *rows = s->x->env_cdf + (size_t)s->env_w * (size_t)s->env_h;
     size_t i = p % (size_t)s->env_w, j = p / (size_t)s->env_w;
     const float *cdf = s->x->env_cdf + j * (size_t)s->env_w;
     float pr = rows[j] - (j ? rows[j - 1] : 0.0f), pc = cdf[i] - (i ? cdf[i - 1] : 0.0f);
     return pr * pc * (float)s->env_w * (float)s->env_h;
 }
-FOGRT__PRIVATE float fogrt__env_pdf(const fogrt_scene *s, fogrt__v3 d)
-{
+FOGRT__PRIVATE float fogrt__env_pdf(const fogrt_scene *s, fogrt__v3 d) {
     float sin_t;
     size_t p;
     if (!s->env_map || !(s->x->env_total > 0.0)) return 0.0f;
     p = fogrt__env_pixel(s, d, &sin_t);
     return sin_t > 0.0f ? fogrt__env_cell_pdf(s, p) / (2.0f * FOGRT__PI * FOGRT__PI * sin_t) : 0.0f;
 }
-FOGRT__PRIVATE bool fogrt__sample_env(const fogrt_scene *s, const float *u, fogrt_light_sample *ls)
-{
+FOGRT__PRIVATE bool fogrt__sample_env(const fogrt_scene *s, const float *u, fogrt_light_sample *ls) {
     float fy, fx, sin_t;
     int j = fogrt__cdf_find(s->x->env_cdf + (size_t)s->env_w * (size_t)s->env_h, s->env_h, u[0], &fy);
     int i = fogrt__cdf_find(s->x->env_cdf + (size_t)j * (size_t)s->env_w, s->env_w, u[1], &fx);
@@ -5662,8 +5408,7 @@ FOGRT__PRIVATE bool fogrt__sample_env(const fogrt_scene *s, const float *u, fogr
    sin(theta) at the row's centre (the solid angle a row covers); per row a CDF over its
    columns, then a CDF over the rows. */
 /* The environment map's CDFs: rows, and columns within each row. */
-FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s)
-{
+FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s) {
     int i, j, w = s->env_w, h = s->env_h;
     double total = 0.0;
     float *rows;
@@ -5696,8 +5441,7 @@ FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s)
 /* The part [*a, *b] of the ray segment o + t d, t in [0, tmax], that lies in the fog: all of
    it, or with bounded fog its part inside the box (a slab test like 2.1's, NaN-safe
    for axis-parallel rays on a face). False when the segment misses the fog. */
-FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax, float *a, float *b)
-{
+FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax, float *a, float *b) {
     int k;
     *a = 0.0f; *b = tmax;
     if (!s->x->fog_bounded) return true;
@@ -5714,8 +5458,7 @@ FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d
 #ifndef FOGRT_NO_ESTIMATION
 /* Where the fog is: the medium's box, or with an environment light and no box the box of
    the geometry (fog filling all space would hide the sky), or everywhere. */
-FOGRT__PRIVATE void fogrt__fog_bounds(fogrt_scene *s, uint32_t n)
-{
+FOGRT__PRIVATE void fogrt__fog_bounds(fogrt_scene *s, uint32_t n) {
     s->x->fog_bounded = s->medium.bounded;
     s->x->fog_lo = s->medium.bounds_min; s->x->fog_hi = s->medium.bounds_max;
     if (s->medium.bounded || !(s->features & FOGRT_FEATURE_MEDIUM) || !s->has_env || n == 0) return;
@@ -5728,8 +5471,7 @@ FOGRT__PRIVATE void fogrt__fog_bounds(fogrt_scene *s, uint32_t n)
    area lights, and last the environment map when there is one. A point light is sampled once (it is one direction), any other light
    light_samples times; a point light needs two uniforms (the sphere of a light with a
    radius), an area light three (the triangle, then the point on it). */
-FOGRT__PRIVATE uint32_t fogrt__light_total(const fogrt_scene *s)
-{
+FOGRT__PRIVATE uint32_t fogrt__light_total(const fogrt_scene *s) {
 #ifndef FOGRT_NO_ESTIMATION
     return s->light_count + s->area_light_count + (s->env_map && s->x->env_total > 0.0 ? 1u : 0u);
 #else
@@ -5741,8 +5483,7 @@ FOGRT__PRIVATE uint32_t fogrt__light_total(const fogrt_scene *s)
    angle it lights for a point or spot light, and for the environment map its mean radiance
    x pi x the sphere around the geometry's box. The table is the CDF of these over the light
    list (uniform when all are 0). */
-FOGRT__PRIVATE float fogrt__light_power(const fogrt_scene *s, uint32_t i, float radius)
-{
+FOGRT__PRIVATE float fogrt__light_power(const fogrt_scene *s, uint32_t i, float radius) {
     if (i < s->light_count) {
         const fogrt_light_desc *l = &s->lights[i];
         float solid = 4.0f * FOGRT__PI;
@@ -5758,15 +5499,13 @@ FOGRT__PRIVATE float fogrt__light_power(const fogrt_scene *s, uint32_t i, float 
     return (float)(s->x->env_total * FOGRT__PI_D / (2.0 * (double)s->env_w * (double)s->env_h)) *   /* mean radiance */
            FOGRT__PI * 4.0f * FOGRT__PI * radius * radius;
 }
-FOGRT__PRIVATE float fogrt__light_radius(const fogrt_scene *s)    /* of the sphere around the geometry */
-{
+FOGRT__PRIVATE float fogrt__light_radius(const fogrt_scene *s) {    /* of the sphere around the geometry */
     return FOGRT__MAX(0.5f * fogrt__length(fogrt__sub(s->bmax, s->bmin)), 1e-6f);
 }
 #ifdef FOGRT__LAMPS
 /* The share c of d' (E): half the point and spot lights' share of the light's power, 1/2
    when they are all of it. */
-FOGRT__PRIVATE float fogrt__glow_share_of(const fogrt_scene *s)
-{
+FOGRT__PRIVATE float fogrt__glow_share_of(const fogrt_scene *s) {
     uint32_t i, n = fogrt__light_total(s);
     double total = 0.0, lamps = 0.0;
     if (n < 2) return 0.5f;
@@ -5779,8 +5518,7 @@ FOGRT__PRIVATE float fogrt__glow_share_of(const fogrt_scene *s)
 }
 #endif
 #ifndef FOGRT_NO_ESTIMATION
-FOGRT__PRIVATE bool fogrt__build_light_pick(fogrt_scene *s)
-{
+FOGRT__PRIVATE bool fogrt__build_light_pick(fogrt_scene *s) {
     uint32_t i, n = fogrt__light_total(s);
     double total = 0.0, run = 0.0;
     if (n < 2) return true;
@@ -5798,17 +5536,14 @@ FOGRT__PRIVATE bool fogrt__build_light_pick(fogrt_scene *s)
     return true;
 }
 #endif
-FOGRT__PRIVATE int fogrt_light_sample_count(const fogrt_scene *s, const fogrt__settings *st, uint32_t i)
-{
+FOGRT__PRIVATE int fogrt_light_sample_count(const fogrt_scene *s, const fogrt__settings *st, uint32_t i) {
     return i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->light_samples;
 }
-FOGRT__PRIVATE void fogrt__draw(const fogrt_scene *s, uint32_t light, fogrt_rng *rng, float *u)
-{
+FOGRT__PRIVATE void fogrt__draw(const fogrt_scene *s, uint32_t light, fogrt_rng *rng, float *u) {
     u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng);
     u[2] = light < s->light_count ? 0.0f : fogrt_rng_float(rng);
 }
-FOGRT__PRIVATE bool fogrt__sample_light(const fogrt_scene *s, uint32_t i, fogrt__v3 x, const float *u, fogrt_light_sample *ls)
-{
+FOGRT__PRIVATE bool fogrt__sample_light(const fogrt_scene *s, uint32_t i, fogrt__v3 x, const float *u, fogrt_light_sample *ls) {
     if (i < s->light_count) return fogrt__sample_point_light(s, &s->lights[i], x, u, ls);
     if (i - s->light_count < s->area_light_count) return fogrt__sample_area_light(s, &s->area_lights[i - s->light_count], x, u, ls);
 #ifndef FOGRT_NO_ESTIMATION
@@ -5818,8 +5553,7 @@ FOGRT__PRIVATE bool fogrt__sample_light(const fogrt_scene *s, uint32_t i, fogrt_
 #endif
 }
 /* The probability that next-event estimation picks light i: 1 when every light is sampled. */
-FOGRT__PRIVATE float fogrt__pick_prob(const fogrt_scene *s, bool by_power, uint32_t i)
-{
+FOGRT__PRIVATE float fogrt__pick_prob(const fogrt_scene *s, bool by_power, uint32_t i) {
     if (!by_power) return 1.0f;
     return s->x->light_pick[i] - (i ? s->x->light_pick[i - 1] : 0.0f);
 }
@@ -5850,8 +5584,7 @@ FOGRT__PRIVATE float fogrt__pick_prob(const fogrt_scene *s, bool by_power, uint3
    box along. rate = max(sigma_box, 0.3 x mean) / mean, so no pixel falls below about a
    third of the even rate, in case the box saw none of its rare light yet. Its gain:
    docs/benchmarks.md, table "Pixel rates". */
-FOGRT__PRIVATE void fogrt__sat_build(double *sat, const double *v, int W, int H)
-{
+FOGRT__PRIVATE void fogrt__sat_build(double *sat, const double *v, int W, int H) {
     int x, y;
     memset(sat, 0, sizeof(double) * (size_t)(W + 1));
     for (y = 0; y < H; ++y) {
@@ -5861,15 +5594,13 @@ FOGRT__PRIVATE void fogrt__sat_build(double *sat, const double *v, int W, int H)
         for (x = 0; x < W; ++x) { row += v[(size_t)y * (size_t)W + (size_t)x]; o[x + 1] = up[x + 1] + row; }
     }
 }
-FOGRT__PRIVATE double fogrt__sat_box(const double *sat, int W, int x0, int y0, int x1, int y1)
-{
+FOGRT__PRIVATE double fogrt__sat_box(const double *sat, int W, int x0, int y0, int x1, int y1) {
     size_t w = (size_t)W + 1;
     return sat[(size_t)(y1 + 1) * w + (size_t)(x1 + 1)] - sat[(size_t)y0 * w + (size_t)(x1 + 1)]
          - sat[(size_t)(y1 + 1) * w + (size_t)x0] + sat[(size_t)y0 * w + (size_t)x0];
 }
 /* out: on the pixels of colour c, v capped at cap (v NULL: 1, to count them); 0 elsewhere. */
-FOGRT__PRIVATE void fogrt__colour_layer(double *out, const double *v, int W, int H, int c, double cap)
-{
+FOGRT__PRIVATE void fogrt__colour_layer(double *out, const double *v, int W, int H, int c, double cap) {
     int x, y;
     for (y = 0; y < H; ++y)
         for (x = 0; x < W; ++x) {
@@ -5879,8 +5610,7 @@ FOGRT__PRIVATE void fogrt__colour_layer(double *out, const double *v, int W, int
 }
 /* Step 1: each colour's noise per sample, its mean, then capped at 16 times it, in two
    summed-area tables per colour (the noise, and how many of its pixels); v + n is scratch. */
-FOGRT__PRIVATE void fogrt__rate_tables(const fogrt_image *img, double *v, double *sat_v, double *sat_n, double *count)
-{
+FOGRT__PRIVATE void fogrt__rate_tables(const fogrt_image *img, double *v, double *sat_v, double *sat_n, double *count) {
     int W = img->width, H = img->height, x, y, c;
     size_t i, n = (size_t)W * (size_t)H, cells = (size_t)(W + 1) * (size_t)(H + 1);
     double vmean[2] = {0.0, 0.0};
@@ -5901,8 +5631,7 @@ FOGRT__PRIVATE void fogrt__rate_tables(const fogrt_image *img, double *v, double
 }
 /* Step 2: each pixel's noise from the other colour's pixels in the box of radius r around
    it; amean[c] sums colour c's. */
-FOGRT__PRIVATE void fogrt__rate_boxes(int W, int H, int r, double *v, const double *sat_v, const double *sat_n, double *amean)
-{
+FOGRT__PRIVATE void fogrt__rate_boxes(int W, int H, int r, double *v, const double *sat_v, const double *sat_n, double *amean) {
     size_t cells = (size_t)(W + 1) * (size_t)(H + 1);
     int x, y;
     for (y = 0; y < H; ++y)
@@ -5918,8 +5647,7 @@ FOGRT__PRIVATE void fogrt__rate_boxes(int W, int H, int r, double *v, const doub
         }
 }
 /* Step 3: a pixel of colour c is normalised by what the other colour's noise gave colour c. */
-FOGRT__PRIVATE void fogrt__rate_normalise(int W, int H, const double *v, const double *count, double *amean, float *rates)
-{
+FOGRT__PRIVATE void fogrt__rate_normalise(int W, int H, const double *v, const double *count, double *amean, float *rates) {
     double norm[2] = {0.0, 0.0};
     int x, y, c;
     size_t i;
@@ -5937,8 +5665,7 @@ FOGRT__PRIVATE void fogrt__rate_normalise(int W, int H, const double *v, const d
             rates[i] = (float)FOGRT__MIN(a, (double)FOGRT_MAX_SAMPLE_RATE);
         }
 }
-FOGRT__PUBLIC fogrt_result fogrt_image_sample_rates(const fogrt_image *img, float *rates)
-{
+FOGRT__PUBLIC fogrt_result fogrt_image_sample_rates(const fogrt_image *img, float *rates) {
     int W, H, r;
     size_t n, i, cells;
     double samples = 0.0, count[2] = {0.0, 0.0}, amean[2] = {0.0, 0.0};
@@ -5971,15 +5698,13 @@ FOGRT__PUBLIC fogrt_result fogrt_image_sample_rates(const fogrt_image *img, floa
    coordinate in bit 0): the first dimension is then the index itself (van der Corput),
    the second XORs, for every set bit k of the index, the column w_k = w_{k-1} ^ (w_{k-1}
    << 1), w_0 = 1 (bit i of w_k is binomial(k, i) mod 2: the matrix of the polynomial x + 1). */
-FOGRT__PRIVATE uint32_t fogrt__sobol2_reversed(uint32_t index)
-{
+FOGRT__PRIVATE uint32_t fogrt__sobol2_reversed(uint32_t index) {
     uint32_t w = 1u, y = 0u;
     for (; index; index >>= 1, w ^= w << 1)
         if (index & 1u) y ^= w;
     return y;
 }
-FOGRT__PRIVATE uint32_t fogrt__reverse_bits(uint32_t x)
-{
+FOGRT__PRIVATE uint32_t fogrt__reverse_bits(uint32_t x) {
     x = (x << 16) | (x >> 16);
     x = ((x & 0x00FF00FFu) << 8) | ((x >> 8) & 0x00FF00FFu);
     x = ((x & 0x0F0F0F0Fu) << 4) | ((x >> 4) & 0x0F0F0F0Fu);
@@ -5998,8 +5723,7 @@ FOGRT__PRIVATE uint32_t fogrt__reverse_bits(uint32_t x)
    It is a cheap stand-in for Owen's scramble by one random bit per tree node: it draws
    from fewer permutations, but is as stratified (the even constants are the golden-ratio
    and MurmurHash3 mixing constants with their last bit cleared). */
-FOGRT__PRIVATE uint32_t fogrt__nested_scramble(uint32_t reversed, uint64_t seed)
-{
+FOGRT__PRIVATE uint32_t fogrt__nested_scramble(uint32_t reversed, uint64_t seed) {
     uint32_t x = reversed + (uint32_t)seed;
     x ^= x * 0x9E3779B8u;
     x *= (uint32_t)(seed >> 32) | 1u;
@@ -6011,8 +5735,7 @@ FOGRT__PRIVATE uint32_t fogrt__nested_scramble(uint32_t reversed, uint64_t seed)
    index / FOGRT_IMAGE_STREAMS of that stream's sequence, scrambled with seeds drawn from
    (seed, pixel, stream). A function of (seed, pixel, index) only, so batches and threads do
    not change it, and a later batch continues each stream's sequence. */
-FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy)
-{
+FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy) {
     uint32_t point = index / FOGRT_IMAGE_STREAMS, stream = index % FOGRT_IMAGE_STREAMS;
     uint64_t key = fogrt__hash64(base ^ fogrt__hash64(0x5354524154494649ULL ^ (pix * FOGRT_IMAGE_STREAMS + stream)));
     uint32_t ux = fogrt__nested_scramble(point, key);
@@ -6025,8 +5748,7 @@ FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_
    pixel has had floor(B x rate + u) of them, u a uniform of its own drawn from (seed,
    pixel) alone, never from its radiance: the mean count is B x rate exactly, and it does
    not depend on how B was split over calls (the image is the same for any batches). */
-FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix)
-{
+FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix) {
     double u = (double)(fogrt__hash64(job->base ^ fogrt__hash64(0x52415445ULL ^ (uint64_t)pix)) >> 11) * (1.0 / 9007199254740992.0);
     double r = (double)job->rate[pix], b = (double)job->img->rated_spp;
     double n = floor((b + (double)job->spp) * r + u) - floor(b * r + u);
@@ -6112,8 +5834,7 @@ typedef struct fogrt__path {
 #ifdef FOGRT_TRACE
 /* Tracing a path (FOGRT_TRACE): each hook below fills one fogrt_trace_event and hands it to
    the callback. None of this exists without FOGRT_TRACE. */
-FOGRT__PRIVATE fogrt_trace_event fogrt__event(fogrt_trace_kind kind, const fogrt__path *P)
-{
+FOGRT__PRIVATE fogrt_trace_event fogrt__event(fogrt_trace_kind kind, const fogrt__path *P) {
     fogrt_trace_event e;
     memset(&e, 0, sizeof e);
     e.kind = kind;
@@ -6121,47 +5842,40 @@ FOGRT__PRIVATE fogrt_trace_event fogrt__event(fogrt_trace_kind kind, const fogrt
     e.p = P->o; e.d = P->d; e.beta = P->beta;
     return e;
 }
-FOGRT__PRIVATE void fogrt__emit(const fogrt__path *P, const fogrt_trace_event *e)
-{
+FOGRT__PRIVATE void fogrt__emit(const fogrt__path *P, const fogrt_trace_event *e) {
     if (P->xs->trace) P->xs->trace(e, P->xs->trace_user);
 }
 FOGRT__PRIVATE void fogrt__trace_free_flight(const fogrt__path *P, float u, float t,
-                                             float t_surface, bool collided)
-{
+                                             float t_surface, bool collided) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_FREE_FLIGHT, P);
     e.u[0] = u; e.t = t; e.t_max = t_surface; e.flag = collided;
     fogrt__emit(P, &e);
 }
-FOGRT__PRIVATE void fogrt__trace_surface(const fogrt__path *P, uint32_t prim)
-{
+FOGRT__PRIVATE void fogrt__trace_surface(const fogrt__path *P, uint32_t prim) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_SURFACE, P);
     e.p = P->v.p; e.prim = prim; e.bsdf = P->type;
     fogrt__emit(P, &e);
 }
-FOGRT__PRIVATE void fogrt__trace_simple(const fogrt__path *P, fogrt_trace_kind kind)
-{
+FOGRT__PRIVATE void fogrt__trace_simple(const fogrt__path *P, fogrt_trace_kind kind) {
     fogrt_trace_event e = fogrt__event(kind, P);
     fogrt__emit(P, &e);
 }
 FOGRT__PRIVATE void fogrt__trace_light(const fogrt__path *P, const fogrt__vertex *v,
                                        uint32_t light, const fogrt_light_sample *ls, fogrt__v3 f, float pdf_b,
-                                       float tr, float w, fogrt__v3 value)
-{
+                                       float tr, float w, fogrt__v3 value) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_LIGHT_SAMPLE, P);
     e.p = v->p; e.d = ls->wi; e.t = ls->dist; e.Le = ls->Le; e.pdf = ls->pdf; e.f = f; e.pdf_other = pdf_b;
     e.transmittance = tr; e.mis_weight = w; e.value = value; e.light = light;
     fogrt__emit(P, &e);
 }
 FOGRT__PRIVATE void fogrt__trace_equiangular(const fogrt__path *P, uint32_t light,
-                                             float u, float t, float pdf, fogrt__v3 weight)
-{
+                                             float u, float t, float pdf, fogrt__v3 weight) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_EQUIANGULAR, P);
     e.light = light; e.u[0] = u; e.t = t; e.pdf = pdf; e.value = weight;
     fogrt__emit(P, &e);
 }
 #ifndef FOGRT_NO_MEDIUM
-FOGRT__PRIVATE void fogrt__trace_phase(const fogrt__path *P, const fogrt_medium_desc *m, float u1, float u2)
-{
+FOGRT__PRIVATE void fogrt__trace_phase(const fogrt__path *P, const fogrt_medium_desc *m, float u1, float u2) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_PHASE_SAMPLE, P);
     e.u[0] = u1; e.u[1] = u2; e.cos_theta = fogrt_sample_hg_mu(m->g, u1); e.phi = 2.0f * FOGRT__PI * u2;
     if (m->phase != FOGRT_PHASE_HG) e.cos_theta = -fogrt__dot(P->v.wo, P->d);   /* G's phases: the angle drawn */
@@ -6170,8 +5884,7 @@ FOGRT__PRIVATE void fogrt__trace_phase(const fogrt__path *P, const fogrt_medium_
 }
 #endif
 FOGRT__PRIVATE void fogrt__trace_glow(const fogrt__path *P, const float *u, bool glow,
-                                      bool footprint, uint32_t light, float pdf_b, float pdf, fogrt__v3 weight)
-{
+                                      bool footprint, uint32_t light, float pdf_b, float pdf, fogrt__v3 weight) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_GLOW_SAMPLE, P);
     memcpy(e.u, u, sizeof e.u);
     e.source = footprint ? "footprint" : NULL;
@@ -6179,8 +5892,7 @@ FOGRT__PRIVATE void fogrt__trace_glow(const fogrt__path *P, const float *u, bool
     fogrt__emit(P, &e);
 }
 FOGRT__PRIVATE void fogrt__trace_bsdf(const fogrt__settings *st, const fogrt__path *P, const float *u,
-                                      const fogrt_bsdf_sample *bs, float cos_o)
-{
+                                      const fogrt_bsdf_sample *bs, float cos_o) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_BSDF_SAMPLE, P);
     memcpy(e.u, u, sizeof e.u);
     e.p = P->v.p; e.bsdf = P->type; e.pdf = bs->pdf; e.value = bs->weight;
@@ -6192,15 +5904,13 @@ FOGRT__PRIVATE void fogrt__trace_bsdf(const fogrt__settings *st, const fogrt__pa
 #endif
     fogrt__emit(P, &e);
 }
-FOGRT__PRIVATE void fogrt__trace_roulette(const fogrt__path *P, float q, float u, bool survived)
-{
+FOGRT__PRIVATE void fogrt__trace_roulette(const fogrt__path *P, float q, float u, bool survived) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_ROULETTE, P);
     e.q = q; e.u[0] = u; e.flag = survived;
     fogrt__emit(P, &e);
 }
 FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__path *P, fogrt__v3 c, bool counted,
-                                        const char *source)
-{
+                                        const char *source) {
     fogrt_trace_event e;
     if (fogrt__is_black(c)) return;                     /* only light that adds something */
     e = fogrt__event(FOGRT_TRACE_CONTRIBUTION, P);
@@ -6242,8 +5952,7 @@ FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__path *P, fogrt__v3 c, bool 
 /* The fog's phase function where E samples or evaluates it: Henyey-Greenstein (3.3), or
    with another phase (G) G's. In a build without G these are 3.3's calls as they were; with
    it, one compare where a fog vertex samples or evaluates (make callgrind). */
-FOGRT__HOT fogrt__v3 fogrt__fog_vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf)
-{
+FOGRT__HOT fogrt__v3 fogrt__fog_vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf) {
 #ifndef FOGRT_NO_MEDIA
     if (v->is_medium && s->medium.phase != FOGRT_PHASE_HG) {
         float p = fogrt__media_pdf(&s->medium, v->wo, wi);
@@ -6254,8 +5963,7 @@ FOGRT__HOT fogrt__v3 fogrt__fog_vertex_f(const fogrt_scene *s, const fogrt__vert
     return fogrt__vertex_f(s, v, wi, pdf);
 }
 #ifndef FOGRT_NO_MEDIUM
-FOGRT__HOT fogrt__v3 fogrt__fog_phase_sample(const fogrt_scene *s, fogrt__v3 wo, float u1, float u2, float *pdf)
-{
+FOGRT__HOT fogrt__v3 fogrt__fog_phase_sample(const fogrt_scene *s, fogrt__v3 wo, float u1, float u2, float *pdf) {
 #ifndef FOGRT_NO_MEDIA
     if (s->medium.phase != FOGRT_PHASE_HG) return fogrt__media_sample(&s->medium, wo, u1, u2, pdf);
 #endif
@@ -6263,8 +5971,7 @@ FOGRT__HOT fogrt__v3 fogrt__fog_phase_sample(const fogrt_scene *s, fogrt__v3 wo,
 }
 #endif
 FOGRT__HOT void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fogrt__xs *xs, fogrt__v3 o,
-                                  fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
-{
+                                  fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
     memset(P, 0, sizeof *P);
     P->o = o; P->d = d; P->prev_p = o;
     P->beta = fogrt__v(1.0f, 1.0f, 1.0f);
@@ -6279,14 +5986,12 @@ FOGRT__HOT void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fo
 }
 /* Light that reaches the camera after `bounces` scattering events (min_depth drops the
    shorter paths: CS184's -o 0). source says what it is, for the trace. */
-FOGRT__PRIVATE void fogrt__gather(fogrt__path *P, const fogrt__settings *st, int bounces, fogrt__v3 c, const char *source)
-{
+FOGRT__PRIVATE void fogrt__gather(fogrt__path *P, const fogrt__settings *st, int bounces, fogrt__v3 c, const char *source) {
     if (bounces >= st->min_depth) P->L = fogrt__add(P->L, c);
     FOGRT__HOOK(fogrt__trace_gather(P, c, bounces >= st->min_depth, source));
     (void)source;
 }
-FOGRT__PRIVATE bool fogrt__is_scattering(const fogrt__path *P)
-{
+FOGRT__PRIVATE bool fogrt__is_scattering(const fogrt__path *P) {
     return P->v.is_medium || !fogrt__bsdf_is_delta(P->type);
 }
 #ifdef FOGRT__LAMPS
@@ -6296,8 +6001,7 @@ FOGRT__PRIVATE bool fogrt__is_scattering(const fogrt__path *P)
    A lamp with a footprint is also aimed at through it, unless the vertex lies on its plane
    (directions from there only graze it). */
 FOGRT__PRIVATE void fogrt__glow_setup(const fogrt_scene *s, const fogrt__path *P, const fogrt__vertex *v, fogrt__glow *g,
-                                      bool scattering)
-{
+                                      bool scattering) {
     uint32_t i;
     g->n = 0;
     g->fp = 0;
@@ -6321,9 +6025,8 @@ FOGRT__PRIVATE void fogrt__glow_setup(const fogrt_scene *s, const fogrt__path *P
    lamps, each chosen with equal probability; a lamp with a footprint gives
    FOGRT__FOOTPRINT_SHARE of its part to it. */
 FOGRT__PRIVATE float fogrt__glow_mix_known(const fogrt_scene *s, const fogrt__vertex *v, const fogrt__glow *g, fogrt__v3 wi, float pdf_b,
-                                           int known, float pdf_known)
+                                           int known, float pdf_known) {
     /* known >= 0: wi was drawn from that lamp's glow, whose density there is pdf_known */
-{
     float sum = 0.0f;
     int k;
 #ifndef FOGRT_NO_MEDIUM
@@ -6338,8 +6041,7 @@ FOGRT__PRIVATE float fogrt__glow_mix_known(const fogrt_scene *s, const fogrt__ve
 #endif
     return (1.0f - s->x->glow_share) * pdf_b + s->x->glow_share * sum / (float)FOGRT__MAX(g->n, 1);
 }
-FOGRT__PRIVATE float fogrt__glow_mix(const fogrt_scene *s, const fogrt__vertex *v, const fogrt__glow *g, fogrt__v3 wi, float pdf_b)
-{
+FOGRT__PRIVATE float fogrt__glow_mix(const fogrt_scene *s, const fogrt__vertex *v, const fogrt__glow *g, fogrt__v3 wi, float pdf_b) {
     return fogrt__glow_mix_known(s, v, g, wi, pdf_b, -1, 0.0f);
 }
 #endif
@@ -6390,8 +6092,7 @@ FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt
    b'), and with lamps_only the other lights are left out. Returns the reflected radiance,
    before the path weight. */
 FOGRT__PRIVATE fogrt__v3 fogrt__sample_light_n(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
-                                               uint32_t i, float pick)
-{
+                                               uint32_t i, float pick) {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
     int j, n = fogrt_light_sample_count(s, st, i);
     for (j = 0; j < n; ++j) {
@@ -6404,8 +6105,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_light_n(const fogrt_scene *s, const fogrt
     return L;
 }
 FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
-                                               float lamp_scale, bool lamps_only)
-{
+                                               float lamp_scale, bool lamps_only) {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
     uint32_t i = P->v.is_medium && P->xs->equiangular ? s->light_count : 0, first = i, total = fogrt__light_total(s);
     if (lamps_only) total = s->light_count;
@@ -6423,8 +6123,7 @@ FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__set
 
 /* A scattering vertex in the fog at p, wo the way back. Only what a fog vertex reads is set
    (no shading frame): zeroing the whole struct was 3% of a spot-lit render. */
-FOGRT__PRIVATE void fogrt__fog_vertex(fogrt__vertex *v, fogrt__v3 p, fogrt__v3 wo)
-{
+FOGRT__PRIVATE void fogrt__fog_vertex(fogrt__vertex *v, fogrt__v3 p, fogrt__v3 wo) {
     v->p = p; v->wo = wo;
     v->is_medium = true; v->in_medium = true;
     v->ng = fogrt__v(0.0f, 0.0f, 0.0f); v->m = NULL;
@@ -6439,8 +6138,7 @@ FOGRT__PRIVATE void fogrt__fog_vertex(fogrt__vertex *v, fogrt__v3 p, fogrt__v3 w
 /* The point and spot lights a segment gathers, [*first, *last): all of them, or with
    light_by_power one, picked among them by power. Returns the probability of the pick. */
 FOGRT__HOT float fogrt__equiangular_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
-                                           uint32_t *first, uint32_t *last)
-{
+                                           uint32_t *first, uint32_t *last) {
     float top, frac;
     (void)st;
     *first = 0; *last = s->light_count;
@@ -6452,8 +6150,7 @@ FOGRT__HOT float fogrt__equiangular_lights(const fogrt_scene *s, const fogrt__se
 }
 /* The weight of a point drawn at distance t into the fog with density pdf: sigma_t T(t) / pdf
    (times the albedo: sigma_s T / pdf), per channel in chromatic fog (G). */
-FOGRT__HOT fogrt__v3 fogrt__equiangular_weight(const fogrt_scene *s, bool chroma, float t, float pdf)
-{
+FOGRT__HOT fogrt__v3 fogrt__equiangular_weight(const fogrt_scene *s, bool chroma, float t, float pdf) {
     float w;
 #ifndef FOGRT_NO_MEDIA
     if (chroma) return fogrt__chroma_collision(s, t, pdf);
@@ -6466,8 +6163,7 @@ FOGRT__HOT fogrt__v3 fogrt__equiangular_weight(const fogrt_scene *s, bool chroma
 /* media and chroma (constants: the paper's fog, G's media and chromatic fog get a copy each):
    the path may be in G's media; sigma_t per channel in the weights (G). */
 FOGRT__HOT fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
-                                        float t_min, float t_max, bool media, bool chroma)
-{
+                                        float t_min, float t_max, bool media, bool chroma) {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
     float pick;
     uint32_t i, last;
@@ -6504,8 +6200,7 @@ FOGRT__HOT fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__setti
    equiangular lights, which are light after one more bounce, are not gathered). media (a
    constant): the path may be in G's media. */
 FOGRT__HOT bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                   float t_surface, bool may_scatter, float *tr, bool media)
-{
+                                   float t_surface, bool may_scatter, float *tr, bool media) {
     float u, t, a, b;
     if (!P->in_medium) return false;
     u = fogrt_rng_float(P->rng);
@@ -6540,8 +6235,7 @@ FOGRT__HOT bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settings *
    passes tr = 1 when the ray reached the surface and 0 when it collided. */
 FOGRT__HOT void fogrt__surface_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                         const fogrt_material_desc *m, const fogrt_hit *hit, fogrt__v3 p,
-                                        fogrt__v3 ng, fogrt__v3 beta, float tr)
-{
+                                        fogrt__v3 ng, fogrt__v3 beta, float tr) {
     float w = 1.0f;
     if (fogrt__is_black(m->emission) || !(tr > 0.0f) || !(fogrt__dot(P->d, ng) < 0.0f)) return;   /* the front side emits */
     if (!P->prev_delta && st->nee)
@@ -6556,8 +6250,7 @@ FOGRT__HOT void fogrt__surface_emission(const fogrt_scene *s, const fogrt__setti
 FOGRT__HOT bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_desc *m, int limit, fogrt__v3 p,
                                           fogrt__v3 ng, fogrt__v3 ns);
 FOGRT__HOT bool fogrt__surface_event(const fogrt__settings *st, fogrt__path *P, const fogrt_material_desc *m,
-                                     uint32_t prim, int limit, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns)
-{
+                                     uint32_t prim, int limit, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns) {
     bool goes_on = fogrt__surface_vertex(P, m, limit, p, ng, ns);   /* sets v.p and the type first */
     FOGRT__HOOK(fogrt__trace_surface(P, prim));
     (void)st; (void)prim;                                /* read by the trace hook only */
@@ -6565,8 +6258,7 @@ FOGRT__HOT bool fogrt__surface_event(const fogrt__settings *st, fogrt__path *P, 
 }
 /* The vertex itself: its BSDF, sides and frame (also set up on the side by b' below). */
 FOGRT__HOT bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_desc *m, int limit, fogrt__v3 p,
-                                          fogrt__v3 ng, fogrt__v3 ns)
-{
+                                          fogrt__v3 ng, fogrt__v3 ns) {
     P->v.p = p;
     P->type = fogrt__bsdf_type(m);
     if (P->bounces >= limit || (P->type == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance))) return false;
@@ -6595,8 +6287,7 @@ FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__set
 
 #ifdef FOGRT__LAMPS
 /* Whether to take that sample behind this collision (the roulette draw, when T is small). */
-FOGRT__PRIVATE bool fogrt__light_behind_wanted(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
-{
+FOGRT__PRIVATE bool fogrt__light_behind_wanted(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
     float tr = P->seg_tr;
     if (!P->xs->expected_emission || !st->nee || s->light_count == 0 || !(tr > 0.0f)) return false;
     return tr >= FOGRT__BEHIND_MIN || fogrt_rng_float(P->rng) * FOGRT__BEHIND_MIN < tr;
@@ -6604,8 +6295,7 @@ FOGRT__PRIVATE bool fogrt__light_behind_wanted(const fogrt_scene *s, const fogrt
 /* The sample itself, at the surface point p with normals ng, ns (fogrt__surface_frame). */
 FOGRT__HOT void fogrt__light_behind(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                     const fogrt_material_desc *m, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns,
-                                    fogrt__v3 beta, int limit)
-{
+                                    fogrt__v3 beta, int limit) {
     fogrt__vertex keep = P->v;
     fogrt__glow keep_glow = P->glow;
     fogrt_bsdf_type type = P->type;
@@ -6621,8 +6311,7 @@ FOGRT__HOT void fogrt__light_behind(const fogrt_scene *s, const fogrt__settings 
 
 /* A ray that leaves the scene: the environment's light, also as tr Le. */
 FOGRT__PRIVATE void fogrt__escape(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, fogrt__v3 beta,
-                                  float tr)
-{
+                                  float tr) {
     if (s->has_env && tr > 0.0f) {
         float w = 1.0f;                                 /* a map is also sampled by NEE: MIS */
 #ifndef FOGRT_NO_ESTIMATION
@@ -6642,8 +6331,7 @@ FOGRT__PRIVATE void fogrt__escape(const fogrt_scene *s, const fogrt__settings *s
    still adds, tr Le (b), and the lights behind the surface (b'). The path goes on at
    the collision. */
 FOGRT__HOT bool fogrt__collided(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                const fogrt_hit *hit, fogrt__v3 beta, float tr, int limit)
-{
+                                const fogrt_hit *hit, fogrt__v3 beta, float tr, int limit) {
     if (hit) {
         const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit->prim)];
         fogrt__v3 p, ng, ns;
@@ -6670,8 +6358,7 @@ FOGRT__HOT bool fogrt__collided(const fogrt_scene *s, const fogrt__settings *st,
    surface event; or the environment. Inlined twice in fogrt__next_event: in the fog (tr
    the transmittance) and in clear air (tr = 1, so that code is a fog-free build's). */
 FOGRT__HOT bool fogrt__ray_end(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, bool found,
-                               const fogrt_hit *hit, fogrt__v3 beta, float tr, int limit)
-{
+                               const fogrt_hit *hit, fogrt__v3 beta, float tr, int limit) {
     if (found) {
         const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit->prim)];
         fogrt__v3 p, ng, ns;
@@ -6688,8 +6375,7 @@ FOGRT__HOT bool fogrt__ray_end(const fogrt_scene *s, const fogrt__settings *st, 
    each caller gets its own copy): the path is in G's media (another phase function, or
    emitting fog, whose light this adds along the way). */
 FOGRT__HOT bool fogrt__fog_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, bool found,
-                                 const fogrt_hit *hit, int limit, bool media)
-{
+                                 const fogrt_hit *hit, int limit, bool media) {
     const fogrt__v3 beta = P->beta;                     /* before a collision's albedo */
     float tr = 1.0f;                                    /* the fog's transmittance to the end of the ray */
     bool collided = fogrt__free_flight(s, st, P, found ? hit->t : INFINITY, P->bounces < limit, &tr, media);
@@ -6704,8 +6390,7 @@ FOGRT__HOT bool fogrt__fog_event(const fogrt_scene *s, const fogrt__settings *st
 #endif
 /* a + b: follow the ray to its next event, a fog collision or a surface. False when the
    path ends: the ray escaped (the environment is added), or the surface ends it. */
-FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit)
-{
+FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
     fogrt_hit hit;
     bool found;
     ++*P->rays;
@@ -6719,8 +6404,7 @@ FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__setting
 /* The path's a + b: G's (fogrt__media_next_event) in G's media, chosen once per path, so
    that the paper's medium pays no test per segment. */
 typedef bool (*fogrt__step)(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit);
-FOGRT__PRIVATE fogrt__step fogrt__next_event_of(const fogrt_scene *s)
-{
+FOGRT__PRIVATE fogrt__step fogrt__next_event_of(const fogrt_scene *s) {
 #ifndef FOGRT_NO_MEDIA
     if (s->x->media) return fogrt__media_next_event;
 #else
@@ -6731,8 +6415,7 @@ FOGRT__PRIVATE fogrt__step fogrt__next_event_of(const fogrt_scene *s)
 
 /* c. Light sampling at the scattering vertex (next-event estimation, 2.3); a mirror
    or glass vertex cannot be reached by a light sample and is skipped. */
-FOGRT__HOT void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
-{
+FOGRT__HOT void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
 #ifdef FOGRT__LAMPS
     if (P->xs->glow) fogrt__glow_setup(s, P, &P->v, &P->glow, fogrt__is_scattering(P) && (P->v.is_medium || P->type == FOGRT_BSDF_DIFFUSE));
 #endif
@@ -6742,8 +6425,7 @@ FOGRT__HOT void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *s
 }
 
 /* d. The new direction from a surface: sample the BSDF in the shading frame. */
-FOGRT__HOT bool fogrt__scatter_surface(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
-{
+FOGRT__HOT bool fogrt__scatter_surface(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
     fogrt_bsdf_sample bs;
     float u[3], cos_o;
     u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
@@ -6785,8 +6467,7 @@ FOGRT__PRIVATE void fogrt__trace_glow(const fogrt__path *P, const float *u, bool
    cone direction misses the plane) the path ends, which its density, part of the
    mixture's, has accounted for. Its gain: docs/benchmarks.md, tables "Lamps in fog" and
    "Footprint". */
-FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
-{
+FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
     fogrt__v3 f, wi, wo_l;
     fogrt_bsdf_sample bs;
     uint32_t light = 0;
@@ -6831,8 +6512,7 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
 
 /* d. The new direction: Henyey-Greenstein in the fog (eq. 11-12, weight p / pdf = 1), the
    BSDF on a surface; near a lamp, the mixture of d'. */
-FOGRT__HOT bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P)
-{
+FOGRT__HOT bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
     P->prev_p = P->v.p;
 #ifndef FOGRT_NO_MEDIUM
     if (!P->v.in_medium) return fogrt__scatter_surface(s, st, P);   /* (a vertex outside the fog: only d) */
@@ -6854,8 +6534,7 @@ FOGRT__HOT bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *st, 
 /* e. Russian roulette after rr_depth bounces: continue with probability q, weight 1/q;
    q = min(0.95, k x throughput), k in [1, 4] chosen for the scene by its pilot (chapter
    15): the k that makes variance x time least. */
-FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__path *P)
-{
+FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__path *P) {
     float q, u, scale = P->rr_scale;
     P->bounces++;
     P->rr_scale = 1.0f;
@@ -6879,8 +6558,7 @@ FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__path *P)
    there). */
 typedef struct fogrt__probe { float after, b; uint64_t rays_after; } fogrt__probe;
 FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path_probe(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs, fogrt__v3 o,
-                                                    fogrt__v3 d, fogrt_rng *rng, uint64_t *rays, fogrt__probe *probe)
-{
+                                                    fogrt__v3 d, fogrt_rng *rng, uint64_t *rays, fogrt__probe *probe) {
     fogrt__path P;
     fogrt__step next_event;
     uint32_t vertex;
@@ -6901,15 +6579,13 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path_probe(const fogrt_scene *s, const 
     return P.L;
 }
 FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs, fogrt__v3 o,
-                                              fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
-{
+                                              fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
     return fogrt__radiance_path_probe(s, st, xs, o, d, rng, rays, NULL);
 }
 
 /* The paper's baseline: direct lighting at the first scattering vertex only. */
 FOGRT__PRIVATE fogrt__v3 fogrt__radiance_direct(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs, fogrt__v3 o,
-                                                fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
-{
+                                                fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
     fogrt__path P;
     fogrt__step next_event;
     uint32_t vertex;
@@ -6931,8 +6607,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance_direct(const fogrt_scene *s, const fogr
 }
 /* Point or spot lights in fog: what the glow of d' needs (without them the glow's checks
    are skipped at every vertex). */
-FOGRT__PRIVATE bool fogrt__lamps_in_fog(const fogrt_scene *s)
-{
+FOGRT__PRIVATE bool fogrt__lamps_in_fog(const fogrt_scene *s) {
     return (s->features & FOGRT_FEATURE_MEDIUM) && s->light_count > 0;
 }
 #ifndef FOGRT_NO_ESTIMATION
@@ -6975,8 +6650,7 @@ FOGRT__PRIVATE bool fogrt__lamps_in_fog(const fogrt_scene *s)
 typedef struct fogrt__pilot_sums { double M[FOGRT__PILOT_K], C[FOGRT__PILOT_K], M0, C0, V, T; } fogrt__pilot_sums;
 /* One row of the pilot: its sums (above), rendered with the roulette's k = P->xs->rr_k. */
 FOGRT__PRIVATE fogrt__pilot_sums fogrt__pilot_row(const fogrt_scene *s, const fogrt__settings *st,
-                                                  const fogrt__xs *xs, const fogrt__camera *cam, int y)
-{
+                                                  const fogrt__xs *xs, const fogrt__camera *cam, int y) {
     fogrt__pilot_sums r;
     int x, i, j;
     memset(&r, 0, sizeof r);
@@ -7012,8 +6686,7 @@ FOGRT__PRIVATE fogrt__pilot_sums fogrt__pilot_row(const fogrt_scene *s, const fo
 /* One pass of the pilot with k = P->xs->rr_k: its rows in parallel, each summed alone and
    then all in row order (so the same k on any thread count); returns the k' chosen. */
 FOGRT__PRIVATE float fogrt__pilot_pass(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs,
-                                      const fogrt__camera *cam)
-{
+                                      const fogrt__camera *cam) {
     fogrt__pilot_sums row[FOGRT__PILOT_H], a;
     double best = 0.0;
     int y, j, jbest = 0;
@@ -7034,8 +6707,7 @@ FOGRT__PRIVATE float fogrt__pilot_pass(const fogrt_scene *s, const fogrt__settin
     return (float)FOGRT__PILOT_KJ(jbest);
 }
 FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__settings *st, fogrt__xs *xs);
-FOGRT__PRIVATE float fogrt__roulette_pilot(const fogrt_scene *s)
-{
+FOGRT__PRIVATE float fogrt__roulette_pilot(const fogrt_scene *s) {
     fogrt__settings st;
     fogrt__xs xs;
     fogrt__camera cam;
@@ -7054,8 +6726,7 @@ FOGRT__PRIVATE float fogrt__roulette_pilot(const fogrt_scene *s)
 }
 #endif /* FOGRT_NO_ESTIMATION */
 /* The full integrator's settings for a render desc (Part I's settings hold the desc). */
-FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__settings *st, fogrt__xs *xs)
-{
+FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__settings *st, fogrt__xs *xs) {
     const fogrt_render_desc *d = &st->desc;
     xs->equiangular = d->equiangular;
     xs->glow = d->glow && d->nee && d->equiangular && fogrt__lamps_in_fog(s);
@@ -7074,8 +6745,7 @@ FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__setting
 }
 /* Seam 7: the full integrator for every desc that asks for more than the paper, and for
    fog in a box or G's media (which Part I does not know). */
-FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const fogrt__settings *st)
-{
+FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const fogrt__settings *st) {
     const fogrt_render_desc *d = &st->desc;
 #ifndef FOGRT_NO_MEDIA
     if (s->x->media) return true;
@@ -7084,14 +6754,12 @@ FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const fogrt__settings 
            s->x->fog_bounded || s->env_map;
 }
 FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance_xs(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs,
-                                              fogrt__v3 o, fogrt__v3 d, fogrt_rng *rng, uint64_t *rays)
-{
+                                              fogrt__v3 o, fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
     return st->integrator == FOGRT_INTEGRATOR_DIRECT ? fogrt__radiance_direct(s, st, xs, o, d, rng, rays)
                                                      : fogrt__radiance_path(s, st, xs, o, d, rng, rays);
 }
 FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
-                                           fogrt_rng *rng, uint64_t *rays)
-{
+                                           fogrt_rng *rng, uint64_t *rays) {
     fogrt__xs xs;
     fogrt__x_settings(s, st, &xs);
     return fogrt__x_radiance_xs(s, st, &xs, o, d, rng, rays);
@@ -7099,8 +6767,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const fogrt__se
 
 /* Seams 3 and 4: Part II's tables, made after Part I's build (the tree and the lights),
    and released with it. The footprints and the pilot trace rays in the finished scene. */
-FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n)
-{
+FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n) {
     struct fogrt__x *x = (struct fogrt__x *)fogrt__alloc(&s->allocator, sizeof *x);
     if (!x) return false;
     memset(x, 0, sizeof *x);
@@ -7147,8 +6814,7 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
 #endif
     return true;
 }
-FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s)
-{
+FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s) {
     if (!s->x) return;
 #ifndef FOGRT_NO_WIDE_BVH
     fogrt__wide_release(s);
@@ -7166,8 +6832,7 @@ FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s)
 #ifdef FOGRT_TRACE
 FOGRT__PUBLIC fogrt_vec3 fogrt_trace_path(const fogrt_scene *s, const fogrt_render_desc *desc, int width,
                                           int height, int x, int y, uint32_t sample_index, fogrt_trace_fn fn,
-                                          void *user_data)
-{
+                                          void *user_data) {
     fogrt__job job;
     fogrt__xs xs;
     fogrt_render_desc d = fogrt_render_defaults();
@@ -7201,15 +6866,13 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_trace_path(const fogrt_scene *s, const fogrt_rend
     return L;
 }
 #ifndef FOGRT_NO_STDIO
-FOGRT__PRIVATE const char *fogrt__bsdf_name(fogrt_bsdf_type t)
-{
+FOGRT__PRIVATE const char *fogrt__bsdf_name(fogrt_bsdf_type t) {
     static const char *names[FOGRT_BSDF_NUM] = { "diffuse", "diffuse", "mirror", "refraction", "glass" };
     return (unsigned)t < (unsigned)FOGRT_BSDF_NUM ? names[t] : "?";
 }
 #define FOGRT__V3F(v) (double)(v).x, (double)(v).y, (double)(v).z
 /* The events that draw a sample: what was drawn, its pdf and its weight. */
-FOGRT__PRIVATE void fogrt__describe_sample(const fogrt_trace_event *e, char *buf, size_t size)
-{
+FOGRT__PRIVATE void fogrt__describe_sample(const fogrt_trace_event *e, char *buf, size_t size) {
     static const char *lobes[3] = { "diffuse", "reflect", "refract" };
     switch (e->kind) {
     case FOGRT_TRACE_LIGHT_SAMPLE:
@@ -7236,8 +6899,7 @@ FOGRT__PRIVATE void fogrt__describe_sample(const fogrt_trace_event *e, char *buf
         snprintf(buf, size, "unknown event %d", (int)e->kind); break;
     }
 }
-FOGRT__PUBLIC void fogrt_trace_describe(const fogrt_trace_event *e, char *buf, size_t size)
-{
+FOGRT__PUBLIC void fogrt_trace_describe(const fogrt_trace_event *e, char *buf, size_t size) {
     switch (e->kind) {
     case FOGRT_TRACE_CAMERA:
         snprintf(buf, size, "camera ray: pixel offset (%.3f, %.3f), o = (%.4g, %.4g, %.4g), d = (%.4f, %.4f, %.4f)",
@@ -7270,8 +6932,7 @@ FOGRT__PUBLIC void fogrt_trace_describe(const fogrt_trace_event *e, char *buf, s
    a brute-force ray query to check the tree against, and the bytes the scene holds, Part
    II's tables included.
    ------------------------------------------------------------------------------------------ */
-FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
-{
+FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s) {
     size_t t, p, b = sizeof *s, lit = 0;
     uint32_t i;
     FOGRT_ASSERT(s);
@@ -7301,15 +6962,13 @@ FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s)
     return b;
 }
 FOGRT__PUBLIC void fogrt_scene_get_bvh(const fogrt_scene *s, const fogrt_bvh_node **nodes, uint32_t *node_count,
-                                       const uint32_t **prim_index)
-{
+                                       const uint32_t **prim_index) {
     FOGRT_ASSERT(s);
     if (nodes) *nodes = s->nodes;
     if (node_count) *node_count = s->node_count;
     if (prim_index) *prim_index = s->prim_index;
 }
-FOGRT__PUBLIC float fogrt_bvh_sah_cost(const fogrt_scene *s)
-{
+FOGRT__PUBLIC float fogrt_bvh_sah_cost(const fogrt_scene *s) {
     double cost = 0.0, root_area;
     uint32_t i;
     fogrt__aabb rb;
@@ -7328,8 +6987,7 @@ FOGRT__PUBLIC float fogrt_bvh_sah_cost(const fogrt_scene *s)
     }
     return (float)cost;
 }
-FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax, fogrt_hit *hit)
-{
+FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax, fogrt_hit *hit) {
     uint32_t i;
     bool found = false;
     FOGRT_ASSERT(s);
@@ -7379,8 +7037,7 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
    against a FOGRT_NO_MEDIA build; docs/benchmarks.md, table "Strip cost"). Validation of
    the medium desc's fields is seam 6's second use.
    ------------------------------------------------------------------------------------------ */
-FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_medium_desc *m)
-{
+FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_medium_desc *m) {
     FOGRT__REFUSE_IF((unsigned)m->phase >= (unsigned)FOGRT_PHASE_NUM, INVALID_MEDIUM,
                      "medium.phase: not FOGRT_PHASE_HG, FOGRT_PHASE_HG2 or FOGRT_PHASE_RAYLEIGH");
     FOGRT__REFUSE_IF(!(m->g2 >= -1.0f && m->g2 <= 1.0f), INVALID_MEDIUM, "medium.g2: outside [-1, 1] or not finite");
@@ -7408,18 +7065,15 @@ FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_med
    uniform: each lobe then keeps 3.3's exact sampler, and the pdf is the mixture's at the
    direction drawn, the drawn lobe's part from that sampler (exact near its peak), the
    other's from the chords (fogrt_hg_pdf). A weight outside [0, 1] (or NaN) is clamped. */
-FOGRT__PUBLIC float fogrt_hg2_phase(float g1, float g2, float w, float mu)
-{
+FOGRT__PUBLIC float fogrt_hg2_phase(float g1, float g2, float w, float mu) {
     w = FOGRT__CLAMP(w, 0.0f, 1.0f);
     return w * fogrt_hg_phase(g1, mu) + (1.0f - w) * fogrt_hg_phase(g2, mu);
 }
-FOGRT__PUBLIC float fogrt_hg2_pdf(float g1, float g2, float w, fogrt_vec3 wo, fogrt_vec3 wi)
-{
+FOGRT__PUBLIC float fogrt_hg2_pdf(float g1, float g2, float w, fogrt_vec3 wo, fogrt_vec3 wi) {
     w = FOGRT__CLAMP(w, 0.0f, 1.0f);
     return w * fogrt_hg_pdf(g1, wo, wi) + (1.0f - w) * fogrt_hg_pdf(g2, wo, wi);
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg2_unit(float g1, float g2, float w, fogrt__v3 wo, float u1, float u2, float *pdf)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg2_unit(float g1, float g2, float w, fogrt__v3 wo, float u1, float u2, float *pdf) {
     bool first;
     float u, p;
     fogrt__v3 wi;
@@ -7431,8 +7085,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg2_unit(float g1, float g2, float w, fog
     if (pdf) *pdf = first ? w * p + (1.0f - w) * fogrt_hg_pdf(g2, wo, wi) : (1.0f - w) * p + w * fogrt_hg_pdf(g1, wo, wi);
     return wi;
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg2(float g1, float g2, float w, fogrt_vec3 wo, float u1, float u2, float *pdf)
-{
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg2(float g1, float g2, float w, fogrt_vec3 wo, float u1, float u2, float *pdf) {
     return fogrt__sample_hg2_unit(g1, g2, w, fogrt__normalize(wo), u1, u2, pdf);
 }
 
@@ -7442,60 +7095,50 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg2(float g1, float g2, float w, fogrt_vec
    (Cardano's cube roots would subtract two nearly equal numbers near u = 1/2), odd about
    u = 1/2, and in double exactly -1 and 1 at u = 0 and 1 after rounding to float. */
 #define FOGRT__RAYLEIGH_NORM 0.05968310365946075f   /* 3 / (16 pi) */
-FOGRT__PUBLIC float fogrt_rayleigh_phase(float mu)
-{
+FOGRT__PUBLIC float fogrt_rayleigh_phase(float mu) {
     mu = FOGRT__CLAMP(mu, -1.0f, 1.0f);
     return FOGRT__RAYLEIGH_NORM * (1.0f + mu * mu);
 }
-FOGRT__PUBLIC float fogrt_sample_rayleigh_mu(float u)
-{
+FOGRT__PUBLIC float fogrt_sample_rayleigh_mu(float u) {
     double z = 4.0 * (double)FOGRT__CLAMP(u, 0.0f, 1.0f) - 2.0;
     return FOGRT__CLAMP((float)(2.0 * sinh(asinh(z) / 3.0)), -1.0f, 1.0f);
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__sample_rayleigh_unit(fogrt__v3 wo, float u1, float u2, float *pdf)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_rayleigh_unit(fogrt__v3 wo, float u1, float u2, float *pdf) {
     fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));   /* z: propagation */
     float mu = fogrt_sample_rayleigh_mu(u1);
     if (pdf) *pdf = fogrt_rayleigh_phase(mu);
     return fogrt__around(&f, mu, sqrtf(FOGRT__MAX(0.0f, (1.0f - mu) * (1.0f + mu))), u2);
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_rayleigh(fogrt_vec3 wo, float u1, float u2, float *pdf)
-{
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_rayleigh(fogrt_vec3 wo, float u1, float u2, float *pdf) {
     return fogrt__sample_rayleigh_unit(fogrt__normalize(wo), u1, u2, pdf);
 }
-FOGRT__PUBLIC float fogrt_rayleigh_pdf(fogrt_vec3 wo, fogrt_vec3 wi)
-{
+FOGRT__PUBLIC float fogrt_rayleigh_pdf(fogrt_vec3 wo, fogrt_vec3 wi) {
     return fogrt_rayleigh_phase(-fogrt__dot(wo, wi));
 }
 
 /* The phase function of a medium desc: what E calls for fog that is not the paper's (and
    a desc's HG, so the public functions take any desc). wo is unit here. */
-FOGRT__PRIVATE fogrt__v3 fogrt__media_sample(const fogrt_medium_desc *m, fogrt__v3 wo, float u1, float u2, float *pdf)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__media_sample(const fogrt_medium_desc *m, fogrt__v3 wo, float u1, float u2, float *pdf) {
     if (m->phase == FOGRT_PHASE_RAYLEIGH) return fogrt__sample_rayleigh_unit(wo, u1, u2, pdf);
     if (m->phase == FOGRT_PHASE_HG2) return fogrt__sample_hg2_unit(m->g, m->g2, m->w, wo, u1, u2, pdf);
     return fogrt__sample_hg_unit(m->g, wo, u1, u2, pdf);
 }
-FOGRT__PRIVATE float fogrt__media_pdf(const fogrt_medium_desc *m, fogrt__v3 wo, fogrt__v3 wi)
-{
+FOGRT__PRIVATE float fogrt__media_pdf(const fogrt_medium_desc *m, fogrt__v3 wo, fogrt__v3 wi) {
     if (m->phase == FOGRT_PHASE_RAYLEIGH) return fogrt_rayleigh_pdf(wo, wi);
     if (m->phase == FOGRT_PHASE_HG2) return fogrt_hg2_pdf(m->g, m->g2, m->w, wo, wi);
     return fogrt_hg_pdf(m->g, wo, wi);
 }
-FOGRT__PUBLIC float fogrt_phase(const fogrt_medium_desc *m, float mu)
-{
+FOGRT__PUBLIC float fogrt_phase(const fogrt_medium_desc *m, float mu) {
     FOGRT_ASSERT(m);
     if (m->phase == FOGRT_PHASE_RAYLEIGH) return fogrt_rayleigh_phase(mu);
     if (m->phase == FOGRT_PHASE_HG2) return fogrt_hg2_phase(m->g, m->g2, m->w, mu);
     return fogrt_hg_phase(m->g, mu);
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_phase(const fogrt_medium_desc *m, fogrt_vec3 wo, float u1, float u2, float *pdf)
-{
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_phase(const fogrt_medium_desc *m, fogrt_vec3 wo, float u1, float u2, float *pdf) {
     FOGRT_ASSERT(m);
     return fogrt__media_sample(m, fogrt__normalize(wo), u1, u2, pdf);
 }
-FOGRT__PUBLIC float fogrt_phase_pdf(const fogrt_medium_desc *m, fogrt_vec3 wo, fogrt_vec3 wi)
-{
+FOGRT__PUBLIC float fogrt_phase_pdf(const fogrt_medium_desc *m, fogrt_vec3 wo, fogrt_vec3 wi) {
     FOGRT_ASSERT(m);
     return fogrt__media_pdf(m, wo, wi);
 }
@@ -7512,8 +7155,7 @@ FOGRT__PUBLIC float fogrt_phase_pdf(const fogrt_medium_desc *m, fogrt_vec3 wo, f
    emitters) the collision estimator: beta (1 - albedo) Le at each collision, nothing when
    the ray gets through, whose mean over the free flight, with collision density
    sigma_t T(t), is the same integral. beta is the weight before the collision's albedo. */
-FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s)
-{
+FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s) {
     const fogrt_medium_desc *m = &s->medium;
     s->x->emit = fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), m->albedo), m->emission);
     s->x->emits = (s->features & FOGRT_FEATURE_MEDIUM) && !fogrt__is_black(s->x->emit);
@@ -7523,8 +7165,7 @@ FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s)
     s->x->media = (s->features & FOGRT_FEATURE_MEDIUM) && (m->phase != FOGRT_PHASE_HG || s->x->emits || s->x->chroma);
 }
 FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                          fogrt__v3 beta, float t_end, bool collided)
-{
+                                          fogrt__v3 beta, float t_end, bool collided) {
     float a, b, w = collided ? 1.0f : 0.0f;
     if (P->xs->expected_emission) {
         if (!fogrt__x_fog_span(s, P->o, P->d, t_end, &a, &b)) return;   /* misses the fog's box */
@@ -7573,8 +7214,7 @@ FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__set
 /* A path in G's media: whether its light samples need G (so that the paper's medium pays
    one test per light sample, where it had one anyway), and in chromatic fog its hero
    channel. */
-FOGRT__PRIVATE void fogrt__media_start(const fogrt_scene *s, fogrt__path *P)
-{
+FOGRT__PRIVATE void fogrt__media_start(const fogrt_scene *s, fogrt__path *P) {
     P->media_light = s->medium.phase != FOGRT_PHASE_HG || s->x->chroma;
     if (s->x->chroma) {
         int hero = (int)(3.0f * fogrt_rng_float(P->rng));
@@ -7584,33 +7224,28 @@ FOGRT__PRIVATE void fogrt__media_start(const fogrt_scene *s, fogrt__path *P)
     }
 }
 /* T_c(d) per channel (d = +inf: 0 where sigma_t,c > 0, else 1). */
-FOGRT__PRIVATE fogrt__v3 fogrt__chroma_tr(const fogrt_scene *s, float d)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_tr(const fogrt_scene *s, float d) {
     const fogrt__v3 k = s->x->sigma;
     return fogrt__v(fogrt_transmittance(k.x, d), fogrt_transmittance(k.y, d), fogrt_transmittance(k.z, d));
 }
 /* 1 - T_c(d) per channel, without cancellation (expm1) for small optical depths. */
-FOGRT__PRIVATE float fogrt__chroma_absorbed1(float sigma, float d)
-{
+FOGRT__PRIVATE float fogrt__chroma_absorbed1(float sigma, float d) {
     if (!(sigma > 0.0f)) return 0.0f;
     return d < INFINITY ? -expm1f(-sigma * d) : 1.0f;
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__chroma_absorbed(const fogrt_scene *s, float d)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_absorbed(const fogrt_scene *s, float d) {
     const fogrt__v3 k = s->x->sigma;
     return fogrt__v(fogrt__chroma_absorbed1(k.x, d), fogrt__chroma_absorbed1(k.y, d), fogrt__chroma_absorbed1(k.z, d));
 }
 /* A point drawn at distance t into the fog with density pdf, not by the free flight: its
    weight sigma_t,c T_c(t) / pdf per channel. */
-FOGRT__PRIVATE fogrt__v3 fogrt__chroma_collision(const fogrt_scene *s, float t, float pdf)
-{
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_collision(const fogrt_scene *s, float t, float pdf) {
     return fogrt__scale(fogrt__mul(s->x->sigma, fogrt__chroma_tr(s, t)), 1.0f / pdf);
 }
 /* Visibility by Part I's shadow ray (the vertex taken as clear air, so that it adds no grey
    T), then T_c over the ray's length in the fog, as fogrt__fog_transmittance measures it. */
 FOGRT__PRIVATE float fogrt__chroma_shadow(const fogrt_scene *s, const fogrt__vertex *v, const fogrt_light_sample *ls,
-                                          uint64_t *rays, fogrt__v3 *f)
-{
+                                          uint64_t *rays, fogrt__v3 *f) {
     fogrt__vertex clear = *v;
     float a, b;
     clear.in_medium = false;
@@ -7621,8 +7256,7 @@ FOGRT__PRIVATE float fogrt__chroma_shadow(const fogrt_scene *s, const fogrt__ver
 /* A light sample's f (G's phase function at a fog vertex) and visibility times T (T_c in f
    in chromatic fog), for fogrt__light_contribution. */
 FOGRT__PRIVATE fogrt__v3 fogrt__media_light(const fogrt_scene *s, const fogrt__path *P, const fogrt__vertex *v,
-                                            const fogrt_light_sample *ls, float *pdf_b, float *tr)
-{
+                                            const fogrt_light_sample *ls, float *pdf_b, float *tr) {
     fogrt__v3 f = fogrt__fog_vertex_f(s, v, ls->wi, pdf_b);
     if (fogrt__is_black(f)) return f;
     *tr = P->chroma && v->in_medium ? fogrt__chroma_shadow(s, v, ls, P->rays, &f) : fogrt__shadow(s, v, ls, P->rays);
@@ -7631,8 +7265,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__media_light(const fogrt_scene *s, const fogrt__p
 /* One event of a free flight, of density p_c (any scale common to the channels) had channel
    c sampled it: returns m = sum r_c p_c / sum r_c, its density under the mixture relative to
    the path so far, and r takes p. 0 where no channel could have sampled it (the path ends). */
-FOGRT__PRIVATE float fogrt__chroma_mix(fogrt__path *P, fogrt__v3 p)
-{
+FOGRT__PRIVATE float fogrt__chroma_mix(fogrt__path *P, fogrt__v3 p) {
     fogrt__v3 rp = fogrt__mul(P->r, p);
     float m = (rp.x + rp.y + rp.z) / (P->r.x + P->r.y + P->r.z), top = fogrt__max3(rp);
     if (P->xs->hero_pdf) m = fogrt__comp(p, P->hero);
@@ -7643,8 +7276,7 @@ FOGRT__PRIVATE float fogrt__chroma_mix(fogrt__path *P, fogrt__v3 p)
 /* The fog's emission along this flight (fogrt__media_emission's, per channel): in closed
    form with expected_emission, else at a collision with its weight k. */
 FOGRT__PRIVATE void fogrt__chroma_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, fogrt__v3 beta,
-                                           float d, bool collided, fogrt__v3 k)
-{
+                                           float d, bool collided, fogrt__v3 k) {
     fogrt__v3 w = fogrt__v(0.0f, 0.0f, 0.0f);
     if (P->xs->expected_emission) w = fogrt__chroma_absorbed(s, d);
     else if (collided) w = k;
@@ -7655,8 +7287,7 @@ FOGRT__PRIVATE void fogrt__chroma_emission(const fogrt_scene *s, const fogrt__se
    adds (fogrt__collided, fogrt__ray_end) with beta T_c / tau and tr = tau, tau the largest
    T_c (their product beta T_c is expected emission's), and the new throughput. */
 FOGRT__PRIVATE bool fogrt__chroma_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                             bool found, const fogrt_hit *hit, int limit)
-{
+                                             bool found, const fogrt_hit *hit, int limit) {
     const fogrt__v3 beta = P->beta;                     /* before this flight */
     fogrt__v3 T, p, k, end = fogrt__v(0.0f, 0.0f, 0.0f);
     float u = fogrt_rng_float(P->rng), a, b, t, m, tau;
@@ -7691,8 +7322,7 @@ FOGRT__PRIVATE bool fogrt__chroma_next_event(const fogrt_scene *s, const fogrt__
 }
 /* E's a + b (fogrt__next_event) in G's media: another phase function, emitting fog, or
    chromatic fog. */
-FOGRT__PRIVATE bool fogrt__media_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit)
-{
+FOGRT__PRIVATE bool fogrt__media_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
     fogrt_hit hit;
     bool found;
     ++*P->rays;

@@ -395,8 +395,7 @@ typedef struct fogrt__ld {
 /* ---- messages ---- */
 /* A message quotes bytes of the file: control bytes and bytes that are not well-formed UTF-8
    become '?', so a binary file never writes raw bytes to the user's terminal. */
-FOGRT__LD void fogrt__ld_printable(char *msg)
-{
+FOGRT__LD void fogrt__ld_printable(char *msg) {
     unsigned char *p = (unsigned char *)msg;
     while (*p) {
         int len = 0, k;
@@ -411,8 +410,7 @@ FOGRT__LD void fogrt__ld_printable(char *msg)
     }
 }
 /* Records the first error (file:line: message) and returns the result code. */
-FOGRT__LD FOGRT__LD_PRINTF(4, 5) fogrt_result fogrt__ld_fail(fogrt__ld *L, fogrt_result res, int line, const char *fmt, ...)
-{
+FOGRT__LD FOGRT__LD_PRINTF(4, 5) fogrt_result fogrt__ld_fail(fogrt__ld *L, fogrt_result res, int line, const char *fmt, ...) {
     va_list ap;
     if (L->rep->message[0] == 0) {
         L->rep->line = line;
@@ -423,15 +421,13 @@ FOGRT__LD FOGRT__LD_PRINTF(4, 5) fogrt_result fogrt__ld_fail(fogrt__ld *L, fogrt
     }
     return res;
 }
-FOGRT__LD fogrt_result fogrt__ld_oom(fogrt__ld *L)
-{
+FOGRT__LD fogrt_result fogrt__ld_oom(fogrt__ld *L) {
     return fogrt__ld_fail(L, FOGRT_RESULT_OUT_OF_MEMORY, 0, "out of memory");
 }
 FOGRT__LD fogrt_result fogrt__ld_grow(fogrt__ld *L, void **arr, uint32_t *cap, uint64_t need, size_t elem);
 /* A warning: counted, and kept (as "file:line: warning: ...") for options.logger, which hears
    it only if the load succeeds (fogrt__ld_flush_warnings). */
-FOGRT__LD FOGRT__LD_PRINTF(3, 4) void fogrt__ld_warn(fogrt__ld *L, int line, const char *fmt, ...)
-{
+FOGRT__LD FOGRT__LD_PRINTF(3, 4) void fogrt__ld_warn(fogrt__ld *L, int line, const char *fmt, ...) {
     char msg[256], full[600];
     va_list ap;
     uint32_t n;
@@ -454,21 +450,18 @@ FOGRT__LD FOGRT__LD_PRINTF(3, 4) void fogrt__ld_warn(fogrt__ld *L, int line, con
     memcpy(L->warn + L->warn_len, full, n);
     L->warn_len += n;
 }
-FOGRT__LD void fogrt__ld_flush_warnings(fogrt__ld *L)
-{
+FOGRT__LD void fogrt__ld_flush_warnings(fogrt__ld *L) {
     uint32_t at;
     for (at = 0; at < L->warn_len; at += (uint32_t)strlen(L->warn + at) + 1)
         L->opt.logger.func(FOGRT_LOG_WARNING, L->warn + at, L->opt.logger.user_data);
 }
 /* Called before the first change to the scene: a warning that could not be kept is an
    out-of-memory failure like any other. */
-FOGRT__LD fogrt_result fogrt__ld_ready(fogrt__ld *L)
-{
+FOGRT__LD fogrt_result fogrt__ld_ready(fogrt__ld *L) {
     return L->warn_oom ? fogrt__ld_oom(L) : FOGRT_RESULT_OK;
 }
 /* The triangle budget: every triangle a file asks for is counted here first. */
-FOGRT__LD fogrt_result fogrt__ld_count_tris(fogrt__ld *L, uint64_t more, int line)
-{
+FOGRT__LD fogrt_result fogrt__ld_count_tris(fogrt__ld *L, uint64_t more, int line) {
     L->tri_total += more;
     if (L->tri_total <= L->opt.max_triangles) return FOGRT_RESULT_OK;
     return fogrt__ld_fail(L, FOGRT_RESULT_TOO_LARGE, line, "the file asks for %llu triangles, more than the limit of %u (fogrt_load_options.max_triangles)",
@@ -476,14 +469,12 @@ FOGRT__LD fogrt_result fogrt__ld_count_tris(fogrt__ld *L, uint64_t more, int lin
 }
 
 /* ---- memory: everything goes through options.allocator ---- */
-FOGRT__LD void *fogrt__ld_malloc(fogrt__ld *L, size_t size)
-{
+FOGRT__LD void *fogrt__ld_malloc(fogrt__ld *L, size_t size) {
     const fogrt_allocator *a = &L->opt.allocator;
     if (size == 0) size = 1;
     return a->alloc_fn ? a->alloc_fn(size, a->user_data) : FOGRT_LOAD_MALLOC(size);
 }
-FOGRT__LD void fogrt__ld_free(fogrt__ld *L, void *p)
-{
+FOGRT__LD void fogrt__ld_free(fogrt__ld *L, void *p) {
     const fogrt_allocator *a = &L->opt.allocator;
     if (!p) return;
     if (a->free_fn) a->free_fn(p, a->user_data);
@@ -491,8 +482,7 @@ FOGRT__LD void fogrt__ld_free(fogrt__ld *L, void *p)
 }
 /* count elements of elem bytes (never more than a quarter of the address space), or NULL
    with the error recorded. */
-FOGRT__LD void *fogrt__ld_alloc(fogrt__ld *L, uint64_t count, size_t elem)
-{
+FOGRT__LD void *fogrt__ld_alloc(fogrt__ld *L, uint64_t count, size_t elem) {
     void *p;
     if (count == 0) count = 1;
     if (count > (uint64_t)SIZE_MAX / 4 / elem) { fogrt__ld_fail(L, FOGRT_RESULT_TOO_LARGE, 0, "too large"); return NULL; }
@@ -502,8 +492,7 @@ FOGRT__LD void *fogrt__ld_alloc(fogrt__ld *L, uint64_t count, size_t elem)
 }
 /* Grows *arr to hold at least need elements (doubling, or exactly need if that is more;
    allocate, copy, free). */
-FOGRT__LD fogrt_result fogrt__ld_grow(fogrt__ld *L, void **arr, uint32_t *cap, uint64_t need, size_t elem)
-{
+FOGRT__LD fogrt_result fogrt__ld_grow(fogrt__ld *L, void **arr, uint32_t *cap, uint64_t need, size_t elem) {
     uint64_t c = *cap ? 2 * (uint64_t)*cap : 16;
     void *p;
     if (need <= *cap) return FOGRT_RESULT_OK;
@@ -520,13 +509,11 @@ FOGRT__LD fogrt_result fogrt__ld_grow(fogrt__ld *L, void **arr, uint32_t *cap, u
 #define FOGRT__LD_PUSH(L, arr, count, cap) \
     fogrt__ld_grow((L), (void **)&(arr), &(cap), (uint64_t)(count) + 1, sizeof *(arr))
 
-FOGRT__LD void fogrt__ld_free_mesh(fogrt__ld *L, fogrt__ld_meshbuf *m)
-{
+FOGRT__LD void fogrt__ld_free_mesh(fogrt__ld *L, fogrt__ld_meshbuf *m) {
     fogrt__ld_free(L, m->pos); fogrt__ld_free(L, m->nrm); fogrt__ld_free(L, m->idx);
     memset(m, 0, sizeof *m);
 }
-FOGRT__LD void fogrt__ld_destroy(fogrt__ld *L)
-{
+FOGRT__LD void fogrt__ld_destroy(fogrt__ld *L) {
     uint32_t i;
     for (i = 0; i < L->geom_count; ++i) {
         fogrt__ld_geom *g = &L->geoms[i];
@@ -543,8 +530,7 @@ FOGRT__LD void fogrt__ld_destroy(fogrt__ld *L)
    2. Input: a private NUL-terminated copy of the memory given, or of a regular file
    ------------------------------------------------------------------------------------------ */
 /* Sets up a context (defaults filled in) and the report. */
-FOGRT__LD fogrt_result fogrt__ld_init(fogrt__ld *L, const char *name, const fogrt_load_options *opt, fogrt_load_report *rep)
-{
+FOGRT__LD fogrt_result fogrt__ld_init(fogrt__ld *L, const char *name, const fogrt_load_options *opt, fogrt_load_report *rep) {
     memset(L, 0, sizeof *L);
     memset(rep, 0, sizeof *rep);
     L->rep = rep;
@@ -562,8 +548,7 @@ FOGRT__LD fogrt_result fogrt__ld_init(fogrt__ld *L, const char *name, const fogr
 }
 /* The size of a file against options.max_file_bytes (and the loader's own 2 GiB ceiling),
    with the real limit in the message. */
-FOGRT__LD fogrt_result fogrt__ld_check_size(fogrt__ld *L, uint64_t size)
-{
+FOGRT__LD fogrt_result fogrt__ld_check_size(fogrt__ld *L, uint64_t size) {
     uint64_t lim = L->opt.max_file_bytes;
     char unit[32] = "";
     if (size <= lim && size < (uint64_t)0x7FFFFFF0u) return FOGRT_RESULT_OK;
@@ -574,8 +559,7 @@ FOGRT__LD fogrt_result fogrt__ld_check_size(fogrt__ld *L, uint64_t size)
                           (unsigned long long)size, (unsigned long long)lim, unit);
 }
 /* The input buffer: size bytes plus a NUL, so strtod always stops. */
-FOGRT__LD fogrt_result fogrt__ld_new_buf(fogrt__ld *L, uint64_t size)
-{
+FOGRT__LD fogrt_result fogrt__ld_new_buf(fogrt__ld *L, uint64_t size) {
     FOGRT__LD_TRY(fogrt__ld_check_size(L, size));
     L->buf = (char *)fogrt__ld_malloc(L, (size_t)size + 1);
     if (!L->buf) return fogrt__ld_oom(L);
@@ -583,21 +567,18 @@ FOGRT__LD fogrt_result fogrt__ld_new_buf(fogrt__ld *L, uint64_t size)
     L->buf[L->len] = 0;
     return FOGRT_RESULT_OK;
 }
-FOGRT__LD fogrt_result fogrt__ld_copy(fogrt__ld *L, const void *data, size_t size)
-{
+FOGRT__LD fogrt_result fogrt__ld_copy(fogrt__ld *L, const void *data, size_t size) {
     if (!data && size) return fogrt__ld_fail(L, FOGRT_RESULT_INVALID_ARGUMENT, 0, "no data");
     FOGRT__LD_TRY(fogrt__ld_new_buf(L, size));
     if (size) memcpy(L->buf, data, size);
     return FOGRT_RESULT_OK;
 }
-FOGRT__LD fogrt_result fogrt__ld_cannot_open(fogrt__ld *L, const char *why)
-{
+FOGRT__LD fogrt_result fogrt__ld_cannot_open(fogrt__ld *L, const char *why) {
     return fogrt__ld_fail(L, FOGRT_RESULT_IO_ERROR, 0, "cannot open: %s", why);
 }
 #ifdef FOGRT__LD_POSIX
 /* What a non-regular file is, for the message. */
-FOGRT__LD const char *fogrt__ld_file_kind(mode_t m)
-{
+FOGRT__LD const char *fogrt__ld_file_kind(mode_t m) {
     if (S_ISFIFO(m)) return "a FIFO";
     if (S_ISDIR(m)) return "a directory";
     if (S_ISCHR(m)) return "a character device";
@@ -606,8 +587,7 @@ FOGRT__LD const char *fogrt__ld_file_kind(mode_t m)
 }
 /* POSIX: opened without blocking (a FIFO would block in open), checked with fstat, then
    read once to its size: a non-regular file is refused before a single read. */
-FOGRT__LD fogrt_result fogrt__ld_read_path(fogrt__ld *L, const char *path)
-{
+FOGRT__LD fogrt_result fogrt__ld_read_path(fogrt__ld *L, const char *path) {
     struct stat st;
     size_t got = 0;
     fogrt_result r = FOGRT_RESULT_OK;
@@ -630,8 +610,7 @@ FOGRT__LD fogrt_result fogrt__ld_read_path(fogrt__ld *L, const char *path)
 }
 #else
 /* Plain C: the size from fseek/ftell before reading. */
-FOGRT__LD fogrt_result fogrt__ld_read_path(fogrt__ld *L, const char *path)
-{
+FOGRT__LD fogrt_result fogrt__ld_read_path(fogrt__ld *L, const char *path) {
     fogrt_result r;
     long size;
     FILE *f = fopen(path, "rb");
@@ -645,8 +624,7 @@ FOGRT__LD fogrt_result fogrt__ld_read_path(fogrt__ld *L, const char *path)
 }
 #endif
 /* The input of every entry point: the file at path, else size bytes at data. */
-FOGRT__LD fogrt_result fogrt__ld_open(fogrt__ld *L, bool from_file, const char *path, const void *data, size_t size)
-{
+FOGRT__LD fogrt_result fogrt__ld_open(fogrt__ld *L, bool from_file, const char *path, const void *data, size_t size) {
     if (!from_file) return fogrt__ld_copy(L, data, size);
     return path ? fogrt__ld_read_path(L, path) : fogrt__ld_cannot_open(L, "no path");
 }
@@ -658,24 +636,21 @@ FOGRT__LD fogrt_result fogrt__ld_open(fogrt__ld *L, bool from_file, const char *
 FOGRT__LD bool fogrt__ld_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
 
 /* Line of position p, counting newlines from a known (base, base_line). */
-FOGRT__LD int fogrt__ld_line_at(const char *base, int base_line, const char *p)
-{
+FOGRT__LD int fogrt__ld_line_at(const char *base, int base_line, const char *p) {
     int line = base_line;
     for (; base < p; ++base) if (*base == '\n') line++;
     return line;
 }
 
 /* Length of the token at s (up to a blank, '<' or e; at most 16) for messages. */
-FOGRT__LD int fogrt__ld_toklen(const char *s, const char *e)
-{
+FOGRT__LD int fogrt__ld_toklen(const char *s, const char *e) {
     int n = 0;
     while (s + n < e && n < 16 && s[n] != '<' && s[n] != 0 && !(s[n] == ' ' || s[n] == '\t' || s[n] == '\n' || s[n] == '\r')) n++;
     return n;
 }
 
 /* Parses one number starting exactly at *s (no leading blanks), not beyond e. */
-FOGRT__LD bool fogrt__ld_strtof(const char **s, const char *e, float *out)
-{
+FOGRT__LD bool fogrt__ld_strtof(const char **s, const char *e, float *out) {
     char *q;
     double d;
     const char *p = *s;
@@ -694,8 +669,7 @@ FOGRT__LD bool fogrt__ld_strtof(const char **s, const char *e, float *out)
 /* Parses whitespace-separated floats from [s, e) into out[0..max). Stops after max numbers
    (the rest is ignored). *n = numbers read. An unreadable token is an error at its line. */
 FOGRT__LD fogrt_result fogrt__ld_floats(fogrt__ld *L, const char *s, const char *e, int line,
-                                        float *out, uint64_t max, uint64_t *n)
-{
+                                        float *out, uint64_t max, uint64_t *n) {
     const char *base = s;
     uint64_t k = 0;
     while (k < max) {
@@ -715,8 +689,7 @@ FOGRT__LD fogrt_result fogrt__ld_floats(fogrt__ld *L, const char *s, const char 
 
 /* Parses whitespace-separated non-negative integers (< 2^32 - 1). */
 FOGRT__LD fogrt_result fogrt__ld_uints(fogrt__ld *L, const char *s, const char *e, int line,
-                                       uint32_t *out, uint64_t max, uint64_t *n)
-{
+                                       uint32_t *out, uint64_t max, uint64_t *n) {
     const char *base = s;
     uint64_t k = 0;
     while (k < max) {
@@ -749,33 +722,28 @@ FOGRT__LD uint64_t fogrt__ld_max_numbers(uint32_t len) { return ((uint64_t)len +
    entities and numeric character references in attribute values. No namespaces, no DTD.
    The tree is kept as arrays of elements and attributes pointing into the buffer.
    ------------------------------------------------------------------------------------------ */
-FOGRT__LD bool fogrt__ld_starts(const char *p, const char *end, const char *lit)
-{
+FOGRT__LD bool fogrt__ld_starts(const char *p, const char *end, const char *lit) {
     size_t n = strlen(lit);
     return (size_t)(end - p) >= n && memcmp(p, lit, n) == 0;
 }
 /* First occurrence of lit in [p, end), or NULL. */
-FOGRT__LD const char *fogrt__ld_find(const char *p, const char *end, const char *lit)
-{
+FOGRT__LD const char *fogrt__ld_find(const char *p, const char *end, const char *lit) {
     size_t n = strlen(lit);
     for (; (size_t)(end - p) >= n; ++p)
         if (*p == lit[0] && memcmp(p, lit, n) == 0) return p;
     return NULL;
 }
-FOGRT__LD int fogrt__ld_count_lines(const char *p, const char *q)
-{
+FOGRT__LD int fogrt__ld_count_lines(const char *p, const char *q) {
     int n = 0;
     for (; p < q; ++p) if (*p == '\n') n++;
     return n;
 }
-FOGRT__LD bool fogrt__ld_name_char(char c)
-{
+FOGRT__LD bool fogrt__ld_name_char(char c) {
     return !fogrt__ld_space(c) && c != '/' && c != '>' && c != '<' && c != '=' && c != '"' && c != '\'' && c != 0;
 }
 
 /* Writes code point cp (1 .. 0x10FFFF) as UTF-8 at out; returns the bytes written (1-4). */
-FOGRT__LD uint32_t fogrt__ld_utf8(uint32_t cp, char *out)
-{
+FOGRT__LD uint32_t fogrt__ld_utf8(uint32_t cp, char *out) {
     if (cp < 0x80) { out[0] = (char)cp; return 1; }
     if (cp < 0x800) { out[0] = (char)(0xC0 | (cp >> 6)); out[1] = (char)(0x80 | (cp & 63)); return 2; }
     if (cp < 0x10000) {
@@ -786,8 +754,7 @@ FOGRT__LD uint32_t fogrt__ld_utf8(uint32_t cp, char *out)
     out[2] = (char)(0x80 | ((cp >> 6) & 63)); out[3] = (char)(0x80 | (cp & 63));
     return 4;
 }
-FOGRT__LD int fogrt__ld_digit(char c, bool hex)
-{
+FOGRT__LD int fogrt__ld_digit(char c, bool hex) {
     if (c >= '0' && c <= '9') return c - '0';
     if (hex && c >= 'a' && c <= 'f') return c - 'a' + 10;
     if (hex && c >= 'A' && c <= 'F') return c - 'A' + 10;
@@ -796,8 +763,7 @@ FOGRT__LD int fogrt__ld_digit(char c, bool hex)
 /* One reference at s[0] == '&' (n bytes available): &lt; &gt; &amp; &quot; &apos; &#N;
    &#xH;. Writes its character(s) at out; returns the reference's length, 0 if it is none.
    A reference is at least as long as its UTF-8 output, so decoding in place is safe. */
-FOGRT__LD uint32_t fogrt__ld_reference(const char *s, uint32_t n, char *out, uint32_t *written)
-{
+FOGRT__LD uint32_t fogrt__ld_reference(const char *s, uint32_t n, char *out, uint32_t *written) {
     static const char *names[5] = { "lt;", "gt;", "amp;", "quot;", "apos;" };
     static const char chars[5] = { '<', '>', '&', '"', '\'' };
     uint32_t j = 2, cp = 0, digits = 0, k;
@@ -819,8 +785,7 @@ FOGRT__LD uint32_t fogrt__ld_reference(const char *s, uint32_t n, char *out, uin
     return j + 1;
 }
 /* Decodes the references in s[0..len) in place; returns the new length. */
-FOGRT__LD uint32_t fogrt__ld_decode(char *s, uint32_t len)
-{
+FOGRT__LD uint32_t fogrt__ld_decode(char *s, uint32_t len) {
     uint32_t i = 0, o = 0;
     while (i < len) {
         uint32_t w = 0, used = s[i] == '&' ? fogrt__ld_reference(s + i, len - i, s + o, &w) : 0;
@@ -833,26 +798,22 @@ FOGRT__LD uint32_t fogrt__ld_decode(char *s, uint32_t len)
 /* The reader's position: p in the buffer, its line, and the innermost open element. */
 typedef struct fogrt__ld_xml { char *p, *end; int line; int32_t cur; } fogrt__ld_xml;
 
-FOGRT__LD void fogrt__ld_xml_blanks(fogrt__ld_xml *X)
-{
+FOGRT__LD void fogrt__ld_xml_blanks(fogrt__ld_xml *X) {
     while (X->p < X->end && fogrt__ld_space(*X->p)) { if (*X->p == '\n') X->line++; ++X->p; }
 }
-FOGRT__LD char *fogrt__ld_xml_name(fogrt__ld_xml *X)
-{
+FOGRT__LD char *fogrt__ld_xml_name(fogrt__ld_xml *X) {
     while (X->p < X->end && fogrt__ld_name_char(*X->p)) ++X->p;
     return X->p;
 }
 /* Sets the text of the open element (its first non-blank run) if it has none yet. */
-FOGRT__LD void fogrt__ld_xml_set_text(fogrt__ld *L, const fogrt__ld_xml *X, const char *s, const char *e, int line)
-{
+FOGRT__LD void fogrt__ld_xml_set_text(fogrt__ld *L, const fogrt__ld_xml *X, const char *s, const char *e, int line) {
     fogrt__ld_el *el = &L->el[X->cur];
     if (el->text) return;
     el->text = s; el->text_len = (uint32_t)(e - s); el->text_line = line;
 }
 
 /* A run of character data up to the next '<'. */
-FOGRT__LD fogrt_result fogrt__ld_xml_text(fogrt__ld *L, fogrt__ld_xml *X)
-{
+FOGRT__LD fogrt_result fogrt__ld_xml_text(fogrt__ld *L, fogrt__ld_xml *X) {
     char *s = X->p;
     int sline = X->line;
     bool blank = true;
@@ -868,8 +829,7 @@ FOGRT__LD fogrt_result fogrt__ld_xml_text(fogrt__ld *L, fogrt__ld_xml *X)
 
 /* Markup that is not an element: <!-- -->, <![CDATA[ ]]> (text), <? ?>, <!DOCTYPE [..]>.
    *done is false when p is at an element tag instead. */
-FOGRT__LD fogrt_result fogrt__ld_xml_markup(fogrt__ld *L, fogrt__ld_xml *X, bool *done)
-{
+FOGRT__LD fogrt_result fogrt__ld_xml_markup(fogrt__ld *L, fogrt__ld_xml *X, bool *done) {
     static const char *open[3] = { "<!--", "<![CDATA[", "<?" }, *close[3] = { "-->", "]]>", "?>" };
     static const char *what[3] = { "comment not closed (missing '-->')", "CDATA section not closed (missing ']]>')",
                                    "'<?' not closed (missing '?>')" };
@@ -902,8 +862,7 @@ FOGRT__LD fogrt_result fogrt__ld_xml_markup(fogrt__ld *L, fogrt__ld_xml *X, bool
 }
 
 /* </name>: must close the open element. */
-FOGRT__LD fogrt_result fogrt__ld_xml_end_tag(fogrt__ld *L, fogrt__ld_xml *X)
-{
+FOGRT__LD fogrt_result fogrt__ld_xml_end_tag(fogrt__ld *L, fogrt__ld_xml *X) {
     char *n = X->p + 2, *q;
     const fogrt__ld_el *e;
     X->p = n;
@@ -923,8 +882,7 @@ FOGRT__LD fogrt_result fogrt__ld_xml_end_tag(fogrt__ld *L, fogrt__ld_xml *X)
 }
 
 /* One attribute name="value" (or 'value') of element id, value decoded in place. */
-FOGRT__LD fogrt_result fogrt__ld_xml_attr(fogrt__ld *L, fogrt__ld_xml *X, int32_t id)
-{
+FOGRT__LD fogrt_result fogrt__ld_xml_attr(fogrt__ld *L, fogrt__ld_xml *X, int32_t id) {
     char *an = X->p, *vs, quote;
     uint32_t alen;
     fogrt__ld_xattr *a;
@@ -954,8 +912,7 @@ FOGRT__LD fogrt_result fogrt__ld_xml_attr(fogrt__ld *L, fogrt__ld_xml *X, int32_
 }
 
 /* A new element named [n, q), appended to the open element's children. */
-FOGRT__LD fogrt_result fogrt__ld_xml_new_el(fogrt__ld *L, fogrt__ld_xml *X, const char *n, const char *q, int32_t *out)
-{
+FOGRT__LD fogrt_result fogrt__ld_xml_new_el(fogrt__ld *L, fogrt__ld_xml *X, const char *n, const char *q, int32_t *out) {
     fogrt__ld_el *e;
     int32_t id, cur = X->cur;
     FOGRT__LD_TRY(FOGRT__LD_PUSH(L, L->el, L->el_count, L->el_cap));
@@ -977,8 +934,7 @@ FOGRT__LD fogrt_result fogrt__ld_xml_new_el(fogrt__ld *L, fogrt__ld_xml *X, cons
 }
 
 /* <name attr="v" ...> or <name .../>. */
-FOGRT__LD fogrt_result fogrt__ld_xml_start_tag(fogrt__ld *L, fogrt__ld_xml *X)
-{
+FOGRT__LD fogrt_result fogrt__ld_xml_start_tag(fogrt__ld *L, fogrt__ld_xml *X) {
     char *n = X->p + 1, *q;
     int32_t id;
     X->p = n;
@@ -1000,8 +956,7 @@ FOGRT__LD fogrt_result fogrt__ld_xml_start_tag(fogrt__ld *L, fogrt__ld_xml *X)
     }
 }
 
-FOGRT__LD fogrt_result fogrt__ld_xml_parse(fogrt__ld *L)
-{
+FOGRT__LD fogrt_result fogrt__ld_xml_parse(fogrt__ld *L) {
     fogrt__ld_xml X;
     const fogrt__ld_el *open;
     X.p = L->buf; X.end = L->buf + L->len; X.line = 1; X.cur = -1;
@@ -1026,28 +981,24 @@ FOGRT__LD fogrt_result fogrt__ld_xml_parse(fogrt__ld *L)
     return FOGRT_RESULT_OK;
 }
 /* ---- tree queries ---- */
-FOGRT__LD bool fogrt__ld_is(const fogrt__ld *L, int32_t e, const char *name)
-{
+FOGRT__LD bool fogrt__ld_is(const fogrt__ld *L, int32_t e, const char *name) {
     size_t n = strlen(name);
     return e >= 0 && L->el[e].name_len == n && memcmp(L->el[e].name, name, n) == 0;
 }
-FOGRT__LD int32_t fogrt__ld_child(const fogrt__ld *L, int32_t e, const char *name)
-{
+FOGRT__LD int32_t fogrt__ld_child(const fogrt__ld *L, int32_t e, const char *name) {
     int32_t c;
     if (e < 0) return -1;
     for (c = L->el[e].first_child; c >= 0; c = L->el[c].next)
         if (fogrt__ld_is(L, c, name)) return c;
     return -1;
 }
-FOGRT__LD int32_t fogrt__ld_next_named(const fogrt__ld *L, int32_t c, const char *name)
-{
+FOGRT__LD int32_t fogrt__ld_next_named(const fogrt__ld *L, int32_t c, const char *name) {
     for (c = c >= 0 ? L->el[c].next : -1; c >= 0; c = L->el[c].next)
         if (fogrt__ld_is(L, c, name)) return c;
     return -1;
 }
 /* Walks a slash-separated path of first children ("optics/technique_common/perspective"). */
-FOGRT__LD int32_t fogrt__ld_path(const fogrt__ld *L, int32_t e, const char *path)
-{
+FOGRT__LD int32_t fogrt__ld_path(const fogrt__ld *L, int32_t e, const char *path) {
     char part[64];
     while (e >= 0 && *path) {
         size_t n = strcspn(path, "/");
@@ -1060,8 +1011,7 @@ FOGRT__LD int32_t fogrt__ld_path(const fogrt__ld *L, int32_t e, const char *path
     return e;
 }
 /* Attribute value (length in *len), or NULL. */
-FOGRT__LD const char *fogrt__ld_attr(const fogrt__ld *L, int32_t e, const char *name, uint32_t *len)
-{
+FOGRT__LD const char *fogrt__ld_attr(const fogrt__ld *L, int32_t e, const char *name, uint32_t *len) {
     uint32_t i;
     size_t n = strlen(name);
     if (e < 0) return NULL;
@@ -1071,15 +1021,13 @@ FOGRT__LD const char *fogrt__ld_attr(const fogrt__ld *L, int32_t e, const char *
     }
     return NULL;
 }
-FOGRT__LD bool fogrt__ld_attr_is(const fogrt__ld *L, int32_t e, const char *name, const char *value)
-{
+FOGRT__LD bool fogrt__ld_attr_is(const fogrt__ld *L, int32_t e, const char *name, const char *value) {
     uint32_t len;
     const char *v = fogrt__ld_attr(L, e, name, &len);
     return v && len == strlen(value) && memcmp(v, value, len) == 0;
 }
 /* Integer attribute; false when absent. A malformed value is an error (*res). */
-FOGRT__LD bool fogrt__ld_attr_uint(fogrt__ld *L, int32_t e, const char *name, uint64_t *out, fogrt_result *res)
-{
+FOGRT__LD bool fogrt__ld_attr_uint(fogrt__ld *L, int32_t e, const char *name, uint64_t *out, fogrt_result *res) {
     uint32_t len, i;
     uint64_t v = 0;
     const char *s = fogrt__ld_attr(L, e, name, &len);
@@ -1096,15 +1044,13 @@ FOGRT__LD bool fogrt__ld_attr_uint(fogrt__ld *L, int32_t e, const char *name, ui
     return true;
 }
 
-FOGRT__LD uint32_t fogrt__ld_hash(const char *s, uint32_t n)
-{
+FOGRT__LD uint32_t fogrt__ld_hash(const char *s, uint32_t n) {
     uint32_t h = 2166136261u, i;
     for (i = 0; i < n; ++i) { h ^= (unsigned char)s[i]; h *= 16777619u; }
     return h;
 }
 /* One global table of every id in the document (the first element with an id wins). */
-FOGRT__LD fogrt_result fogrt__ld_build_ids(fogrt__ld *L)
-{
+FOGRT__LD fogrt_result fogrt__ld_build_ids(fogrt__ld *L) {
     uint32_t i, n = 0, cap = 16;
     for (i = 0; i < L->el_count; ++i) if (fogrt__ld_attr(L, (int32_t)i, "id", NULL)) n++;
     while (cap < 2 * n + 2) cap *= 2;
@@ -1129,8 +1075,7 @@ FOGRT__LD fogrt_result fogrt__ld_build_ids(fogrt__ld *L)
     return FOGRT_RESULT_OK;
 }
 /* Resolves "#id" (or "id") to an element, or -1. */
-FOGRT__LD int32_t fogrt__ld_lookup(const fogrt__ld *L, const char *v, uint32_t len)
-{
+FOGRT__LD int32_t fogrt__ld_lookup(const fogrt__ld *L, const char *v, uint32_t len) {
     uint32_t h;
     if (!v || !L->ids) return -1;
     if (len && v[0] == '#') { ++v; --len; }
@@ -1142,16 +1087,14 @@ FOGRT__LD int32_t fogrt__ld_lookup(const fogrt__ld *L, const char *v, uint32_t l
     return -1;
 }
 /* Follows the attribute attr ("url", "target", "source") of e to its element. */
-FOGRT__LD int32_t fogrt__ld_ref(const fogrt__ld *L, int32_t e, const char *attr)
-{
+FOGRT__LD int32_t fogrt__ld_ref(const fogrt__ld *L, int32_t e, const char *attr) {
     uint32_t len;
     const char *v = fogrt__ld_attr(L, e, attr, &len);
     return v ? fogrt__ld_lookup(L, v, len) : -1;
 }
 
 /* Reads between min_n and max_n floats from the text of element e (error if fewer than min_n). */
-FOGRT__LD fogrt_result fogrt__ld_el_floats(fogrt__ld *L, int32_t e, float *out, uint32_t min_n, uint32_t max_n, uint32_t *n)
-{
+FOGRT__LD fogrt_result fogrt__ld_el_floats(fogrt__ld *L, int32_t e, float *out, uint32_t min_n, uint32_t max_n, uint32_t *n) {
     uint64_t k = 0;
     const fogrt__ld_el *x = &L->el[e];
     if (x->text) FOGRT__LD_TRY(fogrt__ld_floats(L, x->text, x->text + x->text_len, x->text_line, out, max_n, &k));
@@ -1161,15 +1104,13 @@ FOGRT__LD fogrt_result fogrt__ld_el_floats(fogrt__ld *L, int32_t e, float *out, 
     if (n) *n = (uint32_t)k;
     return FOGRT_RESULT_OK;
 }
-FOGRT__LD fogrt_result fogrt__ld_no_child(fogrt__ld *L, int32_t e, const char *name)
-{
+FOGRT__LD fogrt_result fogrt__ld_no_child(fogrt__ld *L, int32_t e, const char *name) {
     return fogrt__ld_fail(L, FOGRT__LD_PARSE, L->el[e].line, "<%.*s> needs a <%s> child", FOGRT__LD_CLIP(L->el[e].name_len), L->el[e].name, name);
 }
 /* Reads a colour (3 floats, a 4th alpha ignored), >= 0, from child `name` of e. Returns
    false (without error) if the child is missing and required is false. */
 FOGRT__LD fogrt_result fogrt__ld_child_vec3(fogrt__ld *L, int32_t e, const char *name, bool required, bool non_negative,
-                                            fogrt_vec3 *out, bool *found)
-{
+                                            fogrt_vec3 *out, bool *found) {
     float v[4];
     int32_t c = fogrt__ld_child(L, e, name);
     if (found) *found = c >= 0;
@@ -1180,8 +1121,7 @@ FOGRT__LD fogrt_result fogrt__ld_child_vec3(fogrt__ld *L, int32_t e, const char 
     out->x = v[0]; out->y = v[1]; out->z = v[2];
     return FOGRT_RESULT_OK;
 }
-FOGRT__LD fogrt_result fogrt__ld_child_float(fogrt__ld *L, int32_t e, const char *name, bool required, float *out, bool *found)
-{
+FOGRT__LD fogrt_result fogrt__ld_child_float(fogrt__ld *L, int32_t e, const char *name, bool required, float *out, bool *found) {
     int32_t c = fogrt__ld_child(L, e, name);
     if (found) *found = c >= 0;
     if (c < 0) return required ? fogrt__ld_no_child(L, e, name) : FOGRT_RESULT_OK;
@@ -1191,13 +1131,11 @@ FOGRT__LD fogrt_result fogrt__ld_child_float(fogrt__ld *L, int32_t e, const char
 /* ------------------------------------------------------------------------------------------
    5. Small linear algebra: 4x4 row-major matrices in double precision
    ------------------------------------------------------------------------------------------ */
-FOGRT__LD void fogrt__ld_identity(double m[16])
-{
+FOGRT__LD void fogrt__ld_identity(double m[16]) {
     int i;
     for (i = 0; i < 16; ++i) m[i] = (i % 5 == 0) ? 1.0 : 0.0;
 }
-FOGRT__LD void fogrt__ld_mul(const double a[16], const double b[16], double out[16])
-{
+FOGRT__LD void fogrt__ld_mul(const double a[16], const double b[16], double out[16]) {
     double r[16];
     int i, j, k;
     for (i = 0; i < 4; ++i)
@@ -1209,19 +1147,16 @@ FOGRT__LD void fogrt__ld_mul(const double a[16], const double b[16], double out[
     memcpy(out, r, sizeof r);
 }
 /* m (x, y, z, w): all four output components. */
-FOGRT__LD void fogrt__ld_xform4(const double m[16], double x, double y, double z, double w, double out[4])
-{
+FOGRT__LD void fogrt__ld_xform4(const double m[16], double x, double y, double z, double w, double out[4]) {
     int i;
     for (i = 0; i < 4; ++i) out[i] = m[4 * i] * x + m[4 * i + 1] * y + m[4 * i + 2] * z + m[4 * i + 3] * w;
 }
-FOGRT__LD double fogrt__ld_det3(const double m[16])
-{
+FOGRT__LD double fogrt__ld_det3(const double m[16]) {
     return m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) + m[2] * (m[4] * m[9] - m[5] * m[8]);
 }
 FOGRT__LD double fogrt__ld_len3(const double v[3]) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 /* Double to float vector, failing when it does not fit a finite float. */
-FOGRT__LD bool fogrt__ld_to_vec3(const double d[3], fogrt_vec3 *out)
-{
+FOGRT__LD bool fogrt__ld_to_vec3(const double d[3], fogrt_vec3 *out) {
     int i;
     for (i = 0; i < 3; ++i) if (!(d[i] == d[i]) || d[i] > (double)FLT_MAX || d[i] < -(double)FLT_MAX) return false;
     out->x = (float)d[0]; out->y = (float)d[1]; out->z = (float)d[2];
@@ -1232,27 +1167,23 @@ FOGRT__LD bool fogrt__ld_black(fogrt_vec3 c) { return c.x == 0.0f && c.y == 0.0f
 
 /* Within the scene's coordinate limit (finite and at most 1e30 in size). */
 FOGRT__LD bool fogrt__ld_coord_ok(double x) { return x >= -FOGRT__LD_MAX_COORD && x <= FOGRT__LD_MAX_COORD; }
-FOGRT__LD bool fogrt__ld_to_coord3(const double d[3], fogrt_vec3 *out)
-{
+FOGRT__LD bool fogrt__ld_to_coord3(const double d[3], fogrt_vec3 *out) {
     return fogrt__ld_coord_ok(d[0]) && fogrt__ld_coord_ok(d[1]) && fogrt__ld_coord_ok(d[2]) && fogrt__ld_to_vec3(d, out);
 }
 
 /* ------------------------------------------------------------------------------------------
    6. Mesh helpers shared by all formats: smooth normals, compaction, placement
    ------------------------------------------------------------------------------------------ */
-FOGRT__LD int fogrt__ld_cmp_u64(const void *a, const void *b)
-{
+FOGRT__LD int fogrt__ld_cmp_u64(const void *a, const void *b) {
     uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
     return x < y ? -1 : x > y;
 }
-FOGRT__LD uint32_t fogrt__ld_find_root(uint32_t *parent, uint32_t v)
-{
+FOGRT__LD uint32_t fogrt__ld_find_root(uint32_t *parent, uint32_t v) {
     while (parent[v] != v) { parent[v] = parent[parent[v]]; v = parent[v]; }
     return v;
 }
 /* Joins the vertices of every edge (union-find) and lists the edges as sorted (a, b) keys. */
-FOGRT__LD size_t fogrt__ld_edges(const fogrt__ld_meshbuf *m, uint64_t *edges, uint32_t *parent)
-{
+FOGRT__LD size_t fogrt__ld_edges(const fogrt__ld_meshbuf *m, uint64_t *edges, uint32_t *parent) {
     uint32_t t, i, v;
     size_t ne = 0;
     for (v = 0; v < m->nv; ++v) parent[v] = v;
@@ -1272,8 +1203,7 @@ FOGRT__LD size_t fogrt__ld_edges(const fogrt__ld_meshbuf *m, uint64_t *edges, ui
 /* open[v] = 1 for the vertices of connected parts that have an open edge (an edge used by
    one triangle only). CS184's boundary walk gives such parts (its planar Cornell quads) the
    negated smooth normal; fogrt__ld_smooth_normals does the same. *out = NULL if m is empty. */
-FOGRT__LD fogrt_result fogrt__ld_open_parts(fogrt__ld *L, const fogrt__ld_meshbuf *m, unsigned char **out)
-{
+FOGRT__LD fogrt_result fogrt__ld_open_parts(fogrt__ld *L, const fogrt__ld_meshbuf *m, unsigned char **out) {
     uint64_t *edges = (uint64_t *)fogrt__ld_alloc(L, (uint64_t)m->nt * 3, sizeof(uint64_t));
     uint32_t *parent = (uint32_t *)fogrt__ld_alloc(L, m->nv, sizeof(uint32_t));
     unsigned char *open = (unsigned char *)fogrt__ld_alloc(L, m->nv, 1), *part;
@@ -1303,8 +1233,7 @@ FOGRT__LD fogrt_result fogrt__ld_open_parts(fogrt__ld *L, const fogrt__ld_meshbu
    triangles of cross(b - a, c - a) (area weighted, following the winding), negated where
    open[v] (may be NULL). acc: scratch of 3 * nv doubles. Writes nrm (3 * nv floats). */
 FOGRT__LD void fogrt__ld_smooth_normals(const float *pos, const uint32_t *idx, uint32_t nv, uint32_t nt,
-                                        const unsigned char *open, double *acc, float *nrm)
-{
+                                        const unsigned char *open, double *acc, float *nrm) {
     uint32_t t, v, i;
     memset(acc, 0, (size_t)nv * 3 * sizeof(double));
     for (t = 0; t < nt; ++t) {
@@ -1329,8 +1258,7 @@ FOGRT__LD void fogrt__ld_smooth_normals(const float *pos, const uint32_t *idx, u
 
 /* Drops the vertices no triangle uses (keeps normals in step), so bounds and normals see
    only real geometry. */
-FOGRT__LD fogrt_result fogrt__ld_compact(fogrt__ld *L, fogrt__ld_meshbuf *m)
-{
+FOGRT__LD fogrt_result fogrt__ld_compact(fogrt__ld *L, fogrt__ld_meshbuf *m) {
     uint32_t *map, v, t, n = 0;
     map = (uint32_t *)fogrt__ld_alloc(L, m->nv, sizeof(uint32_t));
     if (!map) return FOGRT_RESULT_OUT_OF_MEMORY;
@@ -1349,8 +1277,7 @@ FOGRT__LD fogrt_result fogrt__ld_compact(fogrt__ld *L, fogrt__ld_meshbuf *m)
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__LD void fogrt__ld_grow_bounds(fogrt__ld *L, const float p[3], float pad)
-{
+FOGRT__LD void fogrt__ld_grow_bounds(fogrt__ld *L, const float p[3], float pad) {
     int i;
     for (i = 0; i < 3; ++i) {
         double lo = (double)p[i] - (double)pad, hi = (double)p[i] + (double)pad;
@@ -1361,8 +1288,7 @@ FOGRT__LD void fogrt__ld_grow_bounds(fogrt__ld *L, const float p[3], float pad)
 }
 
 /* The box of the n points at pos (n > 0), in double. */
-FOGRT__LD void fogrt__ld_box(const float *pos, uint32_t n, double lo[3], double hi[3])
-{
+FOGRT__LD void fogrt__ld_box(const float *pos, uint32_t n, double lo[3], double hi[3]) {
     uint32_t v;
     int i;
     for (i = 0; i < 3; ++i) lo[i] = hi[i] = (double)pos[i];
@@ -1376,8 +1302,7 @@ FOGRT__LD void fogrt__ld_box(const float *pos, uint32_t n, double lo[3], double 
 /* OBJ/PLY placement: uniform scale into the fit box, standing on its floor, centred in x, z.
    In double precision, so that models of any size (even near FLT_MAX or with a denormal
    extent) end up inside the box. */
-FOGRT__LD void fogrt__ld_place(fogrt__ld *L, fogrt__ld_meshbuf *m)
-{
+FOGRT__LD void fogrt__ld_place(fogrt__ld *L, fogrt__ld_meshbuf *m) {
     double lo[3], hi[3], s = -1.0, c[3], box[3], mid[3];
     uint32_t v;
     int i;
@@ -1406,16 +1331,14 @@ FOGRT__LD void fogrt__ld_place(fogrt__ld *L, fogrt__ld_meshbuf *m)
    7. COLLADA: materials (CGL technique, else phong / lambert diffuse, else grey 0.5)
    ------------------------------------------------------------------------------------------ */
 /* The CGL technique of element e: its first <extra>, the first <technique profile="CGL">. */
-FOGRT__LD int32_t fogrt__ld_cgl(const fogrt__ld *L, int32_t e)
-{
+FOGRT__LD int32_t fogrt__ld_cgl(const fogrt__ld *L, int32_t e) {
     int32_t extra = fogrt__ld_child(L, e, "extra"), t;
     for (t = fogrt__ld_child(L, extra, "technique"); t >= 0; t = fogrt__ld_next_named(L, t, "technique"))
         if (fogrt__ld_attr_is(L, t, "profile", "CGL")) return t;
     return -1;
 }
 
-FOGRT__LD fogrt_material_desc fogrt__ld_diffuse(float r, float g, float b)
-{
+FOGRT__LD fogrt_material_desc fogrt__ld_diffuse(float r, float g, float b) {
     fogrt_material_desc m;
     memset(&m, 0, sizeof m);
     m.type = FOGRT_BSDF_DIFFUSE;
@@ -1423,8 +1346,7 @@ FOGRT__LD fogrt_material_desc fogrt__ld_diffuse(float r, float g, float b)
     return m;
 }
 
-FOGRT__LD fogrt_result fogrt__ld_ior(fogrt__ld *L, int32_t e, float *ior)
-{
+FOGRT__LD fogrt_result fogrt__ld_ior(fogrt__ld *L, int32_t e, float *ior) {
     FOGRT__LD_TRY(fogrt__ld_child_float(L, e, "ior", true, ior, NULL));
     if (!(*ior > 0.0f)) return fogrt__ld_fail(L, FOGRT__LD_PARSE, L->el[fogrt__ld_child(L, e, "ior")].line, "<ior> must be > 0");
     return FOGRT_RESULT_OK;
@@ -1434,8 +1356,7 @@ FOGRT__LD fogrt_result fogrt__ld_ior(fogrt__ld *L, int32_t e, float *ior)
    fogrt has no microfacet BSDF: the normal-incidence conductor Fresnel
    F0 = ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2) becomes the colour of a mirror (alpha <= 0.25,
    nearly smooth) or of a diffuse surface (rougher), with a warning. */
-FOGRT__LD fogrt_result fogrt__ld_microfacet(fogrt__ld *L, int32_t c, fogrt_material_desc *m)
-{
+FOGRT__LD fogrt_result fogrt__ld_microfacet(fogrt__ld *L, int32_t c, fogrt_material_desc *m) {
     float alpha, f0[3], eta[3], k[3];
     fogrt_vec3 e3, k3;
     int i;
@@ -1455,8 +1376,7 @@ FOGRT__LD fogrt_result fogrt__ld_microfacet(fogrt__ld *L, int32_t c, fogrt_mater
 }
 
 /* One child of the CGL technique as a material; *known is false for other elements. */
-FOGRT__LD fogrt_result fogrt__ld_cgl_bsdf(fogrt__ld *L, int32_t c, fogrt_material_desc *m, bool *known)
-{
+FOGRT__LD fogrt_result fogrt__ld_cgl_bsdf(fogrt__ld *L, int32_t c, fogrt_material_desc *m, bool *known) {
     memset(m, 0, sizeof *m);
     *known = true;
     if (fogrt__ld_is(L, c, "emission")) {
@@ -1486,8 +1406,7 @@ FOGRT__LD fogrt_result fogrt__ld_cgl_bsdf(fogrt__ld *L, int32_t c, fogrt_materia
 
 /* profile_COMMON: the technique with sid "common" (else the first), its phong then lambert
    diffuse colour; else grey 0.5. */
-FOGRT__LD fogrt_result fogrt__ld_common_diffuse(fogrt__ld *L, int32_t effect, fogrt_material_desc *out)
-{
+FOGRT__LD fogrt_result fogrt__ld_common_diffuse(fogrt__ld *L, int32_t effect, fogrt_material_desc *out) {
     static const char *shaders[2] = { "phong/diffuse/color", "lambert/diffuse/color" };
     int32_t common = fogrt__ld_child(L, effect, "profile_COMMON"), t;
     int i;
@@ -1510,8 +1429,7 @@ FOGRT__LD fogrt_result fogrt__ld_common_diffuse(fogrt__ld *L, int32_t effect, fo
 
 /* Reads an <effect> into a material description: among the CGL technique's children the
    last recognised one wins; else the profile_COMMON diffuse colour. */
-FOGRT__LD fogrt_result fogrt__ld_effect(fogrt__ld *L, int32_t effect, fogrt_material_desc *out)
-{
+FOGRT__LD fogrt_result fogrt__ld_effect(fogrt__ld *L, int32_t effect, fogrt_material_desc *out) {
     int32_t tech = fogrt__ld_cgl(L, effect), c;
     bool set = false, known;
     fogrt_material_desc m;
@@ -1523,13 +1441,11 @@ FOGRT__LD fogrt_result fogrt__ld_effect(fogrt__ld *L, int32_t effect, fogrt_mate
 }
 
 /* Glass and refraction need the Fresnel / refraction code that FOGRT_NO_GLASS strips. */
-FOGRT__LD bool fogrt__ld_is_glass(const fogrt_material_desc *m)
-{
+FOGRT__LD bool fogrt__ld_is_glass(const fogrt_material_desc *m) {
     return m->type == FOGRT_BSDF_GLASS || m->type == FOGRT_BSDF_REFRACTION;
 }
 /* "material 'id'" (or "the default material") for messages. */
-FOGRT__LD void fogrt__ld_material_name(const fogrt__ld *L, int32_t material, char *out, size_t size)
-{
+FOGRT__LD void fogrt__ld_material_name(const fogrt__ld *L, int32_t material, char *out, size_t size) {
     uint32_t len = 0;
     const char *id = fogrt__ld_attr(L, material, "id", &len);
     if (id) snprintf(out, size, "material '%.*s'", FOGRT__LD_CLIP(len), id);
@@ -1537,8 +1453,7 @@ FOGRT__LD void fogrt__ld_material_name(const fogrt__ld *L, int32_t material, cha
 }
 
 /* Local material index for a <material> element (-1: the default grey), cached. */
-FOGRT__LD fogrt_result fogrt__ld_material(fogrt__ld *L, int32_t material, uint32_t *out)
-{
+FOGRT__LD fogrt_result fogrt__ld_material(fogrt__ld *L, int32_t material, uint32_t *out) {
     uint32_t i;
     fogrt_material_desc m;
     for (i = 0; i < L->mat_count; ++i) if (L->mats[i].key == material) { *out = i; return FOGRT_RESULT_OK; }
@@ -1570,8 +1485,7 @@ FOGRT__LD fogrt_result fogrt__ld_material(fogrt__ld *L, int32_t material, uint32
 
 /* The material bound to a primitive list: the <instance_material> whose symbol is the list's
    material attribute, else the first one (CS184), else grey. */
-FOGRT__LD fogrt_result fogrt__ld_bound_material(fogrt__ld *L, int32_t inst, int32_t list, uint32_t *out)
-{
+FOGRT__LD fogrt_result fogrt__ld_bound_material(fogrt__ld *L, int32_t inst, int32_t list, uint32_t *out) {
     int32_t tc = fogrt__ld_path(L, inst, "bind_material/technique_common");
     int32_t first = fogrt__ld_child(L, tc, "instance_material"), im, target = -1;
     uint32_t slen;
@@ -1598,8 +1512,7 @@ FOGRT__LD fogrt_result fogrt__ld_bound_material(fogrt__ld *L, int32_t inst, int3
 /* Triangles being collected for one geometry: 3 indices and the list ordinal each. */
 typedef struct fogrt__ld_tris { uint32_t *idx, *list; uint32_t n, cap_i, cap_l; } fogrt__ld_tris;
 
-FOGRT__LD fogrt_result fogrt__ld_add_tri(fogrt__ld *L, fogrt__ld_tris *T, uint32_t a, uint32_t b, uint32_t c, uint32_t list)
-{
+FOGRT__LD fogrt_result fogrt__ld_add_tri(fogrt__ld *L, fogrt__ld_tris *T, uint32_t a, uint32_t b, uint32_t c, uint32_t list) {
     FOGRT__LD_TRY(fogrt__ld_grow(L, (void **)&T->idx, &T->cap_i, 3 * ((uint64_t)T->n + 1), sizeof(uint32_t)));
     FOGRT__LD_TRY(fogrt__ld_grow(L, (void **)&T->list, &T->cap_l, (uint64_t)T->n + 1, sizeof(uint32_t)));
     T->idx[3 * (size_t)T->n] = a; T->idx[3 * (size_t)T->n + 1] = b; T->idx[3 * (size_t)T->n + 2] = c;
@@ -1616,8 +1529,7 @@ typedef struct fogrt__ld_prim {
 } fogrt__ld_prim;
 
 /* The <input>s: stride = largest offset + 1 (COLLADA), the VERTEX input's offset; count. */
-FOGRT__LD fogrt_result fogrt__ld_prim_inputs(fogrt__ld *L, fogrt__ld_prim *P, int32_t vertices)
-{
+FOGRT__LD fogrt_result fogrt__ld_prim_inputs(fogrt__ld *L, fogrt__ld_prim *P, int32_t vertices) {
     int32_t c, list = P->list;
     uint64_t max_off = 0;
     bool has_vertex = false;
@@ -1642,8 +1554,7 @@ FOGRT__LD fogrt_result fogrt__ld_prim_inputs(fogrt__ld *L, fogrt__ld_prim *P, in
 }
 
 /* Checks the vertex index of every one of `corners` corners at ix. */
-FOGRT__LD fogrt_result fogrt__ld_check_corners(fogrt__ld *L, const fogrt__ld_prim *P, const uint32_t *ix, uint64_t corners, int line)
-{
+FOGRT__LD fogrt_result fogrt__ld_check_corners(fogrt__ld *L, const fogrt__ld_prim *P, const uint32_t *ix, uint64_t corners, int line) {
     uint64_t k;
     for (k = 0; k < corners; ++k)
         if (ix[k * P->stride + P->v_off] >= P->nv)
@@ -1652,8 +1563,7 @@ FOGRT__LD fogrt_result fogrt__ld_check_corners(fogrt__ld *L, const fogrt__ld_pri
 }
 /* Fan-triangulates one polygon of n corners starting at corner `start` of ix: (0, j, j+1). */
 FOGRT__LD fogrt_result fogrt__ld_fan(fogrt__ld *L, const fogrt__ld_prim *P, fogrt__ld_tris *T, const uint32_t *ix,
-                                     uint64_t start, uint32_t n, uint32_t *skipped)
-{
+                                     uint64_t start, uint32_t n, uint32_t *skipped) {
     uint32_t j, s = P->stride, o = P->v_off;
     if (n < 3) { (*skipped)++; return FOGRT_RESULT_OK; }
     for (j = 1; j + 1 < n; ++j)
@@ -1662,8 +1572,7 @@ FOGRT__LD fogrt_result fogrt__ld_fan(fogrt__ld *L, const fogrt__ld_prim *P, fogr
 }
 
 /* At most need indices of a <p> into a buffer (grown to fit); *got = indices read. */
-FOGRT__LD fogrt_result fogrt__ld_read_p(fogrt__ld *L, const fogrt__ld_el *pe, uint64_t need, uint32_t **ix, uint32_t *cap, uint64_t *got)
-{
+FOGRT__LD fogrt_result fogrt__ld_read_p(fogrt__ld *L, const fogrt__ld_el *pe, uint64_t need, uint32_t **ix, uint32_t *cap, uint64_t *got) {
     *got = 0;
     if (!pe->text) return FOGRT_RESULT_OK;
     FOGRT__LD_TRY(fogrt__ld_grow(L, (void **)ix, cap, need, sizeof(uint32_t)));
@@ -1671,8 +1580,7 @@ FOGRT__LD fogrt_result fogrt__ld_read_p(fogrt__ld *L, const fogrt__ld_el *pe, ui
 }
 
 /* <polygons>: one <p> per polygon. */
-FOGRT__LD fogrt_result fogrt__ld_polygons(fogrt__ld *L, const fogrt__ld_prim *P, fogrt__ld_tris *T, uint32_t *skipped)
-{
+FOGRT__LD fogrt_result fogrt__ld_polygons(fogrt__ld *L, const fogrt__ld_prim *P, fogrt__ld_tris *T, uint32_t *skipped) {
     uint32_t *ix = NULL, cap = 0;
     uint64_t np = 0, got;
     int32_t p;
@@ -1692,8 +1600,7 @@ FOGRT__LD fogrt_result fogrt__ld_polygons(fogrt__ld *L, const fogrt__ld_prim *P,
 }
 
 /* <polylist>'s <vcount>: the corners of each polygon, *corners their sum. */
-FOGRT__LD fogrt_result fogrt__ld_vcount(fogrt__ld *L, const fogrt__ld_prim *P, uint32_t **out, uint64_t *corners)
-{
+FOGRT__LD fogrt_result fogrt__ld_vcount(fogrt__ld *L, const fogrt__ld_prim *P, uint32_t **out, uint64_t *corners) {
     int32_t vc = fogrt__ld_child(L, P->list, "vcount");
     const fogrt__ld_el *ve;
     uint64_t got = 0, k;
@@ -1714,8 +1621,7 @@ FOGRT__LD fogrt_result fogrt__ld_vcount(fogrt__ld *L, const fogrt__ld_prim *P, u
 }
 
 /* <triangles> (3 corners each) and <polylist> (vcount corners each): one <p> for all. */
-FOGRT__LD fogrt_result fogrt__ld_one_p(fogrt__ld *L, const fogrt__ld_prim *P, fogrt__ld_tris *T, uint32_t *skipped)
-{
+FOGRT__LD fogrt_result fogrt__ld_one_p(fogrt__ld *L, const fogrt__ld_prim *P, fogrt__ld_tris *T, uint32_t *skipped) {
     int32_t p = fogrt__ld_child(L, P->list, "p");
     const fogrt__ld_el *pe;
     uint32_t *vcount = NULL, *ix = NULL, cap = 0, poly;
@@ -1741,8 +1647,7 @@ FOGRT__LD fogrt_result fogrt__ld_one_p(fogrt__ld *L, const fogrt__ld_prim *P, fo
 }
 
 /* The POSITION <float_array> of a mesh: exactly `count` floats (CS184); without count, all. */
-FOGRT__LD fogrt_result fogrt__ld_positions(fogrt__ld *L, int32_t mesh, int32_t *vertices, float **raw, uint32_t *nv)
-{
+FOGRT__LD fogrt_result fogrt__ld_positions(fogrt__ld *L, int32_t mesh, int32_t *vertices, float **raw, uint32_t *nv) {
     int32_t in, src, fa;
     uint64_t count = 0, got = 0, k;
     const fogrt__ld_el *fe;
@@ -1776,8 +1681,7 @@ FOGRT__LD fogrt_result fogrt__ld_positions(fogrt__ld *L, int32_t mesh, int32_t *
 
 /* Every primitive list of a mesh into T (lists[] records each list's element). */
 FOGRT__LD fogrt_result fogrt__ld_mesh_lists(fogrt__ld *L, int32_t mesh, int32_t vertices, uint32_t nv, fogrt__ld_tris *T,
-                                            fogrt__ld_geom *g)
-{
+                                            fogrt__ld_geom *g) {
     int32_t c;
     uint32_t skipped = 0, cap = 0;
     for (c = L->el[mesh].first_child; c >= 0; c = L->el[c].next) {
@@ -1805,8 +1709,7 @@ FOGRT__LD fogrt_result fogrt__ld_mesh_lists(fogrt__ld *L, int32_t mesh, int32_t 
 
 /* Parses a <mesh> once into g: positions (unused ones dropped), triangles, per-list counts
    and the open parts for the normals. */
-FOGRT__LD fogrt_result fogrt__ld_parse_geom(fogrt__ld *L, int32_t mesh, fogrt__ld_geom *g)
-{
+FOGRT__LD fogrt_result fogrt__ld_parse_geom(fogrt__ld *L, int32_t mesh, fogrt__ld_geom *g) {
     int32_t vertices;
     uint32_t nv = 0, t;
     fogrt__ld_tris T;
@@ -1825,8 +1728,7 @@ FOGRT__LD fogrt_result fogrt__ld_parse_geom(fogrt__ld *L, int32_t mesh, fogrt__l
 }
 
 /* The parsed form of <geometry> element geom (with <mesh> child mesh), parsed on first use. */
-FOGRT__LD fogrt_result fogrt__ld_geom_of(fogrt__ld *L, int32_t geom, int32_t mesh, uint32_t *out)
-{
+FOGRT__LD fogrt_result fogrt__ld_geom_of(fogrt__ld *L, int32_t geom, int32_t mesh, uint32_t *out) {
     uint32_t i;
     fogrt__ld_geom *g;
     for (i = 0; i < L->geom_count; ++i) if (L->geoms[i].el == geom) { *out = i; return FOGRT_RESULT_OK; }
@@ -1840,8 +1742,7 @@ FOGRT__LD fogrt_result fogrt__ld_geom_of(fogrt__ld *L, int32_t geom, int32_t mes
 
 /* A node instancing a mesh: the shared geometry, the node's transform M and the material
    bound to each of the geometry's lists. Costs no triangle memory. */
-FOGRT__LD fogrt_result fogrt__ld_mesh_instance(fogrt__ld *L, int32_t geom, int32_t mesh, int32_t inst, const double M[16], int node_line)
-{
+FOGRT__LD fogrt_result fogrt__ld_mesh_instance(fogrt__ld *L, int32_t geom, int32_t mesh, int32_t inst, const double M[16], int node_line) {
     uint32_t gi, k;
     fogrt__ld_inst *I;
     const fogrt__ld_geom *g;
@@ -1860,16 +1761,14 @@ FOGRT__LD fogrt_result fogrt__ld_mesh_instance(fogrt__ld *L, int32_t geom, int32
 }
 
 /* World position of local vertex p under M (divided by w). */
-FOGRT__LD void fogrt__ld_world(const double M[16], const float *p, double q[3])
-{
+FOGRT__LD void fogrt__ld_world(const double M[16], const float *p, double q[3]) {
     double h[4];
     fogrt__ld_xform4(M, (double)p[0], (double)p[1], (double)p[2], 1.0, h);
     q[0] = h[0] / h[3]; q[1] = h[1] / h[3]; q[2] = h[2] / h[3];
 }
 
 /* A CGL sphere: centre M (0,0,0,1), radius scaled by the length of the transformed X axis. */
-FOGRT__LD fogrt_result fogrt__ld_sphere_instance(fogrt__ld *L, int32_t rad, int32_t inst, const double M[16], int node_line)
-{
+FOGRT__LD fogrt_result fogrt__ld_sphere_instance(fogrt__ld *L, int32_t rad, int32_t inst, const double M[16], int node_line) {
     float r, cp[3];
     double c[3], x[3], rr;
     fogrt__ld_sphere s;
@@ -1890,8 +1789,7 @@ FOGRT__LD fogrt_result fogrt__ld_sphere_instance(fogrt__ld *L, int32_t rad, int3
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__LD fogrt_result fogrt__ld_geometry(fogrt__ld *L, int32_t inst, const double M[16], int node_line)
-{
+FOGRT__LD fogrt_result fogrt__ld_geometry(fogrt__ld *L, int32_t inst, const double M[16], int node_line) {
     int32_t geom = fogrt__ld_ref(L, inst, "url"), mesh, rad;
     if (geom < 0 || !fogrt__ld_is(L, geom, "geometry")) {
         fogrt__ld_warn(L, L->el[inst].line, "instance_geometry url not found: skipped");
@@ -1912,8 +1810,7 @@ FOGRT__LD fogrt_result fogrt__ld_geometry(fogrt__ld *L, int32_t inst, const doub
 /* CGL <area>: a rectangle centred at the node origin o with edges M(-1,0,0) and M(0,1,0),
    emitting along dir = M(0,0,-1). */
 FOGRT__LD fogrt_result fogrt__ld_area_light(fogrt__ld *L, int32_t type, const double M[16], const double o[4],
-                                            const double dir[3], fogrt_vec3 colour, int node_line)
-{
+                                            const double dir[3], fogrt_vec3 colour, int node_line) {
     double dx[3], dy[3], n[3];
     fogrt__ld_rect r;
     int k, i;
@@ -1940,8 +1837,7 @@ FOGRT__LD fogrt_result fogrt__ld_area_light(fogrt__ld *L, int32_t type, const do
 }
 
 /* Blender's spot: falloff_angle is the FULL cone (degrees), falloff_exponent its blend. */
-FOGRT__LD fogrt_result fogrt__ld_spot(fogrt__ld *L, int32_t type, const double dir[3], int node_line, fogrt_light_desc *d)
-{
+FOGRT__LD fogrt_result fogrt__ld_spot(fogrt__ld *L, int32_t type, const double dir[3], int node_line, fogrt_light_desc *d) {
     float angle = 180.0f, blend = 0.0f;
     bool found;
     FOGRT__LD_TRY(fogrt__ld_child_float(L, type, "falloff_angle", false, &angle, &found));
@@ -1959,8 +1855,7 @@ FOGRT__LD fogrt_result fogrt__ld_spot(fogrt__ld *L, int32_t type, const double d
 
 /* The light's type element: the first child of its CGL technique (which wins over
    technique_common); -1 (after a warning) when it is missing or not one fogrt has. */
-FOGRT__LD int32_t fogrt__ld_light_type(fogrt__ld *L, int32_t light)
-{
+FOGRT__LD int32_t fogrt__ld_light_type(fogrt__ld *L, int32_t light) {
     int32_t tech = fogrt__ld_cgl(L, light), type;
     if (tech < 0) tech = fogrt__ld_child(L, light, "technique_common");
     type = tech >= 0 ? L->el[tech].first_child : -1;
@@ -1972,8 +1867,7 @@ FOGRT__LD int32_t fogrt__ld_light_type(fogrt__ld *L, int32_t light)
     return -1;
 }
 
-FOGRT__LD fogrt_result fogrt__ld_light(fogrt__ld *L, int32_t inst, const double M[16], int node_line)
-{
+FOGRT__LD fogrt_result fogrt__ld_light(fogrt__ld *L, int32_t inst, const double M[16], int node_line) {
     int32_t light = fogrt__ld_ref(L, inst, "url"), type;
     fogrt_vec3 colour, pos;
     fogrt_light_desc d;
@@ -2006,8 +1900,7 @@ FOGRT__LD fogrt_result fogrt__ld_light(fogrt__ld *L, int32_t inst, const double 
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__LD fogrt_result fogrt__ld_camera(fogrt__ld *L, int32_t inst, const double M[16])
-{
+FOGRT__LD fogrt_result fogrt__ld_camera(fogrt__ld *L, int32_t inst, const double M[16]) {
     int32_t cam = fogrt__ld_ref(L, inst, "url"), persp;
     float xfov = 50.0f, yfov = 0.0f, aspect = 0.0f;
     bool has_y, has_a;
@@ -2049,8 +1942,7 @@ FOGRT__LD fogrt_result fogrt__ld_camera(fogrt__ld *L, int32_t inst, const double
 }
 
 /* CS184's camera placement: orbit at 1.5 |diagonal| from the bounding-box centre along c. */
-FOGRT__LD void fogrt__ld_place_camera(fogrt__ld *L, fogrt_camera_desc *cam)
-{
+FOGRT__LD void fogrt__ld_place_camera(fogrt__ld *L, fogrt_camera_desc *cam) {
     double C[3] = { 0, 0, 0 }, E[3] = { 0, 0, 0 }, c[3], len, r, horiz;
     int i;
     if (L->has_bounds)
@@ -2087,8 +1979,7 @@ FOGRT__LD void fogrt__ld_place_camera(fogrt__ld *L, fogrt_camera_desc *cam)
    ------------------------------------------------------------------------------------------ */
 /* Rotation by v[3] degrees about the axis v[0..2] into the row-major t (false: zero axis).
    Rodrigues: R = cos I + sin [a]x + (1 - cos) a a^T. */
-FOGRT__LD bool fogrt__ld_rotation(const float v[4], double t[16])
-{
+FOGRT__LD bool fogrt__ld_rotation(const float v[4], double t[16]) {
     double a[3], len, ang, cs, sn;
     int i;
     a[0] = (double)v[0]; a[1] = (double)v[1]; a[2] = (double)v[2];
@@ -2103,8 +1994,7 @@ FOGRT__LD bool fogrt__ld_rotation(const float v[4], double t[16])
 }
 /* The node's own transform: <translate>, <rotate>, <scale>, <matrix> post-multiplied in
    document order (COLLADA), stopping at the first <matrix> (CS184). */
-FOGRT__LD fogrt_result fogrt__ld_node_transform(fogrt__ld *L, int32_t node, double out[16])
-{
+FOGRT__LD fogrt_result fogrt__ld_node_transform(fogrt__ld *L, int32_t node, double out[16]) {
     int32_t c;
     fogrt__ld_identity(out);
     for (c = L->el[node].first_child; c >= 0; c = L->el[c].next) {
@@ -2139,8 +2029,7 @@ FOGRT__LD fogrt_result fogrt__ld_node_transform(fogrt__ld *L, int32_t node, doub
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__LD fogrt_result fogrt__ld_node(fogrt__ld *L, int32_t node, const double parent[16], int depth)
-{
+FOGRT__LD fogrt_result fogrt__ld_node(fogrt__ld *L, int32_t node, const double parent[16], int depth) {
     double local[16], world[16];
     int32_t c, ic, il, ig;
     int kinds;
@@ -2165,8 +2054,7 @@ FOGRT__LD fogrt_result fogrt__ld_node(fogrt__ld *L, int32_t node, const double p
 }
 
 /* asset/up_axis as the correction G that pre-multiplies every node. */
-FOGRT__LD fogrt_result fogrt__ld_up_axis(fogrt__ld *L, double G[16])
-{
+FOGRT__LD fogrt_result fogrt__ld_up_axis(fogrt__ld *L, double G[16]) {
     int32_t up = fogrt__ld_path(L, L->root, "asset/up_axis");
     const char *s;
     uint32_t n;
@@ -2188,8 +2076,7 @@ FOGRT__LD fogrt_result fogrt__ld_up_axis(fogrt__ld *L, double G[16])
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__LD fogrt_result fogrt__ld_dae_parse(fogrt__ld *L)
-{
+FOGRT__LD fogrt_result fogrt__ld_dae_parse(fogrt__ld *L) {
     int32_t vs, c, inst;
     double G[16];
     FOGRT__LD_TRY(fogrt__ld_xml_parse(L));
@@ -2212,8 +2099,7 @@ FOGRT__LD fogrt_result fogrt__ld_dae_parse(fogrt__ld *L)
    11. COLLADA: checking everything against the scene's limits, then handing it to fogrt
    ------------------------------------------------------------------------------------------ */
 /* Every instance's world vertices lie within the scene's limits; they make the bounds. */
-FOGRT__LD fogrt_result fogrt__ld_check_instances(fogrt__ld *L)
-{
+FOGRT__LD fogrt_result fogrt__ld_check_instances(fogrt__ld *L) {
     uint32_t i, v;
     for (i = 0; i < L->inst_count; ++i) {
         const fogrt__ld_inst *I = &L->insts[i];
@@ -2234,8 +2120,7 @@ FOGRT__LD fogrt_result fogrt__ld_check_instances(fogrt__ld *L)
 }
 
 /* CS184's camera from the bounds; it must be finite and not sit on its target. */
-FOGRT__LD fogrt_result fogrt__ld_dae_camera(fogrt__ld *L)
-{
+FOGRT__LD fogrt_result fogrt__ld_dae_camera(fogrt__ld *L) {
     fogrt_camera_desc *c = &L->rep->camera;
     float dx, dy, dz;
     fogrt__ld_place_camera(L, c);
@@ -2249,8 +2134,7 @@ FOGRT__LD fogrt_result fogrt__ld_dae_camera(fogrt__ld *L)
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__LD fogrt_result fogrt__ld_rejected(fogrt__ld *L, fogrt_result r, const char *what)
-{
+FOGRT__LD fogrt_result fogrt__ld_rejected(fogrt__ld *L, fogrt_result r, const char *what) {
     return fogrt__ld_fail(L, r, 0, "fogrt rejected the %s: %s", what, fogrt_result_string(r));
 }
 
@@ -2258,8 +2142,7 @@ FOGRT__LD fogrt_result fogrt__ld_rejected(fogrt__ld *L, fogrt_result r, const ch
    allocated before the first scene call (so a failed allocation changes nothing). */
 typedef struct fogrt__ld_scratch { float *pos, *nrm; uint32_t *idx, *tmat; double *acc; } fogrt__ld_scratch;
 
-FOGRT__LD fogrt_result fogrt__ld_scratch_alloc(fogrt__ld *L, fogrt__ld_scratch *S)
-{
+FOGRT__LD fogrt_result fogrt__ld_scratch_alloc(fogrt__ld *L, fogrt__ld_scratch *S) {
     uint32_t i, nv = 0, nt = 0;
     for (i = 0; i < L->geom_count; ++i) {
         if (L->geoms[i].m.nv > nv) nv = L->geoms[i].m.nv;
@@ -2272,16 +2155,14 @@ FOGRT__LD fogrt_result fogrt__ld_scratch_alloc(fogrt__ld *L, fogrt__ld_scratch *
     S->acc = S->tmat ? (double *)fogrt__ld_alloc(L, 3 * (uint64_t)nv, sizeof(double)) : NULL;
     return S->acc ? FOGRT_RESULT_OK : FOGRT_RESULT_OUT_OF_MEMORY;
 }
-FOGRT__LD void fogrt__ld_scratch_free(fogrt__ld *L, fogrt__ld_scratch *S)
-{
+FOGRT__LD void fogrt__ld_scratch_free(fogrt__ld *L, fogrt__ld_scratch *S) {
     fogrt__ld_free(L, S->pos); fogrt__ld_free(L, S->nrm); fogrt__ld_free(L, S->idx); fogrt__ld_free(L, S->tmat); fogrt__ld_free(L, S->acc);
 }
 
 /* One instance: world positions (checked before), mirrored transforms re-wound, materials
    bound, smooth normals from the world triangles. */
 FOGRT__LD fogrt_result fogrt__ld_commit_instance(fogrt__ld *L, fogrt_scene *scene, const fogrt__ld_inst *I, const uint32_t *ids,
-                                                 fogrt__ld_scratch *S)
-{
+                                                 fogrt__ld_scratch *S) {
     const fogrt__ld_geom *g = &L->geoms[I->geom];
     const fogrt__ld_meshbuf *m = &g->m;
     bool mirror = fogrt__ld_det3(I->M) < 0.0;
@@ -2310,8 +2191,7 @@ FOGRT__LD fogrt_result fogrt__ld_commit_instance(fogrt__ld *L, fogrt_scene *scen
 }
 
 /* Triangles whose bound material emits, over all instances. */
-FOGRT__LD uint32_t fogrt__ld_emissive_tris(const fogrt__ld *L)
-{
+FOGRT__LD uint32_t fogrt__ld_emissive_tris(const fogrt__ld *L) {
     uint32_t i, k, n = 0;
     for (i = 0; i < L->inst_count; ++i) {
         const fogrt__ld_inst *I = &L->insts[i];
@@ -2324,8 +2204,7 @@ FOGRT__LD uint32_t fogrt__ld_emissive_tris(const fogrt__ld *L)
 
 /* The materials; glass and refraction first, so that a fogrt built with FOGRT_NO_GLASS
    refuses the file (UNSUPPORTED) before anything else is added. */
-FOGRT__LD fogrt_result fogrt__ld_commit_materials(fogrt__ld *L, fogrt_scene *scene, uint32_t *ids)
-{
+FOGRT__LD fogrt_result fogrt__ld_commit_materials(fogrt__ld *L, fogrt_scene *scene, uint32_t *ids) {
     uint32_t pass, i;
     for (pass = 0; pass < 2; ++pass)
         for (i = 0; i < L->mat_count; ++i) {
@@ -2345,8 +2224,7 @@ FOGRT__LD fogrt_result fogrt__ld_commit_materials(fogrt__ld *L, fogrt_scene *sce
 }
 
 /* A CGL <area> light as an emissive rectangle (two triangles). */
-FOGRT__LD fogrt_result fogrt__ld_commit_rect(fogrt__ld *L, fogrt_scene *scene, const fogrt__ld_rect *rect)
-{
+FOGRT__LD fogrt_result fogrt__ld_commit_rect(fogrt__ld *L, fogrt_scene *scene, const fogrt__ld_rect *rect) {
     fogrt_material_desc md;
     fogrt_mesh_desc d;
     uint32_t id, idx[6] = { 0, 1, 2, 0, 2, 3 };
@@ -2370,8 +2248,7 @@ FOGRT__LD fogrt_result fogrt__ld_commit_rect(fogrt__ld *L, fogrt_scene *scene, c
 
 /* Spheres, area rectangles (only without an emissive mesh: else it is the lamp), point and
    spot lights, the ambient light and the camera. */
-FOGRT__LD fogrt_result fogrt__ld_commit_rest(fogrt__ld *L, fogrt_scene *scene, const uint32_t *ids, bool set_camera)
-{
+FOGRT__LD fogrt_result fogrt__ld_commit_rest(fogrt__ld *L, fogrt_scene *scene, const uint32_t *ids, bool set_camera) {
     fogrt_load_report *rep = L->rep;
     fogrt_result r = FOGRT_RESULT_OK;
     uint32_t i;
@@ -2400,8 +2277,7 @@ FOGRT__LD fogrt_result fogrt__ld_commit_rest(fogrt__ld *L, fogrt_scene *scene, c
     return r;
 }
 
-FOGRT__LD fogrt_result fogrt__ld_commit(fogrt__ld *L, fogrt_scene *scene, bool set_camera)
-{
+FOGRT__LD fogrt_result fogrt__ld_commit(fogrt__ld *L, fogrt_scene *scene, bool set_camera) {
     uint32_t i, *ids;
     fogrt__ld_scratch S;
     fogrt_result r;
@@ -2419,8 +2295,7 @@ FOGRT__LD fogrt_result fogrt__ld_commit(fogrt__ld *L, fogrt_scene *scene, bool s
 }
 
 /* A whole .dae: parse, check, place the camera, commit. */
-FOGRT__LD fogrt_result fogrt__ld_dae(fogrt__ld *L, fogrt_scene *scene)
-{
+FOGRT__LD fogrt_result fogrt__ld_dae(fogrt__ld *L, fogrt_scene *scene) {
     FOGRT__LD_TRY(fogrt__ld_dae_parse(L));
     FOGRT__LD_TRY(fogrt__ld_check_instances(L));
     FOGRT__LD_TRY(fogrt__ld_dae_camera(L));
@@ -2428,8 +2303,7 @@ FOGRT__LD fogrt_result fogrt__ld_dae(fogrt__ld *L, fogrt_scene *scene)
 }
 
 FOGRT__LD_PUBLIC void fogrt_load_fit_fov(float frame_tan_half_y, float frame_aspect, int width, int height,
-                                         fogrt_camera_desc *camera)
-{
+                                         fogrt_camera_desc *camera) {
     double a = (width > 0 && height > 0) ? (double)width / height : (double)frame_aspect;
     if (!(frame_aspect > 0.0f)) frame_aspect = 4.0f / 3.0f;
     if (a >= (double)frame_aspect * (1.0 - 1e-6)) {   /* wide image: the frame's height fills it */
@@ -2446,8 +2320,7 @@ FOGRT__LD_PUBLIC void fogrt_load_fit_fov(float frame_tan_half_y, float frame_asp
    ------------------------------------------------------------------------------------------ */
 /* Normals: the file's, normalised, where it has a usable one (nonzero), else the computed
    smooth normal (computed only when some vertex needs it). Takes ownership of file_nrm. */
-FOGRT__LD fogrt_result fogrt__ld_fix_normals(fogrt__ld *L, fogrt__ld_meshbuf *m, float *file_nrm)
-{
+FOGRT__LD fogrt_result fogrt__ld_fix_normals(fogrt__ld *L, fogrt__ld_meshbuf *m, float *file_nrm) {
     uint32_t v, missing = 0;
     double *acc;
     for (v = 0; file_nrm && v < m->nv; ++v) {
@@ -2477,8 +2350,7 @@ FOGRT__LD fogrt_result fogrt__ld_fix_normals(fogrt__ld *L, fogrt__ld_meshbuf *m,
 
 /* Places the single mesh (already compacted), checks it against the scene's limits and
    adds it with its material. */
-FOGRT__LD fogrt_result fogrt__ld_commit_mesh(fogrt__ld *L, fogrt_scene *scene, fogrt__ld_meshbuf *m)
-{
+FOGRT__LD fogrt_result fogrt__ld_commit_mesh(fogrt__ld *L, fogrt_scene *scene, fogrt__ld_meshbuf *m) {
     fogrt_mesh_desc d;
     uint32_t mat, v;
     fogrt_result r;
@@ -2506,8 +2378,7 @@ FOGRT__LD fogrt_result fogrt__ld_commit_mesh(fogrt__ld *L, fogrt_scene *scene, f
 }
 
 /* Compacts, normals (file or computed), places, adds. Takes ownership of file_nrm. */
-FOGRT__LD fogrt_result fogrt__ld_finish_mesh(fogrt__ld *L, fogrt_scene *scene, fogrt__ld_meshbuf *m, float *file_nrm)
-{
+FOGRT__LD fogrt_result fogrt__ld_finish_mesh(fogrt__ld *L, fogrt_scene *scene, fogrt__ld_meshbuf *m, float *file_nrm) {
     fogrt_result r;
     m->nrm = file_nrm;                  /* compaction keeps file normals in step */
     r = fogrt__ld_compact(L, m);
@@ -2521,8 +2392,7 @@ FOGRT__LD fogrt_result fogrt__ld_finish_mesh(fogrt__ld *L, fogrt_scene *scene, f
 
 /* Both mesh formats load the same way: parse into a mesh buffer, then place and commit it. */
 typedef fogrt_result (*fogrt__ld_mesh_parser)(fogrt__ld *L, fogrt__ld_meshbuf *m, float **file_nrm);
-FOGRT__LD fogrt_result fogrt__ld_mesh_file(fogrt__ld *L, fogrt_scene *scene, fogrt__ld_mesh_parser parse)
-{
+FOGRT__LD fogrt_result fogrt__ld_mesh_file(fogrt__ld *L, fogrt_scene *scene, fogrt__ld_mesh_parser parse) {
     fogrt__ld_meshbuf m;
     float *file_nrm = NULL;
     fogrt_result r;
@@ -2538,8 +2408,7 @@ FOGRT__LD fogrt_result fogrt__ld_mesh_file(fogrt__ld *L, fogrt_scene *scene, fog
 
 /* ---- OBJ ---- */
 /* The next line of [*p, end): [*ls, *le) without its ending; LF, CRLF and CR all end one. */
-FOGRT__LD bool fogrt__obj_line(const char **p, const char *end, const char **ls, const char **le)
-{
+FOGRT__LD bool fogrt__obj_line(const char **p, const char *end, const char **ls, const char **le) {
     const char *q = *p;
     if (q >= end) return false;
     *ls = q;
@@ -2553,8 +2422,7 @@ FOGRT__LD bool fogrt__obj_line(const char **p, const char *end, const char **ls,
 FOGRT__LD bool fogrt__obj_blank(char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v'; }
 /* The statement keyword of a line ([*kw, *kw + *kl)), the rest after it in *q; false for a
    blank or comment line. */
-FOGRT__LD bool fogrt__obj_keyword(const char *ls, const char *le, const char **kw, size_t *kl, const char **q)
-{
+FOGRT__LD bool fogrt__obj_keyword(const char *ls, const char *le, const char **kw, size_t *kl, const char **q) {
     const char *s = ls;
     while (s < le && fogrt__obj_blank(*s)) ++s;
     if (s >= le || *s == '#') return false;
@@ -2566,8 +2434,7 @@ FOGRT__LD bool fogrt__obj_keyword(const char *ls, const char *le, const char **k
 }
 FOGRT__LD bool fogrt__obj_is(const char *kw, size_t kl, const char *name) { return kl == strlen(name) && memcmp(kw, name, kl) == 0; }
 /* Blank-separated words in [q, le). */
-FOGRT__LD uint32_t fogrt__obj_words(const char *q, const char *le)
-{
+FOGRT__LD uint32_t fogrt__obj_words(const char *q, const char *le) {
     uint32_t n = 0;
     while (q < le) {
         while (q < le && fogrt__obj_blank(*q)) ++q;
@@ -2589,8 +2456,7 @@ typedef struct fogrt__obj {
 
 /* Pass 1: counts v, vn and the triangles of f (words - 2), so the arrays are exact and a
    file asking for too many triangles is refused before anything is allocated. */
-FOGRT__LD fogrt_result fogrt__obj_count(fogrt__ld *L, const char *p, const char *end, fogrt__obj *O)
-{
+FOGRT__LD fogrt_result fogrt__obj_count(fogrt__ld *L, const char *p, const char *end, fogrt__obj *O) {
     const char *ls, *le, *kw, *q;
     size_t kl;
     int line = 0, first_v = 0;
@@ -2612,8 +2478,7 @@ FOGRT__LD fogrt_result fogrt__obj_count(fogrt__ld *L, const char *p, const char 
 }
 
 /* v x y z / vn x y z */
-FOGRT__LD fogrt_result fogrt__obj_vertex(fogrt__ld *L, fogrt__obj *O, const char *q, const char *le, int line, bool is_n)
-{
+FOGRT__LD fogrt_result fogrt__obj_vertex(fogrt__ld *L, fogrt__obj *O, const char *q, const char *le, int line, bool is_n) {
     float x[3];
     int k;
     for (k = 0; k < 3; ++k) {
@@ -2630,8 +2495,7 @@ FOGRT__LD fogrt_result fogrt__obj_vertex(fogrt__ld *L, fogrt__obj *O, const char
 
 /* A signed index at *s (digits optional): false when it has a sign without digits or
    passes 2^32. *any: whether digits were there. */
-FOGRT__LD bool fogrt__obj_index(const char **s, const char *le, long long *out, bool *any)
-{
+FOGRT__LD bool fogrt__obj_index(const char **s, const char *le, long long *out, bool *any) {
     bool neg = false;
     long long val = 0;
     *any = false;
@@ -2641,8 +2505,7 @@ FOGRT__LD bool fogrt__obj_index(const char **s, const char *le, long long *out, 
     return val <= 0xFFFFFFFFLL && (*any || !neg);
 }
 /* One face corner v[/[t][/n]] at *q: idx[0] = v, idx[2] = n (0: none), as written. */
-FOGRT__LD fogrt_result fogrt__obj_corner_text(fogrt__ld *L, const char **q, const char *le, int line, long long idx[3])
-{
+FOGRT__LD fogrt_result fogrt__obj_corner_text(fogrt__ld *L, const char **q, const char *le, int line, long long idx[3]) {
     int part;
     const char *s = *q;
     idx[0] = idx[1] = idx[2] = 0;
@@ -2662,8 +2525,7 @@ FOGRT__LD fogrt_result fogrt__obj_corner_text(fogrt__ld *L, const char **q, cons
 }
 /* The corner resolved: 1-based, negative = relative to the end; *n = UINT32_MAX: no normal. */
 FOGRT__LD fogrt_result fogrt__obj_corner(fogrt__ld *L, const fogrt__obj *O, const char **q, const char *le, int line,
-                                         uint32_t *v, uint32_t *n)
-{
+                                         uint32_t *v, uint32_t *n) {
     long long idx[3], vi, ni;
     FOGRT__LD_TRY(fogrt__obj_corner_text(L, q, le, line, idx));
     vi = idx[0] < 0 ? (long long)O->nvp + idx[0] : idx[0] - 1;
@@ -2678,8 +2540,7 @@ FOGRT__LD fogrt_result fogrt__obj_corner(fogrt__ld *L, const fogrt__obj *O, cons
 }
 
 /* f c0 c1 c2 ...: fan-triangulated as it is read, (c0, c[k-1], c[k]). */
-FOGRT__LD fogrt_result fogrt__obj_face(fogrt__ld *L, fogrt__obj *O, const char *q, const char *le, int line)
-{
+FOGRT__LD fogrt_result fogrt__obj_face(fogrt__ld *L, fogrt__obj *O, const char *q, const char *le, int line) {
     uint32_t n = 0, v0 = 0, n0 = 0, vprev = 0, nprev = 0, v = 0, nn = 0;
     bool has_n = true;
     for (;;) {
@@ -2705,8 +2566,7 @@ FOGRT__LD fogrt_result fogrt__obj_face(fogrt__ld *L, fogrt__obj *O, const char *
 
 /* Pass 2: the statements. Everything but v, vn and f (vt, vp, o, g, s, usemtl, mtllib, l,
    p, ...) is ignored. */
-FOGRT__LD fogrt_result fogrt__obj_statements(fogrt__ld *L, const char *p, const char *end, fogrt__obj *O)
-{
+FOGRT__LD fogrt_result fogrt__obj_statements(fogrt__ld *L, const char *p, const char *end, fogrt__obj *O) {
     const char *ls, *le, *kw, *q;
     size_t kl;
     int line = 0;
@@ -2721,20 +2581,17 @@ FOGRT__LD fogrt_result fogrt__obj_statements(fogrt__ld *L, const char *p, const 
 
 /* u64 -> u32 hash table for (position, normal) pairs, grown as it fills. */
 typedef struct fogrt__ld_map { uint64_t *keys; uint32_t *vals; uint32_t cap, count; } fogrt__ld_map;
-FOGRT__LD uint32_t fogrt__ld_mix(uint64_t k)
-{
+FOGRT__LD uint32_t fogrt__ld_mix(uint64_t k) {
     k ^= k >> 33; k *= 0xff51afd7ed558ccdULL; k ^= k >> 33; k *= 0xc4ceb9fe1a85ec53ULL; k ^= k >> 33;
     return (uint32_t)k;
 }
-FOGRT__LD uint32_t fogrt__ld_map_slot(const fogrt__ld_map *map, uint64_t key)
-{
+FOGRT__LD uint32_t fogrt__ld_map_slot(const fogrt__ld_map *map, uint64_t key) {
     uint32_t h = fogrt__ld_mix(key) & (map->cap - 1);
     while (map->keys[h] != UINT64_MAX && map->keys[h] != key) h = (h + 1) & (map->cap - 1);
     return h;
 }
 /* (Re)builds the table with cap slots (a power of two), keeping its entries. */
-FOGRT__LD fogrt_result fogrt__ld_map_resize(fogrt__ld *L, fogrt__ld_map *map, uint32_t cap)
-{
+FOGRT__LD fogrt_result fogrt__ld_map_resize(fogrt__ld *L, fogrt__ld_map *map, uint32_t cap) {
     fogrt__ld_map n;
     uint32_t i;
     n.cap = cap; n.count = map->count;
@@ -2754,8 +2611,7 @@ FOGRT__LD fogrt_result fogrt__ld_map_resize(fogrt__ld *L, fogrt__ld_map *map, ui
 
 /* One fogrt vertex per distinct (position, normal) pair: tv becomes the new vertex index,
    O->vp / O->vn the new positions / normals. */
-FOGRT__LD fogrt_result fogrt__obj_unify(fogrt__ld *L, fogrt__obj *O)
-{
+FOGRT__LD fogrt_result fogrt__obj_unify(fogrt__ld *L, fogrt__obj *O) {
     fogrt__ld_map map;
     uint32_t i;
     float *pos, *nrm;
@@ -2785,15 +2641,13 @@ FOGRT__LD fogrt_result fogrt__obj_unify(fogrt__ld *L, fogrt__obj *O)
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__LD void fogrt__obj_free(fogrt__ld *L, fogrt__obj *O)
-{
+FOGRT__LD void fogrt__obj_free(fogrt__ld *L, fogrt__obj *O) {
     fogrt__ld_free(L, O->vp); fogrt__ld_free(L, O->vn); fogrt__ld_free(L, O->tv); fogrt__ld_free(L, O->tn);
     memset(O, 0, sizeof *O);
 }
 
 /* OBJ: v, vn, f. Returns the mesh before placement. */
-FOGRT__LD fogrt_result fogrt__ld_obj_parse(fogrt__ld *L, fogrt__ld_meshbuf *out, float **out_file_nrm)
-{
+FOGRT__LD fogrt_result fogrt__ld_obj_parse(fogrt__ld *L, fogrt__ld_meshbuf *out, float **out_file_nrm) {
     const char *p = L->buf, *end = L->buf + L->len;
     fogrt__obj O;
     fogrt_result r;
@@ -2836,8 +2690,7 @@ typedef struct fogrt__ply {
 typedef struct fogrt__ply_reader { const char *p, *end, *data; int format, line; fogrt__ld *L; } fogrt__ply_reader;
 
 /* Type name -> size in bytes (negative: float types), 0 if unknown. */
-FOGRT__LD int fogrt__ply_type(const char *s, size_t n)
-{
+FOGRT__LD int fogrt__ply_type(const char *s, size_t n) {
     static const char *names[16] = { "char", "int8", "uchar", "uint8", "short", "int16", "ushort", "uint16",
                                      "int", "int32", "uint", "uint32", "float", "float32", "double", "float64" };
     static const int types[16] = { 1, 1, 11, 11, 2, 2, 12, 12, 4, 4, 14, 14, -4, -4, -8, -8 };  /* 10+: unsigned */
@@ -2849,8 +2702,7 @@ FOGRT__LD int fogrt__ply_size(int type) { return type < 0 ? -type : type > 10 ? 
 
 /* One header line split into at most 6 words. */
 typedef struct fogrt__ply_words { const char *tok[6]; size_t len[6]; int n; } fogrt__ply_words;
-FOGRT__LD void fogrt__ply_split(const char *q, const char *le, fogrt__ply_words *W)
-{
+FOGRT__LD void fogrt__ply_split(const char *q, const char *le, fogrt__ply_words *W) {
     W->n = 0;
     while (q < le && W->n < 6) {
         while (q < le && (*q == ' ' || *q == '\t' || *q == '\r')) ++q;
@@ -2861,14 +2713,12 @@ FOGRT__LD void fogrt__ply_split(const char *q, const char *le, fogrt__ply_words 
         W->n++;
     }
 }
-FOGRT__LD bool fogrt__ply_is(const fogrt__ply_words *W, int k, const char *s)
-{
+FOGRT__LD bool fogrt__ply_is(const fogrt__ply_words *W, int k, const char *s) {
     return k < W->n && W->len[k] == strlen(s) && memcmp(W->tok[k], s, W->len[k]) == 0;
 }
 
 /* element NAME COUNT */
-FOGRT__LD fogrt_result fogrt__ply_element(fogrt__ld *L, fogrt__ply *P, const fogrt__ply_words *W)
-{
+FOGRT__LD fogrt_result fogrt__ply_element(fogrt__ld *L, fogrt__ply *P, const fogrt__ply_words *W) {
     char num[24], *q2;
     unsigned long long c;
     fogrt__ply_elem *e;
@@ -2893,8 +2743,7 @@ FOGRT__LD fogrt_result fogrt__ply_element(fogrt__ld *L, fogrt__ply *P, const fog
 }
 
 /* What a property is for: x y z nx ny nz of "vertex", the index list of "face". */
-FOGRT__LD int fogrt__ply_role(const char *elem, const fogrt__ply_prop *pr, const char *name, size_t n)
-{
+FOGRT__LD int fogrt__ply_role(const char *elem, const fogrt__ply_prop *pr, const char *name, size_t n) {
     static const char *vnames[6] = { "x", "y", "z", "nx", "ny", "nz" };
     int k;
     if (strcmp(elem, "vertex") == 0 && !pr->list)
@@ -2906,8 +2755,7 @@ FOGRT__LD int fogrt__ply_role(const char *elem, const fogrt__ply_prop *pr, const
 }
 
 /* property TYPE NAME / property list COUNT_TYPE ITEM_TYPE NAME */
-FOGRT__LD fogrt_result fogrt__ply_property(fogrt__ld *L, fogrt__ply *P, const fogrt__ply_words *W)
-{
+FOGRT__LD fogrt_result fogrt__ply_property(fogrt__ld *L, fogrt__ply *P, const fogrt__ply_words *W) {
     fogrt__ply_prop pr;
     fogrt__ply_elem *pe = P->nel ? &P->el[P->nel - 1] : NULL;
     int ni;
@@ -2935,8 +2783,7 @@ FOGRT__LD fogrt_result fogrt__ply_property(fogrt__ld *L, fogrt__ply *P, const fo
 }
 
 /* One header line after the first. */
-FOGRT__LD fogrt_result fogrt__ply_header_line(fogrt__ld *L, fogrt__ply *P, const fogrt__ply_words *W)
-{
+FOGRT__LD fogrt_result fogrt__ply_header_line(fogrt__ld *L, fogrt__ply *P, const fogrt__ply_words *W) {
     if (W->n == 0 || fogrt__ply_is(W, 0, "comment") || fogrt__ply_is(W, 0, "obj_info")) return FOGRT_RESULT_OK;
     if (fogrt__ply_is(W, 0, "element")) return fogrt__ply_element(L, P, W);
     if (fogrt__ply_is(W, 0, "property")) return fogrt__ply_property(L, P, W);
@@ -2952,8 +2799,7 @@ FOGRT__LD fogrt_result fogrt__ply_header_line(fogrt__ld *L, fogrt__ply *P, const
 }
 
 /* Bits of the roles found among the vertex element's properties. */
-FOGRT__LD int fogrt__ply_vertex_roles(const fogrt__ply *P)
-{
+FOGRT__LD int fogrt__ply_vertex_roles(const fogrt__ply *P) {
     uint32_t e, i;
     int roles = 0;
     for (e = 0; e < P->nel; ++e)
@@ -2963,8 +2809,7 @@ FOGRT__LD int fogrt__ply_vertex_roles(const fogrt__ply *P)
 }
 
 /* The header: "ply", then one keyword per line until end_header. */
-FOGRT__LD fogrt_result fogrt__ply_header(fogrt__ld *L, fogrt__ply *P)
-{
+FOGRT__LD fogrt_result fogrt__ply_header(fogrt__ld *L, fogrt__ply *P) {
     const char *p = L->buf, *end = L->buf + L->len;
     fogrt__ply_words W;
     while (p < end && !P->header_done) {
@@ -2984,8 +2829,7 @@ FOGRT__LD fogrt_result fogrt__ply_header(fogrt__ld *L, fogrt__ply *P)
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__LD uint64_t fogrt__ply_items(const fogrt__ply *P)
-{
+FOGRT__LD uint64_t fogrt__ply_items(const fogrt__ply *P) {
     uint64_t n = 0;
     uint32_t e;
     for (e = 0; e < P->nel; ++e) n += P->el[e].count;
@@ -2995,8 +2839,7 @@ FOGRT__LD uint64_t fogrt__ply_items(const fogrt__ply *P)
    takes at least its size in binary, or one character in ascii (a list at least its count),
    so a header asking for more than the file can hold is "file too short". A file cut a little
    short passes this bound and is reported where its data ends. */
-FOGRT__LD fogrt_result fogrt__ply_check_size(fogrt__ld *L, const fogrt__ply *P)
-{
+FOGRT__LD fogrt_result fogrt__ply_check_size(fogrt__ld *L, const fogrt__ply *P) {
     uint64_t need = 0, have = (uint64_t)(L->buf + L->len - P->data);
     uint32_t e, i;
     for (e = 0; e < P->nel; ++e) {
@@ -3014,8 +2857,7 @@ FOGRT__LD fogrt_result fogrt__ply_check_size(fogrt__ld *L, const fogrt__ply *P)
 
 /* One ascii value: integers exact (strtoll), floats any number strtod reads (the caller
    checks the range of the values it uses). */
-FOGRT__LD fogrt_result fogrt__ply_read_ascii(fogrt__ply_reader *R, int type, double *out)
-{
+FOGRT__LD fogrt_result fogrt__ply_read_ascii(fogrt__ply_reader *R, int type, double *out) {
     const char *s = R->p;
     char *q;
     while (s < R->end && fogrt__ld_space(*s)) { if (*s == '\n') R->line++; ++s; }
@@ -3032,8 +2874,7 @@ FOGRT__LD fogrt_result fogrt__ply_read_ascii(fogrt__ply_reader *R, int type, dou
     return FOGRT_RESULT_OK;
 }
 /* One binary value of the given type, in the file's byte order. */
-FOGRT__LD fogrt_result fogrt__ply_read_binary(fogrt__ply_reader *R, int type, double *out)
-{
+FOGRT__LD fogrt_result fogrt__ply_read_binary(fogrt__ply_reader *R, int type, double *out) {
     int size = fogrt__ply_size(type), i;
     unsigned char b[8];
     uint64_t u = 0;
@@ -3048,15 +2889,13 @@ FOGRT__LD fogrt_result fogrt__ply_read_binary(fogrt__ply_reader *R, int type, do
     else *out = (double)u;
     return FOGRT_RESULT_OK;
 }
-FOGRT__LD fogrt_result fogrt__ply_read(fogrt__ply_reader *R, int type, double *out)
-{
+FOGRT__LD fogrt_result fogrt__ply_read(fogrt__ply_reader *R, int type, double *out) {
     return R->format == FOGRT__PLY_ASCII ? fogrt__ply_read_ascii(R, type, out) : fogrt__ply_read_binary(R, type, out);
 }
 
 /* A vertex property fogrt uses: x, y, z (finite floats; within 1e30 unless the mesh is
    placed) or nx, ny, nz (finite floats). Others are read and skipped, whatever they hold. */
-FOGRT__LD fogrt_result fogrt__ply_vertex_value(fogrt__ld *L, fogrt__ply *P, const fogrt__ply_reader *R, int role, uint64_t k, double v)
-{
+FOGRT__LD fogrt_result fogrt__ply_vertex_value(fogrt__ld *L, fogrt__ply *P, const fogrt__ply_reader *R, int role, uint64_t k, double v) {
     static const char *names = "x\0y\0z\0nx\0ny\0nz";
     static const int at[6] = { 0, 2, 4, 6, 9, 12 };
     double lim = role <= FOGRT__PLY_Z && L->opt.place == FOGRT_LOAD_PLACE_AS_IS ? FOGRT__LD_MAX_COORD : (double)FLT_MAX;
@@ -3069,8 +2908,7 @@ FOGRT__LD fogrt_result fogrt__ply_vertex_value(fogrt__ld *L, fogrt__ply *P, cons
 }
 
 /* A face's index list, fan-triangulated as it is read: (i0, i[j-1], i[j]). */
-FOGRT__LD fogrt_result fogrt__ply_face(fogrt__ld *L, fogrt__ply *P, fogrt__ply_reader *R, const fogrt__ply_prop *pr, uint64_t n)
-{
+FOGRT__LD fogrt_result fogrt__ply_face(fogrt__ld *L, fogrt__ply *P, fogrt__ply_reader *R, const fogrt__ply_prop *pr, uint64_t n) {
     uint64_t j;
     uint32_t first = 0, prev = 0;
     if (n < 3) P->skipped++;
@@ -3095,8 +2933,7 @@ FOGRT__LD fogrt_result fogrt__ply_face(fogrt__ld *L, fogrt__ply *P, fogrt__ply_r
 }
 
 /* One property value (or list) of item k of element e. */
-FOGRT__LD fogrt_result fogrt__ply_value(fogrt__ld *L, fogrt__ply *P, fogrt__ply_reader *R, const fogrt__ply_prop *pr, bool is_vertex, uint64_t k)
-{
+FOGRT__LD fogrt_result fogrt__ply_value(fogrt__ld *L, fogrt__ply *P, fogrt__ply_reader *R, const fogrt__ply_prop *pr, bool is_vertex, uint64_t k) {
     double v, n;
     uint64_t j;
     if (!pr->list) {
@@ -3113,8 +2950,7 @@ FOGRT__LD fogrt_result fogrt__ply_value(fogrt__ld *L, fogrt__ply *P, fogrt__ply_
 }
 
 /* The data: every element in header order (elements without properties have no data). */
-FOGRT__LD fogrt_result fogrt__ply_data(fogrt__ld *L, fogrt__ply *P)
-{
+FOGRT__LD fogrt_result fogrt__ply_data(fogrt__ld *L, fogrt__ply *P) {
     fogrt__ply_reader R;
     uint32_t e, i;
     R.p = P->data; R.end = L->buf + L->len; R.data = P->data; R.format = P->format; R.line = P->line + 1; R.L = L;
@@ -3130,8 +2966,7 @@ FOGRT__LD fogrt_result fogrt__ply_data(fogrt__ld *L, fogrt__ply *P)
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__LD fogrt_result fogrt__ply_parse(fogrt__ld *L, fogrt__ld_meshbuf *out, float **out_file_nrm)
-{
+FOGRT__LD fogrt_result fogrt__ply_parse(fogrt__ld *L, fogrt__ld_meshbuf *out, float **out_file_nrm) {
     fogrt__ply *P = (fogrt__ply *)fogrt__ld_alloc(L, 1, sizeof(fogrt__ply));   /* 3.6 KB: not on the stack */
     fogrt_result r;
     if (!P) return FOGRT_RESULT_OUT_OF_MEMORY;
@@ -3162,8 +2997,7 @@ FOGRT__LD fogrt_result fogrt__ply_parse(fogrt__ld *L, fogrt__ld_meshbuf *out, fl
    ------------------------------------------------------------------------------------------ */
 /* What fogrt_scene_set_camera will check, with the camera file's line and the true reason:
    the view direction must be a finite float vector, up not parallel to it, the fov < 180. */
-FOGRT__LD fogrt_result fogrt__ld_check_camera(fogrt__ld *L, const fogrt_camera_desc *c)
-{
+FOGRT__LD fogrt_result fogrt__ld_check_camera(fogrt__ld *L, const fogrt_camera_desc *c) {
     double f[3], u[3], x[3], lf, lu;
     int i;
     f[0] = (double)(c->look_at.x - c->position.x); f[1] = (double)(c->look_at.y - c->position.y); f[2] = (double)(c->look_at.z - c->position.z);
@@ -3185,8 +3019,7 @@ FOGRT__LD fogrt_result fogrt__ld_check_camera(fogrt__ld *L, const fogrt_camera_d
 /* 0-4 hFov vFov ar nClip fClip, 5-7 pos, 8-10 target, 11-15 phi theta r minR maxR,
    16-24 c2w row-major (columns: right, up, back), 25-27 screenW screenH screenDist,
    28-29 focalDistance lensRadius. */
-FOGRT__LD fogrt_result fogrt__ld_camera_file(fogrt__ld *L, int width, int height, fogrt_camera_desc *camera)
-{
+FOGRT__LD fogrt_result fogrt__ld_camera_file(fogrt__ld *L, int width, int height, fogrt_camera_desc *camera) {
     float v[30], sw, sh, sd;
     uint64_t n = 0;
     FOGRT__LD_TRY(fogrt__ld_floats(L, L->buf, L->buf + L->len, 1, v, 30, &n));
@@ -3222,8 +3055,7 @@ enum { FOGRT__LD_DAE, FOGRT__LD_OBJ, FOGRT__LD_PLY, FOGRT__LD_CAMERA };
 typedef struct fogrt__ld_job { int format; fogrt_scene *scene; fogrt_camera_desc *camera; int width, height; } fogrt__ld_job;
 
 FOGRT__LD fogrt_result fogrt__ld_entry(const fogrt__ld_job *J, bool from_file, const char *path, const void *data, size_t size,
-                                       const char *name, const fogrt_load_options *options, fogrt_load_report *report)
-{
+                                       const char *name, const fogrt_load_options *options, fogrt_load_report *report) {
     fogrt__ld L;
     fogrt_load_report dummy;
     fogrt_result r;
@@ -3239,16 +3071,14 @@ FOGRT__LD fogrt_result fogrt__ld_entry(const fogrt__ld_job *J, bool from_file, c
     return r;
 }
 FOGRT__LD fogrt_result fogrt__ld_scene_entry(int format, fogrt_scene *scene, bool from_file, const char *path, const void *data, size_t size,
-                                             const char *name, const fogrt_load_options *options, fogrt_load_report *report)
-{
+                                             const char *name, const fogrt_load_options *options, fogrt_load_report *report) {
     fogrt__ld_job J;
     memset(&J, 0, sizeof J);
     J.format = format; J.scene = scene;
     return fogrt__ld_entry(&J, from_file, path, data, size, name, options, report);
 }
 FOGRT__LD fogrt_result fogrt__ld_camera_entry(bool from_file, const char *path, const void *data, size_t size, const char *name,
-                                              int width, int height, fogrt_camera_desc *camera, fogrt_load_report *report)
-{
+                                              int width, int height, fogrt_camera_desc *camera, fogrt_load_report *report) {
     fogrt__ld_job J;
     memset(&J, 0, sizeof J);
     J.format = FOGRT__LD_CAMERA; J.camera = camera; J.width = width; J.height = height;
@@ -3256,46 +3086,37 @@ FOGRT__LD fogrt_result fogrt__ld_camera_entry(bool from_file, const char *path, 
 }
 FOGRT__LD_PUBLIC fogrt_result fogrt_load_camera_memory(const void *data, size_t size, const char *name,
                                                        int width, int height, fogrt_camera_desc *camera,
-                                                       fogrt_load_report *report)
-{
+                                                       fogrt_load_report *report) {
     return fogrt__ld_camera_entry(false, NULL, data, size, name, width, height, camera, report);
 }
 FOGRT__LD_PUBLIC fogrt_result fogrt_load_camera_file(const char *path, int width, int height,
-                                                     fogrt_camera_desc *camera, fogrt_load_report *report)
-{
+                                                     fogrt_camera_desc *camera, fogrt_load_report *report) {
     return fogrt__ld_camera_entry(true, path, NULL, 0, path, width, height, camera, report);
 }
 FOGRT__LD_PUBLIC fogrt_result fogrt_load_dae_memory(fogrt_scene *scene, const void *data, size_t size, const char *name,
-                                                    const fogrt_load_options *options, fogrt_load_report *report)
-{
+                                                    const fogrt_load_options *options, fogrt_load_report *report) {
     return fogrt__ld_scene_entry(FOGRT__LD_DAE, scene, false, NULL, data, size, name, options, report);
 }
 FOGRT__LD_PUBLIC fogrt_result fogrt_load_obj_memory(fogrt_scene *scene, const void *data, size_t size, const char *name,
-                                                    const fogrt_load_options *options, fogrt_load_report *report)
-{
+                                                    const fogrt_load_options *options, fogrt_load_report *report) {
     return fogrt__ld_scene_entry(FOGRT__LD_OBJ, scene, false, NULL, data, size, name, options, report);
 }
 FOGRT__LD_PUBLIC fogrt_result fogrt_load_ply_memory(fogrt_scene *scene, const void *data, size_t size, const char *name,
-                                                    const fogrt_load_options *options, fogrt_load_report *report)
-{
+                                                    const fogrt_load_options *options, fogrt_load_report *report) {
     return fogrt__ld_scene_entry(FOGRT__LD_PLY, scene, false, NULL, data, size, name, options, report);
 }
-FOGRT__LD_PUBLIC fogrt_result fogrt_load_dae(fogrt_scene *scene, const char *path, const fogrt_load_options *options, fogrt_load_report *report)
-{
+FOGRT__LD_PUBLIC fogrt_result fogrt_load_dae(fogrt_scene *scene, const char *path, const fogrt_load_options *options, fogrt_load_report *report) {
     return fogrt__ld_scene_entry(FOGRT__LD_DAE, scene, true, path, NULL, 0, path, options, report);
 }
-FOGRT__LD_PUBLIC fogrt_result fogrt_load_obj(fogrt_scene *scene, const char *path, const fogrt_load_options *options, fogrt_load_report *report)
-{
+FOGRT__LD_PUBLIC fogrt_result fogrt_load_obj(fogrt_scene *scene, const char *path, const fogrt_load_options *options, fogrt_load_report *report) {
     return fogrt__ld_scene_entry(FOGRT__LD_OBJ, scene, true, path, NULL, 0, path, options, report);
 }
-FOGRT__LD_PUBLIC fogrt_result fogrt_load_ply(fogrt_scene *scene, const char *path, const fogrt_load_options *options, fogrt_load_report *report)
-{
+FOGRT__LD_PUBLIC fogrt_result fogrt_load_ply(fogrt_scene *scene, const char *path, const fogrt_load_options *options, fogrt_load_report *report) {
     return fogrt__ld_scene_entry(FOGRT__LD_PLY, scene, true, path, NULL, 0, path, options, report);
 }
 
 /* Lower-case extension of path is ext. */
-FOGRT__LD bool fogrt__ld_ext_is(const char *path, const char *ext)
-{
+FOGRT__LD bool fogrt__ld_ext_is(const char *path, const char *ext) {
     const char *dot = strrchr(path, '.');
     size_t i, n = strlen(ext);
     if (!dot || strlen(dot + 1) != n) return false;
@@ -3307,8 +3128,7 @@ FOGRT__LD bool fogrt__ld_ext_is(const char *path, const char *ext)
     return true;
 }
 FOGRT__LD_PUBLIC fogrt_result fogrt_load_file(fogrt_scene *scene, const char *path, const fogrt_load_options *options,
-                                              fogrt_load_report *report)
-{
+                                              fogrt_load_report *report) {
     fogrt_load_report dummy;
     if (!report) report = &dummy;
     if (path && fogrt__ld_ext_is(path, "dae")) return fogrt_load_dae(scene, path, options, report);
