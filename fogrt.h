@@ -51,8 +51,8 @@
                            a box, lights by power, the roulette's pilot, stratified pixel
                            positions, per-pixel rates (fogrt_image_sample_rates)
     FOGRT_NO_MEDIA         leave out appendix G, media beyond the paper: the two-lobe HG and
-                           Rayleigh phase functions, emitting fog (a medium desc that asks
-                           for them fails)
+                           Rayleigh phase functions, emitting fog, sigma_t per colour channel
+                           (a medium desc that asks for them fails)
     FOGRT_NO_SHAPES        leave out appendix H, media inside shapes (fogrt_scene_set_interior,
                            fogrt_scene_set_shape_material; the interface material fails;
                            implied by FOGRT_NO_MEDIA)
@@ -119,7 +119,7 @@
 
     WHAT FOGRT DOES NOT DO
     ======================
-    Heterogeneous or chromatic media (sigma_t is one number), textures, microfacet BSDFs,
+    Heterogeneous media (sigma_t is the same everywhere), textures, microfacet BSDFs,
     spectral rendering, instancing, motion blur, GPU. Nested refractive objects are tracked
     only in a scene with media inside shapes (Part II, H); elsewhere leaving any refractive
     object puts the ray back into the fog.
@@ -182,7 +182,7 @@ extern "C" {
     X(INVALID_GEOMETRY,  "invalid geometry (non-finite position, index out of range, or radius <= 0)") \
     X(INVALID_LIGHT,     "invalid light (non-finite or negative intensity, or bad angles)") \
     X(INVALID_CAMERA,    "invalid camera (fov outside (0,180), eye equals target, or negative lens)") \
-    X(INVALID_MEDIUM,    "invalid medium (sigma_t negative or non-finite, albedo outside [0,1], |g| > 1, or a bad phase or emission)") \
+    X(INVALID_MEDIUM,    "invalid medium (sigma_t negative or non-finite, albedo outside [0,1], |g| > 1, or a bad phase, emission or sigma_t_rgb)") \
     X(TOO_LARGE,         "too large (more primitives, lights or pixels than fogrt can index)") \
     X(NOT_BUILT,         "scene not built: call fogrt_scene_build after the last change") \
     X(EMPTY_SCENE,       "the scene has no geometry and no light") \
@@ -382,8 +382,14 @@ FOGRT_API fogrt_result fogrt_scene_set_camera(fogrt_scene *scene, const fogrt_ca
      emission  radiance Le the fog emits (linear RGB, >= 0), added as sigma_a Le per unit
                length with sigma_a = sigma_t (1 - albedo): unbounded fog of any albedo below 1
                seen from inside looks Le, an absorbing slab of optical depth tau Le (1 - e^-tau)
-   Fog with another phase function or emission is rendered by the full integrator (Part II,
-   E) also under fogrt_render_paper_defaults(): Part I knows HG alone.                       */
+     sigma_t_rgb  sigma_t per colour channel (each >= 0, finite): chromatic fog, whose light
+               of each channel is attenuated and scattered at that channel's rate (coloured
+               haze). Zero: sigma_t for all three. Set, it replaces sigma_t, which reads back
+               as its largest component; three equal components are grey fog of that sigma_t
+               (stored as sigma_t, this field zeroed), rendered as such bit for bit
+   Fog with another phase function, emission or sigma_t per channel is rendered by the full
+   integrator (Part II, E) also under fogrt_render_paper_defaults(): Part I knows grey HG fog
+   alone.                                                                                     */
 typedef enum fogrt_phase_type {
     FOGRT_PHASE_HG = 0,        /* Henyey-Greenstein (3.3) */
     FOGRT_PHASE_HG2,           /* two HG lobes (G) */
@@ -400,6 +406,7 @@ typedef struct fogrt_medium_desc {
     fogrt_phase_type phase;    /* G */
     float g2, w;               /* G: FOGRT_PHASE_HG2's second lobe and the first lobe's weight */
     fogrt_vec3 emission;       /* G: Le, radiance */
+    fogrt_vec3 sigma_t_rgb;    /* G: sigma_t per channel (zero: sigma_t in all three) */
 } fogrt_medium_desc;
 
 #define FOGRT_HG_G_MAX 0.9999f
@@ -1653,7 +1660,7 @@ FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medi
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
     }
 #ifndef FOGRT_NO_MEDIA
-    return fogrt__x_check_media(s, m);                   /* SEAM 6: the phase and emission of G */
+    return fogrt__x_check_media(s, m);                   /* SEAM 6: G's medium fields */
 #else
     return FOGRT_RESULT_OK;
 #endif
@@ -3713,8 +3720,8 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
      E. The full integrator: Algorithm 1 with B and C's steps added, as fogrt_render_defaults()
         runs it                                      (table "Strip cost")
      F. Inspecting a scene: its tree, the tree's cost, a brute-force query, its memory
-     G. Media beyond the paper: the two-lobe HG and Rayleigh phase functions, emitting fog
-                                                     (table "Strip cost")
+     G. Media beyond the paper: the two-lobe HG and Rayleigh phase functions, emitting fog,
+        sigma_t per colour channel                   (table "Strip cost")
    ========================================================================================== */
 #if !defined(FOGRT_NO_MEDIUM) && !defined(FOGRT_NO_LAMPS_IN_FOG)
 #define FOGRT__LAMPS 1             /* appendix B is compiled */
@@ -3739,9 +3746,13 @@ struct fogrt__x {
     struct fogrt__hbuilt *h;   /* H: media inside shapes, or NULL */
 #endif
 #ifndef FOGRT_NO_MEDIA
-    bool media;                /* G: the fog has another phase function than HG, or emits */
+    bool media;                /* G: the fog has another phase function than HG, emits, or has
+                                  sigma_t per channel (the path's steps are G's: fogrt__media_start) */
     bool emits;                /* G: the fog emits */
     fogrt__v3 emit;            /* G: sigma_a Le / sigma_t = (1 - albedo) Le, per collision */
+    bool chroma;               /* G: sigma_t differs between the colour channels */
+    fogrt__v3 sigma;           /* G, chroma: sigma_t per channel */
+    fogrt__v3 sigma_n;         /*   and over its largest component (the collision densities' scale) */
 #endif
 };
 #ifndef FOGRT_NO_MEDIA
@@ -3752,6 +3763,12 @@ FOGRT__PRIVATE float fogrt__media_pdf(const fogrt_medium_desc *m, fogrt__v3 wo, 
 FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
                                           fogrt__v3 beta, float t_end, bool collided);
 FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s);
+FOGRT__PRIVATE void fogrt__media_start(const fogrt_scene *s, struct fogrt__path *P);
+FOGRT__PRIVATE fogrt__v3 fogrt__media_light(const fogrt_scene *s, const struct fogrt__path *P, const fogrt__vertex *v,
+                                            const fogrt_light_sample *ls, float *pdf_b, float *tr);
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_collision(const fogrt_scene *s, float t, float pdf);
+FOGRT__PRIVATE bool fogrt__media_next_event(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
+                                            int limit);
 #endif
 #ifndef FOGRT_NO_SHAPES
 /* H's steps, which E's dispatch and the build call before their chapter. */
@@ -5173,8 +5190,8 @@ FOGRT__PRIVATE void fogrt__cos_sin(double x, float *c, float *s) {
     *s = sinf(r);
     *c = x <= 0.5 * FOGRT__PI_D ? cosf(r) : -cosf(r);
 }
-FOGRT__PRIVATE float fogrt__sample_equiangular_hg(const fogrt__hg_table *T, float delta, float h, float a, float b,
-                                                  float u, float *pdf) {
+FOGRT__HOT float fogrt__sample_equiangular_hg(const fogrt__hg_table *T, float delta, float h, float a, float b,
+                                              float u, float *pdf) {
     double ca = fogrt__hgt_at(T, T->c, fogrt__psi_of(a, delta, h), NULL), cb, psi, dens, dt;
     float t, cp, sp;
     cb = b < INFINITY ? fogrt__hgt_at(T, T->c, fogrt__psi_of(b, delta, h), NULL) : T->c[FOGRT__HGT_N];
@@ -5410,7 +5427,7 @@ FOGRT__PRIVATE bool fogrt__find_footprints(fogrt_scene *s) {
    (A > 0) is inside beyond the roots, the far side in the forward nappe when it runs the
    spot's way. Returns 1 with [*a, *b] clipped, 0 for a miss, -1 when the general case
    must decide (A = 0, or no real root with A > 0, which rounding alone can make). */
-FOGRT__PRIVATE int fogrt__clip_to_cone_quadratic(float A, float B, float C, float da, float wa, float *a, float *b) {
+FOGRT__HOT int fogrt__clip_to_cone_quadratic(float A, float B, float C, float da, float wa, float *a, float *b) {
     float disc = B * B - A * C, q, r0, r1, lo, hi;
     if (A == 0.0f) return -1;
     if (!(disc >= 0.0f)) return A < 0.0f ? 0 : -1;      /* A < 0: misses both nappes (most rays) */
@@ -5425,7 +5442,7 @@ FOGRT__PRIVATE int fogrt__clip_to_cone_quadratic(float A, float B, float C, floa
     *a = lo; *b = hi;
     return 1;
 }
-FOGRT__PRIVATE bool fogrt__clip_to_cone(const fogrt_light_desc *l, float cos_c, fogrt__v3 o, fogrt__v3 d, float *a, float *b) {
+FOGRT__HOT bool fogrt__clip_to_cone(const fogrt_light_desc *l, float cos_c, fogrt__v3 o, fogrt__v3 d, float *a, float *b) {
     fogrt__v3 w = fogrt__sub(o, l->position);
     float c2 = cos_c * cos_c;
     float da = fogrt__dot(d, l->direction), wa = fogrt__dot(w, l->direction);
@@ -5944,6 +5961,9 @@ typedef struct fogrt__xs {
     bool equiangular, glow, footprint, by_power, expected_emission;
 #ifndef FOGRT_NO_MEDIA
     bool emits;                /* G: the fog emits (fogrt__media_emission on every fog segment) */
+    bool hero_pdf;             /* G, chroma: weigh by the hero channel's density alone, not the
+                                  channels' mean: the wrong estimator, which fogrt never sets, for
+                                  the negative control of tests/test_chroma.c */
 #endif
     float rr_k;                /* the roulette survives with min(0.95, rr_k x throughput) (e) */
     bool rr_probe;             /* the pilot (C): note each path's first roulette */
@@ -5982,6 +6002,13 @@ typedef struct fogrt__path {
     fogrt_rng *rng;
     uint64_t *rays;
     const fogrt__xs *xs;
+#ifndef FOGRT_NO_MEDIA
+    bool media_light;          /* G: a light sample needs fogrt__media_light (another phase, chroma) */
+    bool chroma;               /* G: sigma_t per channel */
+    int hero;                  /* G, chroma: the channel whose sigma_t samples every free flight */
+    fogrt__v3 r;               /* G, chroma: each channel's density of the path's free flights so
+                                  far, relative to one another (fogrt__chroma_mix) */
+#endif
     float probe_lum, probe_b;  /* the pilot (xs->rr_probe): luminance gathered, throughput x */
     uint64_t probe_rays;       /*   rr_scale, and rays traced when the path met its first roulette */
     bool probed;
@@ -6036,9 +6063,9 @@ FOGRT__PRIVATE void fogrt__trace_light(const fogrt__path *P, const fogrt__vertex
     fogrt__emit(P, &e);
 }
 FOGRT__PRIVATE void fogrt__trace_equiangular(const fogrt__path *P, uint32_t light,
-                                             float u, float t, float pdf, float weight) {
+                                             float u, float t, float pdf, fogrt__v3 weight) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_EQUIANGULAR, P);
-    e.light = light; e.u[0] = u; e.t = t; e.pdf = pdf; e.value = fogrt__v(weight, weight, weight);
+    e.light = light; e.u[0] = u; e.t = t; e.pdf = pdf; e.value = weight;
     fogrt__emit(P, &e);
 }
 #ifndef FOGRT_NO_MEDIUM
@@ -6137,8 +6164,8 @@ FOGRT__HOT fogrt__v3 fogrt__fog_phase_sample(const fogrt_scene *s, fogrt__v3 wo,
     return fogrt__sample_hg_unit(s->medium.g, wo, u1, u2, pdf);
 }
 #endif
-FOGRT__PRIVATE void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fogrt__xs *xs, fogrt__v3 o,
-                                      fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
+FOGRT__HOT void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fogrt__xs *xs, fogrt__v3 o,
+                                  fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
     memset(P, 0, sizeof *P);
     P->o = o; P->d = d; P->prev_p = o;
     P->beta = fogrt__v(1.0f, 1.0f, 1.0f);
@@ -6147,6 +6174,9 @@ FOGRT__PRIVATE void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, cons
     P->in_medium = (s->features & FOGRT_FEATURE_MEDIUM) != 0;   /* the camera sits in the fog */
     P->type = FOGRT_BSDF_DIFFUSE;
     P->rng = rng; P->rays = rays; P->xs = xs;
+#ifndef FOGRT_NO_MEDIA
+    if (s->x->media) fogrt__media_start(s, P);          /* G: which steps need it, the hero channel */
+#endif
 }
 /* Light that reaches the camera after `bounces` scattering events (min_depth drops the
    shorter paths: CS184's -o 0). source says what it is, for the trace. */
@@ -6218,12 +6248,21 @@ FOGRT__PRIVATE void fogrt__trace_light(const fogrt__path *P, const fogrt__vertex
 #endif
 FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
                                                const fogrt__vertex *v, const fogrt__glow *g, uint32_t light,
-                                               const fogrt_light_sample *ls, float n) {
-    /* n: the samples taken of this light, times the probability it was picked (by power) */
+                                               const fogrt_light_sample *ls, float n, bool media) {
+    /* n: the samples taken of this light, times the probability it was picked (by power);
+       media (a constant): the path may be in G's media, which the paper's fog steps are not */
     fogrt__v3 f, c = fogrt__v(0.0f, 0.0f, 0.0f);
     float pdf_b, tr = 0.0f, w = 0.0f;
-    f = fogrt__fog_vertex_f(s, v, ls->wi, &pdf_b);
-    if (!fogrt__is_black(f)) tr = fogrt__shadow(s, v, ls, P->rays);
+#ifndef FOGRT_NO_MEDIA
+    if (media && P->media_light) f = fogrt__media_light(s, P, v, ls, &pdf_b, &tr);   /* G: another phase function, T per channel */
+    else
+#else
+    (void)media;
+#endif
+    {
+        f = fogrt__vertex_f(s, v, ls->wi, &pdf_b);
+        if (!fogrt__is_black(f)) tr = fogrt__shadow(s, v, ls, P->rays);
+    }
     if (tr != 0.0f) {
 #ifdef FOGRT__LAMPS
         if (g && g->n > 0 && !ls->is_delta && st->mis) pdf_b = fogrt__glow_mix(s, v, g, ls->wi, pdf_b);   /* how scattering picks wi */
@@ -6254,7 +6293,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_light_n(const fogrt_scene *s, const fogrt
         float u[3];
         fogrt__draw(s, i, P->rng, u);
         if (fogrt__sample_light(s, i, P->v.p, u, &ls))
-            L = fogrt__add(L, fogrt__light_contribution(s, st, P, &P->v, &P->glow, i, &ls, (float)n * pick));
+            L = fogrt__add(L, fogrt__light_contribution(s, st, P, &P->v, &P->glow, i, &ls, (float)n * pick, true));
     }
     return L;
 }
@@ -6291,8 +6330,8 @@ FOGRT__PRIVATE void fogrt__fog_vertex(fogrt__vertex *v, fogrt__v3 p, fogrt__v3 w
 #ifdef FOGRT__LAMPS
 /* The point and spot lights a segment gathers, [*first, *last): all of them, or with
    light_by_power one, picked among them by power. Returns the probability of the pick. */
-FOGRT__PRIVATE float fogrt__equiangular_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
-                                               uint32_t *first, uint32_t *last) {
+FOGRT__HOT float fogrt__equiangular_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
+                                           uint32_t *first, uint32_t *last) {
     float top, frac;
     (void)st;
     *first = 0; *last = s->light_count;
@@ -6302,10 +6341,24 @@ FOGRT__PRIVATE float fogrt__equiangular_lights(const fogrt_scene *s, const fogrt
     *last = *first + 1;
     return fogrt__pick_prob(s, P->xs->by_power, *first) / top;
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
-                                            float t_min, float t_max) {
+/* The weight of a point drawn at distance t into the fog with density pdf: sigma_t T(t) / pdf
+   (times the albedo: sigma_s T / pdf), per channel in chromatic fog (G). */
+FOGRT__HOT fogrt__v3 fogrt__equiangular_weight(const fogrt_scene *s, bool chroma, float t, float pdf) {
+    float w;
+#ifndef FOGRT_NO_MEDIA
+    if (chroma) return fogrt__chroma_collision(s, t, pdf);
+#else
+    (void)chroma;
+#endif
+    w = s->medium.sigma_t * fogrt_transmittance(s->medium.sigma_t, t) / pdf;
+    return fogrt__v(w, w, w);
+}
+/* media and chroma (constants: the paper's fog, G's media and chromatic fog get a copy each):
+   the path may be in G's media; sigma_t per channel in the weights (G). */
+FOGRT__HOT fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
+                                        float t_min, float t_max, bool media, bool chroma) {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
-    float sigma_t = s->medium.sigma_t, pick;
+    float pick;
     uint32_t i, last;
     fogrt__vertex v;
     fogrt__fog_vertex(&v, P->o, fogrt__neg(P->d));
@@ -6323,10 +6376,10 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
             t = fogrt__sample_equiangular_hg(s->x->hg, fogrt__dot(oc, P->d), h, t_lo, t_hi, u[0], &pdf_t);
             if (!(pdf_t > 0.0f)) continue;
             v.p = fogrt__madd(P->o, P->d, t);
-            FOGRT__HOOK(fogrt__trace_equiangular(P, i, u[0], t, pdf_t, sigma_t * fogrt_transmittance(sigma_t, t - t_min) / pdf_t));
+            FOGRT__HOOK(fogrt__trace_equiangular(P, i, u[0], t, pdf_t, fogrt__equiangular_weight(s, chroma, t - t_min, pdf_t)));
             if (!fogrt__sample_point_light(s, l, v.p, u + 1, &ls)) continue;
-            L = fogrt__add(L, fogrt__scale(fogrt__mul(fogrt__light_contribution(s, st, P, &v, NULL, i, &ls, (float)n * pick), s->medium.albedo),
-                                           sigma_t * fogrt_transmittance(sigma_t, t - t_min) / pdf_t));
+            L = fogrt__add(L, fogrt__mul(fogrt__mul(fogrt__light_contribution(s, st, P, &v, NULL, i, &ls, (float)n * pick, media), s->medium.albedo),
+                                         fogrt__equiangular_weight(s, chroma, t - t_min, pdf_t)));
         }
     }
     return L;
@@ -6337,9 +6390,10 @@ FOGRT__PRIVATE fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__s
    distance is sampled from where the ray is in the fog (t = a, 0 unless the fog is bounded
    and the ray starts outside its box) to where it leaves it (b). On a collision the vertex
    is set and the weight takes the albedo. may_scatter: the path may still bounce (else the
-   equiangular lights, which are light after one more bounce, are not gathered). */
-FOGRT__PRIVATE bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                       float t_surface, bool may_scatter, float *tr) {
+   equiangular lights, which are light after one more bounce, are not gathered). media (a
+   constant): the path may be in G's media. */
+FOGRT__HOT bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                   float t_surface, bool may_scatter, float *tr, bool media) {
     float u, t, a, b;
     if (!P->in_medium) return false;
     u = fogrt_rng_float(P->rng);
@@ -6349,9 +6403,9 @@ FOGRT__PRIVATE bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settin
     FOGRT__HOOK(fogrt__trace_free_flight(P, u, t, b, t < b));
 #ifdef FOGRT__LAMPS
     if (st->nee && P->xs->equiangular && s->light_count > 0 && may_scatter)
-        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, a, b)), "equiangular");
+        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, a, b, media, false)), "equiangular");
 #else
-    (void)st; (void)may_scatter;
+    (void)st; (void)may_scatter; (void)media;
 #endif
     if (!(t < b)) return false;                          /* leaves the fog or reaches the surface: T / T = 1 */
     P->beta = fogrt__mul(P->beta, s->medium.albedo);     /* sigma_s T / (sigma_t T) */
@@ -6432,9 +6486,9 @@ FOGRT__PRIVATE bool fogrt__light_behind_wanted(const fogrt_scene *s, const fogrt
     return tr >= FOGRT__BEHIND_MIN || fogrt_rng_float(P->rng) * FOGRT__BEHIND_MIN < tr;
 }
 /* The sample itself, at the surface point p with normals ng, ns (fogrt__surface_frame). */
-FOGRT__PRIVATE void fogrt__light_behind(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                        const fogrt_material_desc *m, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns,
-                                        fogrt__v3 beta, int limit) {
+FOGRT__HOT void fogrt__light_behind(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                    const fogrt_material_desc *m, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns,
+                                    fogrt__v3 beta, int limit) {
     fogrt__vertex keep = P->v;
     fogrt__glow keep_glow = P->glow;
     fogrt_bsdf_type type = P->type;
@@ -6469,8 +6523,8 @@ FOGRT__PRIVATE void fogrt__escape(const fogrt_scene *s, const fogrt__settings *s
 /* A ray that collided in the fog before its end (hit, or NULL: it escapes): what the end
    still adds, tr Le (b), and the lights behind the surface (b'). The path goes on at
    the collision. */
-FOGRT__PRIVATE bool fogrt__collided(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
-                                    const fogrt_hit *hit, fogrt__v3 beta, float tr, int limit) {
+FOGRT__HOT bool fogrt__collided(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                const fogrt_hit *hit, fogrt__v3 beta, float tr, int limit) {
     if (hit) {
         const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit->prim)];
         fogrt__v3 p, ng, ns;
@@ -6509,29 +6563,47 @@ FOGRT__HOT bool fogrt__ray_end(const fogrt_scene *s, const fogrt__settings *st, 
     FOGRT__HOOK(fogrt__trace_simple(P, FOGRT_TRACE_ESCAPE));
     return false;
 }
+#ifndef FOGRT_NO_MEDIUM
+/* a + b in the fog: the free flight, then what the end of the ray adds. media (a constant:
+   each caller gets its own copy): the path is in G's media (another phase function, or
+   emitting fog, whose light this adds along the way). */
+FOGRT__HOT bool fogrt__fog_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, bool found,
+                                 const fogrt_hit *hit, int limit, bool media) {
+    const fogrt__v3 beta = P->beta;                     /* before a collision's albedo */
+    float tr = 1.0f;                                    /* the fog's transmittance to the end of the ray */
+    bool collided = fogrt__free_flight(s, st, P, found ? hit->t : INFINITY, P->bounces < limit, &tr, media);
+    P->seg_tr = tr;
+#ifndef FOGRT_NO_MEDIA
+    if (media && P->xs->emits) fogrt__media_emission(s, st, P, beta, found ? hit->t : INFINITY, collided);   /* G */
+#endif
+    if (!P->xs->expected_emission) tr = collided ? 0.0f : 1.0f;   /* the paper's: Le when reached */
+    if (collided) return fogrt__collided(s, st, P, found ? hit : NULL, beta, tr, limit);
+    return fogrt__ray_end(s, st, P, found, hit, beta, tr, limit);
+}
+#endif
 /* a + b: follow the ray to its next event, a fog collision or a surface. False when the
    path ends: the ray escaped (the environment is added), or the surface ends it. */
 FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
     fogrt_hit hit;
     bool found;
-    const fogrt__v3 beta = P->beta;                     /* before a collision's albedo */
     ++*P->rays;
     found = fogrt__traverse(s, P->o, P->d, 0.0f, INFINITY, &hit, false);
     P->seg_tr = 1.0f;
 #ifndef FOGRT_NO_MEDIUM
-    if (P->in_medium) {                                 /* (a fog-free ray skips all of this) */
-        float tr = 1.0f;                                /* the fog's transmittance to the end of the ray */
-        bool collided = fogrt__free_flight(s, st, P, found ? hit.t : INFINITY, P->bounces < limit, &tr);
-        P->seg_tr = tr;
+    if (P->in_medium) return fogrt__fog_event(s, st, P, found, &hit, limit, false);   /* (a fog-free ray skips it) */
+#endif
+    return fogrt__ray_end(s, st, P, found, &hit, P->beta, 1.0f, limit);
+}
+/* The path's a + b: G's (fogrt__media_next_event) in G's media, chosen once per path, so
+   that the paper's medium pays no test per segment. */
+typedef bool (*fogrt__step)(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit);
+FOGRT__PRIVATE fogrt__step fogrt__next_event_of(const fogrt_scene *s) {
 #ifndef FOGRT_NO_MEDIA
-        if (P->xs->emits) fogrt__media_emission(s, st, P, beta, found ? hit.t : INFINITY, collided);   /* G */
+    if (s->x->media) return fogrt__media_next_event;
+#else
+    (void)s;
 #endif
-        if (!P->xs->expected_emission) tr = collided ? 0.0f : 1.0f;   /* the paper's: Le when reached */
-        if (collided) return fogrt__collided(s, st, P, found ? &hit : NULL, beta, tr, limit);
-        return fogrt__ray_end(s, st, P, found, &hit, beta, tr, limit);
-    }
-#endif
-    return fogrt__ray_end(s, st, P, found, &hit, beta, 1.0f, limit);
+    return fogrt__next_event;
 }
 
 /* c. Light sampling at the scattering vertex (next-event estimation, 2.3); a mirror
@@ -6681,10 +6753,12 @@ typedef struct fogrt__probe { float after, b; uint64_t rays_after; } fogrt__prob
 FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path_probe(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs, fogrt__v3 o,
                                                     fogrt__v3 d, fogrt_rng *rng, uint64_t *rays, fogrt__probe *probe) {
     fogrt__path P;
+    fogrt__step next_event;
     uint32_t vertex;
     fogrt__path_start(s, &P, xs, o, d, rng, rays);
+    next_event = fogrt__next_event_of(s);
     for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
-        if (!fogrt__next_event(s, st, &P, st->max_depth)) break;              /* a, b */
+        if (!next_event(s, st, &P, st->max_depth)) break;                     /* a, b */
         if (P.bounces >= st->max_depth || fogrt__is_black(P.beta)) break;
         fogrt__light_step(s, st, &P);                                          /* c */
         if (!fogrt__scatter(s, st, &P)) break;                                 /* d */
@@ -6706,10 +6780,12 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path(const fogrt_scene *s, const fogrt_
 FOGRT__PRIVATE fogrt__v3 fogrt__radiance_direct(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs, fogrt__v3 o,
                                                 fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
     fogrt__path P;
+    fogrt__step next_event;
     uint32_t vertex;
     fogrt__path_start(s, &P, xs, o, d, rng, rays);
+    next_event = fogrt__next_event_of(s);
     for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {   /* through mirrors and glass */
-        if (!fogrt__next_event(s, st, &P, st->max_depth)) return P.L;
+        if (!next_event(s, st, &P, st->max_depth)) return P.L;
         if (P.bounces >= st->max_depth || fogrt__is_black(P.beta)) return P.L;
         if (fogrt__is_scattering(&P)) break;
         if (!fogrt__scatter(s, st, &P) || !fogrt__roulette(st, &P)) return P.L;
@@ -6719,7 +6795,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance_direct(const fogrt_scene *s, const fogr
     /* One more step, which only adds the emission it finds (its MIS half: without it the
        light sample above would count area lights at half weight). */
     if (fogrt__scatter(s, st, &P) && fogrt__roulette(st, &P))
-        (void)fogrt__next_event(s, st, &P, P.bounces);
+        (void)next_event(s, st, &P, P.bounces);
     return P.L;
 }
 /* Point or spot lights in fog: what the glow of d' needs (without them the glow's checks
@@ -6850,6 +6926,7 @@ FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__setting
     xs->expected_emission = d->expected_emission;
 #ifndef FOGRT_NO_MEDIA
     xs->emits = s->x->emits;
+    xs->hero_pdf = false;
 #endif
     xs->by_power = d->light_by_power && s->x->light_pick && fogrt__light_total(s) > 1;
     xs->rr_k = FOGRT__MAX(s->x->rr_k, 1.0f);      /* 1 before the pilot has run */
@@ -7149,7 +7226,8 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
 #ifndef FOGRT_NO_MEDIA
 /* ------------------------------------------------------------------------------------------
    G. Media beyond the paper
-   What it adds: two phase functions besides Henyey-Greenstein, and fog that emits light.
+   What it adds: two phase functions besides Henyey-Greenstein, fog that emits light, and fog
+   whose sigma_t differs per colour channel.
      - Two HG lobes, w HG(g) + (1 - w) HG(g2): a real droplet scatters mostly forward and a
        little backward, which one HG lobe cannot do at once. Rayleigh, 3 / (16 pi) (1 + mu^2):
        particles much smaller than the wavelength (haze). Each is sampled exactly (pdf =
@@ -7164,8 +7242,13 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
      - Emission: the fog adds sigma_a Le per unit length (sigma_a = sigma_t (1 - albedo),
        pbrt-v4's convention), in the full integrator (also under the paper's render desc:
        Part I knows neither, seam 7 sends such media to E).
-   What it costs: a scene with the paper's medium pays one compare per fog vertex and one
-   per fog segment, and renders bit for bit as before (make callgrind: the default scene
+     - Chromatic fog: sigma_t per channel, one hero channel per path sampling its free
+       flights and one-sample spectral MIS in the weights (below, "Chromatic media").
+   A path in any of these media takes G's step a + b (fogrt__media_next_event), chosen once
+   per path, and its light samples G's shadow and phase function (fogrt__media_light).
+   What it costs: a scene with the paper's medium pays one compare per camera sample (which
+   step a + b), one per light sample and one where a fog vertex samples or evaluates the
+   phase function, and renders bit for bit as before (make callgrind: the default scene
    against a FOGRT_NO_MEDIA build; docs/benchmarks.md, table "Strip cost"). Validation of
    the medium desc's fields is seam 6's second use.
    ------------------------------------------------------------------------------------------ */
@@ -7175,9 +7258,20 @@ FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_med
     FOGRT__REFUSE_IF(!(m->g2 >= -1.0f && m->g2 <= 1.0f), INVALID_MEDIUM, "medium.g2: outside [-1, 1] or not finite");
     FOGRT__REFUSE_IF(!(m->w >= 0.0f && m->w <= 1.0f), INVALID_MEDIUM, "medium.w: outside [0, 1] or not finite");
     FOGRT__REFUSE_IF(!fogrt__colour_ok(m->emission), INVALID_MEDIUM, "medium.emission: negative or not finite");
+    FOGRT__REFUSE_IF(!fogrt__colour_ok(m->sigma_t_rgb), INVALID_MEDIUM, "medium.sigma_t_rgb: a component negative or not finite");
+#ifdef FOGRT_NO_ESTIMATION
+    FOGRT__REFUSE_IF(m->bounded && !fogrt__is_black(m->sigma_t_rgb), UNSUPPORTED,
+                     "medium.bounded: fog in a box needs a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
+#endif
     if (fabsf(m->g2) >= FOGRT_HG_G_MAX && fabsf(m->g2) != FOGRT_HG_G_MAX) {
         m->g2 = copysignf(FOGRT_HG_G_MAX, m->g2);
         fogrt__log(s, FOGRT_LOG_WARNING, "medium.g2: |g2| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
+    }
+    /* sigma_t per channel replaces sigma_t, which keeps the largest component: Part I tells
+       fog from none by it. Three equal components are grey fog, which Part I renders. */
+    if (!fogrt__is_black(m->sigma_t_rgb)) {
+        m->sigma_t = fogrt__max3(m->sigma_t_rgb);
+        if (m->sigma_t_rgb.x == m->sigma_t_rgb.y && m->sigma_t_rgb.y == m->sigma_t_rgb.z) m->sigma_t_rgb = fogrt__v(0.0f, 0.0f, 0.0f);
     }
     return FOGRT_RESULT_OK;
 }
@@ -7280,7 +7374,10 @@ FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s) {
     const fogrt_medium_desc *m = &s->medium;
     s->x->emit = fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), m->albedo), m->emission);
     s->x->emits = (s->features & FOGRT_FEATURE_MEDIUM) && !fogrt__is_black(s->x->emit);
-    s->x->media = (s->features & FOGRT_FEATURE_MEDIUM) && (m->phase != FOGRT_PHASE_HG || s->x->emits);
+    s->x->chroma = (s->features & FOGRT_FEATURE_MEDIUM) && !fogrt__is_black(m->sigma_t_rgb);
+    s->x->sigma = m->sigma_t_rgb;
+    s->x->sigma_n = s->x->chroma ? fogrt__scale(m->sigma_t_rgb, 1.0f / fogrt__max3(m->sigma_t_rgb)) : m->sigma_t_rgb;
+    s->x->media = (s->features & FOGRT_FEATURE_MEDIUM) && (m->phase != FOGRT_PHASE_HG || s->x->emits || s->x->chroma);
 }
 FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                           fogrt__v3 beta, float t_end, bool collided) {
@@ -7290,6 +7387,165 @@ FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__set
         w = b < INFINITY ? -expm1f(-s->medium.sigma_t * (b - a)) : 1.0f;
     }
     if (w > 0.0f) fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, s->x->emit), w), "fog emission");
+}
+
+/* Chromatic media: sigma_t per colour channel, so that each channel's light is attenuated and
+   scattered at its own rate (coloured haze). A free flight can follow one rate only, so each
+   path picks one channel, the hero, uniformly when it starts, and samples all its free
+   flights with the hero's sigma_t. Had channel c been the hero, the path's free flights would
+   have had density P_c(x); with the hero drawn at random their density is mean_c P_c(x), and
+   the estimate divides the path's contribution f(x) (per channel) by that mean: one-sample MIS
+   over the channels with the balance heuristic, the spectral MIS of pbrt-v4's
+   VolPathIntegrator and Mitsuba 3's volpathmis. Each channel's estimate is then at most 3
+   times what grey fog of that channel's sigma_t gives (f_c / mean P <= 3 f_c / P_c). Dividing
+   by the hero's own P_h instead is unbiased only where the hero can sample every path the
+   other channels light (never a collision when its sigma_t is 0), and its weight has no
+   bound where P_h is small against the others' (xs->hero_pdf: the negative control).
+   The path keeps r_c, proportional to P_c (only ratios matter: its largest is kept at 1), and
+   its throughput beta = f / mean P, which every other step of E (light sampling, emission,
+   roulette) reads as in grey fog. An event of a free flight of density p_c in channel c (a
+   collision at t: sigma_t,c T_c(t); crossing a length d: T_c(d)) has density m = sum r_c p_c /
+   sum r_c under the mixture, relative to the path so far: beta takes f / m and r takes p
+   (fogrt__chroma_mix). With equal components every m is the grey p and beta the grey albedo,
+   but such a medium is stored as grey fog (fogrt__x_check_media) and never comes here.
+   What reads sigma_t reads it per channel:
+     - shadow rays (light sampling at fog and surface vertices, and at the points equiangular
+       sampling draws): T_c, folded into f (fogrt__chroma_shadow);
+     - equiangular sampling (B): its density does not depend on sigma_t; its weight is
+       sigma_s,c T_c(t) / pdf (fogrt__chroma_collision);
+     - expected emission (E b): the emitter or sky a ray reaches adds beta T_c Le whatever its
+       free flight does (no distance is sampled there, so no channel's density enters); the
+       paper's way adds Le when the flight gets there, with the weight of that crossing;
+     - the lamps' light at the surface behind a collision (E b'): beta T_c times it in both
+       cases, behind a collision directly (taken with probability min(1, 16 tau), tau the
+       largest T_c, as grey fog does with T) and at the surface, when the flight gets there,
+       through a lamp scale m (the crossing's weight is T_c / m);
+     - the fog's emission (G): (1 - albedo_c) Le_c (1 - T_c) per segment, or the paper's
+       collision estimator with the collision's weight;
+     - the MIS weights between light sampling and phase or BSDF sampling are those of the
+       directions: both strategies share the path's free flights, whose mixture over the
+       channels is a common factor, so the weights still add up to one per channel.
+   The glow and the footprint (d') aim directions and read no sigma_t. */
+/* A path in G's media: whether its light samples need G (so that the paper's medium pays
+   one test per light sample, where it had one anyway), and in chromatic fog its hero
+   channel. */
+FOGRT__PRIVATE void fogrt__media_start(const fogrt_scene *s, fogrt__path *P) {
+    P->media_light = s->medium.phase != FOGRT_PHASE_HG || s->x->chroma;
+    if (s->x->chroma) {
+        int hero = (int)(3.0f * fogrt_rng_float(P->rng));
+        P->chroma = true;
+        P->hero = FOGRT__MIN(hero, 2);
+        P->r = fogrt__v(1.0f, 1.0f, 1.0f);
+    }
+}
+/* T_c(d) per channel (d = +inf: 0 where sigma_t,c > 0, else 1). */
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_tr(const fogrt_scene *s, float d) {
+    const fogrt__v3 k = s->x->sigma;
+    return fogrt__v(fogrt_transmittance(k.x, d), fogrt_transmittance(k.y, d), fogrt_transmittance(k.z, d));
+}
+/* 1 - T_c(d) per channel, without cancellation (expm1) for small optical depths. */
+FOGRT__PRIVATE float fogrt__chroma_absorbed1(float sigma, float d) {
+    if (!(sigma > 0.0f)) return 0.0f;
+    return d < INFINITY ? -expm1f(-sigma * d) : 1.0f;
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_absorbed(const fogrt_scene *s, float d) {
+    const fogrt__v3 k = s->x->sigma;
+    return fogrt__v(fogrt__chroma_absorbed1(k.x, d), fogrt__chroma_absorbed1(k.y, d), fogrt__chroma_absorbed1(k.z, d));
+}
+/* A point drawn at distance t into the fog with density pdf, not by the free flight: its
+   weight sigma_t,c T_c(t) / pdf per channel. */
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_collision(const fogrt_scene *s, float t, float pdf) {
+    return fogrt__scale(fogrt__mul(s->x->sigma, fogrt__chroma_tr(s, t)), 1.0f / pdf);
+}
+/* Visibility by Part I's shadow ray (the vertex taken as clear air, so that it adds no grey
+   T), then T_c over the ray's length in the fog, as fogrt__fog_transmittance measures it. */
+FOGRT__PRIVATE float fogrt__chroma_shadow(const fogrt_scene *s, const fogrt__vertex *v, const fogrt_light_sample *ls,
+                                          uint64_t *rays, fogrt__v3 *f) {
+    fogrt__vertex clear = *v;
+    float a, b;
+    clear.in_medium = false;
+    if (fogrt__shadow(s, &clear, ls, rays) == 0.0f) return 0.0f;
+    if (fogrt__x_fog_span(s, v->p, ls->wi, ls->dist, &a, &b)) *f = fogrt__mul(*f, fogrt__chroma_tr(s, b - a));
+    return 1.0f;
+}
+/* A light sample's f (G's phase function at a fog vertex) and visibility times T (T_c in f
+   in chromatic fog), for fogrt__light_contribution. */
+FOGRT__PRIVATE fogrt__v3 fogrt__media_light(const fogrt_scene *s, const fogrt__path *P, const fogrt__vertex *v,
+                                            const fogrt_light_sample *ls, float *pdf_b, float *tr) {
+    fogrt__v3 f = fogrt__fog_vertex_f(s, v, ls->wi, pdf_b);
+    if (fogrt__is_black(f)) return f;
+    *tr = P->chroma && v->in_medium ? fogrt__chroma_shadow(s, v, ls, P->rays, &f) : fogrt__shadow(s, v, ls, P->rays);
+    return f;
+}
+/* One event of a free flight, of density p_c (any scale common to the channels) had channel
+   c sampled it: returns m = sum r_c p_c / sum r_c, its density under the mixture relative to
+   the path so far, and r takes p. 0 where no channel could have sampled it (the path ends). */
+FOGRT__PRIVATE float fogrt__chroma_mix(fogrt__path *P, fogrt__v3 p) {
+    fogrt__v3 rp = fogrt__mul(P->r, p);
+    float m = (rp.x + rp.y + rp.z) / (P->r.x + P->r.y + P->r.z), top = fogrt__max3(rp);
+    if (P->xs->hero_pdf) m = fogrt__comp(p, P->hero);
+    if (!(m > 0.0f) || !(top > 0.0f) || !fogrt__finite(m)) return 0.0f;
+    P->r = fogrt__scale(rp, 1.0f / top);
+    return m;
+}
+/* The fog's emission along this flight (fogrt__media_emission's, per channel): in closed
+   form with expected_emission, else at a collision with its weight k. */
+FOGRT__PRIVATE void fogrt__chroma_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, fogrt__v3 beta,
+                                           float d, bool collided, fogrt__v3 k) {
+    fogrt__v3 w = fogrt__v(0.0f, 0.0f, 0.0f);
+    if (P->xs->expected_emission) w = fogrt__chroma_absorbed(s, d);
+    else if (collided) w = k;
+    if (!fogrt__is_black(w)) fogrt__gather(P, st, P->bounces, fogrt__mul(fogrt__mul(beta, s->x->emit), w), "fog emission");
+}
+/* E's a and b for chromatic fog: the free flight [a, b] of the ray (as fogrt__free_flight,
+   with the hero's sigma_t), the equiangular lights along it, then what the end of the ray
+   adds (fogrt__collided, fogrt__ray_end) with beta T_c / tau and tr = tau, tau the largest
+   T_c (their product beta T_c is expected emission's), and the new throughput. */
+FOGRT__PRIVATE bool fogrt__chroma_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
+                                             bool found, const fogrt_hit *hit, int limit) {
+    const fogrt__v3 beta = P->beta;                     /* before this flight */
+    fogrt__v3 T, p, k, end = fogrt__v(0.0f, 0.0f, 0.0f);
+    float u = fogrt_rng_float(P->rng), a, b, t, m, tau;
+    bool collided, expected = P->xs->expected_emission;
+    if (!fogrt__x_fog_span(s, P->o, P->d, found ? hit->t : INFINITY, &a, &b))   /* misses the fog's box */
+        return fogrt__ray_end(s, st, P, found, hit, beta, 1.0f, limit);
+    t = a + fogrt_sample_exponential(fogrt__comp(s->x->sigma, P->hero), u);
+    collided = t < b;
+    FOGRT__HOOK(fogrt__trace_free_flight(P, u, t, b, collided));
+#ifdef FOGRT__LAMPS
+    if (st->nee && P->xs->equiangular && s->light_count > 0 && P->bounces < limit)
+        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(beta, fogrt__equiangular(s, st, P, a, b, true, true)), "equiangular");
+#endif
+    T = fogrt__chroma_tr(s, b - a);
+    p = collided ? fogrt__mul(s->x->sigma_n, fogrt__chroma_tr(s, t - a)) : T;
+    m = fogrt__chroma_mix(P, p);
+    k = m > 0.0f ? fogrt__scale(p, 1.0f / m) : fogrt__v(0.0f, 0.0f, 0.0f);   /* the event's weight per channel */
+    if (P->xs->emits) fogrt__chroma_emission(s, st, P, beta, b - a, collided, k);
+    tau = fogrt__max3(T);
+    if (tau > 0.0f) end = fogrt__scale(fogrt__mul(beta, T), 1.0f / tau);
+    if (collided) {                                     /* sigma_s,c T_c / m = albedo_c k_c */
+        P->beta = fogrt__mul(fogrt__mul(beta, s->medium.albedo), k);
+        fogrt__fog_vertex(&P->v, fogrt__madd(P->o, P->d, t), fogrt__neg(P->d));
+        P->glow.n = 0;
+        P->seg_tr = tau;
+        return fogrt__collided(s, st, P, found ? hit : NULL, end, expected ? tau : 0.0f, limit);
+    }
+    P->beta = fogrt__mul(beta, k);                      /* T_c / m */
+    P->seg_tr = m;                                      /* the lamps at the surface: T_c / m, times m */
+    if (!expected) { end = P->beta; tau = 1.0f; }       /* the paper's: Le with the crossing's weight */
+    return fogrt__ray_end(s, st, P, found, hit, end, tau, limit);
+}
+/* E's a + b (fogrt__next_event) in G's media: another phase function, emitting fog, or
+   chromatic fog. */
+FOGRT__PRIVATE bool fogrt__media_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
+    fogrt_hit hit;
+    bool found;
+    ++*P->rays;
+    found = fogrt__traverse(s, P->o, P->d, 0.0f, INFINITY, &hit, false);
+    P->seg_tr = 1.0f;
+    if (!P->in_medium) return fogrt__ray_end(s, st, P, found, &hit, P->beta, 1.0f, limit);
+    if (P->chroma) return fogrt__chroma_next_event(s, st, P, found, &hit, limit);
+    return fogrt__fog_event(s, st, P, found, &hit, limit, true);
 }
 #endif /* FOGRT_NO_MEDIA */
 
@@ -7328,6 +7584,8 @@ typedef struct fogrt__boundary {
 struct fogrt__hbuilt {
     fogrt_medium_desc *media;    /* 0: the world's (sigma_t 0 without fog), 1: empty, then the interiors */
     fogrt__v3 *emit;             /* per medium: (1 - albedo) Le, added at each collision (G) */
+    fogrt__v3 *sig;              /* per medium: sigma_t per channel (equal channels: grey) */
+    bool chroma;                 /* some medium's channels differ: a path draws a hero channel */
     fogrt__boundary *bounds;
     uint32_t *mesh_bound, *sph_bound;   /* per mesh and per sphere: its boundary, or UINT32_MAX */
     uint32_t media_count, bound_count, camera_medium;
@@ -7613,6 +7871,7 @@ FOGRT__PRIVATE void fogrt__x_shapes_release(fogrt_scene *s) {
     struct fogrt__hbuilt *h = s->x->h;
     if (!h) return;
     fogrt__free(&s->allocator, h->media); fogrt__free(&s->allocator, h->emit); fogrt__free(&s->allocator, h->bounds);
+    fogrt__free(&s->allocator, h->sig);
     fogrt__free(&s->allocator, h->mesh_bound); fogrt__free(&s->allocator, h->sph_bound);
     fogrt__free(&s->allocator, h);
     s->x->h = NULL;
@@ -7628,15 +7887,21 @@ FOGRT__PRIVATE bool fogrt__shapes_build(fogrt_scene *s) {
     memset(h, 0, sizeof *h);
     h->media = (fogrt_medium_desc *)fogrt__alloc(&s->allocator, sizeof *h->media * nm);
     h->emit = (fogrt__v3 *)fogrt__alloc(&s->allocator, sizeof *h->emit * nm);
+    h->sig = (fogrt__v3 *)fogrt__alloc(&s->allocator, sizeof *h->sig * nm);
     h->mesh_bound = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * ((size_t)s->mesh_count + 1));
     h->sph_bound = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * ((size_t)s->sph_count + 1));
-    if (!h->media || !h->emit || !h->mesh_bound || !h->sph_bound ||
+    if (!h->media || !h->emit || !h->sig || !h->mesh_bound || !h->sph_bound ||
         fogrt__find_boundaries(s, &h->bounds, &h->bound_count) != FOGRT_RESULT_OK) return false;
     h->media_count = nm;
     memset(h->media, 0, sizeof *h->media * 2);
     if (s->features & FOGRT_FEATURE_MEDIUM) h->media[0] = s->medium;
     for (i = 2; i < nm; ++i) h->media[i] = s->shapes->items[i - 2].m;
-    for (i = 0; i < nm; ++i) h->emit[i] = fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), h->media[i].albedo), h->media[i].emission);
+    for (i = 0; i < nm; ++i) {
+        const fogrt_medium_desc *m = &h->media[i];
+        h->emit[i] = fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), m->albedo), m->emission);
+        h->sig[i] = fogrt__is_black(m->sigma_t_rgb) ? fogrt__v(m->sigma_t, m->sigma_t, m->sigma_t) : m->sigma_t_rgb;
+        h->chroma |= !fogrt__is_black(m->sigma_t_rgb);
+    }
     for (i = 0; i < s->mesh_count; ++i) h->mesh_bound[i] = UINT32_MAX;
     for (i = 0; i < s->sph_count; ++i) h->sph_bound[i] = UINT32_MAX;
     for (b = 0; b < h->bound_count; ++b)
@@ -7661,26 +7926,31 @@ FOGRT__PRIVATE bool fogrt__is_interface(const fogrt_scene *s, uint32_t prim) {
 /* Lines 7 and 10 through media: whether the light sample is visible from p (in medium med),
    times the transmittance (eq. 8) of each medium on the way; interface surfaces let the
    shadow ray through (into the medium on their other side), every other surface stops it. */
-FOGRT__PRIVATE float fogrt__h_shadow(const fogrt_scene *s, const fogrt__vertex *v, uint32_t med,
-                                     const fogrt_light_sample *ls, uint64_t *rays) {
+/* The transmittance of medium k over t, per channel (eq. 8). */
+FOGRT__PRIVATE fogrt__v3 fogrt__h_tr(const struct fogrt__hbuilt *h, uint32_t k, float t) {
+    fogrt__v3 c = h->sig[k];
+    return fogrt__v(fogrt_transmittance(c.x, t), fogrt_transmittance(c.y, t), fogrt_transmittance(c.z, t));
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__h_shadow(const fogrt_scene *s, const fogrt__vertex *v, uint32_t med,
+                                         const fogrt_light_sample *ls, uint64_t *rays) {
     const struct fogrt__hbuilt *h = s->x->h;
     fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, ls->wi), y = fogrt__madd(v->p, ls->wi, ls->dist);
-    float T = 1.0f;
+    fogrt__v3 T = fogrt__v(1.0f, 1.0f, 1.0f);
     int k;
-    for (k = 0; k < FOGRT__H_MAX_CROSSINGS && T > 0.0f; ++k) {
+    for (k = 0; k < FOGRT__H_MAX_CROSSINGS && fogrt__max3(T) > 0.0f; ++k) {
         fogrt_hit hit;
         fogrt__v3 to = fogrt__sub(y, o), p, ng, ns;
         float len = fogrt__length(to), tmax = len - fogrt__offset_size(s, y);
         ++*rays;
         if (!(tmax > 0.0f) || !fogrt__traverse(s, o, fogrt__scale(to, 1.0f / len), 0.0f, tmax, &hit, false))
-            return T * fogrt_transmittance(h->media[med].sigma_t, len);
-        if (!fogrt__is_interface(s, hit.prim)) return 0.0f;
-        T *= fogrt_transmittance(h->media[med].sigma_t, hit.t);
+            return fogrt__mul(T, fogrt__h_tr(h, med, len));
+        if (!fogrt__is_interface(s, hit.prim)) break;
+        T = fogrt__mul(T, fogrt__h_tr(h, med, hit.t));
         med = fogrt__h_cross(s, hit.prim, med);
         fogrt__surface_frame(s, o, fogrt__scale(to, 1.0f / len), &hit, &p, &ng, &ns);
         o = fogrt__offset(s, p, ng, to);
     }
-    return 0.0f;
+    return fogrt__v(0.0f, 0.0f, 0.0f);
 }
 /* f of the vertex: the phase function of its medium in fog, else Part I's. */
 FOGRT__PRIVATE fogrt__v3 fogrt__h_vertex_f(const fogrt_scene *s, const fogrt__vertex *v, const fogrt_medium_desc *m,
@@ -7699,12 +7969,13 @@ FOGRT__PRIVATE fogrt__v3 fogrt__h_nee(const fogrt_scene *s, const fogrt__setting
         for (j = 0; j < n; ++j) {
             fogrt_light_sample ls;
             fogrt__v3 f;
-            float u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng), u3 = fogrt_rng_float(rng), pdf_b, tr, w;
+            fogrt__v3 tr;
+            float u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng), u3 = fogrt_rng_float(rng), pdf_b, w;
             if (!fogrt_scene_sample_light(s, i, v->p, u1, u2, u3, &ls)) continue;
             f = fogrt__h_vertex_f(s, v, &s->x->h->media[med], ls.wi, &pdf_b);
-            if (fogrt__is_black(f) || (tr = fogrt__h_shadow(s, v, med, &ls, rays)) == 0.0f) continue;
+            if (fogrt__is_black(f) || fogrt__is_black(tr = fogrt__h_shadow(s, v, med, &ls, rays))) continue;
             w = ls.is_delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
-            L = fogrt__add(L, fogrt__scale(fogrt__mul(f, ls.Le), tr * w / (ls.pdf * (float)n)));
+            L = fogrt__add(L, fogrt__scale(fogrt__mul(fogrt__mul(f, ls.Le), tr), w / (ls.pdf * (float)n)));
         }
     }
     return L;
@@ -7716,28 +7987,58 @@ FOGRT__PRIVATE fogrt__v3 fogrt__h_sky(const fogrt_scene *s, fogrt__v3 d) {
     return fogrt__env_radiance(s, d);
 #endif
 }
+/* Chromatic media (G's sigma_t per channel): the free flight is drawn with the path's hero
+   channel, and the weights divide by the channels' mean density (one-sample spectral MIS,
+   as in G): at a collision at t the weight is sigma_s,c T_c(t) / p(t) with p the mean of
+   sigma_c T_c(t), and the emission sigma_a,c Le_c T_c(t) / p(t); past a segment of length d
+   without one, T_c(d) / P(d) with P the mean of T_c(d). Grey media keep the plain steps. */
+FOGRT__PRIVATE void fogrt__h_chroma_collision(const struct fogrt__hbuilt *h, uint32_t k, float t, fogrt__walk *w, bool counts) {
+    const fogrt_medium_desc *m = &h->media[k];
+    fogrt__v3 f = fogrt__mul(h->sig[k], fogrt__h_tr(h, k, t));
+    float p = (f.x + f.y + f.z) / 3.0f;
+    f = p > 0.0f ? fogrt__scale(f, 1.0f / p) : fogrt__v(0.0f, 0.0f, 0.0f);
+    if (counts) w->L = fogrt__add(w->L, fogrt__mul(fogrt__mul(w->beta, f), fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), m->albedo), m->emission)));
+    w->beta = fogrt__mul(fogrt__mul(w->beta, f), m->albedo);
+}
+FOGRT__PRIVATE void fogrt__h_chroma_pass(const struct fogrt__hbuilt *h, uint32_t k, float d, fogrt__walk *w) {
+    fogrt__v3 T = fogrt__h_tr(h, k, d);
+    float P = (T.x + T.y + T.z) / 3.0f;
+    w->beta = P > 0.0f ? fogrt__scale(fogrt__mul(w->beta, T), 1.0f / P) : fogrt__v(0.0f, 0.0f, 0.0f);
+}
+/* A collision at t in medium k: its emission, the weight, and the vertex there. */
+FOGRT__PRIVATE void fogrt__h_collide(const struct fogrt__hbuilt *h, uint32_t k, bool chroma, float t, fogrt__walk *w,
+                                     bool counts, fogrt__vertex *v) {
+    if (chroma) {
+        fogrt__h_chroma_collision(h, k, t, w, counts);
+    } else {
+        if (counts) w->L = fogrt__add(w->L, fogrt__mul(w->beta, h->emit[k]));
+        w->beta = fogrt__mul(w->beta, h->media[k].albedo);
+    }
+    v->p = fogrt__madd(w->o, w->d, t); v->wo = fogrt__neg(w->d);
+    v->is_medium = v->in_medium = true; v->m = NULL; v->ng = fogrt__v(0.0f, 0.0f, 0.0f);
+}
 /* Lines 3-5, 8, 14, 18 in the medium *med: the next vertex, with the emission reached on the
    way (an emitter, the sky, an emitting medium's collision); an interface surface on the way
    is passed (into the medium on its other side) without a vertex. False: the path ends. */
 FOGRT__PRIVATE bool fogrt__h_vertex(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w, uint32_t *med,
-                                    fogrt__vertex *v, fogrt_hit *hit, fogrt_rng *rng, uint64_t *rays) {
+                                    int hero, fogrt__vertex *v, fogrt_hit *hit, fogrt_rng *rng, uint64_t *rays) {
     const struct fogrt__hbuilt *h = s->x->h;
     int k;
     for (k = 0; k < FOGRT__H_MAX_CROSSINGS; ++k) {
         const fogrt_medium_desc *m = &h->media[*med];
         const fogrt_material_desc *mat;
         fogrt__v3 p, ng, ns;
-        float t_fog = m->sigma_t > 0.0f ? fogrt_sample_exponential(m->sigma_t, fogrt_rng_float(rng)) : INFINITY;
+        bool chroma = h->chroma && !fogrt__is_black(m->sigma_t_rgb);
+        float sig = chroma ? fogrt__comp(h->sig[*med], hero) : m->sigma_t;
+        float t_fog = sig > 0.0f ? fogrt_sample_exponential(sig, fogrt_rng_float(rng)) : INFINITY;
         bool found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, hit, false);
         bool counts = w->depth >= st->min_depth;
         ++*rays;
         if (t_fog < (found ? hit->t : INFINITY)) {                                  /* 5, 14 */
-            if (counts) w->L = fogrt__add(w->L, fogrt__mul(w->beta, h->emit[*med]));
-            w->beta = fogrt__mul(w->beta, m->albedo);
-            v->p = fogrt__madd(w->o, w->d, t_fog); v->wo = fogrt__neg(w->d);
-            v->is_medium = v->in_medium = true; v->m = NULL; v->ng = fogrt__v(0.0f, 0.0f, 0.0f);
+            fogrt__h_collide(h, *med, chroma, t_fog, w, counts, v);
             return true;
         }
+        if (chroma) fogrt__h_chroma_pass(h, *med, found ? hit->t : INFINITY, w);
         if (!found) {                                                                 /* the sky */
             if (s->has_env && counts) w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__h_sky(s, w->d)));
             return false;
@@ -7764,6 +8065,8 @@ FOGRT__PRIVATE fogrt__v3 fogrt__h_radiance(const fogrt_scene *s, const fogrt__se
     fogrt__walk w;
     uint32_t vertex, med = s->x->h->camera_medium;
     bool last = false, one_bounce = st->integrator == FOGRT_INTEGRATOR_DIRECT;
+    float u_hero = s->x->h->chroma ? fogrt_rng_float(rng) : 0.0f;   /* chromatic media: the path's hero channel */
+    int hero = FOGRT__MIN((int)(3.0f * u_hero), 2);
     w.o = o; w.d = d; w.prev_p = o;
     w.beta = fogrt__v(1.0f, 1.0f, 1.0f); w.L = fogrt__v(0.0f, 0.0f, 0.0f);
     w.prev_pdf = 1.0f; w.prev_delta = true; w.in_fog = false; w.depth = 0;
@@ -7774,7 +8077,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__h_radiance(const fogrt_scene *s, const fogrt__se
         fogrt__v3 wi;
         float u[3], cos_o;
         bool scattering;
-        if (!fogrt__h_vertex(s, st, &w, &med, &v, &hit, rng, rays) || last || w.depth >= st->max_depth) break;
+        if (!fogrt__h_vertex(s, st, &w, &med, hero, &v, &hit, rng, rays) || last || w.depth >= st->max_depth) break;
         scattering = v.is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v.m));
         if (st->nee && scattering && w.depth + 1 >= st->min_depth)
             w.L = fogrt__add(w.L, fogrt__mul(w.beta, fogrt__h_nee(s, st, &v, med, rng, rays)));
@@ -7830,8 +8133,8 @@ FOGRT__PRIVATE fogrt_result fogrt__beyond_medium(const fogrt_scene *s, const fog
     FOGRT__REFUSE_IF(m->sigma_t > 0.0f, UNSUPPORTED, "medium: fogrt was compiled with FOGRT_NO_MEDIUM");
 #endif
 #ifdef FOGRT_NO_MEDIA
-    FOGRT__REFUSE_IF(m->phase || m->g2 != 0.0f || m->w != 0.0f || !fogrt__is_black(m->emission), UNSUPPORTED,
-                     "medium.phase/g2/w/emission: media beyond the paper need a build without FOGRT_NO_MEDIA, FOGRT_NO_MEDIUM and FOGRT_MINIMAL");
+    FOGRT__REFUSE_IF(m->phase || m->g2 != 0.0f || m->w != 0.0f || !fogrt__is_black(m->emission) || !fogrt__is_black(m->sigma_t_rgb),
+                     UNSUPPORTED, "medium.phase/g2/w/emission/sigma_t_rgb: media beyond the paper need a build without FOGRT_NO_MEDIA, FOGRT_NO_MEDIUM and FOGRT_MINIMAL");
 #endif
     (void)s; (void)m;
     return FOGRT_RESULT_OK;

@@ -300,7 +300,8 @@ typedef struct cli_fog {
     float g2, w; bool two_lobes;         /* --g G1,G2,W (appendix G) */
     fogrt_phase_type phase; bool phase_set;   /* --phase (G) */
     fogrt_vec3 emission; bool emission_set;   /* --emission (G) */
-    float density; bool density_set;     /* --density */
+    float density; bool density_set;     /* --density (R,G,B: the largest) */
+    fogrt_vec3 density_rgb; bool chromatic;   /* --density R,G,B: sigma_t per channel (G) */
     fogrt_vec3 albedo; bool albedo_set;  /* --albedo */
 } cli_fog;
 /* --medium NAME (appendix H), with the fog flags and --interface that follow it; the shape
@@ -388,6 +389,27 @@ CLI_FN int cli_medium_flag(cli_arg *A, cli_common *c)
     return 0;
 #endif
 }
+/* --density S (grey fog) or R,G,B (sigma_t per channel, appendix G); density is then the
+   largest channel. Returns 0, or 2 with the message printed. */
+CLI_FN int cli_density_flag(const char *a, const char *v, cli_fog *f)
+{
+    if (strchr(v, ',')) {                         /* per channel: chromatic fog */
+#ifdef FOGRT_NO_MEDIA
+        return cli_bad_flag(a, "R,G,B (sigma_t per channel) needs appendix G of fogrt.h: this %s was built with %s", cli_prog, CLI_NO_MEDIA_MACRO);
+#endif
+        if (!cli_parse_emission(v, &f->density_rgb))
+            return cli_bad_flag(a, "density must be S or R,G,B, each a finite number >= 0 (float: at most 3.4e38), got '%s'", v);
+        f->density = f->density_rgb.x > f->density_rgb.y ? f->density_rgb.x : f->density_rgb.y;
+        if (f->density_rgb.z > f->density) f->density = f->density_rgb.z;
+        f->chromatic = true;
+    } else if (!cli_parse_float(v, &f->density) || f->density < 0) {
+        return cli_bad_flag(a, "density must be S or R,G,B, each a finite number >= 0 (float: at most 3.4e38), got '%s'", v);
+    } else {
+        f->chromatic = false;
+    }
+    f->density_set = true;
+    return 0;
+}
 /* The fog flags, into f: the world's fog or the last --medium's. Returns 0, 2 or -1 as
    cli_common_flag. */
 CLI_FN int cli_fog_flag(cli_arg *A, cli_fog *f)
@@ -413,11 +435,8 @@ CLI_FN int cli_fog_flag(cli_arg *A, cli_fog *f)
         return 0;
     }
     if (cli_is(A, "--density")) {
-        CLI_NEED(1); v = cli_next(A);
-        if (!cli_parse_float(v, &f->density) || f->density < 0)
-            return cli_bad_flag(a, "density must be a finite number >= 0 (float: at most 3.4e38), got '%s'", v);
-        f->density_set = true;
-        return 0;
+        CLI_NEED(1);
+        return cli_density_flag(a, cli_next(A), f);
     }
     if (cli_is(A, "--albedo")) {
         CLI_NEED(1); v = cli_next(A);
@@ -530,6 +549,10 @@ CLI_FN int cli_common_media_check(const cli_common *c)
 }
 CLI_FN void cli_common_media_apply(const cli_fog *f, fogrt_medium_desc *md)
 {
+    if (f->density_set) {                       /* S replaces the scene's, R,G,B sets each channel */
+        fogrt_vec3 none = {0.0f, 0.0f, 0.0f};
+        md->sigma_t_rgb = f->chromatic ? f->density_rgb : none;
+    }
     if (f->g_set) { md->phase = f->two_lobes ? FOGRT_PHASE_HG2 : FOGRT_PHASE_HG; md->g2 = f->g2; md->w = f->w; }
     if (f->phase_set && (f->phase == FOGRT_PHASE_RAYLEIGH || md->phase == FOGRT_PHASE_RAYLEIGH)) md->phase = f->phase;
     if (f->emission_set) md->emission = f->emission;
@@ -560,6 +583,9 @@ CLI_FN void cli_common_usage(FILE *f, int width, int height)
         "                 scene's: 0.9; .dae files 0.9)\n"
         "  --g G1,G2,W    (also -g) two Henyey-Greenstein lobes, W HG(G1) + (1 - W) HG(G2), G1\n"
         "                 and G2 in [-1, 1], W in [0, 1] (default: one lobe, --g G)\n"
+        "  --density R,G,B\n"
+        "                 sigma_t per colour channel, each >= 0: chromatic fog, each channel\n"
+        "                 attenuated and scattered at its own rate (default: one number, grey)\n"
         "  --phase P      the fog's phase function: hg (Henyey-Greenstein, --g) or rayleigh\n"
         "                 (3/(16 pi) (1 + cos^2), --g unused) (default hg)\n"
         "  --emission E   radiance the fog emits, R,G,B or one number, each >= 0, added as\n"

@@ -1432,18 +1432,23 @@ static bool scene_box(const fogrt_scene_info *info, fogrt_vec3 *lo, fogrt_vec3 *
 /* Where the fog is, for the progress header and the summary line. */
 static void describe_fog(const fogrt_medium_desc *md, const fogrt_scene_info *info, char *buf, size_t n)
 {
+    char density[80];
     if (!(md->sigma_t > 0.0f)) { snprintf(buf, n, "no fog"); return; }
+    if (md->sigma_t_rgb.x != 0.0f || md->sigma_t_rgb.y != 0.0f || md->sigma_t_rgb.z != 0.0f)   /* chromatic */
+        snprintf(density, sizeof density, "%g,%g,%g", (double)md->sigma_t_rgb.x, (double)md->sigma_t_rgb.y, (double)md->sigma_t_rgb.z);
+    else
+        snprintf(density, sizeof density, "%g", (double)md->sigma_t);
     if (md->bounded)
-        snprintf(buf, n, "fog (density %g) in the box %.4g,%.4g,%.4g to %.4g,%.4g,%.4g", (double)md->sigma_t,
+        snprintf(buf, n, "fog (density %s) in the box %.4g,%.4g,%.4g to %.4g,%.4g,%.4g", density,
                  (double)md->bounds_min.x, (double)md->bounds_min.y, (double)md->bounds_min.z,
                  (double)md->bounds_max.x, (double)md->bounds_max.y, (double)md->bounds_max.z);
     else if (info->has_environment)
-        snprintf(buf, n, "fog (density %g) in the box of the geometry %.4g,%.4g,%.4g to %.4g,%.4g,%.4g (the sky shows through)", (double)md->sigma_t,
+        snprintf(buf, n, "fog (density %s) in the box of the geometry %.4g,%.4g,%.4g to %.4g,%.4g,%.4g (the sky shows through)", density,
                  (double)info->bounds_min.x, (double)info->bounds_min.y, (double)info->bounds_min.z,
                  (double)info->bounds_max.x, (double)info->bounds_max.y, (double)info->bounds_max.z);
     else
-        snprintf(buf, n, "fog (density %g) everywhere, also outside the scene's geometry (--fog-bounds scene keeps it inside)",
-                 (double)md->sigma_t);
+        snprintf(buf, n, "fog (density %s) everywhere, also outside the scene's geometry (--fog-bounds scene keeps it inside)",
+                 density);
 }
 
 /* The sample goal as the header says it. */
@@ -1659,7 +1664,7 @@ static int run(int argc, char **argv)
     else if (o.paper_g && md.sigma_t == 0.0f) md.sigma_t = 0.2f;   /* the paper's -g switches fog on */
     if (o.albedo_set) md.albedo = o.albedo;
     if (o.g_set) md.g = o.g;
-    cli_common_media_apply(&o.c.fog, &md);       /* --g G1,G2,W, --phase, --emission */
+    cli_common_media_apply(&o.c.fog, &md);       /* --density R,G,B, --g G1,G2,W, --phase, --emission */
     if (o.fog_where == CLI_FOG_BOX) { md.bounded = true; md.bounds_min = o.fog_lo; md.bounds_max = o.fog_hi; }
     if (o.fog_where == CLI_FOG_ALL) md.bounded = false;
     r = fogrt_scene_set_medium(scene, &md);

@@ -376,6 +376,7 @@ typedef struct app {
     preview_options opt;
     fogrt_scene *scene;
     fogrt_camera_desc base_camera;
+    fogrt_vec3 chroma;         /* chromatic fog (--density R,G,B): sigma_t per channel over the density; else 0 */
     char scene_name[64];
 
     pthread_mutex_t mu;
@@ -516,7 +517,7 @@ static int load_scene(app *a)
     else if (o->paper_g && md.sigma_t == 0.0f) md.sigma_t = 0.2f;
     if (o->albedo_set) md.albedo = o->albedo;
     if (o->g_set) md.g = o->g;
-    cli_common_media_apply(&o->common.fog, &md);  /* --g G1,G2,W, --phase, --emission */
+    cli_common_media_apply(&o->common.fog, &md);  /* --density R,G,B, --g G1,G2,W, --phase, --emission */
     r = fogrt_scene_set_medium(a->scene, &md);
     if (r) { fprintf(stderr, "preview: --density/--albedo/--g/--phase/--emission: %s\n", fogrt_result_string(r)); return 2; }
     r = preview_build(a->scene);
@@ -528,6 +529,11 @@ static int load_scene(app *a)
     }
     fogrt_scene_get_camera(a->scene, &a->base_camera);
 
+    fogrt_scene_get_medium(a->scene, &md);        /* as stored: equal channels are grey fog */
+    memset(&a->chroma, 0, sizeof a->chroma);
+    if (md.sigma_t > 0.0f && (md.sigma_t_rgb.x != 0.0f || md.sigma_t_rgb.y != 0.0f || md.sigma_t_rgb.z != 0.0f)) {
+        a->chroma.x = md.sigma_t_rgb.x / md.sigma_t; a->chroma.y = md.sigma_t_rgb.y / md.sigma_t; a->chroma.z = md.sigma_t_rgb.z / md.sigma_t;
+    }
     memset(v, 0, sizeof *v);
     v->fog = md.sigma_t > 0.0f;
     v->density = md.sigma_t > 0.0f ? md.sigma_t : 0.2f;
@@ -658,6 +664,9 @@ static void *worker_main(void *arg)
                 fogrt_medium_desc md;
                 fogrt_scene_get_medium(a->scene, &md);   /* the rest (box, phase, emission) as set */
                 md.sigma_t = next.fog ? next.density : 0.0f;
+                md.sigma_t_rgb.x = md.sigma_t * a->chroma.x;     /* chromatic: the density scales every channel */
+                md.sigma_t_rgb.y = md.sigma_t * a->chroma.y;
+                md.sigma_t_rgb.z = md.sigma_t * a->chroma.z;
                 md.albedo = next.albedo;
                 md.g = next.g;
                 r = fogrt_scene_set_medium(a->scene, &md);

@@ -1,8 +1,10 @@
 # mk/crosscheck.mk - fogrt against Mitsuba 3 on the same scenes (docs/validation.md).
-#   make crosscheck                   all scenes, about 24 s per renderer per scene (about 6 min)
+#   make crosscheck                   all scenes, about 24 s per renderer per scene (about 7 min)
 #   make crosscheck CROSSCHECK_ARGS=--quick                 a 1-minute smoke run (no measurement)
 #   make crosscheck CROSSCHECK_ARGS="--scenes fog_iso,spot_fog"
 #   make crosscheck CROSSCHECK_FOGRT=path/to/fogrt          another fogrt build
+#   make crosscheck CROSSCHECK_ARGS="--scenes chroma_spot --mitsuba-long 300"   and Mitsuba alone
+#                                     for 300 s more per scene, a longer estimate of its mean
 # Optional, never part of `make test`. tests/crosscheck/crosscheck.py makes its own virtual
 # environment ($(BUILD)/crosscheck-venv, `pip install mitsuba numpy`) and writes
 # $(BUILD)/crosscheck/results.md, results.json and <scene>_side.png. Mitsuba's fast

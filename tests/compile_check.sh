@@ -296,7 +296,8 @@ if have "$GCC" && have nm; then
         fogrt_image_sample_rates fogrt_scene_set_environment_map fogrt_fresnel_dielectric fogrt__roulette_pilot \
         fogrt__x_pixel_position fogrt__build_light_pick
     run "nm: FOGRT_NO_MEDIA removes appendix G" appendix_nm FOGRT_NO_MEDIA \
-        fogrt_sample_hg2 fogrt_sample_rayleigh fogrt_sample_phase fogrt__x_check_media fogrt__media_emission
+        fogrt_sample_hg2 fogrt_sample_rayleigh fogrt_sample_phase fogrt__x_check_media fogrt__media_emission \
+        fogrt__media_next_event fogrt__chroma_next_event fogrt__chroma_mix fogrt__chroma_shadow
     run "nm: FOGRT_NO_SHAPES removes appendix H" appendix_nm FOGRT_NO_SHAPES \
         fogrt_scene_set_interior fogrt_scene_set_shape_material fogrt__h_radiance fogrt__shapes_build fogrt__find_boundaries fogrt__h_shadow
 else

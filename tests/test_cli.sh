@@ -90,6 +90,10 @@ expect 2 "--emission"   "negative emission"       -- --emission -1 -f "$out";   
 expect 2 "--emission"   "emission with two parts" -- --emission 1,2 -f "$out"
 expect 2 "--emission"   "infinite emission"       -- --emission 1,inf,1 -f "$out"
 expect 2 "--emission"   "NaN emission"            -- --emission nan -f "$out"
+expect 2 "--density"    "negative density channel" -- --density 0.1,-0.2,0.3 -f "$out"; one_line_no_image "negative density channel"
+expect 2 "--density"    "density with two parts"  -- --density 0.1,0.2 -f "$out"
+expect 2 "--density"    "infinite density channel" -- --density 0.1,inf,0.3 -f "$out"
+expect 2 "--density"    "NaN density channel"     -- --density nan,0.2,0.3 -f "$out"
 expect 2 "--fresnel"    "unknown fresnel"         -- --fresnel fast -f "$out"
 expect 2 "--bvh"        "unknown bvh"             -- --bvh kd -f "$out"
 expect 2 "--seed"       "negative seed"           -- --seed -1 -f "$out"
@@ -171,6 +175,15 @@ check "pfm_ok '$tmp/m1.pfm' 16 12 && pfm_ok '$tmp/m2.pfm' 16 12" "media: the ima
 check "cmp -s '$tmp/m3.pfm' '$tmp/m4.pfm'" "media: --phase hg --emission 0 changed the image of --g 0.6"
 "$fogrt" --quiet -s 2 -r 16 12 --seed 2 --g 0.6 --emission 0.5 -f "$tmp/m5.pfm"
 check "[ \"\$(pfm_stats '$tmp/m5.pfm' | awk '{ print \$4 }')\" != \"\$(pfm_stats '$tmp/m3.pfm' | awk '{ print \$4 }')\" ] && awk -v a=\"\$(pfm_stats '$tmp/m5.pfm' | awk '{ print \$4 }')\" -v b=\"\$(pfm_stats '$tmp/m3.pfm' | awk '{ print \$4 }')\" 'BEGIN { exit !(a > b) }'" "media: --emission 0.5 did not brighten the image"
+# chromatic fog: --density R,G,B renders and says so; three equal channels are grey fog, bit
+# for bit
+expect 0 "density 0.1,0.3,0.9" "chromatic fog" -- -s 2 -r 16 12 --density 0.1,0.3,0.9 -f "$tmp/c1.pfm"
+check "pfm_ok '$tmp/c1.pfm' 16 12" "chromatic fog: the image was not written"
+"$fogrt" --quiet -s 2 -r 16 12 --seed 3 --density 0.4 -f "$tmp/c2.pfm"
+"$fogrt" --quiet -s 2 -r 16 12 --seed 3 --density 0.4,0.4,0.4 -f "$tmp/c3.pfm"
+check "cmp -s '$tmp/c2.pfm' '$tmp/c3.pfm'" "chromatic fog: --density 0.4,0.4,0.4 is not --density 0.4 bit for bit"
+"$fogrt" --quiet -s 2 -r 16 12 --seed 3 --density 0.4,0.4,0.41 -f "$tmp/c4.pfm"
+check "! cmp -s '$tmp/c2.pfm' '$tmp/c4.pfm'" "chromatic fog: --density 0.4,0.4,0.41 rendered grey fog"
 now() { date +%s.%N; }
 # wait_rendering CSV: wait (up to 60 s) until the render's --log has its first batch row, so
 # that a signal sent next lands in the render whatever the machine's speed (a sanitizer

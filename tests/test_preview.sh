@@ -196,6 +196,14 @@ differs dense   "density 0.3 -> 0.59" "4:x,4:x,4:x"
 differs fogoff  "fog off"             "4:f"
 differs drag    "mouse drag"          "4:drag:80,0"
 grep 'frames/s' "$tmp/drag.out"
+# chromatic fog (--density R,G,B): differs from the grey fog, and the density keys scale it
+run chroma $common --density 0.1,0.3,0.9 --keys "4:r" --screenshot "$tmp/chroma.png"
+set -- $("$tmp/pngcheck" diff "$tmp/restart.png" "$tmp/chroma.png" 2>/dev/null)
+check "[ $rc -eq 0 ] && awk 'BEGIN { exit !(${2:-0} > 3 * $noise) }'" "--density 0.1,0.3,0.9 did not change the picture: block difference ${2:-?}, noise floor $noise" chroma
+run chroma_dense $common --density 0.1,0.3,0.9 --keys "4:x,4:x,4:x" --screenshot "$tmp/chroma_dense.png"
+set -- $("$tmp/pngcheck" diff "$tmp/chroma.png" "$tmp/chroma_dense.png" 2>/dev/null)
+check "[ $rc -eq 0 ] && awk 'BEGIN { exit !(${2:-0} > 3 * $noise) }'" "chromatic fog, density up (x x x) did not change the picture: block difference ${2:-?}, noise floor $noise" chroma_dense
+echo "chromatic fog: block difference from the grey fog, and after x x x: ${2:-?} (noise floor $noise)"
 
 # A key at the last frame still shows: exposure down after the base picture's last batch.
 run dark $common --keys "$frames:-,$frames:-" --screenshot "$tmp/dark.png"

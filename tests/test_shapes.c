@@ -11,6 +11,9 @@
      - a glass sphere filled with absorbing fog, on its axis: the series of internal
        reflections R0 + (1 - R0)^2 T / (1 - R0 T) (Schlick at normal incidence, T the
        transmittance of one diameter), an estimate computed here without the renderer.
+   The nested spheres again with a chromatic inner medium (sigma_t per channel, the free
+   flights drawn with one hero channel per path): each channel's closed form, from the
+   spread of 8 renders (a hero drawn with the wrong probabilities is off by 19%).
    A white furnace: a glass sphere filled with non-absorbing fog in a uniform sky, every
    path that ends leaves with weight 1, so every pixel is exactly 1.
    Invisible interfaces (block means of two images within their standard errors): an
@@ -243,6 +246,45 @@ static void test_filled_glass_white_furnace(void)
 #endif
 }
 
+static void test_chromatic_media_nested(void)
+{
+    SHAPES_ONLY();
+#ifndef FOGRT_NO_SHAPES
+    /* The camera inside nested absorbing spheres, the inner one chromatic: each channel
+       exp(-(sigma_inner,c r_1 + sigma_outer (r_2 - r_1))), from the means of 8 renders of
+       different seeds (the hero channel's samples are no longer 0 or 1). */
+    fogrt_scene *s = new_scene();
+    fogrt_medium_desc outer = medium(0.3f, 0.0f, 0.0f), inner = medium(1.5f, 0.0f, 0.0f);
+    fogrt_render_desc d = fogrt_render_defaults();
+    uint32_t iface = add_material(s, FOGRT_BSDF_INTERFACE, 0.0f);
+    const float sig[3] = { 0.2f, 0.7f, 1.5f };
+    double m[3] = { 0, 0, 0 }, m2[3] = { 0, 0, 0 };
+    int b, c, i;
+    inner.sigma_t_rgb = v3(sig[0], sig[1], sig[2]);
+    (void)add_filled_sphere(s, iface, v3(0, 0, 0), 2.0f, &outer);
+    (void)add_filled_sphere(s, iface, v3(0, 0, 0), 1.0f, &inner);
+    CHECK_OK(fogrt_scene_set_environment(s, v3(1, 1, 1), false));
+    set_camera(s, v3(0, 0, 0), v3(0, 0, -1), 90.0f);
+    CHECK_OK(fogrt_scene_build(s, NULL));
+    for (b = 0; b < 8; ++b) {
+        fogrt_image img;
+        double sum[3] = { 0, 0, 0 }, n = 0;
+        d.seed = 100 + (uint64_t)b;
+        CHECK_OK(fogrt_image_alloc(&img, 16, 16, NULL));
+        CHECK_OK(fogrt_render(s, &d, &img, SAN_REDUCED(64, 8), NULL));
+        for (i = 0; i < 16 * 16; ++i) { for (c = 0; c < 3; ++c) sum[c] += img.sum[3 * i + c]; n += img.count[i]; }
+        for (c = 0; c < 3; ++c) { m[c] += sum[c] / n / 8.0; m2[c] += (sum[c] / n) * (sum[c] / n) / 8.0; }
+        fogrt_image_free(&img);
+    }
+    for (c = 0; c < 3; ++c) {
+        double expect = exp(-(sig[c] * 1.0 + 0.3 * 1.0)), se = sqrt(fmax(m2[c] - m[c] * m[c], 1e-12) / 7.0);
+        printf("chromatic nested media, channel %d: mean %.5f, expected %.5f (z %+.2f)\n", c, m[c], expect, (m[c] - expect) / se);
+        TEST_ASSERT_TRUE(fabs(m[c] - expect) < 4.0 * se);
+    }
+    fogrt_scene_destroy(s);
+#endif
+}
+
 /* ==========================================================================================
    Invisible interfaces, light sampling
    ========================================================================================== */
@@ -417,6 +459,7 @@ int main(void)
     RUN_TEST(test_concave_interface_shape);
     RUN_TEST(test_filled_glass_on_axis);
     RUN_TEST(test_filled_glass_white_furnace);
+    RUN_TEST(test_chromatic_media_nested);
     RUN_TEST(test_empty_interface_is_invisible);
     RUN_TEST(test_interface_holding_the_room_fog_is_invisible);
     RUN_TEST(test_denser_interior_is_visible);

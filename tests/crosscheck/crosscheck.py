@@ -9,8 +9,8 @@ virtual environment (--venv, default build/crosscheck-venv) with `pip install mi
 and runs itself again inside it.
 
 For every scene of scenes.py it writes a COLLADA file and a CS184 camera file for fogrt and
-builds the matching Mitsuba scene dict (volpath, homogeneous medium with hg phase, dielectric
-glass, the same camera, lights and fog). Each renderer renders the scene as --batches (4)
+builds the matching Mitsuba scene dict (volpath, or volpathmis for chromatic fog; homogeneous
+medium with hg phase, dielectric glass, the same camera, lights and fog). Each renderer renders the scene as --batches (4)
 independent batches (different seeds, the same spp) of about --budget / 4 seconds each. The
 spread of the batches gives a per-pixel noise estimate of their mean, from which every
 comparison gets its noise level:
@@ -26,6 +26,12 @@ comparison gets its noise level:
     10 CPU seconds (and 10 wall seconds; relative MSE falls as 1 / time for both), and the
     spp and seconds it took. CPU time is the fairer measure on a shared machine: fogrt's is
     its process's user + system time, Mitsuba's the Python process's (its render threads).
+
+With --mitsuba-long S, Mitsuba also renders each scene alone for S more seconds (batches of
+64 spp, other seeds), and fogrt's channel means are compared with that longer estimate: for
+scenes where a short Mitsuba run's noise is heavy-tailed (point and spot lights in fog, whose
+light sampled from fog vertices near the lamp has no finite variance), most short runs miss
+the rare large samples and come out low.
 
 The scenes named single_* have no geometry and single scattering only (fogrt -m 1, Mitsuba
 max_depth 2): for them a quadrature of the single-scattering integral is the reference, and
@@ -180,6 +186,20 @@ def render_mitsuba(mi, sc, width, height, budget, workdir, batches):
         cpu += time.process_time() - c0
         halves.append(acc / n_pass)
     return halves, batches * n_pass * pass_spp, secs, cpu, t_setup
+
+
+def long_mitsuba(mi, sc, width, height, seconds, workdir):
+    """Mitsuba alone for about `seconds`, in batches of 64 spp: the per-channel image mean,
+    its standard error from the batches' spread, and the samples per pixel."""
+    import numpy as np
+    import scenes
+    scene = mi.load_dict(scenes.mitsuba_dict(mi, sc, width, height, workdir))
+    means, t0 = [], time.time()
+    while time.time() - t0 < seconds or len(means) < 2:
+        img = np.array(mi.render(scene, spp=64, seed=50000 + len(means)), dtype=np.float64)
+        means.append(img.mean((0, 1)))
+    m = np.array(means)
+    return m.mean(0), m.std(0, ddof=1) / math.sqrt(len(means)), 64 * len(means)
 
 
 # ---------------------------------------------------------------------------------------
@@ -398,6 +418,8 @@ def main():
                          "with the same batches and budget; its equal-time error ends the report")
     ap.add_argument("--batches", type=int, default=4,
                     help="independent batches per renderer, for the noise estimate (default 4)")
+    ap.add_argument("--mitsuba-long", type=float, default=0.0, metavar="S",
+                    help="also render Mitsuba alone for S seconds per scene and compare fogrt's channel means with it")
     a = ap.parse_args()
     ensure_environment(a.venv)
     import numpy as np
@@ -484,6 +506,15 @@ def main():
             print("%20s near the light (%d px, 1-4 px away): fogrt/quadrature %.4f (z %+.1f), Mitsuba/quadrature %.4f (z %+.1f)"
                   % ("", nl["pixels"], nl["fogrt"]["ratio"], nl["fogrt"]["z"], nl["mitsuba"]["ratio"], nl["mitsuba"]["z"]),
                   flush=True)
+        if a.mitsuba_long > 0:
+            lm, lse, lspp = long_mitsuba(mi, sc, W, H, a.mitsuba_long, a.out)
+            fmean = (F * mask[..., None]).sum((0, 1)) / mask.sum()
+            fse = np.sqrt((vF * mask[..., None]).sum((0, 1))) / mask.sum()
+            r["mitsuba_long"] = {"spp": lspp, "mean": lm.tolist(), "se": lse.tolist(), "ratio": (fmean / lm).tolist(),
+                                 "z": ((fmean - lm) / np.sqrt(fse ** 2 + lse ** 2)).tolist()}
+            print("%20s Mitsuba alone, %d spp: fogrt / it %s (z %s)"
+                  % ("", lspp, " ".join("%.4f" % x for x in r["mitsuba_long"]["ratio"]),
+                     " ".join("%+.1f" % z for z in r["mitsuba_long"]["z"])), flush=True)
         for k in ("fogrt_vs_quadrature", "mitsuba_vs_quadrature"):
             if k in r:
                 q = r[k]
@@ -525,6 +556,7 @@ def verdict(c):
 
 
 def markdown(res):
+    import scenes
     out = ["Mitsuba %s, variant `%s`; %dx%d pixels; about %.0f s per renderer per scene in %d batches; "
            "fogrt on %d threads; total %.0f s.\n"
            % (res["mitsuba"], res["variant"], res["size"][0], res["size"][1], res["budget"], res["batches"],
@@ -533,7 +565,7 @@ def markdown(res):
         fm = r["fogrt_vs_mitsuba"]
         out.append("### %s: %s\n" % (r["name"], r["title"]))
         if r["fog"]:
-            out.append("Fog: sigma_t %g, albedo %s, g %+g. " % (r["fog"]["sigma_t"],
+            out.append("Fog: sigma_t %s, albedo %s, g %+g. " % (scenes.sigma_text(r["fog"]),
                                                                 ",".join("%g" % x for x in r["fog"]["albedo"]), r["fog"]["g"]))
         out.append("fogrt: `%s`\n" % r["fogrt_command"])
         if r["masked_pixels"]:
@@ -551,6 +583,10 @@ def markdown(res):
                           c["relmse_between"] / c["relmse_noise"], c["worst_block"]["ratio"], c["worst_block"]["z"],
                           verdict(c)))
         out.append("")
+        if "mitsuba_long" in r:
+            lg = r["mitsuba_long"]
+            out.append("Against Mitsuba alone at %d spp (--mitsuba-long): fogrt / Mitsuba %s (z %s).\n"
+                       % (lg["spp"], ", ".join("%.4f" % x for x in lg["ratio"]), ", ".join("%+.1f" % z for z in lg["z"])))
         if "near_light" in r:
             nl = r["near_light"]
             out.append("Near the light (the %d pixels 1 to 4 pixels from its image, against a 12x12-per-pixel quadrature): "

@@ -17,7 +17,11 @@ Conventions shared by both renderers (see fogrt.h, CONVENTIONS, and docs/loading
     intensity falls linearly in the angle from beam to cutoff in both (Mitsuba's spot.cpp
     falloff_curve is (cutoff - theta) / (cutoff - beam), the same ramp as fogrt);
   - fogrt's -m N counts bounces after the camera ray; Mitsuba's max_depth counts path
-    segments, so fogrt -m N matches Mitsuba max_depth N + 1.
+    segments, so fogrt -m N matches Mitsuba max_depth N + 1;
+  - a fog's sigma_t is one number or, for chromatic fog, one per colour channel (fogrt
+    --density R,G,B; Mitsuba an rgb sigma_t, rendered by volpathmis, whose spectral MIS
+    weighs such a medium as fogrt does; volpath also picks one channel per path, but divides
+    by that channel's density alone, which is unbiased and noisier).
 """
 import math
 import os
@@ -94,6 +98,17 @@ def box_scene(name, title, fog, spheres, lamp=True, lights=(), camera=None, max_
                 analytic=None, fresnel="exact")
 
 
+def chromatic(fog):
+    """Whether the fog has a sigma_t per colour channel."""
+    return bool(fog) and isinstance(fog["sigma_t"], (tuple, list))
+
+
+def sigma_text(fog):
+    """The fog's sigma_t as the fogrt flag and the tables write it."""
+    st = fog["sigma_t"]
+    return ",".join("%.9g" % x for x in st) if chromatic(fog) else "%.9g" % st
+
+
 # ---------------------------------------------------------------------------------------
 # The scenes
 # ---------------------------------------------------------------------------------------
@@ -123,6 +138,10 @@ def all_scenes():
              fresnel="schlick"),
         box_scene("cornell_nofog", "Fog-free box with a mirror and a glass sphere, ceiling lamp",
                   None, spheres2),
+        box_scene("chroma_fog", "Chromatic fog (sigma_t per channel), ceiling lamp, diffuse sphere",
+                  dict(sigma_t=(0.15, 0.4, 0.9), albedo=(0.85, 0.85, 0.85), g=0.3), diffuse_ball),
+        box_scene("chroma_spot", "Chromatic fog, spot light (cutoff 30, beam 20 degrees), no lamp",
+                  dict(sigma_t=(0.2, 0.4, 0.8), albedo=(0.9, 0.85, 0.8), g=0.4), diffuse_ball, lamp=False, lights=[spot]),
     ]
     # Media inside shapes (fogrt.h, appendix H): smoke in a glass sphere in a fog-free box,
     # and a fog cube behind an interface inside the box's thinner fog.
@@ -305,7 +324,7 @@ def fogrt_args(scene):
     """Fog and method flags of the fogrt command for this scene."""
     a = ["-m", str(scene["max_depth"]), "--fresnel", scene.get("fresnel", "exact")]
     def fog_flags(fog):
-        a = ["--density", "%.9g" % fog["sigma_t"], "--albedo", ",".join("%.9g" % x for x in fog["albedo"])]
+        a = ["--density", sigma_text(fog), "--albedo", ",".join("%.9g" % x for x in fog["albedo"])]
         if fog.get("phase") == "rayleigh":
             return a + ["--phase", "rayleigh"]
         if "g2" in fog:
@@ -351,7 +370,7 @@ def mitsuba_dict(mi, scene, width, height, mesh_dir, fog_box=50.0):
     c = scene["camera"]
     fog = scene["fog"]
     d = {"type": "scene",
-         "integrator": {"type": "volpath", "max_depth": scene["max_depth"] + 1},
+         "integrator": {"type": "volpathmis" if chromatic(fog) else "volpath", "max_depth": scene["max_depth"] + 1},
          "sensor": {"type": "perspective", "fov": c["vfov"], "fov_axis": "y",
                     "near_clip": 1e-5, "far_clip": 1e4,
                     "to_world": T().look_at(origin=list(c["position"]), target=list(c["target"]), up=list(c["up"])),
@@ -360,7 +379,8 @@ def mitsuba_dict(mi, scene, width, height, mesh_dir, fog_box=50.0):
                     "sampler": {"type": "independent"}}}
     inside = {}
     if fog:
-        d["fog"] = {"type": "homogeneous", "sigma_t": fog["sigma_t"], "albedo": _rgb(fog["albedo"]),
+        d["fog"] = {"type": "homogeneous", "albedo": _rgb(fog["albedo"]),
+                    "sigma_t": _rgb(fog["sigma_t"]) if chromatic(fog) else fog["sigma_t"],
                     "phase": mitsuba_phase(fog)}
         ref = {"type": "ref", "id": "fog"}
         d["sensor"]["medium"] = ref
