@@ -4637,21 +4637,32 @@ FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n
    so the answers do not change, only which boxes lead there.
    Which: k = (box area / triangle area) / FOGRT__WBVH_SPLIT_RATIO, at most
    FOGRT__WBVH_SPLIT_MAX; a well-shaped triangle's box is 4 to 12 times its area (the CS184
-   bunny's at most 11), so ordinary meshes are not cut at all and build the same tree. How
+   bunny's at most 11), and the thin triangles near the poles of make bench's 1M-triangle
+   sphere a few hundred times, so ordinary meshes are not cut at all and build the same tree
+   (a fan's slivers: 10^4 to 10^6). How
    many: the extra references are at most as many as the primitives, and a scene never gets
    past FOGRT__WBVH_SPLIT_REFS references in all (each costs about 70 bytes of build and
    tree: an 8M-triangle fan stays as it is); when the slivers want more, each gets its share
    of the budget in proportion to what it wants (spread in triangle order). Only with the
    wide layout (the binary layout packs one primitive per reference). */
-#define FOGRT__WBVH_SPLIT_RATIO 64.0f
+#define FOGRT__WBVH_SPLIT_RATIO 1024.0f
 #define FOGRT__WBVH_SPLIT_MAX 16u
 #define FOGRT__WBVH_SPLIT_REFS (1u << 22)
 /* The pieces triangle t wants (1: none), and its box and slab axis. */
 FOGRT__PRIVATE uint32_t fogrt__split_want(const fogrt_scene *s, uint32_t t, fogrt__aabb *box, int *axis) {
-    float area = fogrt__tri_area(s, t), r;
-    fogrt__v3 e;
-    *box = fogrt__prim_box(s, t);
+    const fogrt__v3 *v = &s->tri_v[3 * t];
+    fogrt__v3 c = fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])), e;
+    float area, r, A;
+    box->lo = fogrt__v(FOGRT__MIN(v[0].x, FOGRT__MIN(v[1].x, v[2].x)), FOGRT__MIN(v[0].y, FOGRT__MIN(v[1].y, v[2].y)),
+                       FOGRT__MIN(v[0].z, FOGRT__MIN(v[1].z, v[2].z)));
+    box->hi = fogrt__v(FOGRT__MAX(v[0].x, FOGRT__MAX(v[1].x, v[2].x)), FOGRT__MAX(v[0].y, FOGRT__MAX(v[1].y, v[2].y)),
+                       FOGRT__MAX(v[0].z, FOGRT__MAX(v[1].z, v[2].z)));
     e = fogrt__sub(box->hi, box->lo);
+    A = 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
+    /* Most triangles are far from a sliver: squared areas decide that without a root (the
+       triangle's area is |c| / 2); a NaN goes on to the exact test below. */
+    if (A * A < 0.25f * FOGRT__WBVH_SPLIT_RATIO * FOGRT__WBVH_SPLIT_RATIO * fogrt__dot(c, c)) return 1;
+    area = fogrt__tri_area(s, t);
     *axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
     if (!(area > 0.0f && fogrt__comp(e, *axis) < FLT_MAX)) return 1;   /* no area, or a box past float */
     r = fogrt__aabb_area(box) / (FOGRT__WBVH_SPLIT_RATIO * area);
