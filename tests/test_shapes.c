@@ -83,6 +83,24 @@ static double image_mean(const fogrt_image *img, double *se)
     if (se) *se = sqrt(fmax(p * (1.0 - p), 1e-12) / n);
     return p;
 }
+/* Builds the scene under a uniform sky of radiance 1 seen from `from` toward `to` (vertical
+   fov fov_deg), renders it and checks the image mean against the closed form `expect`
+   within 4 binomial standard errors; destroys the scene. */
+static void check_sky_mean(fogrt_scene *s, fogrt_vec3 from, fogrt_vec3 to, float fov_deg, int w, int h, int spp,
+                           const fogrt_render_desc *d, double expect, const char *what)
+{
+    fogrt_image img;
+    double se, mean;
+    CHECK_OK(fogrt_scene_set_environment(s, v3(1, 1, 1), false));
+    set_camera(s, from, to, fov_deg);
+    CHECK_OK(fogrt_scene_build(s, NULL));
+    render(s, w, h, spp, d, &img);
+    mean = image_mean(&img, &se);
+    printf("%s: mean %.5f, expected %.5f (z %+.2f)\n", what, mean, expect, (mean - expect) / se);
+    TEST_ASSERT_TRUE(fabs(mean - expect) < 4.0 * se);
+    fogrt_image_free(&img);
+    fogrt_scene_destroy(s);
+}
 /* The largest |z| over 4 x 4 blocks of two images' mean luminance (each block's standard
    error from fogrt's per-pixel variance estimates). */
 static double max_block_z(const fogrt_image *a, const fogrt_image *b)
@@ -157,20 +175,11 @@ static void test_camera_inside_nested_media(void)
 #ifndef FOGRT_NO_SHAPES
     fogrt_scene *s = new_scene();
     fogrt_medium_desc outer = medium(0.3f, 0.0f, 0.0f), inner = medium(0.7f, 0.0f, 0.0f);
-    fogrt_image img;
     uint32_t iface = add_material(s, FOGRT_BSDF_INTERFACE, 0.0f);
-    double se, mean, expect = exp(-(0.7 * 1.0 + 0.3 * (2.0 - 1.0)));
     (void)add_filled_sphere(s, iface, v3(0, 0, 0), 2.0f, &outer);
     (void)add_filled_sphere(s, iface, v3(0, 0, 0), 1.0f, &inner);
-    CHECK_OK(fogrt_scene_set_environment(s, v3(1, 1, 1), false));
-    set_camera(s, v3(0, 0, 0), v3(0, 0, -1), 90.0f);
-    CHECK_OK(fogrt_scene_build(s, NULL));
-    render(s, 32, 32, 64, NULL, &img);
-    mean = image_mean(&img, &se);
-    printf("camera inside nested media: mean %.5f, expected %.5f (z %+.2f)\n", mean, expect, (mean - expect) / se);
-    TEST_ASSERT_TRUE(fabs(mean - expect) < 4.0 * se);
-    fogrt_image_free(&img);
-    fogrt_scene_destroy(s);
+    check_sky_mean(s, v3(0, 0, 0), v3(0, 0, -1), 90.0f, 32, 32, 64, NULL, exp(-(0.7 * 1.0 + 0.3 * (2.0 - 1.0))),
+                   "camera inside nested media");
 #endif
 }
 
@@ -180,21 +189,12 @@ static void test_concave_interface_shape(void)
 #ifndef FOGRT_NO_SHAPES
     fogrt_scene *s = new_scene();
     fogrt_medium_desc fog = medium(0.5f, 0.0f, 0.0f);
-    fogrt_image img;
     uint32_t iface = add_material(s, FOGRT_BSDF_INTERFACE, 0.0f);
-    double se, mean, expect = exp(-2.0 * 0.5), wrong = exp(-3.0 * 0.5);
     add_prism(s, u_poly, 10, u_cap, 8, 0.0f, 1.0f, iface);
     CHECK_OK(fogrt_scene_set_interior(s, FOGRT_SHAPE_MESH, 0, &fog));
-    CHECK_OK(fogrt_scene_set_environment(s, v3(1, 1, 1), false));
-    set_camera(s, v3(-10.0f, 1.5f, 0.5f), v3(0.0f, 1.5f, 0.5f), 1.0f);   /* through both arms */
-    CHECK_OK(fogrt_scene_build(s, NULL));
-    render(s, 16, 16, 64, NULL, &img);
-    mean = image_mean(&img, &se);
-    printf("concave shape: mean %.5f, expected %.5f (z %+.2f); the medium's hull would give %.5f\n", mean, expect,
-           (mean - expect) / se, wrong);
-    TEST_ASSERT_TRUE(fabs(mean - expect) < 4.0 * se);
-    fogrt_image_free(&img);
-    fogrt_scene_destroy(s);
+    printf("concave shape: the medium's hull would give %.5f\n", exp(-3.0 * 0.5));
+    check_sky_mean(s, v3(-10.0f, 1.5f, 0.5f), v3(0.0f, 1.5f, 0.5f), 1.0f, 16, 16, 64, NULL,   /* through both arms */
+                   exp(-2.0 * 0.5), "concave shape");
 #endif
 }
 
@@ -204,21 +204,13 @@ static void test_filled_glass_on_axis(void)
 #ifndef FOGRT_NO_SHAPES
     fogrt_scene *s = new_scene();
     fogrt_medium_desc smoke = medium(0.5f, 0.0f, 0.0f);
-    fogrt_image img;
     fogrt_render_desc d = fogrt_render_defaults();
     uint32_t glass = add_material(s, FOGRT_BSDF_GLASS, 1.5f);
-    double r0 = 0.04, T = exp(-0.5 * 2.0), expect = r0 + (1.0 - r0) * (1.0 - r0) * T / (1.0 - r0 * T), se, mean;
+    double r0 = 0.04, T = exp(-0.5 * 2.0);
     (void)add_filled_sphere(s, glass, v3(0, 0, 0), 1.0f, &smoke);
-    CHECK_OK(fogrt_scene_set_environment(s, v3(1, 1, 1), false));
-    set_camera(s, v3(0, 0, 10), v3(0, 0, 0), 0.01f);
-    CHECK_OK(fogrt_scene_build(s, NULL));
     d.max_depth = 1000; d.rr_depth = 1000;               /* no roulette: every sample 0 or 1 */
-    render(s, 4, 4, 16384, &d, &img);
-    mean = image_mean(&img, &se);
-    printf("filled glass on its axis: mean %.5f, series %.5f (z %+.2f)\n", mean, expect, (mean - expect) / se);
-    TEST_ASSERT_TRUE(fabs(mean - expect) < 4.0 * se);
-    fogrt_image_free(&img);
-    fogrt_scene_destroy(s);
+    check_sky_mean(s, v3(0, 0, 10), v3(0, 0, 0), 0.01f, 4, 4, 16384, &d, r0 + (1.0 - r0) * (1.0 - r0) * T / (1.0 - r0 * T),
+                   "filled glass on its axis (the series)");
 #endif
 }
 
