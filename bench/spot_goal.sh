@@ -4,7 +4,7 @@
 #
 # The scene is `fogrt --density 0.5 --g 0.6 -r 480 360 CBbunny_upSpot.dae`. A time budget is
 # a property of a machine, so the script builds BASE's own fogrt from the repository's
-# history (git archive, BASE's own Makefile, into build/spot-base/<commit>) and then, RUNS
+# history (bench/base_build.sh: git archive, BASE's own Makefile, into build/bench-base/<commit>) and then, RUNS
 # times (default 2), alternating:
 #   1. BASE's fogrt with -s 128, whose render time is the budget T;
 #   2. FOGRT (this tree's build) with -s 4096 --time T: as many samples as fit in T.
@@ -28,17 +28,8 @@ if [ ! -f "$SCENE" ]; then
     echo "spot-goal: $SCENE not found (the CS184 scenes live in SHARED=$SHARED): nothing measured" >&2
     exit 2
 fi
-if ! SHA=$(git rev-parse --verify -q "$BASE^{commit}"); then
-    echo "spot-goal: $BASE is not a commit of this repository's history: give another, or run from a git clone" >&2
-    exit 2
-fi
-OUT=build/spot-base/$SHA
-if [ ! -x "$OUT/build/fogrt" ]; then
-    echo "spot-goal: building $BASE's fogrt ($SHA) in $OUT"
-    rm -rf "$OUT" && mkdir -p "$OUT"
-    git archive "$SHA" | tar -x -C "$OUT"
-    make -s -C "$OUT" build/fogrt >/dev/null
-fi
+BASE_FOGRT=$(sh bench/base_build.sh "$BASE" build/fogrt "$SHARED")
+OUT=${BASE_FOGRT%/build/fogrt}
 if [ "$RUNS" -lt 1 ]; then
     echo "spot-goal: $BASE's fogrt is built; RUNS=$RUNS, nothing measured"
     exit 0

@@ -50,7 +50,7 @@ $(BUILD)/bench/fan_mesh: bench/fan_mesh.c bench/fan.h | $(BUILD)
 	$(CC) $(ALL_CFLAGS) -o $@ bench/fan_mesh.c $(LDLIBS)
 
 # The spot-lit fog at equal time against SPOT_BASE's header, rebuilt from git history into
-# build/spot-base/<commit> (bench/spot_goal.sh): about a minute per run, SPOT_RUNS runs.
+# build/bench-base/<commit> (bench/spot_goal.sh): about a minute per run, SPOT_RUNS runs.
 # SPOT_BASE: any commit (e.g. HEAD~1); 7a4a5f3 is the reference of the goal, under
 # SPOT_GOAL percent at the time it takes for 128 spp.
 SPOT_RUNS ?= 2
