@@ -1271,6 +1271,12 @@ static char *data_file(const char *name, size_t *size)
     return d;
 }
 
+/* A file of tests/data that a loader reads: .dae, .obj or .ply. */
+static int is_scene_file(const char *name)
+{
+    size_t n = strlen(name);
+    return n >= 5 && (strcmp(name + n - 4, ".dae") == 0 || strcmp(name + n - 4, ".obj") == 0 || strcmp(name + n - 4, ".ply") == 0);
+}
 /* Every file of tests/data that fails to load (with the default placement, or as is) leaves
    a scene that already holds content exactly as it was, and says why in one message that
    names the file. */
@@ -1283,8 +1289,7 @@ static void test_failed_load_changes_nothing(void)
     TEST_ASSERT_NOT_NULL(dir);
     while ((e = readdir(dir)) != NULL) {
         char path[600];
-        size_t n = strlen(e->d_name);
-        if (n < 5 || !(strcmp(e->d_name + n - 4, ".dae") == 0 || strcmp(e->d_name + n - 4, ".obj") == 0 || strcmp(e->d_name + n - 4, ".ply") == 0)) continue;
+        if (!is_scene_file(e->d_name)) continue;
         snprintf(path, sizeof path, DATA_DIR "%s", e->d_name);
         for (p = 0; p < 2; ++p) {
             fogrt_load_options o = as_is();
@@ -1906,8 +1911,7 @@ static void test_names_change_no_primitive(void)
     TEST_ASSERT_NOT_NULL(dir);
     while ((e = readdir(dir)) != NULL) {
         char path[600];
-        size_t n = strlen(e->d_name);
-        if (n < 5 || !(strcmp(e->d_name + n - 4, ".dae") == 0 || strcmp(e->d_name + n - 4, ".obj") == 0 || strcmp(e->d_name + n - 4, ".ply") == 0)) continue;
+        if (!is_scene_file(e->d_name)) continue;
         snprintf(path, sizeof path, DATA_DIR "%s", e->d_name);
         for (p = 0; p < 2; ++p) {
             shape_log log;
