@@ -1050,8 +1050,9 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #endif /* FOGRT_H_INCLUDED */
 
 /* ------------------------------------------------------------------------------------------
-   The implementation's set-up: headers, the allocator and assertion hooks, and the compiler
-   glue (none of it is the method; Part I, the paper, starts below)
+   The implementation's set-up: headers, the allocator and assertion hooks, the compiler
+   glue, and the declarations of the seams to Part II (none of it is the method; Part I, the
+   paper, starts below)
    ------------------------------------------------------------------------------------------ */
 #ifdef FOGRT_IMPLEMENTATION
 #ifndef FOGRT_IMPLEMENTATION_INCLUDED
@@ -1113,6 +1114,55 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #define FOGRT__PUBLIC
 #endif
 
+/* Checks of what lies beyond Part I: a build without a feature refuses it. */
+FOGRT__PRIVATE fogrt_result fogrt__beyond_material(const fogrt_scene *s, const fogrt_material_desc *m);
+FOGRT__PRIVATE fogrt_result fogrt__beyond_medium(const fogrt_scene *s, const fogrt_medium_desc *m);
+FOGRT__PRIVATE fogrt_result fogrt__beyond_build(const fogrt_scene *s, const fogrt_build_desc *d);
+FOGRT__PRIVATE fogrt_result fogrt__beyond_render(const fogrt_scene *s, const fogrt_render_desc *d);
+FOGRT__PRIVATE fogrt_result fogrt__beyond_image(const fogrt_scene *s, const fogrt_render_desc *d, const fogrt_image *img);
+#ifndef FOGRT_NO_SHAPES
+FOGRT__PRIVATE void fogrt__x_shapes_free(fogrt_scene *s);                                         /* 4 (H) */
+#endif
+/* The seams: what Part I calls of Part II (numbered as in Part I's opening comment). */
+struct fogrt__settings;
+struct fogrt__job;
+#ifndef FOGRT_NO_WIDE_BVH
+FOGRT__HOT bool fogrt__x_traverse(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax,
+                                      fogrt_hit *hit, bool any_hit, bool *done);                  /* 1 (A) */
+FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n);                /* 2 (A) */
+struct fogrt__build; struct fogrt__bjob;
+FOGRT__PRIVATE bool fogrt__x_split_binned(struct fogrt__build *b, const struct fogrt__bjob *job, fogrt_bvh_node *child,
+                                          struct fogrt__bjob *left, struct fogrt__bjob *right, bool *halve, uint32_t *left_count);
+FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size);                     /* 2 (A) */
+FOGRT__PRIVATE uint32_t fogrt__x_refs(const fogrt_scene *s, uint32_t n, uint32_t leaf_keep);      /* 2 (A) */
+FOGRT__PRIVATE void fogrt__x_split_refs(const fogrt_scene *s, struct fogrt__build *b, uint32_t n, uint32_t m);
+#define FOGRT__ALLOC_BUILD fogrt__alloc_big
+#define FOGRT__REFS(s, n, leaf_keep) fogrt__x_refs(s, n, leaf_keep)
+#define FOGRT__SPLIT_REFS(s, b, n, m) fogrt__x_split_refs(s, b, n, m)
+#else
+#define FOGRT__ALLOC_BUILD fogrt__alloc
+#define FOGRT__REFS(s, n, leaf_keep) (n)
+#define FOGRT__SPLIT_REFS(s, b, n, m) ((void)0)
+#endif
+#ifndef FOGRT_MINIMAL
+FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n);        /* 3 */
+FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s);                                             /* 4 */
+#ifndef FOGRT_NO_MEDIUM
+FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmax,
+                                  float *a, float *b);                                            /* 6 (C) */
+#endif
+#ifndef FOGRT_NO_MEDIA
+FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_medium_desc *m);    /* 6 (G) */
+#endif
+FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const struct fogrt__settings *st);      /* 7 (E) */
+FOGRT__PRIVATE fogrt_vec3 fogrt__x_radiance(const fogrt_scene *s, const struct fogrt__settings *st, fogrt_vec3 o,
+                                           fogrt_vec3 d, fogrt_rng *rng, uint64_t *rays);
+#endif
+#ifndef FOGRT_NO_ESTIMATION
+FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy);   /* 8 (C) */
+FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const struct fogrt__job *job, size_t pix);
+#endif
+
 /* ==========================================================================================
 
       IMPLEMENTATION, PART I: THE PAPER
@@ -1133,11 +1183,14 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
    Read Part I alone and you have the whole method; fogrt_render_paper_defaults() runs it.
 
    Part II, after it, is an appendix, one idea a chapter (A the wide BVH, B lamps in fog, C
-   sampling and estimation, D the path trace, E the full integrator, F inspection, G media),
-   which fogrt_render_defaults() uses. FOGRT_MINIMAL compiles Part I alone; what a build left
-   out is refused by the checks after Part II ("What a build without a feature refuses").
+   sampling and estimation, D the path trace, E the full integrator, F inspection, G media
+   beyond the paper, H media inside shapes), which fogrt_render_defaults() uses. After Part II
+   come the API around the method (getters, the public building blocks, the image's storage,
+   8-bit output) and the checks of what a build left out, which every build keeps.
+   FOGRT_MINIMAL compiles Part I and those two, without Part II.
 
-   Part I reaches Part II only at these seams, each marked "SEAM n" where it stands:
+   Part I reaches Part II only at these seams, each marked "SEAM n" where it stands (their
+   declarations are in the set-up above):
      1. fogrt__traverse            the wide tree, when the build made one (A)
      2. fogrt_scene_build          how small a binary node may stay, for the wide tree (A);
         fogrt__bvh_split_binned    and a node's whole binned split in SIMD lanes (A);
@@ -1148,7 +1201,7 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
      5. fogrt__fresnel             the exact dielectric Fresnel (C)
      6. fogrt__fog_transmittance   fog bounded by a box (C); fogrt__check_medium: G's medium fields
      7. fogrt__radiance            the full integrator, for every setting beyond the paper (E)
-     8. fogrt__pixel_ray           stratified pixel positions, and per-pixel rates (C)
+     8. fogrt__pixel_ray           stratified pixel positions (C); fogrt__render_row: per-pixel rates
    ========================================================================================== */
 /* ------------------------------------------------------------------------------------------
    I.1 Configuration, vectors, random numbers
@@ -1166,15 +1219,6 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #define FOGRT__DEF(val, def) ((val) == 0 ? (def) : (val))   /* "zero means default" */
 #define FOGRT__MAX_PRIMS (1u << 28)   /* triangles + spheres: keeps every index and size in range */
 
-FOGRT__PUBLIC const char *fogrt_result_string(fogrt_result result) {
-    static const char *names[FOGRT_RESULT_NUM] = {
-#define FOGRT__RESULT_TEXT(name, text) text,
-        FOGRT__RESULT_LIST(FOGRT__RESULT_TEXT)
-#undef FOGRT__RESULT_TEXT
-    };
-    if ((unsigned)result >= (unsigned)FOGRT_RESULT_NUM) return "unknown result code";
-    return names[result];
-}
 
 FOGRT__PRIVATE void *fogrt__alloc(const fogrt_allocator *a, size_t size) {
     if (a && a->alloc_fn) return a->alloc_fn(size, a->user_data);
@@ -1244,10 +1288,8 @@ FOGRT__HOT fogrt__v3 fogrt__around(const fogrt__frame *f, float cos_theta, float
 /* Random numbers: PCG32 (M. O'Neill, pcg-random.org), one stream per (pixel, sample). */
 FOGRT__PUBLIC uint32_t fogrt_rng_u32(fogrt_rng *rng) {
     uint64_t old = rng->state;
-    uint32_t xorshifted, rot;
+    uint32_t xorshifted = (uint32_t)(((old >> 18u) ^ old) >> 27u), rot = (uint32_t)(old >> 59u);
     rng->state = old * 6364136223846793005ULL + rng->inc;
-    xorshifted = (uint32_t)(((old >> 18u) ^ old) >> 27u);
-    rot = (uint32_t)(old >> 59u);
     return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
 }
 FOGRT__PUBLIC void fogrt_rng_seed(fogrt_rng *rng, uint64_t seed, uint64_t stream) {
@@ -1268,53 +1310,6 @@ FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x) {
     return x ^ (x >> 31);
 }
 
-/* Checks of what lies beyond Part I (after Part II): a build without a feature refuses it. */
-FOGRT__PRIVATE fogrt_result fogrt__beyond_material(const fogrt_scene *s, const fogrt_material_desc *m);
-FOGRT__PRIVATE fogrt_result fogrt__beyond_medium(const fogrt_scene *s, const fogrt_medium_desc *m);
-FOGRT__PRIVATE fogrt_result fogrt__beyond_build(const fogrt_scene *s, const fogrt_build_desc *d);
-FOGRT__PRIVATE fogrt_result fogrt__beyond_render(const fogrt_scene *s, const fogrt_render_desc *d);
-#ifndef FOGRT_NO_SHAPES
-FOGRT__PRIVATE void fogrt__x_shapes_free(fogrt_scene *s);                                         /* 4 (H) */
-#endif
-/* The seams: what Part I calls of Part II (numbered as in the list above). */
-struct fogrt__settings;
-struct fogrt__job;
-#ifndef FOGRT_NO_WIDE_BVH
-FOGRT__HOT bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
-                                      fogrt_hit *hit, bool any_hit, bool *done);                  /* 1 (A) */
-FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n);                /* 2 (A) */
-struct fogrt__build; struct fogrt__bjob;
-FOGRT__PRIVATE bool fogrt__x_split_binned(struct fogrt__build *b, const struct fogrt__bjob *job, fogrt_bvh_node *child,
-                                          struct fogrt__bjob *left, struct fogrt__bjob *right, bool *halve, uint32_t *left_count);
-FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size);                     /* 2 (A) */
-FOGRT__PRIVATE uint32_t fogrt__x_refs(const fogrt_scene *s, uint32_t n, uint32_t leaf_keep);      /* 2 (A) */
-FOGRT__PRIVATE void fogrt__x_split_refs(const fogrt_scene *s, struct fogrt__build *b, uint32_t n, uint32_t m);
-#define FOGRT__ALLOC_BUILD fogrt__alloc_big
-#define FOGRT__REFS(s, n, leaf_keep) fogrt__x_refs(s, n, leaf_keep)
-#define FOGRT__SPLIT_REFS(s, b, n, m) fogrt__x_split_refs(s, b, n, m)
-#else
-#define FOGRT__ALLOC_BUILD fogrt__alloc
-#define FOGRT__REFS(s, n, leaf_keep) (n)
-#define FOGRT__SPLIT_REFS(s, b, n, m) ((void)0)
-#endif
-#ifndef FOGRT_MINIMAL
-FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n);        /* 3 */
-FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s);                                             /* 4 */
-#ifndef FOGRT_NO_MEDIUM
-FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax,
-                                  float *a, float *b);                                            /* 6 (C) */
-#endif
-#ifndef FOGRT_NO_MEDIA
-FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_medium_desc *m);    /* 6 (G) */
-#endif
-FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const struct fogrt__settings *st);      /* 7 (E) */
-FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const struct fogrt__settings *st, fogrt__v3 o,
-                                           fogrt__v3 d, fogrt_rng *rng, uint64_t *rays);
-#endif
-#ifndef FOGRT_NO_ESTIMATION
-FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy);   /* 8 (C) */
-FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const struct fogrt__job *job, size_t pix);
-#endif
 
 /* ------------------------------------------------------------------------------------------
    I.2 The scene: storage and validation
@@ -1340,10 +1335,8 @@ struct fogrt_scene {
     /* materials */
     fogrt_material_desc *materials; uint32_t material_count, material_cap;
     /* triangles, in the order they were added: 3 vertices, 3 normals, flags */
-    fogrt__v3 *tri_v;          /* 3 per triangle */
-    fogrt__v3 *tri_n;          /* 3 per triangle (valid where tri_has_n) */
-    uint8_t *tri_has_n;
-    uint32_t *tri_material, *tri_mesh;
+    fogrt__v3 *tri_v, *tri_n;  /* 3 per triangle; the normals valid where tri_has_n */
+    uint8_t *tri_has_n; uint32_t *tri_material, *tri_mesh;
     uint32_t tri_count, tri_cap, mesh_count;
     /* spheres */
     fogrt__v3 *sph_c; float *sph_r; uint32_t *sph_material;
@@ -1378,12 +1371,10 @@ FOGRT__PRIVATE void fogrt__log(const fogrt_scene *s, fogrt_log_level level, cons
     if (s && s->logger.func) s->logger.func(level, msg, s->logger.user_data);
 }
 FOGRT__PRIVATE fogrt_result fogrt__fail(const fogrt_scene *s, fogrt_result r, const char *msg) {
-    size_t n = strlen(msg);
     fogrt__log(s, FOGRT_LOG_ERROR, msg);
-    if (s && s->error) {
-        n = n < sizeof s->error_text - 1 ? n : sizeof s->error_text - 1;
-        memcpy(s->error, msg, n);
-        s->error[n] = '\0';
+    if (s && s->error) {                                 /* the message, cut to fit */
+        size_t n = FOGRT__MIN(strlen(msg), sizeof s->error_text - 1);
+        memcpy(s->error, msg, n); s->error[n] = '\0';
     }
     return r;
 }
@@ -1391,7 +1382,6 @@ FOGRT__PRIVATE fogrt_result fogrt__fail(const fogrt_scene *s, fogrt_result r, co
    fails with FOGRT_RESULT_<result> and msg (in a function whose scene is named s). */
 #define FOGRT__REFUSE_IF(cond, result, msg) do { if (cond) return fogrt__fail(s, FOGRT_RESULT_##result, msg); } while (0)
 #define FOGRT__PASS(call) do { fogrt_result r_ = (call); if (r_ != FOGRT_RESULT_OK) return r_; } while (0)
-FOGRT__PUBLIC const char *fogrt_scene_last_error(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->error; }
 
 /* Move *ptr to a new array of new_cap elements, keeping its first used elements. Returns
    false when out of memory, leaving the old array untouched. */
@@ -1410,14 +1400,13 @@ FOGRT__PRIVATE uint32_t fogrt__grow_cap(uint32_t cap, uint32_t need) {
 
 FOGRT__PUBLIC fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogrt_scene **out_scene) {
     fogrt_scene_desc d;
-    fogrt_scene *s;
     FOGRT_ASSERT(out_scene);
     *out_scene = NULL;
     memset(&d, 0, sizeof d);
     if (desc) d = *desc;
     if ((d.allocator.alloc_fn == NULL) != (d.allocator.free_fn == NULL))
         return FOGRT_RESULT_INVALID_ARGUMENT;           /* both allocator functions or neither */
-    s = (fogrt_scene *)fogrt__alloc(&d.allocator, sizeof *s);
+    fogrt_scene *s = (fogrt_scene *)fogrt__alloc(&d.allocator, sizeof *s);
     if (!s) return FOGRT_RESULT_OUT_OF_MEMORY;
     memset(s, 0, sizeof *s);
     s->allocator = d.allocator;
@@ -1444,9 +1433,8 @@ FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s) {
     fogrt__forget_built(s);
 }
 FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s) {
-    fogrt_allocator a;
     if (!s) return;
-    a = s->allocator;
+    fogrt_allocator a = s->allocator;
     fogrt__free_built(s);
     fogrt__free(&a, s->materials); fogrt__free(&a, s->tri_v); fogrt__free(&a, s->tri_n); fogrt__free(&a, s->tri_has_n);
     fogrt__free(&a, s->tri_material); fogrt__free(&a, s->tri_mesh);
@@ -1460,9 +1448,8 @@ FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s) {
 FOGRT__PRIVATE bool fogrt__colour_ok(fogrt__v3 c) { return fogrt__v3_finite(c) && c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f; }
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_material_desc *desc,
                                                     uint32_t *out_id) {
-    fogrt_material_desc m;
     FOGRT_ASSERT(s && desc);
-    m = *desc;
+    fogrt_material_desc m = *desc;
     FOGRT__REFUSE_IF((unsigned)m.type >= (unsigned)FOGRT_BSDF_NUM, INVALID_MATERIAL, "material.type: unknown BSDF type");
     FOGRT__REFUSE_IF(!fogrt__colour_ok(m.reflectance) || !fogrt__colour_ok(m.transmittance) ||
                      !fogrt__colour_ok(m.emission), INVALID_MATERIAL,
@@ -1487,19 +1474,19 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_
 
 /* Everything a mesh must satisfy, checked before anything is copied. */
 FOGRT__PRIVATE fogrt_result fogrt__check_mesh(const fogrt_scene *s, const fogrt_mesh_desc *desc) {
-    uint32_t i, n = desc->triangle_count;
+    uint32_t n = desc->triangle_count;
     if (!desc->positions) return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "mesh.positions: NULL");
     FOGRT__REFUSE_IF((uint64_t)s->tri_count + s->sph_count + n > FOGRT__MAX_PRIMS, TOO_LARGE, "mesh.triangle_count: too many triangles");
     FOGRT__REFUSE_IF(!desc->indices && (uint64_t)n * 3 > desc->vertex_count, INVALID_GEOMETRY,
                      "mesh.vertex_count: fewer than 3 * triangle_count vertices and no indices");
-    for (i = 0; i < (uint64_t)desc->vertex_count * 3; ++i) {
+    for (uint32_t i = 0; i < (uint64_t)desc->vertex_count * 3; ++i) {
         FOGRT__REFUSE_IF(!fogrt__coord_ok(desc->positions[i]), INVALID_GEOMETRY, "mesh.positions: not finite or beyond +-1e30");
         FOGRT__REFUSE_IF(desc->normals && !fogrt__finite(desc->normals[i]), INVALID_GEOMETRY, "mesh.normals: not finite");
     }
     if (desc->indices)
-        for (i = 0; i < (uint64_t)n * 3; ++i)
+        for (uint32_t i = 0; i < (uint64_t)n * 3; ++i)
             FOGRT__REFUSE_IF(desc->indices[i] >= desc->vertex_count, INVALID_GEOMETRY, "mesh.indices: index out of range");
-    for (i = 0; i < n; ++i) {
+    for (uint32_t i = 0; i < n; ++i) {
         uint32_t mat = desc->triangle_materials ? desc->triangle_materials[i] : desc->material;
         FOGRT__REFUSE_IF(mat >= s->material_count, INVALID_MATERIAL, "mesh.material: material id out of range");
     }
@@ -1527,17 +1514,14 @@ FOGRT__PRIVATE bool fogrt__reserve_triangles(fogrt_scene *s, uint32_t n, bool no
     return true;
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh_desc *desc) {
-    uint32_t i, k, n, first;
-    fogrt_result r;
     FOGRT_ASSERT(s && desc);
-    n = desc->triangle_count;
+    uint32_t n = desc->triangle_count, first = s->tri_count;
     if (n == 0) return FOGRT_RESULT_OK;
-    if ((r = fogrt__check_mesh(s, desc)) != FOGRT_RESULT_OK) return r;
+    FOGRT__PASS(fogrt__check_mesh(s, desc));
     if (!fogrt__reserve_triangles(s, n, desc->normals != NULL)) return FOGRT_RESULT_OUT_OF_MEMORY;
-    first = s->tri_count;
-    for (i = 0; i < n; ++i) {
+    for (uint32_t i = 0; i < n; ++i) {
         uint32_t t = first + i;
-        for (k = 0; k < 3; ++k) {
+        for (uint32_t k = 0; k < 3; ++k) {
             uint32_t vi = desc->indices ? desc->indices[3 * i + k] : 3 * i + k;
             const float *p = desc->positions + 3 * (size_t)vi;
             s->tri_v[3 * t + k] = fogrt__v(p[0], p[1], p[2]);
@@ -1580,9 +1564,8 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 cen
 }
 
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_light(fogrt_scene *s, const fogrt_light_desc *desc) {
-    fogrt_light_desc l;
     FOGRT_ASSERT(s && desc);
-    l = *desc;
+    fogrt_light_desc l = *desc;
     if (l.type == FOGRT_LIGHT_DEFAULT) l.type = FOGRT_LIGHT_POINT;
     FOGRT__REFUSE_IF((unsigned)l.type >= (unsigned)FOGRT_LIGHT_NUM, INVALID_LIGHT, "light.type: unknown light type");
     FOGRT__REFUSE_IF(!fogrt__v3_finite(l.position), INVALID_LIGHT, "light.position: not finite");
@@ -1615,22 +1598,19 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment(fogrt_scene *s, fogrt_vec
     return FOGRT_RESULT_OK;
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_camera_desc *desc) {
-    fogrt_camera_desc c;
-    fogrt__v3 fwd, up;
-    float m;
     FOGRT_ASSERT(s && desc);
-    c = *desc;
+    fogrt_camera_desc c = *desc;
     if (fogrt__is_black(c.up)) c.up = fogrt__v(0.0f, 1.0f, 0.0f);
     c.fov_deg = FOGRT__DEF(c.fov_deg, 45.0f);
     FOGRT__REFUSE_IF(!fogrt__v3_finite(c.position) || !fogrt__v3_finite(c.look_at) || !fogrt__v3_finite(c.up), INVALID_CAMERA,
                      "camera.position/look_at/up: not finite");
-    m = FOGRT__MAX(fabsf(c.up.x), FOGRT__MAX(fabsf(c.up.y), fabsf(c.up.z)));
+    float m = FOGRT__MAX(fabsf(c.up.x), FOGRT__MAX(fabsf(c.up.y), fabsf(c.up.z)));
     c.up = fogrt__normalize(fogrt__scale(c.up, 1.0f / m));   /* any length: its direction */
-    fwd = fogrt__sub(c.look_at, c.position);
+    fogrt__v3 fwd = fogrt__sub(c.look_at, c.position);
     FOGRT__REFUSE_IF(!fogrt__finite(fogrt__dot(fwd, fwd)), INVALID_CAMERA,
                      "camera: look_at - position too long for float: its squared length overflows");
     FOGRT__REFUSE_IF(fogrt__dot(fwd, fwd) == 0.0f, INVALID_CAMERA, "camera.look_at: equals camera.position");
-    up = fogrt__cross(fogrt__normalize(fwd), fogrt__normalize(c.up));
+    fogrt__v3 up = fogrt__cross(fogrt__normalize(fwd), fogrt__normalize(c.up));
     FOGRT__REFUSE_IF(fogrt__dot(up, up) < 1e-12f, INVALID_CAMERA, "camera.up: parallel to the view direction");
     FOGRT__REFUSE_IF(!(c.fov_deg > 0.0f && c.fov_deg < 180.0f), INVALID_CAMERA, "camera.fov_deg: outside (0, 180)");
     FOGRT__REFUSE_IF(!fogrt__finite(c.lens_radius) || c.lens_radius < 0.0f || !fogrt__finite(c.focal_distance) ||
@@ -1642,18 +1622,11 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_ca
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__PRIVATE bool fogrt__box_ok(fogrt__v3 lo, fogrt__v3 hi) {
-    return fogrt__coord_ok(lo.x) && fogrt__coord_ok(lo.y) && fogrt__coord_ok(lo.z) &&
-           fogrt__coord_ok(hi.x) && fogrt__coord_ok(hi.y) && fogrt__coord_ok(hi.z) &&
-           lo.x < hi.x && lo.y < hi.y && lo.z < hi.z;
-}
 /* Checks a medium and clamps |g| to FOGRT_HG_G_MAX (with a warning). */
 FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medium_desc *m) {
     FOGRT__REFUSE_IF(!fogrt__finite(m->sigma_t) || m->sigma_t < 0.0f, INVALID_MEDIUM, "medium.sigma_t: negative or not finite");
     FOGRT__REFUSE_IF(!fogrt__colour_ok(m->albedo) || fogrt__max3(m->albedo) > 1.0f, INVALID_MEDIUM, "medium.albedo: outside [0, 1]");
     FOGRT__REFUSE_IF(!(m->g >= -1.0f && m->g <= 1.0f), INVALID_MEDIUM, "medium.g: outside [-1, 1]");
-    FOGRT__REFUSE_IF(m->bounded && !fogrt__box_ok(m->bounds_min, m->bounds_max), INVALID_MEDIUM,
-                     "medium.bounds_min/bounds_max: not finite, beyond 1e30, or min not below max on every axis");
     FOGRT__PASS(fogrt__beyond_medium(s, m));
     if (fabsf(m->g) >= FOGRT_HG_G_MAX && fabsf(m->g) != FOGRT_HG_G_MAX) {
         m->g = copysignf(FOGRT_HG_G_MAX, m->g);
@@ -1666,46 +1639,14 @@ FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medi
 #endif
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_medium_desc *desc) {
-    fogrt_medium_desc m;
-    fogrt_result r;
     FOGRT_ASSERT(s && desc);
-    m = *desc;
-    if ((r = fogrt__check_medium(s, &m)) != FOGRT_RESULT_OK) return r;
+    fogrt_medium_desc m = *desc;
+    FOGRT__PASS(fogrt__check_medium(s, &m));
     s->medium = m;
     s->built = false;
     return FOGRT_RESULT_OK;
 }
 
-FOGRT__PUBLIC uint32_t fogrt_scene_get_prim_material(const fogrt_scene *s, uint32_t prim) {
-    FOGRT_ASSERT(s);
-    if (prim < s->tri_count) return s->tri_material[prim];
-    if (prim - s->tri_count < s->sph_count) return s->sph_material[prim - s->tri_count];
-    return UINT32_MAX;
-}
-FOGRT__PUBLIC uint32_t fogrt_scene_get_features(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->features; }
-FOGRT__PUBLIC void fogrt_scene_get_info(const fogrt_scene *s, fogrt_scene_info *info) {
-    FOGRT_ASSERT(s && info);
-    memset(info, 0, sizeof *info);
-    info->triangle_count = s->tri_count; info->sphere_count = s->sph_count; info->mesh_count = s->mesh_count;
-    info->material_count = s->material_count;
-    info->light_count = s->light_count; info->area_light_count = s->area_light_count;
-    info->bounds_min = s->bmin; info->bounds_max = s->bmax;
-    info->has_environment = s->has_env; info->built = s->built;
-}
-FOGRT__PUBLIC fogrt_result fogrt_scene_get_material(const fogrt_scene *s, uint32_t id, fogrt_material_desc *out) {
-    FOGRT_ASSERT(s && out);
-    if (id >= s->material_count) return FOGRT_RESULT_INVALID_ARGUMENT;
-    *out = s->materials[id];
-    return FOGRT_RESULT_OK;
-}
-FOGRT__PUBLIC fogrt_result fogrt_scene_get_light(const fogrt_scene *s, uint32_t index, fogrt_light_desc *out) {
-    FOGRT_ASSERT(s && out);
-    if (index >= s->light_count) return FOGRT_RESULT_INVALID_ARGUMENT;
-    *out = s->lights[index];
-    return FOGRT_RESULT_OK;
-}
-FOGRT__PUBLIC void fogrt_scene_get_camera(const fogrt_scene *s, fogrt_camera_desc *out) { FOGRT_ASSERT(s && out); *out = s->camera; }
-FOGRT__PUBLIC void fogrt_scene_get_medium(const fogrt_scene *s, fogrt_medium_desc *out) { FOGRT_ASSERT(s && out); *out = s->medium; }
 
 
 /* ------------------------------------------------------------------------------------------
@@ -1727,9 +1668,7 @@ FOGRT__PUBLIC void fogrt_scene_get_medium(const fogrt_scene *s, fogrt_medium_des
    ------------------------------------------------------------------------------------------ */
 typedef struct fogrt__aabb { fogrt__v3 lo, hi; } fogrt__aabb;
 FOGRT__PRIVATE fogrt__aabb fogrt__aabb_empty(void) {
-    fogrt__aabb b;
-    b.lo = fogrt__v(FLT_MAX, FLT_MAX, FLT_MAX);
-    b.hi = fogrt__v(-FLT_MAX, -FLT_MAX, -FLT_MAX);
+    fogrt__aabb b = { { FLT_MAX, FLT_MAX, FLT_MAX }, { -FLT_MAX, -FLT_MAX, -FLT_MAX } };
     return b;
 }
 FOGRT__HOT void fogrt__aabb_grow(fogrt__aabb *b, fogrt__v3 p) {
@@ -1776,9 +1715,8 @@ FOGRT__PRIVATE void fogrt__node_set_box(fogrt_bvh_node *node, const fogrt__aabb 
 /* Box and centroid bounds of count primitives (the root, and the halved nodes). */
 FOGRT__PRIVATE void fogrt__boxes_bounds(const fogrt__aabb *box, uint32_t count, fogrt_bvh_node *node, fogrt__aabb *cb) {
     fogrt__aabb b = fogrt__aabb_empty();
-    uint32_t i;
     *cb = fogrt__aabb_empty();
-    for (i = 0; i < count; ++i) {
+    for (uint32_t i = 0; i < count; ++i) {
         fogrt__aabb_union(&b, &box[i]);
         fogrt__aabb_grow(cb, fogrt__aabb_centre(&box[i]));
     }
@@ -1808,22 +1746,21 @@ FOGRT__HOT int fogrt__bin_of(const fogrt__bins *bins, fogrt__v3 c, int ax) {
 FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt_build_desc *d, const fogrt__aabb *cb,
                                      const fogrt__aabb *box, uint32_t count) {
     float sc[3];
-    uint32_t i;
-    int ax, k, nb = count < (uint32_t)d->bins ? (int)count : d->bins;
+    int nb = count < (uint32_t)d->bins ? (int)count : d->bins;
     if (nb == 1) nb = 2;
-    for (ax = 0; ax < 3; ++ax) {
+    for (int ax = 0; ax < 3; ++ax) {
         float lo = fogrt__comp(cb->lo, ax), hi = fogrt__comp(cb->hi, ax);
         sc[ax] = (float)nb / (hi - lo);
         if (!(hi > lo && sc[ax] > 0.0f && sc[ax] < FLT_MAX)) sc[ax] = 0.0f;
-        for (k = 0; k < nb; ++k) { bins->box[ax][k] = fogrt__aabb_empty(); bins->n[ax][k] = 0; }
+        for (int k = 0; k < nb; ++k) { bins->box[ax][k] = fogrt__aabb_empty(); bins->n[ax][k] = 0; }
     }
     bins->nb = nb;
     bins->origin = cb->lo;
     bins->scale = fogrt__v(sc[0], sc[1], sc[2]);
-    for (i = 0; i < count; ++i) {
+    for (uint32_t i = 0; i < count; ++i) {
         fogrt__v3 c = fogrt__aabb_centre(&box[i]);
-        for (ax = 0; ax < 3; ++ax) {
-            k = fogrt__bin_of(bins, c, ax);
+        for (int ax = 0; ax < 3; ++ax) {
+            int k = fogrt__bin_of(bins, c, ax);
             fogrt__aabb_union(&bins->box[ax][k], &box[i]);
             bins->n[ax][k]++;
         }
@@ -1838,19 +1775,17 @@ FOGRT__PRIVATE bool fogrt__bins_sweep(const fogrt_build_desc *d, const fogrt__bi
     uint32_t left_n = 0, right_n = 0;
     float left_cost[FOGRT__BVH_MAX_BINS];
     bool improved = false;
-    int k;
-    for (k = 0; k < bins->nb - 1; ++k) {
+    for (int k = 0; k < bins->nb - 1; ++k) {
         left_n += bins->n[ax][k];
         fogrt__aabb_union(&b, &bins->box[ax][k]);
         left_cost[k] = fogrt__side_cost(d, left_n, &b);
     }
     b = fogrt__aabb_empty();
-    for (k = bins->nb - 1; k > 0; --k) {
-        float cost;
+    for (int k = bins->nb - 1; k > 0; --k) {
         right_n += bins->n[ax][k];
         fogrt__aabb_union(&b, &bins->box[ax][k]);
         if (right_n == 0 || right_n == count) continue;
-        cost = left_cost[k - 1] + fogrt__side_cost(d, right_n, &b);
+        float cost = left_cost[k - 1] + fogrt__side_cost(d, right_n, &b);
         if (cost < *best) { *best = cost; *best_k = k; improved = true; }
     }
     return improved;
@@ -1858,11 +1793,9 @@ FOGRT__PRIVATE bool fogrt__bins_sweep(const fogrt_build_desc *d, const fogrt__bi
 /* The leaf rule: with the SAH, split when it is cheaper than a leaf, and always above the
    largest leaf size; with the volume heuristic, split down to the largest leaf size. */
 FOGRT__PRIVATE bool fogrt__split_pays(const fogrt_build_desc *d, const fogrt_bvh_node *node, uint32_t count, float best) {
-    fogrt__aabb box;
     if (count > (uint32_t)d->max_leaf_size) return true;
     if (d->heuristic == FOGRT_BVH_VOLUME) return false;
-    box.lo = fogrt__v(node->bmin[0], node->bmin[1], node->bmin[2]);
-    box.hi = fogrt__v(node->bmax[0], node->bmax[1], node->bmax[2]);
+    fogrt__aabb box = { { node->bmin[0], node->bmin[1], node->bmin[2] }, { node->bmax[0], node->bmax[1], node->bmax[2] } };
     return d->c_trav + d->c_int * best / FOGRT__MAX(fogrt__aabb_area(&box), FLT_MIN) < d->c_int * (float)count;
 }
 /* The primitives whose bin on axis ax is below k to the front (with their indices), growing
@@ -1872,9 +1805,8 @@ FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__aa
                                               int ax, int k, fogrt_bvh_node *child, fogrt__bjob *left, fogrt__bjob *right) {
     fogrt__aabb side[2];
     uint32_t lo = 0, hi = count;
-    int j;
     side[0] = side[1] = left->cb = right->cb = fogrt__aabb_empty();
-    for (j = 0; j < bins->nb; ++j) fogrt__aabb_union(&side[j >= k], &bins->box[ax][j]);
+    for (int j = 0; j < bins->nb; ++j) fogrt__aabb_union(&side[j >= k], &bins->box[ax][j]);
     fogrt__node_set_box(&child[0], &side[0]);
     fogrt__node_set_box(&child[1], &side[1]);
     while (lo < hi) {
@@ -1902,13 +1834,13 @@ FOGRT__PRIVATE uint32_t fogrt__bvh_split_binned(fogrt__build *b, const fogrt__bj
     uint32_t first = node->left_first, count = node->prim_count;
     fogrt__bins bins;
     float best = FLT_MAX;
-    int ax, best_ax = -1, best_k = 0;
+    int best_ax = -1, best_k = 0;
 #ifndef FOGRT_NO_WIDE_BVH
     uint32_t x_left;
     if (fogrt__x_split_binned(b, job, child, left, right, halve, &x_left)) return x_left;   /* SEAM 2 */
 #endif
     fogrt__bins_fill(&bins, &b->desc, &job->cb, b->box + first, count);
-    for (ax = 0; ax < 3; ++ax)
+    for (int ax = 0; ax < 3; ++ax)
         if (fogrt__comp(bins.scale, ax) > 0.0f && fogrt__bins_sweep(&b->desc, &bins, ax, count, &best, &best_k)) best_ax = ax;
     if (best_ax < 0) {                                   /* all centroids coincide */
         *halve = count > (uint32_t)b->desc.max_leaf_size;
@@ -1969,17 +1901,17 @@ FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count) {
    meaningless) misses it too. */
 FOGRT__HOT bool fogrt__hit_triangle(fogrt__v3 o, fogrt__v3 d, fogrt__v3 v0, fogrt__v3 e1, fogrt__v3 e2,
                                         float tmin, float tmax, float *t, float *u, float *v) {
-    fogrt__v3 pvec = fogrt__cross(d, e2), tvec, qvec;
-    float det = fogrt__dot(e1, pvec), inv_det, uu, vv, tt;
+    fogrt__v3 pvec = fogrt__cross(d, e2);
+    float det = fogrt__dot(e1, pvec);
     if (!(det * det > 1e-12f * fogrt__dot(e1, e1) * fogrt__dot(e2, e2))) return false;
-    inv_det = 1.0f / det;
-    tvec = fogrt__sub(o, v0);
-    uu = fogrt__dot(tvec, pvec) * inv_det;
+    float inv_det = 1.0f / det;
+    fogrt__v3 tvec = fogrt__sub(o, v0);
+    float uu = fogrt__dot(tvec, pvec) * inv_det;
     if (!(uu >= 0.0f && uu <= 1.0f)) return false;
-    qvec = fogrt__cross(tvec, e1);
-    vv = fogrt__dot(d, qvec) * inv_det;
+    fogrt__v3 qvec = fogrt__cross(tvec, e1);
+    float vv = fogrt__dot(d, qvec) * inv_det;
     if (!(vv >= 0.0f && uu + vv <= 1.0f)) return false;
-    tt = fogrt__dot(e2, qvec) * inv_det;
+    float tt = fogrt__dot(e2, qvec) * inv_det;
     if (!(tt > tmin && tt < tmax)) return false;
     *t = tt; *u = uu; *v = vv;
     return true;
@@ -1988,28 +1920,17 @@ FOGRT__HOT bool fogrt__hit_triangle(fogrt__v3 o, fogrt__v3 d, fogrt__v3 v0, fogr
    squared distance of the centre from the line), which does not cancel for distant spheres,
    and the nearer root comes from q = -b - sign(b) sqrt(disc) (no cancellation either). */
 FOGRT__HOT bool fogrt__hit_sphere(fogrt__v3 o, fogrt__v3 d, fogrt__v3 c, float r, float tmin, float tmax, float *t) {
-    fogrt__v3 oc = fogrt__sub(o, c), f;
-    float b = fogrt__dot(oc, d), disc, sq, q, cc, t0, t1;
-    f = fogrt__madd(oc, d, -b);
-    disc = r * r - fogrt__dot(f, f);
+    fogrt__v3 oc = fogrt__sub(o, c);
+    float b = fogrt__dot(oc, d);
+    fogrt__v3 f = fogrt__madd(oc, d, -b);
+    float disc = r * r - fogrt__dot(f, f);
     if (!(disc >= 0.0f)) return false;
-    sq = sqrtf(disc);
-    cc = fogrt__dot(oc, oc) - r * r;
-    q = b > 0.0f ? -(b + sq) : (sq - b);
-    t0 = q;
-    t1 = q != 0.0f ? cc / q : q;
+    float sq = sqrtf(disc), cc = fogrt__dot(oc, oc) - r * r;
+    float q = b > 0.0f ? -(b + sq) : (sq - b), t0 = q, t1 = q != 0.0f ? cc / q : q;
     if (t0 > t1) { float tmp = t0; t0 = t1; t1 = tmp; }
     if (t0 > tmin && t0 < tmax) { *t = t0; return true; }
     if (t1 > tmin && t1 < tmax) { *t = t1; return true; }
     return false;
-}
-FOGRT__PUBLIC bool fogrt_intersect_triangle(fogrt_vec3 v0, fogrt_vec3 v1, fogrt_vec3 v2, fogrt_vec3 o,
-                                            fogrt_vec3 d, float tmin, float tmax, float *t, float *u, float *v) {
-    return fogrt__hit_triangle(o, d, v0, fogrt__sub(v1, v0), fogrt__sub(v2, v0), tmin, tmax, t, u, v);
-}
-FOGRT__PUBLIC bool fogrt_intersect_sphere(fogrt_vec3 center, float radius, fogrt_vec3 o, fogrt_vec3 d,
-                                          float tmin, float tmax, float *t) {
-    return fogrt__hit_sphere(o, d, center, radius, tmin, tmax, t);
 }
 
 /* The reciprocal of a direction component, never a division by zero: +-0 (and anything
@@ -2027,8 +1948,7 @@ typedef struct fogrt__ray { fogrt__v3 o, inv; } fogrt__ray;
    grazing a face is not lost to rounding. */
 FOGRT__HOT float fogrt__slab(const fogrt_bvh_node *n, const fogrt__ray *r, float tmin, float tmax) {
     float t0 = tmin, t1 = tmax;
-    int a;
-    for (a = 0; a < 3; ++a) {
+    for (int a = 0; a < 3; ++a) {
         float inv = fogrt__comp(r->inv, a), o = fogrt__comp(r->o, a);
         float tn = ((inv < 0.0f ? n->bmax[a] : n->bmin[a]) - o) * inv;
         float tf = ((inv < 0.0f ? n->bmin[a] : n->bmax[a]) - o) * inv;
@@ -2056,19 +1976,16 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
                                          fogrt_hit *hit, bool any_hit) {
     uint32_t stack[FOGRT__BVH_MAX_DEPTH + 2], sp = 0, tri_count = s->tri_count;
     float stack_t[FOGRT__BVH_MAX_DEPTH + 2];
-    const fogrt_bvh_node *nodes = s->nodes, *node;
-    fogrt__ray r;
+    const fogrt_bvh_node *nodes = s->nodes, *node = &nodes[0];
     bool found = false;
     float cull = fogrt__cull(tmax);                      /* tmax with the slack, kept with it */
     if (!s->built || s->tri_count + s->sph_count == 0) return false;
-    r.o = o;
-    r.inv = fogrt__v(fogrt__safe_rcp(d.x), fogrt__safe_rcp(d.y), fogrt__safe_rcp(d.z));
-    node = &nodes[0];
+    fogrt__ray r = { o, { fogrt__safe_rcp(d.x), fogrt__safe_rcp(d.y), fogrt__safe_rcp(d.z) } };
     if (fogrt__slab(node, &r, tmin, tmax) == FLT_MAX) return false;
     for (;;) {
         if (node->prim_count > 0) {                      /* leaf: test its primitives */
-            uint32_t i, end = node->left_first + node->prim_count;
-            for (i = node->left_first; i < end; ++i) {
+            uint32_t end = node->left_first + node->prim_count;
+            for (uint32_t i = node->left_first; i < end; ++i) {
                 const fogrt__prim *p = &s->prims[i];
                 float t, u = 0.0f, v = 0.0f;
                 bool h = p->id < tri_count ? fogrt__hit_triangle(o, d, p->a, p->b, p->c, tmin, tmax, &t, &u, &v)
@@ -2111,16 +2028,6 @@ FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3
 #endif
     return fogrt__bvh2_traverse(s, o, d, tmin, tmax, hit, any_hit);
 }
-FOGRT__PUBLIC bool fogrt_scene_intersect(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax, fogrt_hit *hit) {
-    fogrt_hit tmp;
-    FOGRT_ASSERT(s);
-    return fogrt__traverse(s, o, d, tmin, tmax, hit ? hit : &tmp, false);
-}
-FOGRT__PUBLIC bool fogrt_scene_occluded(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax) {
-    fogrt_hit tmp;
-    FOGRT_ASSERT(s);
-    return fogrt__traverse(s, o, d, tmin, tmax, &tmp, true);
-}
 
 /* ------------------------------------------------------------------------------------------
    2.2 The Bidirectional Scattering Distribution Function: diffuse, mirror, refraction, glass
@@ -2129,16 +2036,16 @@ FOGRT__PUBLIC bool fogrt_scene_occluded(const fogrt_scene *s, fogrt_vec3 o, fogr
    to tell entering (wo.z > 0) from leaving (wo.z < 0).
    ------------------------------------------------------------------------------------------ */
 FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *y) {
-    float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f, r, phi;
+    float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
     if (a == 0.0f && b == 0.0f) { *x = 0.0f; *y = 0.0f; return; }
-    if (fabsf(a) > fabsf(b)) { r = a; phi = (FOGRT__PI / 4.0f) * (b / a); }
-    else                     { r = b; phi = FOGRT__PI / 2.0f - (FOGRT__PI / 4.0f) * (a / b); }
+    bool wide = fabsf(a) > fabsf(b);
+    float r = wide ? a : b, phi = wide ? (FOGRT__PI / 4.0f) * (b / a) : FOGRT__PI / 2.0f - (FOGRT__PI / 4.0f) * (a / b);
     *x = r * cosf(phi);
     *y = r * sinf(phi);
 }
 /* Cosine-weighted hemisphere: the disk lifted to the hemisphere (Malley). pdf = cos / pi. */
 FOGRT__PUBLIC fogrt_vec3 fogrt_sample_cosine_hemisphere(float u1, float u2) {
-    float x, y;
+    float x, y;   /* a point of the unit disk */
     fogrt__concentric_disk(u1, u2, &x, &y);
     return fogrt__v(x, y, sqrtf(FOGRT__MAX(0.0f, 1.0f - x * x - y * y)));
 }
@@ -2153,7 +2060,7 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_reflect(fogrt_vec3 n, fogrt_vec3 wo) {
    optically thinner side: the incident cosine when entering, the transmitted one when
    leaving (using cos_i there would be wrong). Total internal reflection is tested first. */
 FOGRT__PUBLIC float fogrt_fresnel_schlick(float eta, float cos_i) {
-    float r0 = (eta - 1.0f) / (eta + 1.0f), c, m;
+    float r0 = (eta - 1.0f) / (eta + 1.0f), c;
     r0 *= r0;
     cos_i = FOGRT__CLAMP(cos_i, -1.0f, 1.0f);
     if (eta < 1.0f) { cos_i = -cos_i; eta = 1.0f / eta; }   /* make the inside the denser side */
@@ -2164,17 +2071,16 @@ FOGRT__PUBLIC float fogrt_fresnel_schlick(float eta, float cos_i) {
         if (sin2_t >= 1.0f) return 1.0f;                /* total internal reflection */
         c = sqrtf(1.0f - sin2_t);
     }
-    m = 1.0f - c;
+    float m = 1.0f - c;
     return r0 + (1.0f - r0) * m * m * m * m * m;
 }
 /* Snell's law: wi = -wo/eta + (cos_i/eta - cos_t) n, after flipping n (and eta) to wo's side. */
 FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 n, float eta, fogrt_vec3 wo, fogrt_vec3 *wi) {
-    float cos_i = fogrt__dot(n, wo), sin2_i, sin2_t, cos_t;
+    float cos_i = fogrt__dot(n, wo);
     if (cos_i < 0.0f) { eta = 1.0f / eta; cos_i = -cos_i; n = fogrt__neg(n); }
-    sin2_i = FOGRT__MAX(0.0f, 1.0f - cos_i * cos_i);
-    sin2_t = sin2_i / (eta * eta);
+    float sin2_i = FOGRT__MAX(0.0f, 1.0f - cos_i * cos_i), sin2_t = sin2_i / (eta * eta);
     if (sin2_t >= 1.0f) return false;
-    cos_t = sqrtf(1.0f - sin2_t);
+    float cos_t = sqrtf(1.0f - sin2_t);
     *wi = fogrt__normalize(fogrt__add(fogrt__scale(wo, -1.0f / eta), fogrt__scale(n, cos_i / eta - cos_t)));
     return true;
 }
@@ -2217,7 +2123,6 @@ FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel
                                      fogrt_vec3 wo, float u_lobe, float u1, float u2,
                                      fogrt_bsdf_sample *out) {
     fogrt_bsdf_type type = fogrt__bsdf_type(m);
-    fogrt__v3 wi;
     memset(out, 0, sizeof *out);
     if (wo.z == 0.0f) return false;                      /* exactly on the horizon */
     if (type == FOGRT_BSDF_MIRROR) {
@@ -2239,7 +2144,7 @@ FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel
         return true;
     }
     (void)u_lobe; (void)fresnel;                         /* diffuse: cosine-weighted */
-    wi = fogrt_sample_cosine_hemisphere(u1, u2);
+    fogrt__v3 wi = fogrt_sample_cosine_hemisphere(u1, u2);
     if (wi.z <= 0.0f) return false;
     if (wo.z < 0.0f) wi.z = -wi.z;                       /* on wo's side */
     out->wi = wi;
@@ -2276,11 +2181,9 @@ FOGRT__PUBLIC float fogrt_bsdf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, 
    ------------------------------------------------------------------------------------------ */
 /* What the integrators read from a render desc. */
 typedef struct fogrt__settings {
-    int max_depth, min_depth, rr_depth, light_samples;
-    bool nee, mis;
+    fogrt_render_desc desc;    /* the desc, checked: nee, mis, min_depth, rr_depth, light_samples, ... */
+    int max_depth;             /* -1 (no limit) as the largest int */
     fogrt_integrator integrator;
-    fogrt_fresnel fresnel;
-    fogrt_render_desc desc;    /* the whole desc, for Part II's settings */
 } fogrt__settings;
 
 /* A scattering vertex: a point in the medium, or a surface point with its shading frame. */
@@ -2309,11 +2212,10 @@ FOGRT__PUBLIC void fogrt_sample_triangle(float u1, float u2, float *b1, float *b
    formed as sin^2 / (1 + cos), which stays accurate for a small or distant sphere. */
 FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 c, float r, fogrt__v3 p, float *dist) {
     fogrt__v3 pc = fogrt__sub(c, p);
-    float d2 = fogrt__dot(pc, pc), sin2_max, cos_max;
+    float d2 = fogrt__dot(pc, pc);
     *dist = sqrtf(d2);
     if (d2 <= r * r) return -1.0f;                       /* inside (or on) the sphere */
-    sin2_max = r * r / d2;
-    cos_max = sqrtf(FOGRT__MAX(0.0f, 1.0f - sin2_max));
+    float sin2_max = r * r / d2, cos_max = sqrtf(FOGRT__MAX(0.0f, 1.0f - sin2_max));
     return sin2_max / (1.0f + cos_max);
 }
 /* The direction whose angle theta from the frame's axis has 1 - cos theta = omc, at azimuth
@@ -2325,16 +2227,14 @@ FOGRT__HOT fogrt__v3 fogrt__in_cone(const fogrt__frame *f, float omc, float u) {
 }
 FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 center, float radius, fogrt_vec3 p,
                                                          float u1, float u2, float *pdf) {
-    float dist, omc = fogrt__sphere_one_minus_cos_max(center, radius, p, &dist), one_minus_cos;
-    fogrt__frame f;
+    float dist, omc = fogrt__sphere_one_minus_cos_max(center, radius, p, &dist);
     if (omc <= 0.0f) {   /* inside: every direction sees the sphere */
         if (pdf) *pdf = FOGRT__INV_4PI;
         return fogrt_sample_uniform_sphere(u1, u2);
     }
-    one_minus_cos = u1 * omc;
-    f = fogrt__frame_from_z(fogrt__scale(fogrt__sub(center, p), 1.0f / dist));
+    fogrt__frame f = fogrt__frame_from_z(fogrt__scale(fogrt__sub(center, p), 1.0f / dist));
     if (pdf) *pdf = 1.0f / (2.0f * FOGRT__PI * omc);
-    return fogrt__in_cone(&f, one_minus_cos, u2);
+    return fogrt__in_cone(&f, u1 * omc, u2);
 }
 FOGRT__PUBLIC float fogrt_sphere_solid_angle_pdf(fogrt_vec3 center, float radius, fogrt_vec3 p) {
     float dist, omc = fogrt__sphere_one_minus_cos_max(center, radius, p, &dist);
@@ -2356,9 +2256,8 @@ FOGRT__PRIVATE float fogrt__spot_profile(const fogrt_light_desc *l, const float 
     return fogrt_spot_falloff(l->cutoff_deg, l->beam_deg, cos_theta);
 }
 FOGRT__PRIVATE float fogrt__power_heuristic(float a, float b) {
-    float r;
     if (!(a > 0.0f)) return 0.0f;
-    r = b / a;
+    float r = b / a;
     if (!(r == r)) return 0.0f;
     return 1.0f / (1.0f + r * r);     /* = a^2 / (a^2 + b^2), without overflow */
 }
@@ -2375,7 +2274,6 @@ FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt_
    world space, with the geometric-side test against light leaks), the phase function in the
    fog. *pdf is the density with which BSDF / phase sampling would have chosen wi. */
 FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf) {
-    fogrt__v3 wo_l, wi_l;
 #ifndef FOGRT_NO_MEDIUM
     if (v->is_medium) {
         float p = fogrt_hg_pdf(s->medium.g, v->wo, wi);
@@ -2386,8 +2284,7 @@ FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *
     (void)s;
 #endif
     if (fogrt__dot(wi, v->ng) <= 0.0f) { *pdf = 0.0f; return fogrt__v(0.0f, 0.0f, 0.0f); }
-    wo_l = fogrt__to_local(&v->frame, v->wo);
-    wi_l = fogrt__to_local(&v->frame, wi);
+    fogrt__v3 wo_l = fogrt__to_local(&v->frame, v->wo), wi_l = fogrt__to_local(&v->frame, wi);
     *pdf = fogrt_bsdf_pdf(v->m, wo_l, wi_l);
     return fogrt__scale(fogrt_bsdf_eval(v->m, wo_l, wi_l), fabsf(wi_l.z));
 }
@@ -2400,9 +2297,9 @@ FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *
 FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l, fogrt__v3 x,
                                           const float *u, fogrt_light_sample *ls) {
     fogrt__v3 to = fogrt__sub(l->position, x), I = l->intensity;
-    float d2 = fogrt__dot(to, to), d, pdf, t;
+    float d2 = fogrt__dot(to, to), pdf, t;
     if (!(d2 > 0.0f)) return false;                    /* x is the light: no direction */
-    d = sqrtf(d2);
+    float d = sqrtf(d2);
     if (l->type == FOGRT_LIGHT_SPOT)
         I = fogrt__scale(I, fogrt__spot_profile(l, s->spot_cos + 2 * (l - s->lights), -fogrt__dot(to, l->direction) / d));
     if (fogrt__is_black(I)) return false;
@@ -2427,9 +2324,8 @@ FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_ligh
    that entry (for a continuous position within it). */
 FOGRT__PRIVATE int fogrt__cdf_find(const float *cdf, int n, float u, float *frac) {
     int lo = 0, hi = n - 1;
-    float c0;
     while (lo < hi) { int mid = (lo + hi) / 2; if (cdf[mid] <= u) lo = mid + 1; else hi = mid; }
-    c0 = lo ? cdf[lo - 1] : 0.0f;
+    float c0 = lo ? cdf[lo - 1] : 0.0f;
     *frac = cdf[lo] > c0 ? FOGRT__CLAMP((u - c0) / (cdf[lo] - c0), 0.0f, FOGRT__ONE_MINUS_EPS) : 0.5f;
     return lo;
 }
@@ -2437,10 +2333,9 @@ FOGRT__PRIVATE int fogrt__cdf_find(const float *cdf, int n, float u, float *frac
    point on it. *ny is its geometric normal. */
 FOGRT__HOT uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__area_light *a, const float *u,
                                                  fogrt__v3 *y, fogrt__v3 *ny) {
-    const fogrt__v3 *v;
     float b1, b2, frac;
     uint32_t tri = s->light_prims[a->first + (uint32_t)fogrt__cdf_find(s->light_cdf + a->first, (int)a->count, u[0], &frac)];
-    v = &s->tri_v[3 * tri];
+    const fogrt__v3 *v = &s->tri_v[3 * tri];
     fogrt_sample_triangle(u[1], u[2], &b1, &b2);
     *y = fogrt__add(v[0], fogrt__add(fogrt__scale(fogrt__sub(v[1], v[0]), b1), fogrt__scale(fogrt__sub(v[2], v[0]), b2)));
     *ny = fogrt__normalize(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
@@ -2451,8 +2346,7 @@ FOGRT__HOT uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__
    of a one-sided emitter, or p inside an emitting sphere. */
 FOGRT__HOT bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area_light *a, fogrt__v3 p,
                                              const float *u, fogrt_light_sample *ls) {
-    fogrt__v3 y, ny, to;
-    float d2, cos_l;
+    fogrt__v3 y, ny;
     ls->is_delta = false;
     if (a->sphere != UINT32_MAX) {
         fogrt__v3 c = s->sph_c[a->sphere];
@@ -2465,12 +2359,12 @@ FOGRT__HOT bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area
         return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
     }
     ls->Le = s->materials[s->tri_material[fogrt__sample_mesh_point(s, a, u, &y, &ny)]].emission;
-    to = fogrt__sub(y, p);
-    d2 = fogrt__dot(to, to);
+    fogrt__v3 to = fogrt__sub(y, p);
+    float d2 = fogrt__dot(to, to);
     if (!(d2 > 0.0f)) return false;
     ls->dist = sqrtf(d2);
     ls->wi = fogrt__scale(to, 1.0f / ls->dist);
-    cos_l = -fogrt__dot(ls->wi, ny);
+    float cos_l = -fogrt__dot(ls->wi, ny);
     if (!(cos_l > 0.0f)) return false;                   /* the back of a one-sided emitter */
     ls->pdf = d2 / (cos_l * a->area);                    /* area pdf 1/A -> solid angle */
     return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
@@ -2479,29 +2373,24 @@ FOGRT__HOT bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area
    primitive prim, geometric normal ny) from p: the MIS partner of BSDF sampling. */
 FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, fogrt__v3 p, fogrt__v3 y, fogrt__v3 ny) {
     uint32_t li = s->prim_light[prim];
-    const fogrt__area_light *a;
-    fogrt__v3 to;
-    float d2, cos_l;
     if (li == UINT32_MAX) return 0.0f;
-    a = &s->area_lights[li];
+    const fogrt__area_light *a = &s->area_lights[li];
     if (a->sphere != UINT32_MAX) {
         fogrt__v3 c = s->sph_c[a->sphere];
         float r = s->sph_r[a->sphere];
         if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r) return 0.0f;
         return fogrt_sphere_solid_angle_pdf(c, r, p);
     }
-    to = fogrt__sub(y, p);
-    d2 = fogrt__dot(to, to);
-    cos_l = fabsf(fogrt__dot(fogrt__normalize(to), ny));
+    fogrt__v3 to = fogrt__sub(y, p);
+    float d2 = fogrt__dot(to, to), cos_l = fabsf(fogrt__dot(fogrt__normalize(to), ny));
     return cos_l > 0.0f ? d2 / (cos_l * a->area) : 0.0f;
 }
 /* One numbering of all lights (point and spot, then area), so that one call samples any. */
 FOGRT__PUBLIC uint32_t fogrt_scene_light_total(const fogrt_scene *s) { return s->light_count + s->area_light_count; }
 FOGRT__PUBLIC bool fogrt_scene_sample_light(const fogrt_scene *s, uint32_t light, fogrt_vec3 p, float u1, float u2,
                                             float u3, fogrt_light_sample *ls) {
-    float u[3];
     FOGRT_ASSERT(s && s->built && ls && light < fogrt_scene_light_total(s));
-    u[0] = u1; u[1] = u2; u[2] = u3;
+    float u[3] = { u1, u2, u3 };
     if (light < s->light_count) return fogrt__sample_point_light(s, &s->lights[light], p, u, ls);
     return fogrt__sample_area_light(s, &s->area_lights[light - s->light_count], p, u, ls);
 }
@@ -2610,9 +2499,8 @@ FOGRT__PUBLIC float fogrt_hg_phase(float g, float mu) {
    subtracts nearly equal numbers and divides the rounding by 2g: its error grows like
    1e-7 / |g|. test_hg_eq11_matches_stable_form shows where it agrees with the form below. */
 FOGRT__PRIVATE float fogrt__sample_hg_mu_eq11(float g, float u) {
-    float s;
     if (g == 0.0f) return 2.0f * u - 1.0f;
-    s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
+    float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
     return FOGRT__CLAMP((1.0f + g * g - s * s) / (2.0f * g), -1.0f, 1.0f);
 }
 /* The same inverse, expanded so that nothing divides by g:
@@ -2624,11 +2512,10 @@ FOGRT__PRIVATE float fogrt__hg_D(float g, float u) {
     return g >= 0.0f ? (1.0f - g) + 2.0f * g * u : (1.0f + g) - 2.0f * g * (1.0f - u);
 }
 FOGRT__PUBLIC float fogrt_sample_hg_mu(float g, float u) {
-    float D, mu;
     g = fogrt__clamp_g(g);
     u = FOGRT__CLAMP(u, 0.0f, 1.0f);
-    D = fogrt__hg_D(g, u);
-    mu = (2.0f * u - (1.0f - g)) / D + 2.0f * g * (1.0f - g) * (1.0f + g) * u * (1.0f - u) / (D * D);
+    float D = fogrt__hg_D(g, u);
+    float mu = (2.0f * u - (1.0f - g)) / D + 2.0f * g * (1.0f - g) * (1.0f + g) * u * (1.0f - u) / (D * D);
     return FOGRT__CLAMP(mu, -1.0f, 1.0f);
 }
 /* Near the peak (|g| -> 1) mu rounds to +-1 long before the angle is 0: at g = 0.99 about
@@ -2644,10 +2531,10 @@ FOGRT__PRIVATE void fogrt__sample_hg_pm(float g, float u, float *one_minus_mu, f
 /* The same for a unit wo (the integrator's, which skips the normalisation). */
 FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg_unit(float g, fogrt__v3 wo, float u1, float u2, float *pdf) {
     fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));   /* z: propagation */
-    float omm, opm, mu;
+    float omm, opm;
     g = fogrt__clamp_g(g);
     fogrt__sample_hg_pm(g, FOGRT__CLAMP(u1, 0.0f, 1.0f), &omm, &opm);
-    mu = omm < opm ? 1.0f - omm : opm - 1.0f;          /* from the nearer end: no rounding */
+    float mu = omm < opm ? 1.0f - omm : opm - 1.0f;    /* from the nearer end: no rounding */
     if (pdf) *pdf = fogrt__hg_phase_pm(g, omm, opm);
     return fogrt__around(&f, mu, sqrtf(omm * opm), u2);
 }
@@ -2736,42 +2623,11 @@ FOGRT__HOT bool fogrt__surface_vertex_set(fogrt__vertex *v, const fogrt_material
 FOGRT__HOT bool fogrt__sample_surface(const fogrt__settings *st, const fogrt__vertex *v, const float *u,
                                       fogrt_bsdf_sample *bs, fogrt__v3 *wi, float *cos_o) {
     fogrt__v3 wo_l = fogrt__to_local(&v->frame, v->wo);
-    float side;
     *cos_o = wo_l.z;
-    if (!fogrt_sample_bsdf(v->m, st->fresnel, wo_l, u[0], u[1], u[2], bs)) return false;
+    if (!fogrt_sample_bsdf(v->m, st->desc.fresnel, wo_l, u[0], u[1], u[2], bs)) return false;
     *wi = fogrt__normalize(fogrt__to_world(&v->frame, bs->wi));
-    side = fogrt__dot(*wi, v->ng) * fogrt__dot(v->wo, v->ng);
+    float side = fogrt__dot(*wi, v->ng) * fogrt__dot(v->wo, v->ng);
     return bs->is_transmission ? side < 0.0f : side > 0.0f;
-}
-/* The building blocks of an integrator, public (declared with fogrt_surface): Algorithm 1's
-   surface vertex, ray offset and shadow ray, as a caller of its own sees them. */
-FOGRT__PUBLIC void fogrt_scene_surface(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, const fogrt_hit *hit,
-                                       fogrt_surface *out) {
-    fogrt__vertex v;
-    fogrt__v3 p, ng, ns;
-    FOGRT_ASSERT(s && s->built && hit && out && hit->prim < s->tri_count + s->sph_count);
-    fogrt__surface_frame(s, o, d, hit, &p, &ng, &ns);
-    out->front = fogrt__surface_vertex_set(&v, &s->materials[fogrt_scene_get_prim_material(s, hit->prim)],
-                                           fogrt__neg(d), p, ng, ns, false);
-    out->p = p; out->ng = v.ng; out->material = *v.m;
-    out->s = v.frame.s; out->t = v.frame.t; out->n = v.frame.n;
-}
-FOGRT__PUBLIC fogrt_vec3 fogrt_surface_offset(const fogrt_scene *s, const fogrt_surface *sf, fogrt_vec3 w) {
-    return fogrt__offset(s, sf->p, sf->ng, w);
-}
-FOGRT__PUBLIC float fogrt_scene_light_pdf(const fogrt_scene *s, fogrt_vec3 from, const fogrt_hit *hit,
-                                          const fogrt_surface *sf) {
-    return fogrt__area_light_pdf(s, hit->prim, from, sf->p, sf->ng);
-}
-FOGRT__PUBLIC bool fogrt_scene_visible(const fogrt_scene *s, const fogrt_surface *sf, fogrt_vec3 p,
-                                       const fogrt_light_sample *ls) {
-    fogrt__vertex v;
-    uint64_t rays = 0;
-    memset(&v, 0, sizeof v);
-    v.p = p;
-    v.is_medium = sf == NULL;                 /* no offset in the fog; no transmittance either way */
-    if (sf) v.ng = sf->ng;
-    return fogrt__shadow(s, &v, ls, &rays) > 0.0f;
 }
 /* Lines 5-10: light sampling at a scattering vertex v, every light (area lights
    light_samples times), each sample f Le T w / (n pdf) with w the MIS weight (1 for a point
@@ -2779,18 +2635,17 @@ FOGRT__PUBLIC bool fogrt_scene_visible(const fogrt_scene *s, const fogrt_surface
 FOGRT__PRIVATE fogrt__v3 fogrt__nee(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v,
                                     fogrt_rng *rng, uint64_t *rays) {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
-    uint32_t i, total = s->light_count + s->area_light_count;
-    for (i = 0; i < total; ++i) {
-        int j, n = i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->light_samples;
-        for (j = 0; j < n; ++j) {
+    uint32_t total = s->light_count + s->area_light_count;
+    for (uint32_t i = 0; i < total; ++i) {
+        int n = i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->desc.light_samples;
+        for (int j = 0; j < n; ++j) {
             fogrt_light_sample ls;
-            fogrt__v3 f;
-            float u[3], pdf_b, tr, w;
+            float pdf_b, tr, u[3];
             u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng); u[2] = fogrt_rng_float(rng);
             if (!fogrt_scene_sample_light(s, i, v->p, u[0], u[1], u[2], &ls)) continue;
-            f = fogrt__vertex_f(s, v, ls.wi, &pdf_b);
+            fogrt__v3 f = fogrt__vertex_f(s, v, ls.wi, &pdf_b);
             if (fogrt__is_black(f) || (tr = fogrt__shadow(s, v, &ls, rays)) == 0.0f) continue;
-            w = ls.is_delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
+            float w = ls.is_delta || !st->desc.mis ? 1.0f : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
             L = fogrt__add(L, fogrt__scale(fogrt__mul(f, ls.Le), tr * w / (ls.pdf * (float)n)));
         }
     }
@@ -2802,9 +2657,9 @@ FOGRT__PRIVATE fogrt__v3 fogrt__nee(const fogrt_scene *s, const fogrt__settings 
 FOGRT__PRIVATE float fogrt__emission_weight(const fogrt_scene *s, const fogrt__settings *st, bool prev_delta,
                                             float prev_pdf, fogrt__v3 prev_p, const fogrt_hit *hit, fogrt__v3 p,
                                             fogrt__v3 ng) {
-    if (prev_delta || !st->nee) return 1.0f;
-    if (!st->mis) return 0.0f;
-    return fogrt__power_heuristic(prev_pdf, (float)st->light_samples * fogrt__area_light_pdf(s, hit->prim, prev_p, p, ng));
+    if (prev_delta || !st->desc.nee) return 1.0f;
+    if (!st->desc.mis) return 0.0f;
+    return fogrt__power_heuristic(prev_pdf, (float)st->desc.light_samples * fogrt__area_light_pdf(s, hit->prim, prev_p, p, ng));
 }
 /* Algorithm 1's state between two vertices: the ray, the throughput beta, the light
    gathered, and what MIS needs of the vertex the ray left. */
@@ -2823,9 +2678,8 @@ FOGRT__PRIVATE bool fogrt__a1_vertex(const fogrt_scene *s, const fogrt__settings
                                      fogrt_rng *rng, uint64_t *rays) {
     fogrt_hit hit;
     float t_fog = INFINITY;
-    bool found;
     ++*rays;
-    found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, &hit, false);                 /* 3: t_i */
+    bool found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, &hit, false);            /* 3: t_i */
 #ifndef FOGRT_NO_MEDIUM
     if (w->in_fog) t_fog = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(rng));   /* 4: t_fog */
 #else
@@ -2839,19 +2693,18 @@ FOGRT__PRIVATE bool fogrt__a1_vertex(const fogrt_scene *s, const fogrt__settings
         return true;
     }
     if (!found) {                                                                       /* the sky */
-        if (s->has_env && w->depth >= st->min_depth) w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__env_radiance(s, w->d)));
+        if (s->has_env && w->depth >= st->desc.min_depth) w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__env_radiance(s, w->d)));
         return false;
-    } else {                                                                            /* 8, 18 */
-        const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit.prim)];
-        fogrt__v3 p, ng, ns;
-        fogrt__surface_frame(s, w->o, w->d, &hit, &p, &ng, &ns);
-        if (!fogrt__is_black(m->emission) && fogrt__dot(w->d, ng) < 0.0f && w->depth >= st->min_depth)
-            w->L = fogrt__add(w->L, fogrt__scale(fogrt__mul(w->beta, m->emission),
-                                                 fogrt__emission_weight(s, st, w->prev_delta, w->prev_pdf, w->prev_p, &hit, p, ng)));
-        if (fogrt__bsdf_type(m) == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance)) return false;
-        (void)fogrt__surface_vertex_set(v, m, fogrt__neg(w->d), p, ng, ns, w->in_fog);
-        return true;
     }
+    const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit.prim)];   /* 8, 18 */
+    fogrt__v3 p, ng, ns;
+    fogrt__surface_frame(s, w->o, w->d, &hit, &p, &ng, &ns);
+    if (!fogrt__is_black(m->emission) && fogrt__dot(w->d, ng) < 0.0f && w->depth >= st->desc.min_depth)
+        w->L = fogrt__add(w->L, fogrt__scale(fogrt__mul(w->beta, m->emission),
+                                             fogrt__emission_weight(s, st, w->prev_delta, w->prev_pdf, w->prev_p, &hit, p, ng)));
+    if (fogrt__bsdf_type(m) == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance)) return false;
+    (void)fogrt__surface_vertex_set(v, m, fogrt__neg(w->d), p, ng, ns, w->in_fog);
+    return true;
 }
 /* Lines 11-22: the new direction, inverse HG in fog (15-17, eq. 11-12: weight p / pdf = 1),
    the BSDF on an object (19-21, weight f cos / pdf: eq. 13, line 22). Returns false when
@@ -2860,7 +2713,7 @@ FOGRT__PRIVATE bool fogrt__a1_scatter(const fogrt_scene *s, const fogrt__setting
                                       const fogrt__vertex *v, fogrt_rng *rng) {
     fogrt_bsdf_sample bs;
     fogrt__v3 wi;
-    float u[3], cos_o;
+    float cos_o, u[3];
     u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng); u[2] = fogrt_rng_float(rng);
 #ifndef FOGRT_NO_MEDIUM
     if (v->is_medium) {
@@ -2886,26 +2739,24 @@ FOGRT__PRIVATE bool fogrt__a1_scatter(const fogrt_scene *s, const fogrt__setting
    lights and takes one more step that only adds the emission it finds (its MIS half). */
 FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
                                            fogrt_rng *rng, uint64_t *rays, bool one_bounce) {
-    fogrt__walk w;
     bool last = false;
-    uint32_t vertex;
+    fogrt__walk w;
     w.o = o; w.d = d; w.prev_p = o;
     w.beta = fogrt__v(1.0f, 1.0f, 1.0f); w.L = fogrt__v(0.0f, 0.0f, 0.0f);
     w.prev_pdf = 1.0f; w.prev_delta = true;
     w.in_fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0;                 /* the camera is in the fog */
     w.depth = 0;
-    for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
+    for (uint32_t vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
         fogrt__vertex v;
-        bool scattering;
         if (!fogrt__a1_vertex(s, st, &w, &v, rng, rays)) break;           /* 3-5, 8, 14, 18 */
         if (last || w.depth >= st->max_depth) break;                       /* 2: ray depth > 0 */
-        scattering = v.is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v.m));
-        if (st->nee && scattering && w.depth + 1 >= st->min_depth)         /* 6, 9 */
+        bool scattering = v.is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v.m));
+        if (st->desc.nee && scattering && w.depth + 1 >= st->desc.min_depth)         /* 6, 9 */
             w.L = fogrt__add(w.L, fogrt__mul(w.beta, fogrt__nee(s, st, &v, rng, rays)));
         if (one_bounce && scattering) last = true;                         /* the baseline: one step more */
         if (!fogrt__a1_scatter(s, st, &w, &v, rng)) break;                 /* 11-22 */
         ++w.depth;                                                         /* 12, 23 */
-        if (w.depth > st->rr_depth) {                                      /* 2: coin flip(p) */
+        if (w.depth > st->desc.rr_depth) {                                      /* 2: coin flip(p) */
             float q = FOGRT__MIN(0.95f, fogrt__max3(w.beta));
             if (!(fogrt_rng_float(rng) < q)) break;
             w.beta = fogrt__scale(w.beta, 1.0f / q);
@@ -2922,7 +2773,7 @@ typedef struct fogrt__camera { fogrt__v3 pos, right, up, fwd; float tan_x, tan_y
 FOGRT__PRIVATE fogrt__camera fogrt__camera_setup(const fogrt_scene *s, int width, int height) {
     fogrt__camera c;
     fogrt_camera_desc d = s->camera;
-    float aspect = (float)width / (float)FOGRT__MAX(height, 1), t;
+    float aspect = (float)width / (float)FOGRT__MAX(height, 1);
     if (!s->has_camera) {                       /* no camera: look at the scene from +z */
         fogrt__v3 centre = fogrt__scale(fogrt__add(s->bmin, s->bmax), 0.5f);
         float r = 0.5f * fogrt__length(fogrt__sub(s->bmax, s->bmin));
@@ -2936,7 +2787,7 @@ FOGRT__PRIVATE fogrt__camera fogrt__camera_setup(const fogrt_scene *s, int width
     c.fwd = fogrt__normalize(fogrt__sub(d.look_at, d.position));
     c.right = fogrt__normalize(fogrt__cross(c.fwd, d.up));
     c.up = fogrt__cross(c.right, c.fwd);
-    t = tanf(0.5f * d.fov_deg * FOGRT__PI / 180.0f);
+    float t = tanf(0.5f * d.fov_deg * FOGRT__PI / 180.0f);
     if (d.fov_is_horizontal) { c.tan_x = t; c.tan_y = t / aspect; }
     else { c.tan_y = t; c.tan_x = t * aspect; }
     c.lens = d.lens_radius;
@@ -2950,38 +2801,21 @@ FOGRT__PRIVATE void fogrt__camera_generate(const fogrt__camera *c, int width, in
     fogrt__v3 dir = fogrt__normalize(fogrt__add(c->fwd, fogrt__add(fogrt__scale(c->right, x), fogrt__scale(c->up, y))));
     *o = c->pos;
     if (c->lens > 0.0f) {        /* thin lens: aim through the focus point from a lens sample */
-        float lx, ly;
         fogrt__v3 focus = fogrt__madd(c->pos, dir, c->focal / fogrt__dot(dir, c->fwd));
+        float lx, ly;
         fogrt__concentric_disk(lu1, lu2, &lx, &ly);
         *o = fogrt__add(c->pos, fogrt__add(fogrt__scale(c->right, lx * c->lens), fogrt__scale(c->up, ly * c->lens)));
         dir = fogrt__normalize(fogrt__sub(focus, *o));
     }
     *d = dir;
 }
-FOGRT__PUBLIC void fogrt_camera_ray(const fogrt_scene *s, int width, int height, float px, float py,
-                                    float lens_u1, float lens_u2, fogrt_vec3 *o, fogrt_vec3 *d) {
-    fogrt__camera c;
-    FOGRT_ASSERT(s && o && d);
-    c = fogrt__camera_setup(s, width, height);
-    fogrt__camera_generate(&c, width, height, px, py, lens_u1, lens_u2, o, d);
-}
 
 /* ------------------------------------------------------------------------------------------
-   I.3 The scene build: bounds, the tree, the light tables and the feature analysis
+   I.3 The scene build: bounds, the tree, the light tables
    fogrt_scene_build turns what was added into what the renderer reads: the BVH (2.1)
    over every primitive, the primitives in BVH order in the form the traversal wants, one
-   table per area light (2.3), the ray offset scale, and the feature bits.
+   table per area light (2.3), the ray offset scale, and whether there is fog.
    ------------------------------------------------------------------------------------------ */
-/* Whether a primitive uses a material of this type: the materials are looked at first, so
-   that a scene without one does not scan its million triangles. */
-FOGRT__PRIVATE bool fogrt__material_used(const fogrt_scene *s, fogrt_bsdf_type type) {
-    uint32_t i;
-    for (i = 0; i < s->material_count && fogrt__bsdf_type(&s->materials[i]) != type; ++i) {}
-    if (i == s->material_count) return false;
-    for (i = 0; i < s->tri_count; ++i) if (fogrt__bsdf_type(&s->materials[s->tri_material[i]]) == type) return true;
-    for (i = 0; i < s->sph_count; ++i) if (fogrt__bsdf_type(&s->materials[s->sph_material[i]]) == type) return true;
-    return false;
-}
 FOGRT__PRIVATE float fogrt__tri_area(const fogrt_scene *s, uint32_t t) {
     const fogrt__v3 *v = &s->tri_v[3 * t];
     return 0.5f * fogrt__length(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
@@ -2995,32 +2829,28 @@ FOGRT__PRIVATE bool fogrt__sphere_emits(const fogrt_scene *s, uint32_t i) {
 }
 /* Whether any material emits (if none, no triangle needs looking at). */
 FOGRT__PRIVATE bool fogrt__some_material_emits(const fogrt_scene *s) {
-    uint32_t i;
-    for (i = 0; i < s->material_count; ++i) if (!fogrt__is_black(s->materials[i].emission)) return true;
+    for (uint32_t i = 0; i < s->material_count; ++i) if (!fogrt__is_black(s->materials[i].emission)) return true;
     return false;
 }
 /* Emissive triangles of one mesh form one light; a CDF over their areas picks one. */
 FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s, uint32_t tri_count) {
-    uint32_t i, g = 0, k = 0, prev_mesh = UINT32_MAX;
-    for (i = 0; i < tri_count; ++i) {
-        fogrt__area_light *L;
-        float area;
+    uint32_t g = 0, k = 0, prev_mesh = UINT32_MAX;
+    for (uint32_t i = 0; i < tri_count; ++i) {
         if (!fogrt__tri_emits(s, i)) continue;
-        area = fogrt__tri_area(s, i);
-        if (s->tri_mesh[i] != prev_mesh) {
-            L = &s->area_lights[g++];
-            L->first = k; L->count = 0; L->sphere = UINT32_MAX; L->area = 0.0f;
+        if (s->tri_mesh[i] != prev_mesh) {               /* a new mesh: a new light */
+            fogrt__area_light *N = &s->area_lights[g++];
+            N->first = k; N->count = 0; N->sphere = UINT32_MAX; N->area = 0.0f;
             prev_mesh = s->tri_mesh[i];
         }
-        L = &s->area_lights[g - 1];
-        L->area += area;
+        fogrt__area_light *L = &s->area_lights[g - 1];
+        L->area += fogrt__tri_area(s, i);
         L->count++;
         s->light_prims[k] = i;
         s->light_cdf[k] = L->area;         /* running sum, normalised below */
         s->prim_light[i] = g - 1;
         k++;
     }
-    for (i = 0; i < g; ++i) {
+    for (uint32_t i = 0; i < g; ++i) {
         fogrt__area_light *L = &s->area_lights[i];
         for (k = 0; k < L->count; ++k) s->light_cdf[L->first + k] /= L->area;
         s->light_cdf[L->first + L->count - 1] = 1.0f;
@@ -3028,7 +2858,7 @@ FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s, uint32_t tri_count) {
     return g;
 }
 FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s) {
-    uint32_t i, n_tri = 0, n_groups = 0, n_sph = 0, g, prev_mesh = UINT32_MAX;
+    uint32_t i, n_tri = 0, n_groups = 0, n_sph = 0, prev_mesh = UINT32_MAX;
     uint32_t n_prims = s->tri_count + s->sph_count, tri_count = fogrt__some_material_emits(s) ? s->tri_count : 0;
     for (i = 0; i < tri_count; ++i) {
         if (!fogrt__tri_emits(s, i)) continue;
@@ -3042,11 +2872,10 @@ FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s) {
     s->light_cdf = (float *)fogrt__alloc(&s->allocator, sizeof(float) * (n_tri + 1));
     if (!s->prim_light || !s->area_lights || !s->light_prims || !s->light_cdf) return false;
     for (i = 0; i < n_prims; ++i) s->prim_light[i] = UINT32_MAX;
-    g = fogrt__mesh_lights(s, tri_count);
+    uint32_t g = fogrt__mesh_lights(s, tri_count);
     for (i = 0; i < s->sph_count; ++i) {      /* an emissive sphere is a light of its own */
-        fogrt__area_light *L;
         if (!fogrt__sphere_emits(s, i)) continue;
-        L = &s->area_lights[g];
+        fogrt__area_light *L = &s->area_lights[g];
         L->first = 0; L->count = 0; L->sphere = i;
         L->area = 4.0f * FOGRT__PI * s->sph_r[i] * s->sph_r[i];
         s->prim_light[s->tri_count + i] = g++;
@@ -3058,9 +2887,8 @@ FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s) {
 /* The box of primitive i (triangles first, then spheres). */
 FOGRT__PRIVATE fogrt__aabb fogrt__prim_box(const fogrt_scene *s, uint32_t i) {
     fogrt__aabb bb = fogrt__aabb_empty();
-    uint32_t k;
     if (i < s->tri_count) {
-        for (k = 0; k < 3; ++k) fogrt__aabb_grow(&bb, s->tri_v[3 * i + k]);
+        for (uint32_t k = 0; k < 3; ++k) fogrt__aabb_grow(&bb, s->tri_v[3 * i + k]);
     } else {
         fogrt__v3 c = s->sph_c[i - s->tri_count];
         float r = s->sph_r[i - s->tri_count];
@@ -3073,9 +2901,7 @@ FOGRT__PRIVATE fogrt__aabb fogrt__prim_box(const fogrt_scene *s, uint32_t i) {
    derived from them: the ray offset floor and the point-light distance clamp (2.3). */
 FOGRT__PRIVATE void fogrt__bounds(fogrt_scene *s, fogrt__build *b, uint32_t n) {
     fogrt__aabb sb = fogrt__aabb_empty();
-    uint32_t i;
-    float diag;
-    for (i = 0; i < n; ++i) {
+    for (uint32_t i = 0; i < n; ++i) {
         fogrt__aabb box = fogrt__prim_box(s, i);
         b->box[i] = box;
         fogrt__aabb_union(&sb, &box);
@@ -3083,15 +2909,14 @@ FOGRT__PRIVATE void fogrt__bounds(fogrt_scene *s, fogrt__build *b, uint32_t n) {
     }
     if (n == 0) { sb.lo = fogrt__v(0, 0, 0); sb.hi = fogrt__v(0, 0, 0); }
     s->bmin = sb.lo; s->bmax = sb.hi;
-    diag = fogrt__length(fogrt__sub(s->bmax, s->bmin));
+    float diag = fogrt__length(fogrt__sub(s->bmax, s->bmin));
     if (!(diag > 0.0f)) diag = 1.0f;
     s->eps = 1e-6f * diag;
     s->r2_min = (1e-4f * diag) * (1e-4f * diag);
 }
 /* Primitives in BVH order, in the form the traversal wants. */
 FOGRT__PRIVATE void fogrt__pack_prims(fogrt_scene *s, uint32_t n) {
-    uint32_t i;
-    for (i = 0; i < n; ++i) {
+    for (uint32_t i = 0; i < n; ++i) {
         uint32_t id = s->prim_index[i];
         fogrt__prim *p = &s->prims[i];
         p->id = id;
@@ -3104,27 +2929,6 @@ FOGRT__PRIVATE void fogrt__pack_prims(fogrt_scene *s, uint32_t n) {
             p->c = fogrt__v(0.0f, 0.0f, 0.0f);
         }
     }
-}
-/* What the scene uses. The integrator reads FOGRT_FEATURE_MEDIUM to skip every fog step;
-   the rest are a report (the code they name runs only where a primitive or light of that
-   kind exists anyway: no glass, no Fresnel; no spheres, no sphere test; no light, no
-   shadow ray). make callgrind measures both claims against the strip macros.             */
-FOGRT__PRIVATE uint32_t fogrt__features(const fogrt_scene *s) {
-    uint32_t f = 0, i;
-#ifndef FOGRT_NO_MEDIUM
-    if (s->medium.sigma_t > 0.0f) f |= FOGRT_FEATURE_MEDIUM;
-#endif
-    if (fogrt__material_used(s, FOGRT_BSDF_GLASS)) f |= FOGRT_FEATURE_FRESNEL | FOGRT_FEATURE_REFRACTION;
-    if (fogrt__material_used(s, FOGRT_BSDF_REFRACTION)) f |= FOGRT_FEATURE_REFRACTION;
-    if (s->area_light_count) f |= FOGRT_FEATURE_AREA_LIGHTS;
-    for (i = 0; i < s->light_count; ++i) {
-        f |= FOGRT_FEATURE_POINT_LIGHTS;
-        if (s->lights[i].type == FOGRT_LIGHT_SPOT) f |= FOGRT_FEATURE_SPOT_LIGHTS;
-    }
-    if (s->has_env) f |= FOGRT_FEATURE_ENVIRONMENT;
-    if (s->sph_count) f |= FOGRT_FEATURE_SPHERES;
-    if (s->tri_count) f |= FOGRT_FEATURE_TRIANGLES;
-    return f;
 }
 
 
@@ -3152,7 +2956,6 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fog
 FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n, uint32_t leaf_keep) {
     fogrt__build b;
     uint32_t m = FOGRT__REFS(s, n, leaf_keep);          /* SEAM 2: references: n, and long slivers' pieces */
-    bool ok;
     memset(&b, 0, sizeof b);
     b.desc = *d;
     b.box = (fogrt__aabb *)FOGRT__ALLOC_BUILD(&s->allocator, sizeof(fogrt__aabb) * (m + 1));   /* SEAM 2: huge pages */
@@ -3160,7 +2963,7 @@ FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d,
     s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (m + 1));
     if (!leaf_keep)    /* else Part II's wide tree (A) will hold the primitives itself */
         s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
-    ok = b.box && s->nodes && s->prim_index && (leaf_keep || s->prims);
+    bool ok = b.box && s->nodes && s->prim_index && (leaf_keep || s->prims);
     if (ok) {
         memset(&b.box[m], 0, sizeof b.box[m]);          /* a spare box: lane loads may read past the last */
         fogrt__bounds(s, &b, n);
@@ -3178,11 +2981,10 @@ FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d,
 }
 /* The spot cones' cosines, once. */
 FOGRT__PRIVATE bool fogrt__build_spots(fogrt_scene *s) {
-    uint32_t i;
     if (s->light_count == 0) return true;
     s->spot_cos = (float *)fogrt__alloc(&s->allocator, sizeof(float) * 2 * s->light_count);
     if (!s->spot_cos) return false;
-    for (i = 0; i < s->light_count; ++i) {
+    for (uint32_t i = 0; i < s->light_count; ++i) {
         s->spot_cos[2 * i] = cosf(s->lights[i].cutoff_deg * (FOGRT__PI / 180.0f));
         s->spot_cos[2 * i + 1] = cosf(s->lights[i].beam_deg * (FOGRT__PI / 180.0f));
     }
@@ -3196,7 +2998,10 @@ FOGRT__PRIVATE bool fogrt__build_all(fogrt_scene *s, const fogrt_build_desc *d, 
 #endif
     fogrt__forget_built(s);
     if (!fogrt__build_lights(s) || !fogrt__build_tree(s, d, n, leaf_keep) || !fogrt__build_spots(s)) return false;
-    s->features = fogrt__features(s);
+    s->features = 0u;                                   /* the fog's bit; the report: fogrt_scene_get_features */
+#ifndef FOGRT_NO_MEDIUM
+    if (s->medium.sigma_t > 0.0f) s->features = FOGRT_FEATURE_MEDIUM;
+#endif
     s->built = true;
 #ifndef FOGRT_MINIMAL
     if (!fogrt__x_build(s, d, n)) return false;         /* SEAM 3: Part II's tables */
@@ -3205,14 +3010,11 @@ FOGRT__PRIVATE bool fogrt__build_all(fogrt_scene *s, const fogrt_build_desc *d, 
 }
 FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_desc *desc) {
     fogrt_build_desc d;
-    fogrt_scene old;
-    uint32_t n;
-    fogrt_result r;
     FOGRT_ASSERT(s);
-    if ((r = fogrt__resolve_build(s, desc, &d)) != FOGRT_RESULT_OK) return r;
-    n = s->tri_count + s->sph_count;
+    FOGRT__PASS(fogrt__resolve_build(s, desc, &d));
+    uint32_t n = s->tri_count + s->sph_count;
     FOGRT__REFUSE_IF(n == 0 && s->light_count == 0 && !s->has_env, EMPTY_SCENE, "scene: no geometry and no light");
-    old = *s;
+    fogrt_scene old = *s;
     if (!fogrt__build_all(s, &d, n)) {
         fogrt__free_built(s);
         *s = old;                                       /* the scene as it was, built or not */
@@ -3249,14 +3051,6 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_paper_defaults(void) {
     };
     return d;
 }
-/* Part II's defaults: lamps in fog (B) on, as far as the build has them. */
-FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void) {
-    fogrt_render_desc d = fogrt_render_paper_defaults();
-#ifndef FOGRT_NO_LAMPS_IN_FOG
-    d.equiangular = d.glow = d.footprint = d.expected_emission = true;
-#endif
-    return d;
-}
 /* The settings the integrators read, from a desc (NULL: the defaults) that must come from a
    fogrt_render_*defaults(): a zeroed one would silently mean "max depth 0, no light sampling". */
 FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fogrt_render_desc *in,
@@ -3268,15 +3062,9 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
         (unsigned)d.integrator >= (unsigned)FOGRT_INTEGRATOR_NUM || (unsigned)d.fresnel >= (unsigned)FOGRT_FRESNEL_NUM)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: max_depth (>= -1), min_depth (>= 0), rr_depth (>= 0), light_samples (>= 1), integrator or fresnel out of range");
     FOGRT__PASS(fogrt__beyond_render(s, &d));
-    st->max_depth = d.max_depth < 0 ? 0x7FFFFFFF : d.max_depth;
-    st->min_depth = d.min_depth;
-    st->rr_depth = d.rr_depth;
-    st->light_samples = d.light_samples;
-    st->nee = d.nee;
-    st->mis = d.mis;
-    st->integrator = d.integrator == FOGRT_INTEGRATOR_DIRECT ? FOGRT_INTEGRATOR_DIRECT : FOGRT_INTEGRATOR_PATH;
-    st->fresnel = d.fresnel;
     st->desc = d;
+    st->max_depth = d.max_depth < 0 ? 0x7FFFFFFF : d.max_depth;
+    st->integrator = d.integrator == FOGRT_INTEGRATOR_DIRECT ? FOGRT_INTEGRATOR_DIRECT : FOGRT_INTEGRATOR_PATH;
     if (out) *out = d;
     return FOGRT_RESULT_OK;
 }
@@ -3289,67 +3077,11 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__sett
 #endif
     return fogrt__algorithm1(s, st, o, d, rng, rays, st->integrator == FOGRT_INTEGRATOR_DIRECT);
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_trace(const fogrt_scene *s, const fogrt_render_desc *desc, fogrt_vec3 o, fogrt_vec3 d,
-                                     fogrt_rng *rng, uint64_t *ray_count) {
-    fogrt__settings st;
-    uint64_t rays = 0;
-    FOGRT_ASSERT(s && rng);
-    if (!s->built || fogrt__resolve_render(s, desc, &st, NULL) != FOGRT_RESULT_OK) return fogrt__v(0.0f, 0.0f, 0.0f);
-    o = fogrt__radiance(s, &st, o, fogrt__normalize(d), rng, &rays);
-    if (ray_count) *ray_count += rays;
-    return o;
-}
 
-FOGRT__PUBLIC fogrt_result fogrt_image_alloc(fogrt_image *img, int width, int height, const fogrt_allocator *a) {
-    size_t n;
-    FOGRT_ASSERT(img);
-    memset(img, 0, sizeof *img);
-    if (a) img->allocator = *a;
-    if (width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
-    if ((uint64_t)width * (uint64_t)height > ((uint64_t)1 << 31) / 16) return FOGRT_RESULT_TOO_LARGE;
-    /* the largest array, the stream sums, must fit in a size_t (32-bit platforms) */
-    if ((uint64_t)width * (uint64_t)height * (uint64_t)(sizeof(double) * FOGRT_IMAGE_STREAMS) > (uint64_t)(size_t)-1)
-        return FOGRT_RESULT_TOO_LARGE;
-    n = (size_t)width * (size_t)height;
-    img->sum = (double *)fogrt__alloc(&img->allocator, sizeof(double) * 3 * n);
-    img->sum_sq = (double *)fogrt__alloc(&img->allocator, sizeof(double) * n);
-    img->count = (uint32_t *)fogrt__alloc(&img->allocator, sizeof(uint32_t) * n);
-    img->stream_sum = (double *)fogrt__alloc(&img->allocator, sizeof(double) * FOGRT_IMAGE_STREAMS * n);
-    img->stream_count = (uint32_t *)fogrt__alloc(&img->allocator, sizeof(uint32_t) * FOGRT_IMAGE_STREAMS * n);
-    if (!img->sum || !img->sum_sq || !img->count || !img->stream_sum || !img->stream_count) {
-        fogrt_image_free(img);
-        return FOGRT_RESULT_OUT_OF_MEMORY;
-    }
-    img->width = width; img->height = height;
-    fogrt_image_clear(img);
-    return FOGRT_RESULT_OK;
-}
-FOGRT__PUBLIC void fogrt_image_free(fogrt_image *img) {
-    fogrt_allocator a;
-    if (!img) return;
-    a = img->allocator;
-    fogrt__free(&a, img->sum); fogrt__free(&a, img->sum_sq); fogrt__free(&a, img->count);
-    fogrt__free(&a, img->stream_sum); fogrt__free(&a, img->stream_count);
-    memset(img, 0, sizeof *img);
-    img->allocator = a;
-}
-FOGRT__PUBLIC void fogrt_image_clear(fogrt_image *img) {
-    size_t n;
-    FOGRT_ASSERT(img);
-    n = (size_t)img->width * (size_t)img->height;
-    if (img->sum) memset(img->sum, 0, sizeof(double) * 3 * n);
-    if (img->sum_sq) memset(img->sum_sq, 0, sizeof(double) * n);
-    if (img->count) memset(img->count, 0, sizeof(uint32_t) * n);
-    if (img->stream_sum) memset(img->stream_sum, 0, sizeof(double) * FOGRT_IMAGE_STREAMS * n);
-    if (img->stream_count) memset(img->stream_count, 0, sizeof(uint32_t) * FOGRT_IMAGE_STREAMS * n);
-    img->rejected = 0;
-    img->rated_spp = 0;
-}
 FOGRT__PUBLIC void fogrt_image_resolve(const fogrt_image *img, float *rgb) {
-    size_t i, n;
     FOGRT_ASSERT(img && rgb);
-    n = (size_t)img->width * (size_t)img->height;
-    for (i = 0; i < n; ++i) {
+    size_t n = (size_t)img->width * (size_t)img->height;
+    for (size_t i = 0; i < n; ++i) {
         double inv = img->count[i] ? 1.0 / (double)img->count[i] : 0.0;
         rgb[3 * i + 0] = (float)(img->sum[3 * i + 0] * inv);
         rgb[3 * i + 1] = (float)(img->sum[3 * i + 1] * inv);
@@ -3368,24 +3100,23 @@ FOGRT__PRIVATE double fogrt__luminance_d(double r, double g, double b) { return 
    an image without stream sums gets the plain s^2 / n. Rejected samples count as zeros,
    as in the mean. */
 FOGRT__PUBLIC double fogrt_image_pixel_variance(const fogrt_image *img, size_t pixel) {
-    double c, mean, var;
     FOGRT_ASSERT(img);
-    c = img->count[pixel];
+    double c = img->count[pixel], mean;
     if (c < 2.0) return 0.0;
     if (img->stream_sum && img->stream_count) {
         const double *S = img->stream_sum + (size_t)FOGRT_IMAGE_STREAMS * pixel;
         const uint32_t *N = img->stream_count + (size_t)FOGRT_IMAGE_STREAMS * pixel;
         double total = 0.0, n = 0.0, ssb = 0.0;
-        int r, used = 0;
-        for (r = 0; r < FOGRT_IMAGE_STREAMS; ++r) { total += S[r]; n += (double)N[r]; used += N[r] > 0; }
+        int used = 0;
+        for (int r = 0; r < FOGRT_IMAGE_STREAMS; ++r) { total += S[r]; n += (double)N[r]; used += N[r] > 0; }
         if (used < 2) return 0.0;
         mean = total / n;
-        for (r = 0; r < FOGRT_IMAGE_STREAMS; ++r)
+        for (int r = 0; r < FOGRT_IMAGE_STREAMS; ++r)
             if (N[r] > 0) { double d = S[r] / (double)N[r] - mean; ssb += (double)N[r] * d * d; }
         return ssb / ((double)(used - 1) * n);
     }
     mean = fogrt__luminance_d(img->sum[3 * pixel], img->sum[3 * pixel + 1], img->sum[3 * pixel + 2]) / c;
-    var = (img->sum_sq[pixel] / c - mean * mean) / (c - 1.0);
+    double var = (img->sum_sq[pixel] / c - mean * mean) / (c - 1.0);
     return var > 0.0 ? var : 0.0;   /* rounding can make a noise-free pixel slightly negative */
 }
 /* Relative RMS error of the image, estimated from the samples themselves: the variance of
@@ -3395,14 +3126,13 @@ FOGRT__PUBLIC double fogrt_image_pixel_variance(const fogrt_image *img, size_t p
    plot against seconds. */
 FOGRT__PUBLIC void fogrt_image_error(const fogrt_image *img, fogrt_error_estimate *out) {
     double var_sum = 0.0, mean_sq_sum = 0.0, lum_sum = 0.0;
-    size_t i, n;
     FOGRT_ASSERT(img && out);
     memset(out, 0, sizeof *out);
-    n = (size_t)img->width * (size_t)img->height;
-    for (i = 0; i < n; ++i) {
-        double c = img->count[i], mean;
+    size_t n = (size_t)img->width * (size_t)img->height;
+    for (size_t i = 0; i < n; ++i) {
+        double c = img->count[i];
         if (c < 1.0) continue;
-        mean = fogrt__luminance_d(img->sum[3 * i], img->sum[3 * i + 1], img->sum[3 * i + 2]) / c;
+        double mean = fogrt__luminance_d(img->sum[3 * i], img->sum[3 * i + 1], img->sum[3 * i + 2]) / c;
         lum_sum += mean;
         mean_sq_sum += mean * mean;
         out->samples += img->count[i];
@@ -3430,55 +3160,44 @@ typedef struct fogrt__job {
    uniform point of the pixel (jx, jy), stratified per stream by Part II (C). */
 FOGRT__PRIVATE void fogrt__pixel_ray(const fogrt__job *job, int width, int height, int x, int y, uint32_t index,
                                      fogrt_rng *rng, fogrt__v3 *o, fogrt__v3 *d, float *jx, float *jy) {
-    uint64_t pix = (uint64_t)y * (uint64_t)width + (uint64_t)x;
-    uint64_t key = (pix << 32) | (uint64_t)index;
-    float l1, l2;
+    uint64_t pix = (uint64_t)y * (uint64_t)width + (uint64_t)x, key = (pix << 32) | (uint64_t)index;
     fogrt_rng_seed(rng, fogrt__hash64(key ^ job->base), 0);
 #ifndef FOGRT_NO_ESTIMATION
     fogrt__x_pixel_position(job->base, pix, index, jx, jy);                 /* SEAM 8 */
 #else
     *jx = fogrt_rng_float(rng); *jy = fogrt_rng_float(rng);
 #endif
-    l1 = fogrt_rng_float(rng); l2 = fogrt_rng_float(rng);
+    float l1 = fogrt_rng_float(rng), l2 = fogrt_rng_float(rng);
     fogrt__camera_generate(&job->cam, width, height, (float)x + *jx, (float)y + *jy, l1, l2, o, d);
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__sample_pixel(const fogrt__job *job, int width, int height, int x, int y,
-                                             uint32_t index, uint64_t *rays) {
-    fogrt_rng rng;
-    fogrt__v3 o, d;
-    float jx, jy;
-    fogrt__pixel_ray(job, width, height, x, y, index, &rng, &o, &d, &jx, &jy);
-    return fogrt__radiance(job->s, &job->st, o, d, &rng, rays);
-}
-/* How many samples pixel pix takes in this call: spp, or as its rate says (Part II, C). */
-FOGRT__PRIVATE uint32_t fogrt__pixel_spp(const fogrt__job *job, size_t pix) {
-#ifndef FOGRT_NO_ESTIMATION
-    if (job->rate) return fogrt__x_pixel_spp(job, pix);                      /* SEAM 8 */
-#else
-    (void)pix;
-#endif
-    return (uint32_t)job->spp;
-}
+
 /* One row of pixels, spp samples each (or as many as their rates say). The NaN firewall:
    a non-finite sample is counted, never added (a zero in the mean, in its stream's mean
    too). Sample `index` adds its luminance to stream index mod FOGRT_IMAGE_STREAMS. */
 FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *rays, uint64_t *rejected,
                                       uint64_t *samples, const volatile int *cancel) {
     fogrt_image *img = job->img;
-    int x, width = img->width, height = img->height;
+    int width = img->width, height = img->height;
     bool streams = img->stream_sum && img->stream_count;
-    for (x = 0; x < width; ++x) {
+    for (int x = 0; x < width; ++x) {
         size_t pix = (size_t)y * (size_t)width + (size_t)x;
-        uint32_t k, spp = fogrt__pixel_spp(job, pix);
-        for (k = 0; k < spp; ++k) {
+#ifndef FOGRT_NO_ESTIMATION
+        uint32_t spp = job->rate ? fogrt__x_pixel_spp(job, pix) : (uint32_t)job->spp;   /* SEAM 8: per-pixel rates (C) */
+#else
+        uint32_t spp = (uint32_t)job->spp;
+#endif
+        for (uint32_t k = 0; k < spp; ++k) {
             uint32_t index = img->count[pix] + k;
             if (cancel && *cancel) { spp = k; x = width; break; }   /* stop here: what is done stays counted */
             size_t slot = (size_t)FOGRT_IMAGE_STREAMS * pix + index % FOGRT_IMAGE_STREAMS;
-            fogrt__v3 Lr = fogrt__sample_pixel(job, width, height, x, y, index, rays);
-            double lum;
+            fogrt_rng rng;
+            fogrt__v3 o, d;
+            float jx, jy;
+            fogrt__pixel_ray(job, width, height, x, y, index, &rng, &o, &d, &jx, &jy);
+            fogrt__v3 Lr = fogrt__radiance(job->s, &job->st, o, d, &rng, rays);
             if (streams) ++img->stream_count[slot];
             if (!fogrt__v3_finite(Lr)) { ++*rejected; continue; }
-            lum = fogrt__luminance_d(Lr.x, Lr.y, Lr.z);
+            double lum = fogrt__luminance_d(Lr.x, Lr.y, Lr.z);
             img->sum[3 * pix + 0] += (double)Lr.x;
             img->sum[3 * pix + 1] += (double)Lr.y;
             img->sum[3 * pix + 2] += (double)Lr.z;
@@ -3500,13 +3219,7 @@ FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt
         (d->width && d->width != img->width) || (d->height && d->height != img->height))
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: image size does not match render desc width/height");
     if (spp < 0) return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: samples_per_pixel < 0");
-    if (d->sample_rate) {
-        size_t i, n = (size_t)img->width * (size_t)img->height;
-        for (i = 0; i < n; ++i)
-            FOGRT__REFUSE_IF(!(d->sample_rate[i] >= 0.0f && d->sample_rate[i] <= FOGRT_MAX_SAMPLE_RATE), INVALID_ARGUMENT,
-                             "render desc: a sample_rate is NaN, negative or above FOGRT_MAX_SAMPLE_RATE (64)");
-    }
-    return FOGRT_RESULT_OK;
+    return fogrt__beyond_image(s, d, img);
 }
 
 /* The threads to render with: the desc's count, or OpenMP's, cut to FOGRT_MAX_THREADS and
@@ -3565,55 +3278,25 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
     if (job.rate && result == FOGRT_RESULT_OK) img->rated_spp += (uint64_t)spp;
     img->rejected += rejected;
     if (stats) {
-        size_t i, n = 3 * (size_t)img->width * (size_t)img->height;
-        stats->camera_rays = samples;
-        stats->rays = rays;
-        stats->rejected = rejected;
-        for (i = 0; i < n && img->sum[i] == 0.0; ++i) {}
+        size_t i = 0, n = 3 * (size_t)img->width * (size_t)img->height;
+        stats->camera_rays = samples; stats->rays = rays; stats->rejected = rejected;
+        while (i < n && img->sum[i] == 0.0) ++i;
         stats->black = i == n;
     }
     return result;
 }
 
-/* Output helpers. The sRGB curve: 12.92 x below 0.0031308, else 1.055 x^(1/2.4) - 0.055. */
-FOGRT__PUBLIC void fogrt_tonemap_rgb8(const float *rgb, int width, int height, float exposure,
-                                      fogrt_tonemap mode, unsigned char *out) {
-    size_t i, n = (size_t)FOGRT__MAX(width, 0) * (size_t)FOGRT__MAX(height, 0) * 3;
-    float e = exp2f(fogrt__finite(exposure) ? FOGRT__CLAMP(exposure, -64.0f, 64.0f) : 0.0f);
-    for (i = 0; i < n; ++i) {
-        float x = rgb[i] * e;
-        if (!(x > 0.0f)) x = 0.0f;                   /* also NaN -> 0 */
-        if (x > 1.0f) x = 1.0f;
-        if (mode == FOGRT_TONEMAP_GAMMA22) x = powf(x, 1.0f / 2.2f);
-        else x = x <= 0.0031308f ? 12.92f * x : 1.055f * powf(x, 1.0f / 2.4f) - 0.055f;
-        out[i] = (unsigned char)(x * 255.0f + 0.5f);
-    }
-}
 #ifndef FOGRT_NO_STDIO
 FOGRT__PUBLIC fogrt_result fogrt_write_pfm(const char *path, int width, int height, const float *rgb) {
-    FILE *f;
-    int y;
-    bool ok;
     float one = 1.0f;
     unsigned char first;
     if (!path || !rgb || width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
-    f = fopen(path, "wb");
+    FILE *f = fopen(path, "wb");
     if (!f) return FOGRT_RESULT_IO_ERROR;
     memcpy(&first, &one, 1);                                     /* 0 on a little-endian machine */
-    ok = fprintf(f, "PF\n%d %d\n%s\n", width, height, first == 0 ? "-1.0" : "1.0") > 0;   /* the scale's sign: the byte order */
-    for (y = height - 1; y >= 0 && ok; --y)                      /* PFM stores bottom row first */
+    bool ok = fprintf(f, "PF\n%d %d\n%s\n", width, height, first == 0 ? "-1.0" : "1.0") > 0;   /* the scale's sign: the byte order */
+    for (int y = height - 1; y >= 0 && ok; --y)                  /* PFM stores bottom row first */
         ok = fwrite(rgb + (size_t)y * (size_t)width * 3, sizeof(float) * 3, (size_t)width, f) == (size_t)width;
-    if (fclose(f) != 0) ok = false;
-    return ok ? FOGRT_RESULT_OK : FOGRT_RESULT_IO_ERROR;
-}
-FOGRT__PUBLIC fogrt_result fogrt_write_ppm(const char *path, int width, int height, const unsigned char *rgb8) {
-    FILE *f;
-    bool ok;
-    if (!path || !rgb8 || width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
-    f = fopen(path, "wb");
-    if (!f) return FOGRT_RESULT_IO_ERROR;
-    ok = fprintf(f, "P6\n%d %d\n255\n", width, height) > 0;
-    ok = ok && fwrite(rgb8, 3, (size_t)width * (size_t)height, f) == (size_t)width * (size_t)height;
     if (fclose(f) != 0) ok = false;
     return ok ? FOGRT_RESULT_OK : FOGRT_RESULT_IO_ERROR;
 }
@@ -3626,11 +3309,10 @@ FOGRT__PUBLIC fogrt_result fogrt_write_ppm(const char *path, int width, int heig
 FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s);
 /* All of the default scene or nothing: a failure midway takes back what was added. */
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s) {
-    fogrt_scene keep;
-    fogrt_result r;
     FOGRT_ASSERT(s);
-    keep = *s;
-    if ((r = fogrt__add_default(s)) != FOGRT_RESULT_OK) {
+    fogrt_scene keep = *s;
+    fogrt_result r = fogrt__add_default(s);
+    if (r != FOGRT_RESULT_OK) {
         s->material_count = keep.material_count; s->tri_count = keep.tri_count; s->mesh_count = keep.mesh_count;
         s->sph_count = keep.sph_count; s->light_count = keep.light_count;
         s->camera = keep.camera; s->has_camera = keep.has_camera; s->medium = keep.medium; s->built = keep.built;
@@ -3648,21 +3330,23 @@ static const float fogrt__default_quads[6][12] = {
     { 1, 0, -1,   1, 0, 1,   1, 1.5f, 1,   1, 1.5f, -1 },                                /* right */
     { -0.35f, 1.49f, -0.35f,   0.35f, 1.49f, -0.35f,   0.35f, 1.49f, 0.35f,   -0.35f, 1.49f, 0.35f } };   /* lamp */
 FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
-    static const uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
+    /* white, red, blue, matte: reflectance; the lamp: black, emitting (r, g, b, then emission) */
+    static const float diffuse[5][6] = { { 0.73f, 0.73f, 0.73f, 0, 0, 0 }, { 0.65f, 0.06f, 0.05f, 0, 0, 0 },
+                                         { 0.08f, 0.12f, 0.60f, 0, 0, 0 }, { 0.60f, 0.55f, 0.45f, 0, 0, 0 },
+                                         { 0, 0, 0, 8.5f, 6.0f, 2.0f } };
+    static const uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 }, wall[6] = { 0, 0, 0, 1, 2, 4 };   /* the quads' materials */
+    uint32_t base = s->material_count, glass;
     fogrt_material_desc md;
     fogrt_mesh_desc mesh;
     fogrt_light_desc ld;
     fogrt_camera_desc cd;
-    fogrt_medium_desc fd;
-    uint32_t white, red, blue, lamp, matte, glass, i, wall[6];
     memset(&md, 0, sizeof md);
     md.type = FOGRT_BSDF_DIFFUSE;
-    md.reflectance = fogrt__v(0.73f, 0.73f, 0.73f); FOGRT__PASS(fogrt_scene_add_material(s, &md, &white));
-    md.reflectance = fogrt__v(0.65f, 0.06f, 0.05f); FOGRT__PASS(fogrt_scene_add_material(s, &md, &red));
-    md.reflectance = fogrt__v(0.08f, 0.12f, 0.60f); FOGRT__PASS(fogrt_scene_add_material(s, &md, &blue));
-    md.reflectance = fogrt__v(0.60f, 0.55f, 0.45f); FOGRT__PASS(fogrt_scene_add_material(s, &md, &matte));
-    md.reflectance = fogrt__v(0.0f, 0.0f, 0.0f);
-    md.emission = fogrt__v(8.5f, 6.0f, 2.0f);     FOGRT__PASS(fogrt_scene_add_material(s, &md, &lamp));
+    for (int i = 0; i < 5; ++i) {
+        md.reflectance = fogrt__v(diffuse[i][0], diffuse[i][1], diffuse[i][2]);
+        md.emission = fogrt__v(diffuse[i][3], diffuse[i][4], diffuse[i][5]);
+        FOGRT__PASS(fogrt_scene_add_material(s, &md, NULL));
+    }
     memset(&md, 0, sizeof md);
 #ifndef FOGRT_NO_GLASS
     md.type = FOGRT_BSDF_GLASS; md.ior = 1.5f;
@@ -3671,14 +3355,13 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
 #endif
     md.reflectance = fogrt__v(1.0f, 1.0f, 1.0f); md.transmittance = fogrt__v(1.0f, 1.0f, 1.0f);
     FOGRT__PASS(fogrt_scene_add_material(s, &md, &glass));
-    wall[0] = wall[1] = wall[2] = white; wall[3] = red; wall[4] = blue; wall[5] = lamp;
     memset(&mesh, 0, sizeof mesh);
     mesh.vertex_count = 4; mesh.indices = idx; mesh.triangle_count = 2;
-    for (i = 0; i < 6; ++i) {
-        mesh.positions = fogrt__default_quads[i]; mesh.material = wall[i];
+    for (int i = 0; i < 6; ++i) {
+        mesh.positions = fogrt__default_quads[i]; mesh.material = base + wall[i];
         FOGRT__PASS(fogrt_scene_add_mesh(s, &mesh));
     }
-    FOGRT__PASS(fogrt_scene_add_sphere(s, fogrt__v(-0.45f, 0.35f, -0.35f), 0.35f, matte));
+    FOGRT__PASS(fogrt_scene_add_sphere(s, fogrt__v(-0.45f, 0.35f, -0.35f), 0.35f, base + 3));
     FOGRT__PASS(fogrt_scene_add_sphere(s, fogrt__v(0.45f, 0.35f, 0.25f), 0.35f, glass));
     /* The spot light: high on the left, aimed at the floor right of centre; its cone shows in the fog. */
     memset(&ld, 0, sizeof ld);
@@ -3692,11 +3375,10 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
     cd.position = fogrt__v(0.0f, 0.75f, 3.6f); cd.look_at = fogrt__v(0.0f, 0.7f, 0.0f); cd.fov_deg = 38.0f;
     FOGRT__PASS(fogrt_scene_set_camera(s, &cd));
 #ifndef FOGRT_NO_MEDIUM   /* a build without fog gets the same box, without fog */
+    fogrt_medium_desc fd;
     memset(&fd, 0, sizeof fd);
     fd.sigma_t = 0.3f; fd.albedo = fogrt__v(0.9f, 0.9f, 0.9f); fd.g = 0.6f;
     FOGRT__PASS(fogrt_scene_set_medium(s, &fd));
-#else
-    (void)fd;
 #endif
     return FOGRT_RESULT_OK;
 }
@@ -5742,7 +5424,7 @@ FOGRT__PRIVATE bool fogrt__build_light_pick(fogrt_scene *s) {
 }
 #endif
 FOGRT__PRIVATE int fogrt_light_sample_count(const fogrt_scene *s, const fogrt__settings *st, uint32_t i) {
-    return i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->light_samples;
+    return i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->desc.light_samples;
 }
 FOGRT__PRIVATE void fogrt__draw(const fogrt_scene *s, uint32_t light, fogrt_rng *rng, float *u) {
     u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng);
@@ -6103,7 +5785,7 @@ FOGRT__PRIVATE void fogrt__trace_bsdf(const fogrt__settings *st, const fogrt__pa
     e.p = P->v.p; e.bsdf = P->type; e.pdf = bs->pdf; e.value = bs->weight;
     e.lobe = bs->is_transmission ? FOGRT_LOBE_REFRACT : (bs->is_delta ? FOGRT_LOBE_REFLECT : FOGRT_LOBE_DIFFUSE);
 #ifndef FOGRT_NO_GLASS
-    if (P->type == FOGRT_BSDF_GLASS) e.fresnel = fogrt__fresnel(st->fresnel, FOGRT__DEF(P->v.m->ior, 1.5f), cos_o);
+    if (P->type == FOGRT_BSDF_GLASS) e.fresnel = fogrt__fresnel(st->desc.fresnel, FOGRT__DEF(P->v.m->ior, 1.5f), cos_o);
 #else
     (void)cos_o;
 #endif
@@ -6192,8 +5874,8 @@ FOGRT__HOT void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fo
 /* Light that reaches the camera after `bounces` scattering events (min_depth drops the
    shorter paths: CS184's -o 0). source says what it is, for the trace. */
 FOGRT__PRIVATE void fogrt__gather(fogrt__path *P, const fogrt__settings *st, int bounces, fogrt__v3 c, const char *source) {
-    if (bounces >= st->min_depth) P->L = fogrt__add(P->L, c);
-    FOGRT__HOOK(fogrt__trace_gather(P, c, bounces >= st->min_depth, source));
+    if (bounces >= st->desc.min_depth) P->L = fogrt__add(P->L, c);
+    FOGRT__HOOK(fogrt__trace_gather(P, c, bounces >= st->desc.min_depth, source));
     (void)source;
 }
 FOGRT__PRIVATE bool fogrt__is_scattering(const fogrt__path *P) {
@@ -6276,11 +5958,11 @@ FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt
     }
     if (tr != 0.0f) {
 #ifdef FOGRT__LAMPS
-        if (g && g->n > 0 && !ls->is_delta && st->mis) pdf_b = fogrt__glow_mix(s, v, g, ls->wi, pdf_b);   /* how scattering picks wi */
+        if (g && g->n > 0 && !ls->is_delta && st->desc.mis) pdf_b = fogrt__glow_mix(s, v, g, ls->wi, pdf_b);   /* how scattering picks wi */
 #else
         (void)g;
 #endif
-        w = ls->is_delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls->pdf, pdf_b);
+        w = ls->is_delta || !st->desc.mis ? 1.0f : fogrt__power_heuristic((float)n * ls->pdf, pdf_b);
         c = fogrt__scale(fogrt__mul(f, ls->Le), tr * w / (ls->pdf * (float)n));
     }
     FOGRT__HOOK(fogrt__trace_light(P, v, light, ls, f, pdf_b, tr, w, c));
@@ -6413,7 +6095,7 @@ FOGRT__HOT bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settings *
     t = a + fogrt_sample_exponential(s->medium.sigma_t, u);
     FOGRT__HOOK(fogrt__trace_free_flight(P, u, t, b, t < b));
 #ifdef FOGRT__LAMPS
-    if (st->nee && P->xs->equiangular && s->light_count > 0 && may_scatter)
+    if (st->desc.nee && P->xs->equiangular && s->light_count > 0 && may_scatter)
         fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, a, b, media, false)), "equiangular");
 #else
     (void)st; (void)may_scatter; (void)media;
@@ -6442,8 +6124,8 @@ FOGRT__HOT void fogrt__surface_emission(const fogrt_scene *s, const fogrt__setti
                                         fogrt__v3 ng, fogrt__v3 beta, float tr) {
     float w = 1.0f;
     if (fogrt__is_black(m->emission) || !(tr > 0.0f) || !(fogrt__dot(P->d, ng) < 0.0f)) return;   /* the front side emits */
-    if (!P->prev_delta && st->nee)
-        w = st->mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->light_samples *
+    if (!P->prev_delta && st->desc.nee)
+        w = st->desc.mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->desc.light_samples *
                                              fogrt__pick_prob(s, P->xs->by_power, s->light_count + s->prim_light[hit->prim]) *
                                              fogrt__area_light_pdf(s, hit->prim, P->prev_p, p, ng)) : 0.0f;
     fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, m->emission), w * tr), "emission");
@@ -6493,7 +6175,7 @@ FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__set
 /* Whether to take that sample behind this collision (the roulette draw, when T is small). */
 FOGRT__PRIVATE bool fogrt__light_behind_wanted(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
     float tr = P->seg_tr;
-    if (!P->xs->expected_emission || !st->nee || s->light_count == 0 || !(tr > 0.0f)) return false;
+    if (!P->xs->expected_emission || !st->desc.nee || s->light_count == 0 || !(tr > 0.0f)) return false;
     return tr >= FOGRT__BEHIND_MIN || fogrt_rng_float(P->rng) * FOGRT__BEHIND_MIN < tr;
 }
 /* The sample itself, at the surface point p with normals ng, ns (fogrt__surface_frame). */
@@ -6519,8 +6201,8 @@ FOGRT__PRIVATE void fogrt__escape(const fogrt_scene *s, const fogrt__settings *s
     if (s->has_env && tr > 0.0f) {
         float w = 1.0f;                                 /* a map is also sampled by NEE: MIS */
 #ifndef FOGRT_NO_ESTIMATION
-        if (s->env_map && !P->prev_delta && st->nee)
-            w = st->mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->light_samples * fogrt__env_pdf(s, P->d) *
+        if (s->env_map && !P->prev_delta && st->desc.nee)
+            w = st->desc.mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->desc.light_samples * fogrt__env_pdf(s, P->d) *
                                                  fogrt__pick_prob(s, P->xs->by_power, fogrt__light_total(s) - 1)) : 0.0f;
 #endif
 #ifndef FOGRT_NO_ESTIMATION
@@ -6623,7 +6305,7 @@ FOGRT__HOT void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *s
 #ifdef FOGRT__LAMPS
     if (P->xs->glow) fogrt__glow_setup(s, P, &P->v, &P->glow, fogrt__is_scattering(P) && (P->v.is_medium || P->type == FOGRT_BSDF_DIFFUSE));
 #endif
-    if (st->nee && fogrt__is_scattering(P))             /* lamps at a surface seen through fog: T times (b') */
+    if (st->desc.nee && fogrt__is_scattering(P))             /* lamps at a surface seen through fog: T times (b') */
         fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__sample_lights(s, st, P,
                       P->v.is_medium || !P->xs->expected_emission ? 1.0f : P->seg_tr, false)), "light sample");
 }
@@ -6695,7 +6377,7 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
         wi = fogrt__fog_phase_sample(s, P->v.wo, u[1], u[2], &pdf_b);
     } else {
         wo_l = fogrt__to_local(&P->v.frame, P->v.wo);
-        if (!fogrt_sample_bsdf(P->v.m, st->fresnel, wo_l, 0.5f, u[1], u[2], &bs)) return false;
+        if (!fogrt_sample_bsdf(P->v.m, st->desc.fresnel, wo_l, 0.5f, u[1], u[2], &bs)) return false;
         wi = fogrt__normalize(fogrt__to_world(&P->v.frame, bs.wi));
     }
     if (!glow && P->v.is_medium) f = fogrt__v(pdf_b, pdf_b, pdf_b);
@@ -6742,7 +6424,7 @@ FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__path *P) {
     float q, u, scale = P->rr_scale;
     P->bounces++;
     P->rr_scale = 1.0f;
-    if (P->bounces <= st->rr_depth) return true;
+    if (P->bounces <= st->desc.rr_depth) return true;
     if (P->xs->rr_probe && !P->probed) {
         P->probed = true;
         P->probe_lum = fogrt__luminance(P->L);
@@ -6916,7 +6598,7 @@ FOGRT__PRIVATE float fogrt__roulette_pilot(const fogrt_scene *s) {
     fogrt__camera cam;
     float k;
     if (fogrt__light_total(s) == 0 || fogrt__resolve_render(s, NULL, &st, NULL) != FOGRT_RESULT_OK ||
-        st.rr_depth >= st.max_depth) return 1.0f;
+        st.desc.rr_depth >= st.max_depth) return 1.0f;
     fogrt__x_settings(s, &st, &xs);
     xs.rr_k = 1.0f; xs.rr_probe = true;
     cam = fogrt__camera_setup(s, FOGRT__PILOT_W, FOGRT__PILOT_H);
@@ -7524,7 +7206,7 @@ FOGRT__PRIVATE bool fogrt__chroma_next_event(const fogrt_scene *s, const fogrt__
     collided = t < b;
     FOGRT__HOOK(fogrt__trace_free_flight(P, u, t, b, collided));
 #ifdef FOGRT__LAMPS
-    if (st->nee && P->xs->equiangular && s->light_count > 0 && P->bounces < limit)
+    if (st->desc.nee && P->xs->equiangular && s->light_count > 0 && P->bounces < limit)
         fogrt__gather(P, st, P->bounces + 1, fogrt__mul(beta, fogrt__equiangular(s, st, P, a, b, true, true)), "equiangular");
 #endif
     T = fogrt__chroma_tr(s, b - a);
@@ -7976,7 +7658,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__h_nee(const fogrt_scene *s, const fogrt__setting
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
     uint32_t i, total = fogrt_scene_light_total(s);
     for (i = 0; i < total; ++i) {
-        int j, n = i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->light_samples;
+        int j, n = i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->desc.light_samples;
         for (j = 0; j < n; ++j) {
             fogrt_light_sample ls;
             fogrt__v3 f;
@@ -7985,7 +7667,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__h_nee(const fogrt_scene *s, const fogrt__setting
             if (!fogrt_scene_sample_light(s, i, v->p, u1, u2, u3, &ls)) continue;
             f = fogrt__h_vertex_f(s, v, &s->x->h->media[med], ls.wi, &pdf_b);
             if (fogrt__is_black(f) || fogrt__is_black(tr = fogrt__h_shadow(s, v, med, &ls, rays))) continue;
-            w = ls.is_delta || !st->mis ? 1.0f : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
+            w = ls.is_delta || !st->desc.mis ? 1.0f : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
             L = fogrt__add(L, fogrt__scale(fogrt__mul(fogrt__mul(f, ls.Le), tr), w / (ls.pdf * (float)n)));
         }
     }
@@ -8043,7 +7725,7 @@ FOGRT__PRIVATE bool fogrt__h_vertex(const fogrt_scene *s, const fogrt__settings 
         float sig = chroma ? fogrt__comp(h->sig[*med], hero) : m->sigma_t;
         float t_fog = sig > 0.0f ? fogrt_sample_exponential(sig, fogrt_rng_float(rng)) : INFINITY;
         bool found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, hit, false);
-        bool counts = w->depth >= st->min_depth;
+        bool counts = w->depth >= st->desc.min_depth;
         ++*rays;
         if (t_fog < (found ? hit->t : INFINITY)) {                                  /* 5, 14 */
             fogrt__h_collide(h, *med, chroma, t_fog, w, counts, v);
@@ -8090,7 +7772,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__h_radiance(const fogrt_scene *s, const fogrt__se
         bool scattering;
         if (!fogrt__h_vertex(s, st, &w, &med, hero, &v, &hit, rng, rays) || last || w.depth >= st->max_depth) break;
         scattering = v.is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v.m));
-        if (st->nee && scattering && w.depth + 1 >= st->min_depth)
+        if (st->desc.nee && scattering && w.depth + 1 >= st->desc.min_depth)
             w.L = fogrt__add(w.L, fogrt__mul(w.beta, fogrt__h_nee(s, st, &v, med, rng, rays)));
         if (one_bounce && scattering) last = true;
         u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng); u[2] = fogrt_rng_float(rng);
@@ -8105,7 +7787,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__h_radiance(const fogrt_scene *s, const fogrt__se
             if (bs.is_transmission) med = fogrt__h_cross(s, hit.prim, med);
             w.d = wi; w.o = fogrt__offset(s, v.p, v.ng, wi); w.prev_p = v.p;
         }
-        if (++w.depth > st->rr_depth) {                                                 /* 2 */
+        if (++w.depth > st->desc.rr_depth) {                                                 /* 2 */
             float q = FOGRT__MIN(0.95f, fogrt__max3(w.beta));
             if (!(fogrt_rng_float(rng) < q)) break;
             w.beta = fogrt__scale(w.beta, 1.0f / q);
@@ -8115,6 +7797,224 @@ FOGRT__PRIVATE fogrt__v3 fogrt__h_radiance(const fogrt_scene *s, const fogrt__se
 }
 #endif /* FOGRT_NO_SHAPES */
 #endif /* FOGRT_MINIMAL */
+
+/* ------------------------------------------------------------------------------------------
+   The API around the method
+   What every build has besides the method itself: the full build's preset, result names, the
+   image's storage, the scene's getters, the public building blocks of an integrator, and
+   8-bit output. None of them is the method, and Part I uses only two (a primitive's
+   material, and the preset a NULL desc means); they stand after Part II so that Part I reads
+   as the method alone. FOGRT_MINIMAL keeps them.
+   ------------------------------------------------------------------------------------------ */
+/* The full build's preset, the names of result codes, and the image's storage. */
+/* Part II's defaults: lamps in fog (B) on, as far as the build has them. */
+FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void) {
+    fogrt_render_desc d = fogrt_render_paper_defaults();
+#ifndef FOGRT_NO_LAMPS_IN_FOG
+    d.equiangular = d.glow = d.footprint = d.expected_emission = true;
+#endif
+    return d;
+}
+FOGRT__PUBLIC const char *fogrt_result_string(fogrt_result result) {
+    static const char *names[FOGRT_RESULT_NUM] = {
+#define FOGRT__RESULT_TEXT(name, text) text,
+        FOGRT__RESULT_LIST(FOGRT__RESULT_TEXT)
+#undef FOGRT__RESULT_TEXT
+    };
+    if ((unsigned)result >= (unsigned)FOGRT_RESULT_NUM) return "unknown result code";
+    return names[result];
+}
+FOGRT__PUBLIC fogrt_result fogrt_image_alloc(fogrt_image *img, int width, int height, const fogrt_allocator *a) {
+    FOGRT_ASSERT(img);
+    memset(img, 0, sizeof *img);
+    if (a) img->allocator = *a;
+    if (width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
+    if ((uint64_t)width * (uint64_t)height > ((uint64_t)1 << 31) / 16) return FOGRT_RESULT_TOO_LARGE;
+    /* the largest array, the stream sums, must fit in a size_t (32-bit platforms) */
+    if ((uint64_t)width * (uint64_t)height * (uint64_t)(sizeof(double) * FOGRT_IMAGE_STREAMS) > (uint64_t)(size_t)-1)
+        return FOGRT_RESULT_TOO_LARGE;
+    size_t n = (size_t)width * (size_t)height;
+    img->sum = (double *)fogrt__alloc(&img->allocator, sizeof(double) * 3 * n);
+    img->sum_sq = (double *)fogrt__alloc(&img->allocator, sizeof(double) * n);
+    img->count = (uint32_t *)fogrt__alloc(&img->allocator, sizeof(uint32_t) * n);
+    img->stream_sum = (double *)fogrt__alloc(&img->allocator, sizeof(double) * FOGRT_IMAGE_STREAMS * n);
+    img->stream_count = (uint32_t *)fogrt__alloc(&img->allocator, sizeof(uint32_t) * FOGRT_IMAGE_STREAMS * n);
+    if (!img->sum || !img->sum_sq || !img->count || !img->stream_sum || !img->stream_count) {
+        fogrt_image_free(img);
+        return FOGRT_RESULT_OUT_OF_MEMORY;
+    }
+    img->width = width; img->height = height;
+    fogrt_image_clear(img);
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PUBLIC void fogrt_image_free(fogrt_image *img) {
+    if (!img) return;
+    fogrt_allocator a = img->allocator;
+    fogrt__free(&a, img->sum); fogrt__free(&a, img->sum_sq); fogrt__free(&a, img->count);
+    fogrt__free(&a, img->stream_sum); fogrt__free(&a, img->stream_count);
+    memset(img, 0, sizeof *img);
+    img->allocator = a;
+}
+FOGRT__PUBLIC void fogrt_image_clear(fogrt_image *img) {
+    FOGRT_ASSERT(img);
+    size_t n = (size_t)img->width * (size_t)img->height;
+    if (img->sum) memset(img->sum, 0, sizeof(double) * 3 * n);
+    if (img->sum_sq) memset(img->sum_sq, 0, sizeof(double) * n);
+    if (img->count) memset(img->count, 0, sizeof(uint32_t) * n);
+    if (img->stream_sum) memset(img->stream_sum, 0, sizeof(double) * FOGRT_IMAGE_STREAMS * n);
+    if (img->stream_count) memset(img->stream_count, 0, sizeof(uint32_t) * FOGRT_IMAGE_STREAMS * n);
+    img->rejected = 0;
+    img->rated_spp = 0;
+}
+/* The scene's getters, and the report of what it uses. */
+FOGRT__PUBLIC const char *fogrt_scene_last_error(const fogrt_scene *s) { FOGRT_ASSERT(s); return s->error; }
+FOGRT__PUBLIC uint32_t fogrt_scene_get_prim_material(const fogrt_scene *s, uint32_t prim) {
+    FOGRT_ASSERT(s);
+    if (prim < s->tri_count) return s->tri_material[prim];
+    if (prim - s->tri_count < s->sph_count) return s->sph_material[prim - s->tri_count];
+    return UINT32_MAX;
+}
+FOGRT__PUBLIC void fogrt_scene_get_info(const fogrt_scene *s, fogrt_scene_info *info) {
+    FOGRT_ASSERT(s && info);
+    memset(info, 0, sizeof *info);
+    info->triangle_count = s->tri_count; info->sphere_count = s->sph_count; info->mesh_count = s->mesh_count;
+    info->material_count = s->material_count;
+    info->light_count = s->light_count; info->area_light_count = s->area_light_count;
+    info->bounds_min = s->bmin; info->bounds_max = s->bmax;
+    info->has_environment = s->has_env; info->built = s->built;
+}
+FOGRT__PUBLIC fogrt_result fogrt_scene_get_material(const fogrt_scene *s, uint32_t id, fogrt_material_desc *out) {
+    FOGRT_ASSERT(s && out);
+    if (id >= s->material_count) return FOGRT_RESULT_INVALID_ARGUMENT;
+    *out = s->materials[id];
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PUBLIC fogrt_result fogrt_scene_get_light(const fogrt_scene *s, uint32_t index, fogrt_light_desc *out) {
+    FOGRT_ASSERT(s && out);
+    if (index >= s->light_count) return FOGRT_RESULT_INVALID_ARGUMENT;
+    *out = s->lights[index];
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PUBLIC void fogrt_scene_get_camera(const fogrt_scene *s, fogrt_camera_desc *out) { FOGRT_ASSERT(s && out); *out = s->camera; }
+FOGRT__PUBLIC void fogrt_scene_get_medium(const fogrt_scene *s, fogrt_medium_desc *out) { FOGRT_ASSERT(s && out); *out = s->medium; }
+/* Whether a primitive uses a material of this type: the materials are looked at first, so
+   that a scene without one does not scan its million triangles. */
+FOGRT__PRIVATE bool fogrt__material_used(const fogrt_scene *s, fogrt_bsdf_type type) {
+    uint32_t i = 0;
+    for (; i < s->material_count && fogrt__bsdf_type(&s->materials[i]) != type; ++i) {}
+    if (i == s->material_count) return false;
+    for (uint32_t t = 0; t < s->tri_count; ++t) if (fogrt__bsdf_type(&s->materials[s->tri_material[t]]) == type) return true;
+    for (uint32_t k = 0; k < s->sph_count; ++k) if (fogrt__bsdf_type(&s->materials[s->sph_material[k]]) == type) return true;
+    return false;
+}
+/* What the scene uses: the fog's bit from the build (the integrator reads it to skip every
+   fog step), and the rest as a report (the code they name runs only where a primitive or light of that
+   kind exists anyway: no glass, no Fresnel; no spheres, no sphere test; no light, no
+   shadow ray). make callgrind measures both claims against the strip macros.             */
+FOGRT__PUBLIC uint32_t fogrt_scene_get_features(const fogrt_scene *s) {
+    FOGRT_ASSERT(s);
+    uint32_t f = s->features;
+    if (!s->built) return f;
+    if (fogrt__material_used(s, FOGRT_BSDF_GLASS)) f |= FOGRT_FEATURE_FRESNEL | FOGRT_FEATURE_REFRACTION;
+    if (fogrt__material_used(s, FOGRT_BSDF_REFRACTION)) f |= FOGRT_FEATURE_REFRACTION;
+    if (s->area_light_count) f |= FOGRT_FEATURE_AREA_LIGHTS;
+    for (uint32_t i = 0; i < s->light_count; ++i) {
+        f |= FOGRT_FEATURE_POINT_LIGHTS;
+        if (s->lights[i].type == FOGRT_LIGHT_SPOT) f |= FOGRT_FEATURE_SPOT_LIGHTS;
+    }
+    if (s->has_env) f |= FOGRT_FEATURE_ENVIRONMENT;
+    if (s->sph_count) f |= FOGRT_FEATURE_SPHERES;
+    if (s->tri_count) f |= FOGRT_FEATURE_TRIANGLES;
+    return f;
+}
+/* The building blocks of an integrator of one's own (the README's "your own integrator",
+   docs/coursework.md): Part I's ray queries, surface vertex, offset, light pdf, shadow ray,
+   camera ray and radiance, as public calls. */
+FOGRT__PUBLIC bool fogrt_intersect_triangle(fogrt_vec3 v0, fogrt_vec3 v1, fogrt_vec3 v2, fogrt_vec3 o,
+                                            fogrt_vec3 d, float tmin, float tmax, float *t, float *u, float *v) {
+    return fogrt__hit_triangle(o, d, v0, fogrt__sub(v1, v0), fogrt__sub(v2, v0), tmin, tmax, t, u, v);
+}
+FOGRT__PUBLIC bool fogrt_intersect_sphere(fogrt_vec3 center, float radius, fogrt_vec3 o, fogrt_vec3 d,
+                                          float tmin, float tmax, float *t) {
+    return fogrt__hit_sphere(o, d, center, radius, tmin, tmax, t);
+}
+FOGRT__PUBLIC bool fogrt_scene_intersect(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax, fogrt_hit *hit) {
+    fogrt_hit tmp;
+    return fogrt__traverse(s, o, d, tmin, tmax, hit ? hit : &tmp, false);
+}
+FOGRT__PUBLIC bool fogrt_scene_occluded(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax) {
+    fogrt_hit tmp;
+    return fogrt__traverse(s, o, d, tmin, tmax, &tmp, true);
+}
+FOGRT__PUBLIC void fogrt_scene_surface(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, const fogrt_hit *hit,
+                                       fogrt_surface *out) {
+    fogrt__vertex v;
+    fogrt__v3 p, ng, ns;
+    FOGRT_ASSERT(s && s->built && hit && out && hit->prim < s->tri_count + s->sph_count);
+    fogrt__surface_frame(s, o, d, hit, &p, &ng, &ns);
+    out->front = fogrt__surface_vertex_set(&v, &s->materials[fogrt_scene_get_prim_material(s, hit->prim)],
+                                           fogrt__neg(d), p, ng, ns, false);
+    out->p = p; out->ng = v.ng; out->material = *v.m;
+    out->s = v.frame.s; out->t = v.frame.t; out->n = v.frame.n;
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_surface_offset(const fogrt_scene *s, const fogrt_surface *sf, fogrt_vec3 w) {
+    return fogrt__offset(s, sf->p, sf->ng, w);
+}
+FOGRT__PUBLIC float fogrt_scene_light_pdf(const fogrt_scene *s, fogrt_vec3 from, const fogrt_hit *hit,
+                                          const fogrt_surface *sf) {
+    return fogrt__area_light_pdf(s, hit->prim, from, sf->p, sf->ng);
+}
+FOGRT__PUBLIC bool fogrt_scene_visible(const fogrt_scene *s, const fogrt_surface *sf, fogrt_vec3 p,
+                                       const fogrt_light_sample *ls) {
+    fogrt__vertex v;
+    uint64_t rays = 0;
+    memset(&v, 0, sizeof v);
+    v.p = p;
+    v.is_medium = sf == NULL;                 /* no offset in the fog; no transmittance either way */
+    if (sf) v.ng = sf->ng;
+    return fogrt__shadow(s, &v, ls, &rays) > 0.0f;
+}
+FOGRT__PUBLIC void fogrt_camera_ray(const fogrt_scene *s, int width, int height, float px, float py,
+                                    float lens_u1, float lens_u2, fogrt_vec3 *o, fogrt_vec3 *d) {
+    FOGRT_ASSERT(s && o && d);
+    fogrt__camera c = fogrt__camera_setup(s, width, height);
+    fogrt__camera_generate(&c, width, height, px, py, lens_u1, lens_u2, o, d);
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_trace(const fogrt_scene *s, const fogrt_render_desc *desc, fogrt_vec3 o, fogrt_vec3 d,
+                                     fogrt_rng *rng, uint64_t *ray_count) {
+    fogrt__settings st;
+    uint64_t rays = 0;
+    if (!s->built || fogrt__resolve_render(s, desc, &st, NULL) != FOGRT_RESULT_OK) return fogrt__v(0.0f, 0.0f, 0.0f);
+    o = fogrt__radiance(s, &st, o, fogrt__normalize(d), rng, &rays);
+    if (ray_count) *ray_count += rays;
+    return o;
+}
+/* 8-bit output. */
+/* The sRGB curve: 12.92 x below 0.0031308, else 1.055 x^(1/2.4) - 0.055. */
+FOGRT__PUBLIC void fogrt_tonemap_rgb8(const float *rgb, int width, int height, float exposure,
+                                      fogrt_tonemap mode, unsigned char *out) {
+    size_t n = (size_t)FOGRT__MAX(width, 0) * (size_t)FOGRT__MAX(height, 0) * 3;
+    float e = exp2f(fogrt__finite(exposure) ? FOGRT__CLAMP(exposure, -64.0f, 64.0f) : 0.0f);
+    for (size_t i = 0; i < n; ++i) {
+        float x = rgb[i] * e;
+        if (!(x > 0.0f)) x = 0.0f;                   /* also NaN -> 0 */
+        if (x > 1.0f) x = 1.0f;
+        if (mode == FOGRT_TONEMAP_GAMMA22) x = powf(x, 1.0f / 2.2f);
+        else x = x <= 0.0031308f ? 12.92f * x : 1.055f * powf(x, 1.0f / 2.4f) - 0.055f;
+        out[i] = (unsigned char)(x * 255.0f + 0.5f);
+    }
+}
+#ifndef FOGRT_NO_STDIO
+FOGRT__PUBLIC fogrt_result fogrt_write_ppm(const char *path, int width, int height, const unsigned char *rgb8) {
+    if (!path || !rgb8 || width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
+    FILE *f = fopen(path, "wb");
+    if (!f) return FOGRT_RESULT_IO_ERROR;
+    bool ok = fprintf(f, "P6\n%d %d\n255\n", width, height) > 0;
+    ok = ok && fwrite(rgb8, 3, (size_t)width * (size_t)height, f) == (size_t)width * (size_t)height;
+    if (fclose(f) != 0) ok = false;
+    return ok ? FOGRT_RESULT_OK : FOGRT_RESULT_IO_ERROR;
+}
+#endif
 
 /* ------------------------------------------------------------------------------------------
    Checks of what lies beyond Part I
@@ -8135,7 +8035,14 @@ FOGRT__PRIVATE fogrt_result fogrt__beyond_material(const fogrt_scene *s, const f
     (void)s; (void)m;
     return FOGRT_RESULT_OK;
 }
+FOGRT__PRIVATE bool fogrt__box_ok(fogrt__v3 lo, fogrt__v3 hi) {
+    return fogrt__coord_ok(lo.x) && fogrt__coord_ok(lo.y) && fogrt__coord_ok(lo.z) &&
+           fogrt__coord_ok(hi.x) && fogrt__coord_ok(hi.y) && fogrt__coord_ok(hi.z) &&
+           lo.x < hi.x && lo.y < hi.y && lo.z < hi.z;
+}
 FOGRT__PRIVATE fogrt_result fogrt__beyond_medium(const fogrt_scene *s, const fogrt_medium_desc *m) {
+    FOGRT__REFUSE_IF(m->bounded && !fogrt__box_ok(m->bounds_min, m->bounds_max), INVALID_MEDIUM,
+                     "medium.bounds_min/bounds_max: not finite, beyond 1e30, or min not below max on every axis");
 #ifdef FOGRT_NO_ESTIMATION
     FOGRT__REFUSE_IF(m->bounded && m->sigma_t > 0.0f, UNSUPPORTED,
                      "medium.bounded: fog in a box needs a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
@@ -8178,6 +8085,15 @@ FOGRT__PRIVATE fogrt_result fogrt__beyond_render(const fogrt_scene *s, const fog
                      "render desc: light_by_power and sample_rate need a build without FOGRT_NO_ESTIMATION and FOGRT_MINIMAL");
 #endif
     (void)s; (void)d;
+    return FOGRT_RESULT_OK;
+}
+
+/* The per-pixel rates (C): checked against the image's size. */
+FOGRT__PRIVATE fogrt_result fogrt__beyond_image(const fogrt_scene *s, const fogrt_render_desc *d, const fogrt_image *img) {
+    size_t n = d->sample_rate ? (size_t)img->width * (size_t)img->height : 0;
+    for (size_t i = 0; i < n; ++i)
+        FOGRT__REFUSE_IF(!(d->sample_rate[i] >= 0.0f && d->sample_rate[i] <= FOGRT_MAX_SAMPLE_RATE), INVALID_ARGUMENT,
+                         "render desc: a sample_rate is NaN, negative or above FOGRT_MAX_SAMPLE_RATE (64)");
     return FOGRT_RESULT_OK;
 }
 
