@@ -1120,9 +1120,6 @@ FOGRT__PRIVATE fogrt_result fogrt__beyond_medium(const fogrt_scene *s, const fog
 FOGRT__PRIVATE fogrt_result fogrt__beyond_build(const fogrt_scene *s, const fogrt_build_desc *d);
 FOGRT__PRIVATE fogrt_result fogrt__beyond_render(const fogrt_scene *s, const fogrt_render_desc *d);
 FOGRT__PRIVATE fogrt_result fogrt__beyond_image(const fogrt_scene *s, const fogrt_render_desc *d, const fogrt_image *img);
-#ifndef FOGRT_NO_SHAPES
-FOGRT__PRIVATE void fogrt__x_shapes_free(fogrt_scene *s);                                         /* 4 (H) */
-#endif
 /* The seams: what Part I calls of Part II (numbered as in Part I's opening comment). */
 struct fogrt__settings;
 struct fogrt__job;
@@ -1147,6 +1144,7 @@ FOGRT__PRIVATE void fogrt__x_split_refs(const fogrt_scene *s, struct fogrt__buil
 #ifndef FOGRT_MINIMAL
 FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n);        /* 3 */
 FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s);                                             /* 4 */
+FOGRT__PRIVATE void fogrt__x_scene_free(fogrt_scene *s);                                          /* 4 (C, H) */
 #ifndef FOGRT_NO_MEDIUM
 FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmax,
                                   float *a, float *b);                                            /* 6 (C) */
@@ -1346,7 +1344,7 @@ struct fogrt_scene {
     float *spot_cos;           /* built: per point or spot light, cos(cutoff) and cos(beam) */
     /* environment: a constant radiance, or a map (3 floats per pixel, CS184's mapping) */
     fogrt__v3 env; bool env_upper_only, has_env;
-    float *env_map; int env_w, env_h;   /* a map's pixels (set by Part II, C), or NULL */
+    struct fogrt__env_map *env_map;     /* Part II's environment map (C), or NULL */
     fogrt_camera_desc camera; bool has_camera;
     fogrt_medium_desc medium;
     /* built data (fogrt_scene_build) */
@@ -1439,10 +1437,10 @@ FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s) {
     fogrt__free(&a, s->materials); fogrt__free(&a, s->tri_v); fogrt__free(&a, s->tri_n); fogrt__free(&a, s->tri_has_n);
     fogrt__free(&a, s->tri_material); fogrt__free(&a, s->tri_mesh);
     fogrt__free(&a, s->sph_c); fogrt__free(&a, s->sph_r); fogrt__free(&a, s->sph_material);
-#ifndef FOGRT_NO_SHAPES
-    fogrt__x_shapes_free(s);                             /* SEAM 4: H's media, set on the scene */
+#ifndef FOGRT_MINIMAL
+    fogrt__x_scene_free(s);                              /* SEAM 4: what Part II set on the scene */
 #endif
-    fogrt__free(&a, s->lights); fogrt__free(&a, s->env_map); fogrt__free(&a, s);
+    fogrt__free(&a, s->lights); fogrt__free(&a, s);
 }
 
 FOGRT__PRIVATE bool fogrt__colour_ok(fogrt__v3 c) { return fogrt__v3_finite(c) && c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f; }
@@ -2085,10 +2083,9 @@ FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 n, float eta, fogrt_vec3 wo, fogrt_v
     return true;
 }
 FOGRT__PRIVATE float fogrt__fresnel(fogrt_fresnel mode, float eta, float cos_i) {
+    (void)mode;   /* unread without exact Fresnel, which fogrt_render then refuses */
 #ifndef FOGRT_NO_EXACT_FRESNEL
     if (mode == FOGRT_FRESNEL_EXACT) return fogrt_fresnel_dielectric(eta, cos_i);   /* SEAM 5 (C) */
-#else
-    (void)mode;   /* fogrt_render refuses FOGRT_FRESNEL_EXACT in this build */
 #endif
     return fogrt_fresnel_schlick(eta, cos_i);
 }
@@ -2274,14 +2271,13 @@ FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt_
    world space, with the geometric-side test against light leaks), the phase function in the
    fog. *pdf is the density with which BSDF / phase sampling would have chosen wi. */
 FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf) {
+    (void)s;                                             /* read by the fog's branch only */
 #ifndef FOGRT_NO_MEDIUM
     if (v->is_medium) {
         float p = fogrt_hg_pdf(s->medium.g, v->wo, wi);
         *pdf = p;
         return fogrt__v(p, p, p);
     }
-#else
-    (void)s;
 #endif
     if (fogrt__dot(wi, v->ng) <= 0.0f) { *pdf = 0.0f; return fogrt__v(0.0f, 0.0f, 0.0f); }
     fogrt__v3 wo_l = fogrt__to_local(&v->frame, v->wo), wi_l = fogrt__to_local(&v->frame, wi);
@@ -2441,12 +2437,11 @@ FOGRT__PUBLIC float fogrt_transmittance(float sigma_t, float distance) {
 }
 /* Eq. 8 along o + t d for t in [0, dist]: exp(-sigma_t x the length in fog). */
 FOGRT__HOT float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float dist) {
+    (void)o; (void)d;                                    /* read by Part II's bounded fog only */
 #ifndef FOGRT_MINIMAL
     float a, b;
     if (s->x && !fogrt__x_fog_span(s, o, d, dist, &a, &b)) return 1.0f;    /* SEAM 6: fog in a box */
     if (s->x) dist = b - a;
-#else
-    (void)o; (void)d;
 #endif
     return fogrt_transmittance(s->medium.sigma_t, dist);
 }
@@ -2680,10 +2675,9 @@ FOGRT__PRIVATE bool fogrt__a1_vertex(const fogrt_scene *s, const fogrt__settings
     float t_fog = INFINITY;
     ++*rays;
     bool found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, &hit, false);            /* 3: t_i */
+    (void)rng;                                           /* unread in a build without fog */
 #ifndef FOGRT_NO_MEDIUM
     if (w->in_fog) t_fog = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(rng));   /* 4: t_fog */
-#else
-    (void)rng;
 #endif
     if (t_fog < (found ? hit.t : INFINITY)) {                                          /* 5, 14 */
         w->beta = fogrt__mul(w->beta, s->medium.albedo);
@@ -3152,7 +3146,6 @@ typedef struct fogrt__job {
     fogrt_image *img;
     uint64_t base;
     int spp;
-    const float *rate;       /* per-pixel rates (Part II, C), or NULL: spp samples in every pixel */
 } fogrt__job;
 /* The camera ray of sample `index` of pixel (x, y), and the sample's random stream. Every
    sample has its own stream, derived from (seed, pixel, sample index): the image does not
@@ -3182,7 +3175,7 @@ FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *ra
     for (int x = 0; x < width; ++x) {
         size_t pix = (size_t)y * (size_t)width + (size_t)x;
 #ifndef FOGRT_NO_ESTIMATION
-        uint32_t spp = job->rate ? fogrt__x_pixel_spp(job, pix) : (uint32_t)job->spp;   /* SEAM 8: per-pixel rates (C) */
+        uint32_t spp = job->st.desc.sample_rate ? fogrt__x_pixel_spp(job, pix) : (uint32_t)job->spp;   /* SEAM 8: rates (C) */
 #else
         uint32_t spp = (uint32_t)job->spp;
 #endif
@@ -3271,11 +3264,11 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
     if (stats) memset(stats, 0, sizeof *stats);
     if ((result = fogrt__resolve_render(s, desc, &job.st, &d)) != FOGRT_RESULT_OK) return result;
     if ((result = fogrt__check_image(s, &d, img, spp)) != FOGRT_RESULT_OK) return result;
-    job.s = s; job.img = img; job.spp = spp; job.rate = d.sample_rate;
+    job.s = s; job.img = img; job.spp = spp;
     job.cam = fogrt__camera_setup(s, img->width, img->height);
     job.base = fogrt__hash64(d.seed);
     if (spp > 0 && !fogrt__render_rows(&job, &d, &rays, &rejected, &samples)) result = FOGRT_RESULT_CANCELLED;
-    if (job.rate && result == FOGRT_RESULT_OK) img->rated_spp += (uint64_t)spp;
+    if (d.sample_rate && result == FOGRT_RESULT_OK) img->rated_spp += (uint64_t)spp;   /* for the rates (C) */
     img->rejected += rejected;
     if (stats) {
         size_t i = 0, n = 3 * (size_t)img->width * (size_t)img->height;
@@ -5204,17 +5197,24 @@ FOGRT__PUBLIC float fogrt_fresnel_dielectric(float eta, float cos_i) {
 }
 #endif
 #endif
+/* An environment map (C): 3 floats a pixel, w x h pixels in CS184's mapping. */
+struct fogrt__env_map { float *rgb; int w, h; };
 #ifndef FOGRT_NO_ESTIMATION
 /* Environment maps: the map replaces the constant environment (the scene keeps the pixels,
    times scale), is looked up in CS184's mapping, and is sampled by next-event estimation in
    proportion to luminance x sin(theta). */
+FOGRT__PRIVATE void fogrt__env_map_free(fogrt_scene *s) {
+    if (s->env_map) fogrt__free(&s->allocator, s->env_map->rgb);
+    fogrt__free(&s->allocator, s->env_map);
+    s->env_map = NULL;
+}
 FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment_map(fogrt_scene *s, int width, int height, const float *rgb, float scale) {
     size_t i, n;
     float *copy;
+    struct fogrt__env_map *map;
     FOGRT_ASSERT(s);
     if (!rgb) {
-        fogrt__free(&s->allocator, s->env_map);
-        s->env_map = NULL; s->env_w = s->env_h = 0;
+        fogrt__env_map_free(s);
         s->has_env = !fogrt__is_black(s->env);
         s->built = false;
         return FOGRT_RESULT_OK;
@@ -5228,10 +5228,12 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment_map(fogrt_scene *s, int w
         if (!fogrt__finite(rgb[i]) || rgb[i] < 0.0f || !fogrt__finite(rgb[i] * scale))
             return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "environment map: a pixel is negative or not finite (after scale)");
     copy = (float *)fogrt__alloc(&s->allocator, sizeof(float) * n);
-    if (!copy) return FOGRT_RESULT_OUT_OF_MEMORY;
+    map = (struct fogrt__env_map *)fogrt__alloc(&s->allocator, sizeof *map);
+    if (!copy || !map) { fogrt__free(&s->allocator, copy); fogrt__free(&s->allocator, map); return FOGRT_RESULT_OUT_OF_MEMORY; }
     for (i = 0; i < n; ++i) copy[i] = rgb[i] * scale;
-    fogrt__free(&s->allocator, s->env_map);
-    s->env_map = copy; s->env_w = width; s->env_h = height;
+    fogrt__env_map_free(s);
+    map->rgb = copy; map->w = width; map->h = height;
+    s->env_map = map;
     s->has_env = true;
     s->built = false;
     return FOGRT_RESULT_OK;
@@ -5239,15 +5241,15 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment_map(fogrt_scene *s, int w
 FOGRT__PRIVATE size_t fogrt__env_pixel(const fogrt_scene *s, fogrt__v3 d, float *sin_theta) {
     float y = acosf(FOGRT__CLAMP(d.y, -1.0f, 1.0f)) * FOGRT__INV_PI;
     float x = (atan2f(-d.z, d.x) + FOGRT__PI) * (0.5f * FOGRT__INV_PI);
-    int i = FOGRT__CLAMP((int)(x * (float)s->env_w), 0, s->env_w - 1), j = FOGRT__CLAMP((int)(y * (float)s->env_h), 0, s->env_h - 1);
+    int i = FOGRT__CLAMP((int)(x * (float)s->env_map->w), 0, s->env_map->w - 1), j = FOGRT__CLAMP((int)(y * (float)s->env_map->h), 0, s->env_map->h - 1);
     *sin_theta = sqrtf(FOGRT__MAX(0.0f, (1.0f - d.y) * (1.0f + d.y)));
-    return (size_t)j * (size_t)s->env_w + (size_t)i;
+    return (size_t)j * (size_t)s->env_map->w + (size_t)i;
 }
 FOGRT__PRIVATE fogrt__v3 fogrt__env_map_radiance(const fogrt_scene *s, fogrt__v3 d) {
     float sin_t;
     const float *c;
     if (!s->env_map) return fogrt__env_radiance(s, d);
-    c = s->env_map + 3 * fogrt__env_pixel(s, d, &sin_t);
+    c = s->env_map->rgb + 3 * fogrt__env_pixel(s, d, &sin_t);
     return fogrt__v(c[0], c[1], c[2]);
 }
 /* The environment map (CS184's mapping): direction <-> (x, y) in [0,1)^2 of the image,
@@ -5261,11 +5263,11 @@ FOGRT__PRIVATE fogrt__v3 fogrt__env_dir(float x, float y, float *sin_theta) {
 }
 /* The probability (per unit x, y) of pixel p in the sampling tables. */
 FOGRT__PRIVATE float fogrt__env_cell_pdf(const fogrt_scene *s, size_t p) {
-    const float *rows = s->x->env_cdf + (size_t)s->env_w * (size_t)s->env_h;
-    size_t i = p % (size_t)s->env_w, j = p / (size_t)s->env_w;
-    const float *cdf = s->x->env_cdf + j * (size_t)s->env_w;
+    const float *rows = s->x->env_cdf + (size_t)s->env_map->w * (size_t)s->env_map->h;
+    size_t i = p % (size_t)s->env_map->w, j = p / (size_t)s->env_map->w;
+    const float *cdf = s->x->env_cdf + j * (size_t)s->env_map->w;
     float pr = rows[j] - (j ? rows[j - 1] : 0.0f), pc = cdf[i] - (i ? cdf[i - 1] : 0.0f);
-    return pr * pc * (float)s->env_w * (float)s->env_h;
+    return pr * pc * (float)s->env_map->w * (float)s->env_map->h;
 }
 FOGRT__PRIVATE float fogrt__env_pdf(const fogrt_scene *s, fogrt__v3 d) {
     float sin_t;
@@ -5276,14 +5278,14 @@ FOGRT__PRIVATE float fogrt__env_pdf(const fogrt_scene *s, fogrt__v3 d) {
 }
 FOGRT__PRIVATE bool fogrt__sample_env(const fogrt_scene *s, const float *u, fogrt_light_sample *ls) {
     float fy, fx, sin_t;
-    int j = fogrt__cdf_find(s->x->env_cdf + (size_t)s->env_w * (size_t)s->env_h, s->env_h, u[0], &fy);
-    int i = fogrt__cdf_find(s->x->env_cdf + (size_t)j * (size_t)s->env_w, s->env_w, u[1], &fx);
-    size_t p = (size_t)j * (size_t)s->env_w + (size_t)i;
-    ls->wi = fogrt__env_dir(((float)i + fx) / (float)s->env_w, ((float)j + fy) / (float)s->env_h, &sin_t);
+    int j = fogrt__cdf_find(s->x->env_cdf + (size_t)s->env_map->w * (size_t)s->env_map->h, s->env_map->h, u[0], &fy);
+    int i = fogrt__cdf_find(s->x->env_cdf + (size_t)j * (size_t)s->env_map->w, s->env_map->w, u[1], &fx);
+    size_t p = (size_t)j * (size_t)s->env_map->w + (size_t)i;
+    ls->wi = fogrt__env_dir(((float)i + fx) / (float)s->env_map->w, ((float)j + fy) / (float)s->env_map->h, &sin_t);
     ls->dist = INFINITY;
     ls->is_delta = false;
     ls->pdf = sin_t > 0.0f ? fogrt__env_cell_pdf(s, p) / (2.0f * FOGRT__PI * FOGRT__PI * sin_t) : 0.0f;
-    ls->Le = fogrt__v(s->env_map[3 * p], s->env_map[3 * p + 1], s->env_map[3 * p + 2]);
+    ls->Le = fogrt__v(s->env_map->rgb[3 * p], s->env_map->rgb[3 * p + 1], s->env_map->rgb[3 * p + 2]);
     return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
 }
 
@@ -5296,11 +5298,11 @@ FOGRT__PRIVATE bool fogrt__sample_env(const fogrt_scene *s, const float *u, fogr
    columns, then a CDF over the rows. */
 /* The environment map's CDFs: rows, and columns within each row. */
 FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s) {
-    int i, j, w = s->env_w, h = s->env_h;
     double total = 0.0;
     float *rows;
     s->x->env_total = 0.0;
     if (!s->env_map) return true;
+    int i, j, w = s->env_map->w, h = s->env_map->h;
     s->x->env_cdf = (float *)fogrt__alloc(&s->allocator, sizeof(float) * ((size_t)w * (size_t)h + (size_t)h));
     if (!s->x->env_cdf) return false;
     rows = s->x->env_cdf + (size_t)w * (size_t)h;
@@ -5308,7 +5310,7 @@ FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s) {
         float *cdf = s->x->env_cdf + (size_t)j * (size_t)w;
         double sin_t = sin(3.14159265358979323846 * ((double)j + 0.5) / (double)h), row = 0.0;
         for (i = 0; i < w; ++i) {
-            const float *c = s->env_map + 3 * ((size_t)j * (size_t)w + (size_t)i);
+            const float *c = s->env_map->rgb + 3 * ((size_t)j * (size_t)w + (size_t)i);
             row += (double)fogrt__luminance(fogrt__v(c[0], c[1], c[2])) * sin_t;
             cdf[i] = (float)row;
         }
@@ -5383,7 +5385,7 @@ FOGRT__PRIVATE float fogrt__light_power(const fogrt_scene *s, uint32_t i, float 
         uint32_t m = a->sphere != UINT32_MAX ? s->sph_material[a->sphere] : s->tri_material[s->light_prims[a->first]];
         return fogrt__luminance(s->materials[m].emission) * a->area * FOGRT__PI;
     }
-    return (float)(s->x->env_total * FOGRT__PI_D / (2.0 * (double)s->env_w * (double)s->env_h)) *   /* mean radiance */
+    return (float)(s->x->env_total * FOGRT__PI_D / (2.0 * (double)s->env_map->w * (double)s->env_map->h)) *   /* mean radiance */
            FOGRT__PI * 4.0f * FOGRT__PI * radius * radius;
 }
 FOGRT__PRIVATE float fogrt__light_radius(const fogrt_scene *s) {    /* of the sphere around the geometry */
@@ -5637,7 +5639,7 @@ FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_
    not depend on how B was split over calls (the image is the same for any batches). */
 FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix) {
     double u = (double)(fogrt__hash64(job->base ^ fogrt__hash64(0x52415445ULL ^ (uint64_t)pix)) >> 11) * (1.0 / 9007199254740992.0);
-    double r = (double)job->rate[pix], b = (double)job->img->rated_spp;
+    double r = (double)job->st.desc.sample_rate[pix], b = (double)job->img->rated_spp;
     double n = floor((b + (double)job->spp) * r + u) - floor(b * r + u);
     double room = (double)(0xFFFFFFFFu - job->img->count[pix]);
     return n <= 0.0 ? 0u : (uint32_t)(n < room ? n : room);
@@ -6849,7 +6851,7 @@ FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s) {
     b += sizeof(fogrt_material_desc) * s->material_count + sizeof(fogrt_light_desc) * s->light_count;
     b += t * ((s->tri_n ? 6 : 3) * sizeof(fogrt__v3) + 1 + 2 * sizeof(uint32_t));   /* vertices, normals, flag, ids */
     b += (size_t)s->sph_count * (sizeof(fogrt__v3) + sizeof(float) + sizeof(uint32_t));
-    if (s->env_map) b += sizeof(float) * 3 * (size_t)s->env_w * (size_t)s->env_h;
+    if (s->env_map) b += sizeof(float) * 3 * (size_t)s->env_map->w * (size_t)s->env_map->h;
     if (s->nodes) b += sizeof(fogrt_bvh_node) * s->node_count + fogrt__tree_refs(s) * sizeof(uint32_t);
     if (s->prims) b += p * sizeof(fogrt__prim);         /* 2.1's primitives: the binary layout only */
     if (s->spot_cos) b += sizeof(float) * 2 * s->light_count;
@@ -6858,7 +6860,7 @@ FOGRT__PUBLIC size_t fogrt_scene_get_memory(const fogrt_scene *s) {
     if (s->prim_light) b += sizeof(uint32_t) * p;
     if (!s->x) return b;                                /* Part II's tables */
     b += sizeof *s->x;
-    if (s->x->env_cdf) b += sizeof(float) * ((size_t)s->env_w + 1) * (size_t)s->env_h;
+    if (s->x->env_cdf) b += sizeof(float) * ((size_t)s->env_map->w + 1) * (size_t)s->env_map->h;
     if (s->x->light_pick) b += sizeof(float) * fogrt__light_total(s);
 #ifdef FOGRT__LAMPS
     if (s->x->footprints) b += sizeof(fogrt__footprint) * s->light_count;
@@ -7322,7 +7324,7 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_interior(fogrt_scene *s, fogrt_shape_
     s->built = false;
     return FOGRT_RESULT_OK;
 }
-FOGRT__PRIVATE void fogrt__x_shapes_free(fogrt_scene *s) {
+FOGRT__PRIVATE void fogrt__shapes_free(fogrt_scene *s) {
     if (!s->shapes) return;
     fogrt__free(&s->allocator, s->shapes->items);
     fogrt__free(&s->allocator, s->shapes);
@@ -7796,6 +7798,17 @@ FOGRT__PRIVATE fogrt__v3 fogrt__h_radiance(const fogrt_scene *s, const fogrt__se
     return w.L;
 }
 #endif /* FOGRT_NO_SHAPES */
+
+/* SEAM 4: what Part II's calls set on the scene, freed with it (C's map, H's media). */
+FOGRT__PRIVATE void fogrt__x_scene_free(fogrt_scene *s) {
+#ifndef FOGRT_NO_ESTIMATION
+    fogrt__env_map_free(s);
+#endif
+#ifndef FOGRT_NO_SHAPES
+    fogrt__shapes_free(s);
+#endif
+    (void)s;
+}
 #endif /* FOGRT_MINIMAL */
 
 /* ------------------------------------------------------------------------------------------
