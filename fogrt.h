@@ -41,9 +41,9 @@
     FOGRT_STATIC           make every function static (private to one translation unit)
     FOGRT_MALLOC(sz,u) / FOGRT_FREE(p,u)   default allocator (both or neither; default libc)
     FOGRT_ASSERT(c)        programmer-error check (default: assert)
-    FOGRT_MINIMAL          compile Part I alone, the paper's renderer (Part II, the appendix of
-                           speed and variance reduction, is left out; fogrt_render_defaults()
-                           is then fogrt_render_paper_defaults())
+    FOGRT_MINIMAL          compile Part I, the paper's renderer, with the API around it (Part
+                           II, the appendix of speed, variance reduction and more, is left out;
+                           fogrt_render_defaults() is then fogrt_render_paper_defaults())
     FOGRT_NO_WIDE_BVH      leave out appendix A, the wide BVH (the binary tree is traced)
     FOGRT_NO_LAMPS_IN_FOG  leave out appendix B: equiangular sampling, glow, footprint, expected
                            emission (render desc fields that ask for them fail)
@@ -1195,7 +1195,8 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const struct fogrt__job *job, size_t 
         fogrt__build_tree          and huge pages for the build's two big arrays, and the
                                    boxes of long slivers cut into pieces (A)
      3. fogrt_scene_build          Part II's tables: wide tree, HG table, footprints, pilot
-     4. fogrt__free_built          their release
+     4. fogrt__free_built          their release; fogrt_scene_destroy: what Part II's calls set
+                                   on the scene (C's environment map, H's media)
      5. fogrt__fresnel             the exact dielectric Fresnel (C)
      6. fogrt__fog_transmittance   fog bounded by a box (C); fogrt__check_medium: G's medium fields
      7. fogrt__radiance            the full integrator, for every setting beyond the paper (E)
