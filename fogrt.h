@@ -4438,8 +4438,12 @@ typedef struct fogrt__xbins {
     __m128 org, sc;
     int nb;
 } fogrt__xbins;
-FOGRT__HOT __m128 fogrt__x_centre(const fogrt__aabb *b) {
-    return _mm_mul_ps(_mm_add_ps(_mm_loadu_ps(&b->lo.x), _mm_loadu_ps(&b->hi.x)), _mm_set1_ps(0.5f));
+/* A box as the binning reads it: two registers, loaded at its lo and at its hi. */
+typedef struct fogrt__xlh { __m128 l, h; } fogrt__xlh;
+FOGRT__HOT fogrt__xlh fogrt__x_lh(const fogrt__aabb *b) {
+    fogrt__xlh r;
+    r.l = _mm_loadu_ps(&b->lo.x); r.h = _mm_loadu_ps(&b->hi.x);
+    return r;
 }
 FOGRT__PRIVATE fogrt__aabb fogrt__x_box(__m128 lo, __m128 hi) {
     fogrt__aabb b;
@@ -4480,29 +4484,41 @@ FOGRT__HOT void fogrt__xbins_add(fogrt__xbin *bin, uint32_t *n, uint32_t k, __m1
    max then min with the operands in its order, so a NaN lands in bin 0 there too), each
    lane's bin offset by its axis. The three axes are written out: a loop over them costs as
    much as the binning itself. */
-FOGRT__HOT void fogrt__xbins_put(fogrt__xbins *x, const fogrt__aabb *b, __m128 org, __m128 sc, __m128 top) {
+FOGRT__HOT void fogrt__xbins_put(fogrt__xbins *x, fogrt__xlh b, __m128 org, __m128 sc, __m128 top) {
     const __m128i axis = _mm_setr_epi32(0, FOGRT__BVH_MAX_BINS, 2 * FOGRT__BVH_MAX_BINS, 0);
-    __m128 l = _mm_loadu_ps(&b->lo.x), h = _mm_loadu_ps(&b->hi.x);
-    __m128 f = _mm_mul_ps(_mm_sub_ps(fogrt__x_centre(b), org), sc);
+    __m128 c = _mm_mul_ps(_mm_add_ps(b.l, b.h), _mm_set1_ps(0.5f));    /* the centre */
+    __m128 f = _mm_mul_ps(_mm_sub_ps(c, org), sc);
     __m128i k = _mm_add_epi32(_mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), top)), axis);
-    fogrt__xbins_add(x->bin, x->n, (uint32_t)_mm_cvtsi128_si32(k), l, h);
-    fogrt__xbins_add(x->bin, x->n, (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 1)), l, h);
-    fogrt__xbins_add(x->bin, x->n, (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 2)), l, h);
+    fogrt__xbins_add(x->bin, x->n, (uint32_t)_mm_cvtsi128_si32(k), b.l, b.h);
+    fogrt__xbins_add(x->bin, x->n, (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 1)), b.l, b.h);
+    fogrt__xbins_add(x->bin, x->n, (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 2)), b.l, b.h);
 }
 /* Every primitive into its bins. Neighbouring primitives mostly share their bins, and each
    update of a bin waits for the one before; so a big node bins its second half into a
    second set, side by side with the first, and merges it in at the end. The same bins bit
    for bit: min and max of the ordered list (an equal pair keeps the later one) may be taken
    over its two halves and then of the two, because the first half comes first. The
-   lanes' constants live in locals, not reloaded after every store to the bins. */
+   lanes' constants live in locals, not reloaded after every store to the bins.
+   Each box is loaded one step before it is binned. A load from the boxes can be held up
+   by the stores to the bins before it (the processor first matches a load against them by
+   the low 12 bits of the address, and the boxes sweep through every such address): loaded
+   a step early, that wait overlaps the binning of the box before instead of stalling it,
+   which makes the binning of big nodes faster and no longer dependent on where the stack
+   lies against the boxes (docs/benchmarks.md, "Wide BVH"). */
 #define FOGRT__X_TWO_SETS 64
 FOGRT__PRIVATE void fogrt__xbins_fill(fogrt__xbins *x, const fogrt__aabb *box, uint32_t count) {
     const __m128 org = x->org, sc = x->sc, top = _mm_set1_ps((float)(x->nb - 1));
     fogrt__xbins y;
-    uint32_t i, half = count >= FOGRT__X_TWO_SETS ? count / 2 : 0;
+    fogrt__xlh a, b, next_a, next_b;
+    uint32_t i, j, half = count >= FOGRT__X_TWO_SETS ? count / 2 : 0;
     int ax, k;
     if (half == 0) {
-        for (i = 0; i < count; ++i) fogrt__xbins_put(x, &box[i], org, sc, top);
+        a = fogrt__x_lh(&box[0]);
+        for (i = 0; i < count; ++i) {
+            next_a = fogrt__x_lh(&box[i + 1 < count ? i + 1 : i]);
+            fogrt__xbins_put(x, a, org, sc, top);
+            a = next_a;
+        }
         return;
     }
     for (ax = 0; ax < 3; ++ax)
@@ -4510,11 +4526,15 @@ FOGRT__PRIVATE void fogrt__xbins_fill(fogrt__xbins *x, const fogrt__aabb *box, u
             y.bin[k] = x->bin[k];                        /* empty */
             y.n[k] = 0;
         }
+    a = fogrt__x_lh(&box[0]); b = fogrt__x_lh(&box[half]);
     for (i = 0; i < half; ++i) {
-        fogrt__xbins_put(x, &box[i], org, sc, top);
-        fogrt__xbins_put(&y, &box[half + i], org, sc, top);
+        j = i + 1 < half ? i + 1 : i;
+        next_a = fogrt__x_lh(&box[j]); next_b = fogrt__x_lh(&box[half + j]);
+        fogrt__xbins_put(x, a, org, sc, top);
+        fogrt__xbins_put(&y, b, org, sc, top);
+        a = next_a; b = next_b;
     }
-    if (count & 1) fogrt__xbins_put(&y, &box[count - 1], org, sc, top);
+    if (count & 1) fogrt__xbins_put(&y, fogrt__x_lh(&box[count - 1]), org, sc, top);
     for (ax = 0; ax < 3; ++ax)
         for (k = ax * FOGRT__BVH_MAX_BINS; k < ax * FOGRT__BVH_MAX_BINS + x->nb; ++k) {
             _mm_storeu_ps(x->bin[k].lo, _mm_min_ps(_mm_loadu_ps(x->bin[k].lo), _mm_loadu_ps(y.bin[k].lo)));
@@ -6668,8 +6688,10 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
        thousand nodes (slivers that all overlap: a fan of a million triangles around one
        vertex; 10 to 30 in ordinary scenes), its fixed number of paths would take minutes
        before any of the render's own limits apply, so it is not run (k = 1). Priced before
-       the binary tree may be released (A). */
-    bool pilot = d->roulette_pilot && fogrt_bvh_sah_cost(s) <= FOGRT__PILOT_MAX_SAH;
+       the binary tree may be released (A), and only where the pilot has a light to trace
+       towards (without one it answers k = 1 at once: the price is a walk over every node). */
+    bool pilot = d->roulette_pilot && (s->light_count > 0 || s->area_light_count > 0 || s->env_map) &&
+                 fogrt_bvh_sah_cost(s) <= FOGRT__PILOT_MAX_SAH;
 #endif
     if (!x) return false;
     memset(x, 0, sizeof *x);
