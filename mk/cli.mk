@@ -15,8 +15,10 @@ $(BUILD)/fogrt: examples/fogrt_cli.c examples/fogrt_cli_trace.c examples/cli_com
 	$(QCC)$(CC) $(ALL_CFLAGS) $(CLI_SANITIZE) $$([ -e $(TINYEXR_HEADER) ] && echo -DFOGRT_CLI_EXR) -o $@ examples/fogrt_cli.c \
 	  examples/fogrt_cli_trace.c $$([ -e $(TINYEXR_HEADER) ] && echo -ltinyexr) $(LDLIBS)
 
-.PHONY: deps-exr
-deps-exr:
+# (no recipe, so no job, when it is there: see deps-stb in the Makefile)
+.PHONY: deps-exr deps-exr-install
+deps-exr: $(if $(wildcard $(TINYEXR_HEADER)),,deps-exr-install)
+deps-exr-install:
 	@sh tools/need-package.sh libtinyexr-dev $(TINYEXR_HEADER) 2>/dev/null || \
 	  echo "fogrt: libtinyexr-dev not installed: building the fogrt command without OpenEXR (-e .exr) support"
 

@@ -25,10 +25,10 @@
 
 /* make test SANITIZE=1 builds the tests with FOGRT_TESTS_SANITIZE. The sanitizers look for
    memory errors and undefined behaviour, which a smaller run reaches through the same code,
-   at 3 to 10 times the cost of -O2; so there the heaviest statistical loops run a reduced
-   variant, SAN_REDUCED(n, d) = n / d (at least 1), and the full size, whose statistics the
-   test is about, runs in the plain make test. A reduced variant must still pass on its own
-   (its tolerances follow its own standard errors). */
+   at 2 to 4 times the cost of the plain build; so there the heaviest statistical loops run
+   a reduced variant, SAN_REDUCED(n, d) = n / d (at least 1), and the full size, whose
+   statistics the test is about, runs in the plain make test. A reduced variant must still
+   pass on its own (its tolerances follow its own standard errors). */
 #ifdef FOGRT_TESTS_SANITIZE
 #define SAN_REDUCED(n, d) ((n) / (d) > 0 ? (n) / (d) : 1)
 #else
