@@ -1327,21 +1327,21 @@ static void test_invalid_parameters(void)
 {
     /* media: all INVALID_MEDIUM */
     static const fogrt_medium_desc bad_media[] = {
-        { -1.0f, { 1, 1, 1 }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },          /* negative sigma_t */
-        { -1e-30f, { 1, 1, 1 }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },        /* negative by a hair */
-        { NAN_F, { 1, 1, 1 }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },          /* NaN sigma_t */
-        { INF_F, { 1, 1, 1 }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },          /* infinite sigma_t (exp(-inf * 0) = NaN) */
-        { 1.0f, { 1.5f, 1, 1 }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },        /* albedo above 1 */
-        { 1.0f, { 1, -0.1f, 1 }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },       /* negative albedo */
-        { 1.0f, { 1, 1, NAN_F }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },       /* NaN albedo */
-        { 1.0f, { 1, 1, 1 }, 1.0001f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },        /* |g| > 1 */
-        { 1.0f, { 1, 1, 1 }, -1.5f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },          /* g < -1 */
-        { 1.0f, { 1, 1, 1 }, NAN_F, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },          /* NaN g */
-        { 1.0f, { 1, 1, 1 }, -INF_F, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },         /* infinite g */
-        { 1.0f, { 1, 1, 1 }, 0.0f, true, { 0, 0, 0 }, { -1, 1, 1 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },   /* bounds: min above max */
-        { 1.0f, { 1, 1, 1 }, 0.0f, true, { 0, 0, 0 }, { 0, 1, 1 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },    /* bounds: no thickness */
-        { 1.0f, { 1, 1, 1 }, 0.0f, true, { NAN_F, 0, 0 }, { 1, 1, 1 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },/* bounds: NaN */
-        { 1.0f, { 1, 1, 1 }, 0.0f, true, { 0, 0, 0 }, { 1, 2e30f, 1 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 } },/* bounds beyond 1e30 */
+        { -1.0f, { 1, 1, 1 }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },          /* negative sigma_t */
+        { -1e-30f, { 1, 1, 1 }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },        /* negative by a hair */
+        { NAN_F, { 1, 1, 1 }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },          /* NaN sigma_t */
+        { INF_F, { 1, 1, 1 }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },          /* infinite sigma_t (exp(-inf * 0) = NaN) */
+        { 1.0f, { 1.5f, 1, 1 }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },        /* albedo above 1 */
+        { 1.0f, { 1, -0.1f, 1 }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },       /* negative albedo */
+        { 1.0f, { 1, 1, NAN_F }, 0.0f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },       /* NaN albedo */
+        { 1.0f, { 1, 1, 1 }, 1.0001f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },        /* |g| > 1 */
+        { 1.0f, { 1, 1, 1 }, -1.5f, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },          /* g < -1 */
+        { 1.0f, { 1, 1, 1 }, NAN_F, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },          /* NaN g */
+        { 1.0f, { 1, 1, 1 }, -INF_F, false, { 0, 0, 0 }, { 0, 0, 0 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },         /* infinite g */
+        { 1.0f, { 1, 1, 1 }, 0.0f, true, { 0, 0, 0 }, { -1, 1, 1 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },   /* bounds: min above max */
+        { 1.0f, { 1, 1, 1 }, 0.0f, true, { 0, 0, 0 }, { 0, 1, 1 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },    /* bounds: no thickness */
+        { 1.0f, { 1, 1, 1 }, 0.0f, true, { NAN_F, 0, 0 }, { 1, 1, 1 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },/* bounds: NaN */
+        { 1.0f, { 1, 1, 1 }, 0.0f, true, { 0, 0, 0 }, { 1, 2e30f, 1 }, FOGRT_PHASE_HG, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } },/* bounds beyond 1e30 */
     };
     /* materials: all INVALID_MATERIAL */
     static const fogrt_material_desc bad_materials[] = {
