@@ -4504,21 +4504,22 @@ FOGRT__HOT void fogrt__xbins_put(fogrt__xbins *x, fogrt__xlh b, __m128 org, __m1
    the low 12 bits of the address, and the boxes sweep through every such address): loaded
    a step early, that wait overlaps the binning of the box before instead of stalling it,
    which makes the binning of big nodes faster and no longer dependent on where the stack
-   lies against the boxes (docs/benchmarks.md, "Wide BVH"). */
+   lies against the boxes (docs/benchmarks.md, "Wide BVH"). count is at least 1. */
 #define FOGRT__X_TWO_SETS 64
 FOGRT__PRIVATE void fogrt__xbins_fill(fogrt__xbins *x, const fogrt__aabb *box, uint32_t count) {
     const __m128 org = x->org, sc = x->sc, top = _mm_set1_ps((float)(x->nb - 1));
     fogrt__xbins y;
     fogrt__xlh a, b, next_a, next_b;
-    uint32_t i, j, half = count >= FOGRT__X_TWO_SETS ? count / 2 : 0;
+    uint32_t i, half = count >= FOGRT__X_TWO_SETS ? count / 2 : 0;
     int ax, k;
     if (half == 0) {
         a = fogrt__x_lh(&box[0]);
-        for (i = 0; i < count; ++i) {
-            next_a = fogrt__x_lh(&box[i + 1 < count ? i + 1 : i]);
+        for (i = 1; i < count; ++i) {
+            next_a = fogrt__x_lh(&box[i]);
             fogrt__xbins_put(x, a, org, sc, top);
             a = next_a;
         }
+        fogrt__xbins_put(x, a, org, sc, top);
         return;
     }
     for (ax = 0; ax < 3; ++ax)
@@ -4527,13 +4528,14 @@ FOGRT__PRIVATE void fogrt__xbins_fill(fogrt__xbins *x, const fogrt__aabb *box, u
             y.n[k] = 0;
         }
     a = fogrt__x_lh(&box[0]); b = fogrt__x_lh(&box[half]);
-    for (i = 0; i < half; ++i) {
-        j = i + 1 < half ? i + 1 : i;
-        next_a = fogrt__x_lh(&box[j]); next_b = fogrt__x_lh(&box[half + j]);
+    for (i = 1; i < half; ++i) {
+        next_a = fogrt__x_lh(&box[i]); next_b = fogrt__x_lh(&box[half + i]);
         fogrt__xbins_put(x, a, org, sc, top);
         fogrt__xbins_put(&y, b, org, sc, top);
         a = next_a; b = next_b;
     }
+    fogrt__xbins_put(x, a, org, sc, top);
+    fogrt__xbins_put(&y, b, org, sc, top);
     if (count & 1) fogrt__xbins_put(&y, fogrt__x_lh(&box[count - 1]), org, sc, top);
     for (ax = 0; ax < 3; ++ax)
         for (k = ax * FOGRT__BVH_MAX_BINS; k < ax * FOGRT__BVH_MAX_BINS + x->nb; ++k) {
