@@ -7978,10 +7978,12 @@ FOGRT__PUBLIC bool fogrt_intersect_sphere(fogrt_vec3 center, float radius, fogrt
 }
 FOGRT__PUBLIC bool fogrt_scene_intersect(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax, fogrt_hit *hit) {
     fogrt_hit tmp;
+    FOGRT_ASSERT(s);
     return fogrt__traverse(s, o, d, tmin, tmax, hit ? hit : &tmp, false);
 }
 FOGRT__PUBLIC bool fogrt_scene_occluded(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax) {
     fogrt_hit tmp;
+    FOGRT_ASSERT(s);
     return fogrt__traverse(s, o, d, tmin, tmax, &tmp, true);
 }
 FOGRT__PUBLIC void fogrt_scene_surface(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, const fogrt_hit *hit,
@@ -8022,6 +8024,7 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_trace(const fogrt_scene *s, const fogrt_render_de
                                      fogrt_rng *rng, uint64_t *ray_count) {
     fogrt__settings st;
     uint64_t rays = 0;
+    FOGRT_ASSERT(s && rng);
     if (!s->built || fogrt__resolve_render(s, desc, &st, NULL) != FOGRT_RESULT_OK) return fogrt__v(0.0f, 0.0f, 0.0f);
     o = fogrt__radiance(s, &st, o, fogrt__normalize(d), rng, &rays);
     if (ray_count) *ray_count += rays;
