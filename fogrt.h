@@ -531,7 +531,7 @@ FOGRT_API void fogrt_scene_get_bvh(const fogrt_scene *scene, const fogrt_bvh_nod
 FOGRT_API float fogrt_bvh_sah_cost(const fogrt_scene *scene);
 #endif
 
-/* What the scene uses, found by fogrt_scene_build; the integrator skips everything else. */
+/* What the built scene uses (0 before its first build); the integrator skips everything else. */
 enum {
     FOGRT_FEATURE_MEDIUM      = 1u << 0,  /* sigma_t > 0 */
     FOGRT_FEATURE_FRESNEL     = 1u << 1,  /* a glass material is used */
@@ -7946,9 +7946,9 @@ FOGRT__PRIVATE bool fogrt__material_used(const fogrt_scene *s, fogrt_bsdf_type t
     return false;
 }
 /* What the scene uses: the fog's bit from the build (the integrator reads it to skip every
-   fog step), and the rest as a report (the code they name runs only where a primitive or light of that
-   kind exists anyway: no glass, no Fresnel; no spheres, no sphere test; no light, no
-   shadow ray). make callgrind measures both claims against the strip macros.             */
+   fog step), and the rest as a report (the code they name runs only where a primitive or
+   light of that kind exists anyway: no glass, no Fresnel; no spheres, no sphere test; no
+   light, no shadow ray). make callgrind measures both claims against the strip macros. */
 FOGRT__PUBLIC uint32_t fogrt_scene_get_features(const fogrt_scene *s) {
     FOGRT_ASSERT(s);
     uint32_t f = s->features;
