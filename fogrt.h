@@ -470,11 +470,9 @@ typedef enum fogrt_bvh_heuristic {
                      middle of the centroid bounds)
      c_trav, c_int   traversal and intersection cost of the SAH, 1 and 1
      max_leaf_size   4 (>= 1): largest leaf; a node is also split when the SAH prefers it
-     layout          default: wide (it pays at every size: random rays on random triangles,
-                     one thread, wide/binary 1.00 at 8, 1.42 at 32, 1.6 to 1.9 from 128 up;
-                     renders of the 14-primitive cross-check boxes 7% faster); wide: the
-                     binary tree collapsed to 8 children per node for tracing; binary:
-                     traced as built. fogrt_scene_get_bvh and
+     layout          default: wide (it pays at every size, from a 14-primitive box up:
+                     docs/benchmarks.md, "Wide BVH"); wide: the binary tree collapsed to 8
+                     children per node for tracing; binary: traced as built. fogrt_scene_get_bvh and
                      fogrt_bvh_sah_cost describe the binary tree.
      roulette_pilot  true: the build ends with the roulette's pilot (Part II, C: one or two
                      passes of 12288 camera paths in a scene with a light, tens of
@@ -4307,9 +4305,8 @@ FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n
    vertex, so every ray there tests them all. Such a triangle enters the tree as several
    references, each with the box of the part of it inside one of k equal slabs of its box
    (across its longest side): each part's box is about 1/k of the length across, so the
-   boxes a ray meets shrink about k-fold (make bench's fan of 100,000 slivers, k = 2: 2.1 to
-   2.4 times the closest-hit rays per second, 1.4 times the shadow rays, at 2.4 times the
-   build time; docs/benchmarks.md, "Slivers"). A reference finds the whole triangle's hits,
+   boxes a ray meets shrink about k-fold (what a fan gains and what its build costs:
+   docs/benchmarks.md, "Slivers"). A reference finds the whole triangle's hits,
    so the answers do not change, only which boxes lead there.
    Which: k = (box area / triangle area) / FOGRT__WBVH_SPLIT_RATIO, at most
    FOGRT__WBVH_SPLIT_MAX; a well-shaped triangle's box is 4 to 12 times its area (the CS184
@@ -4872,7 +4869,8 @@ FOGRT__PUBLIC float fogrt_glow_pdf(fogrt_vec3 to_light, fogrt_vec3 wi) {
 /* atan2(y, x) for y, x >= 0, in [0, pi/2]: atan(r) = r P(r^2) on r = min/max in [0, 1]
    (P of degree 8, fitted here for the least relative error: 1.5e-8 in exact arithmetic, 2
    ulp in float), and pi/2 minus it when y > x. A small angle keeps its relative precision,
-   as atan2f's does; the library's atanf, correctly rounded, cost 5% of a spot-lit render. */
+   as atan2f's does; the library's atanf, correctly rounded, is slower (docs/benchmarks.md,
+   "Lamps in fog"). */
 FOGRT__PRIVATE float fogrt__atan2_pos(float y, float x) {
     bool swap = y > x;
     float r = swap ? x / y : (x > 0.0f ? y / x : 0.0f), z = r * r, p;
@@ -6033,7 +6031,8 @@ FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__set
 #ifndef FOGRT_NO_MEDIUM
 
 /* A scattering vertex in the fog at p, wo the way back. Only what a fog vertex reads is set
-   (no shading frame): zeroing the whole struct was 3% of a spot-lit render. */
+   (no shading frame): zeroing the whole struct shows in a spot-lit render's time
+   (docs/benchmarks.md, "Levers dropped"). */
 FOGRT__PRIVATE void fogrt__fog_vertex(fogrt__vertex *v, fogrt__v3 p, fogrt__v3 wo) {
     v->p = p; v->wo = wo;
     v->is_medium = true; v->in_medium = true;
@@ -6190,8 +6189,8 @@ FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__set
    put back), and at the surface itself in step c when the ray gets there (fogrt__light_step
    scales their share by T). Its mean is the paper's; the path still goes on from one of
    the two, as in the paper. Area lights and the sky keep the paper's way: their own light
-   sample is noisy enough that the extra shadow ray does not pay (the cross-check's
-   lamp-lit fog boxes: the same error, 12-19% more time). Where T is below 1/16 the sample
+   sample is noisy enough that the extra shadow ray does not pay (docs/benchmarks.md,
+   "Levers dropped"). Where T is below 1/16 the sample
    behind the collision is taken with probability 16 T and counts 1/16: dense fog does not
    cost a shadow ray per bounce for surfaces it hides. */
 #define FOGRT__BEHIND_MIN 0.0625f
@@ -6365,7 +6364,7 @@ FOGRT__PRIVATE void fogrt__trace_glow(const fogrt__path *P, const float *u, bool
    fog's phase function, B; in isotropic fog G is pi - alpha). c is half the lamps'
    share of the scene's light power (1/2 when they are all the light): where an area lamp
    gives most of the light, aiming half the paths at a weak spot would cost more than it
-   gains (the default scene: 23% more error at equal time with c = 1/2). The
+   gains (docs/benchmarks.md, "Lamps in fog"). The
    weight is f / pdf with the mixture's pdf (fogrt__glow_mix): at most 1 / (1 - c) where the
    phase function rules, and finite where the glow does. Light sampling at the same vertex uses
    the mixture's pdf in its MIS weight, so the two still add up to one.
@@ -6540,13 +6539,11 @@ FOGRT__PRIVATE bool fogrt__lamps_in_fog(const fogrt_scene *s) {
      (V - M0 + M) (T - C0 + C),
    and the pilot takes the k' in 1, 1.1, ..., 4 that makes it least. The model sees only
    the first roulette (the later ones change with k' too), so when it finds k' > 1 the
-   pilot runs again with that k and chooses once more. Found: 3.3 in the paper's spot-lit
-   fog (the deep vertices see the lit cone), 2.2 in the cross-check's fog-free box with
-   glass and a mirror (the caustics are found late), 2.3 in the CS184 bunny's box, 1.3 in
-   the default scene, 1 in the CS184 boxes filled with fog (sigma_t 0.2-0.3: paths after
-   the roulette add little noise for their cost). The k' tried start at 1: below it a
-   closed form of this model was too crude (it gave 0.3 where 0.6 is best, and 0.8 for
-   the default scene, 5% worse than 1), so those scenes keep q = throughput. And k, like
+   pilot runs again with that k and chooses once more. It finds k well above 1 where the
+   deep vertices matter (the paper's spot-lit fog, whose deep vertices see the lit cone; a
+   box with glass, whose caustics are found late), and about 1 in fog where paths after
+   the roulette add little noise for their cost. The k' tried start at 1: below it a
+   closed form of this model was too crude, so those scenes keep q = throughput. And k, like
    q, is fixed before a path is drawn, so the estimate stays unbiased. The pilot is 64 x 48
    pixels x 16 paths with the default settings, run by fogrt_scene_build in every scene
    with a light, with a fixed seed, its rows in parallel, each summed alone and then all in
@@ -7836,14 +7833,16 @@ FOGRT__PRIVATE void fogrt__x_scene_free(fogrt_scene *s) {
 }
 #endif /* FOGRT_MINIMAL */
 
-/* ------------------------------------------------------------------------------------------
-   The API around the method
-   What every build has besides the method itself: the full build's preset, result names, the
-   image's storage, the scene's getters, the public building blocks of an integrator, and
-   8-bit output. None of them is the method, and Part I uses only two (a primitive's
-   material, and the preset a NULL desc means); they stand after Part II so that Part I reads
-   as the method alone. FOGRT_MINIMAL keeps them.
-   ------------------------------------------------------------------------------------------ */
+/* ==========================================================================================
+
+      AFTER BOTH PARTS: THE API AROUND THE METHOD
+
+   What every build has besides the method itself, FOGRT_MINIMAL too: the full build's preset,
+   result names, the image's storage, the scene's getters, the public building blocks of an
+   integrator, 8-bit output, and the checks of what a build left out. None of it is the
+   method, and Part I calls only two of these functions (a primitive's material, and the
+   preset a NULL desc means); they stand here so that Part I reads as the method alone.
+   ========================================================================================== */
 /* The full build's preset, the names of result codes, and the image's storage. */
 /* Part II's defaults: lamps in fog (B) on, as far as the build has them. */
 FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void) {

@@ -10,7 +10,9 @@
 # figure of make bench (build seconds, Mrays/s of each ray kind on 1 and 2 threads, render
 # samples/s) is kept per run, and the table gives, per figure, the median over the runs of
 # this tree's figure over BASE's taken in the same round (speed: above 1 is faster; build
-# time is inverted so that above 1 is faster too). ARGS go to both programs (e.g. --quick).
+# time is inverted so that above 1 is faster too), and the ratio of each side's best round:
+# a busy machine only ever slows a round down, so the best rounds are the least disturbed.
+# ARGS go to both programs (e.g. --quick).
 # Needs git history (a clone, not an exported tarball).
 set -e
 BASE=$1 RUNS=${2:-3} ARGS=${3:-} SHARED=${4:-../shared}
@@ -42,10 +44,14 @@ while [ "$i" -le "$RUNS" ]; do
         "$OUT/base.fig" "$OUT/this.fig" >> "$OUT/ratios.txt"
     i=$((i + 1))
 done
-printf '%-44s | %12s | %12s | %s\n' "figure (median over $RUNS rounds)" "$BASE" "this tree" "this / base"
+printf '%-44s | %12s | %12s | %11s | %s\n' "figure (median over $RUNS rounds)" "$BASE" "this tree" "this / base" "best / best"
 sort -k1,1 -k4,4g "$OUT/ratios.txt" | awk -v runs="$RUNS" '
-    function flush() { if (name != "") { m = int((n + 1) / 2); printf "%-44s | %12.4g | %12.4g | %.3f\n", name, base[m], cur[m], r[m] } }
-    $1 != name { flush(); name = $1; n = 0 }
-    { n++; r[n] = $4; base[n] = $2; cur[n] = $3 }
+    function flush() {
+        if (name == "") return
+        m = int((n + 1) / 2)
+        printf "%-44s | %12.4g | %12.4g | %11.3f | %.3f\n", name, base[m], cur[m], r[m], bc / bb
+    }
+    $1 != name { flush(); name = $1; n = 0; bb = 0; bc = 0 }
+    { n++; r[n] = $4; base[n] = $2; cur[n] = $3; if ($2 > bb) bb = $2; if ($3 > bc) bc = $3 }
     END { flush() }'
 echo "(build_per_s: builds per second, so that above 1 is faster everywhere; load average at the end: $(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo n/a))"
