@@ -5673,7 +5673,6 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix) {
    ------------------------------------------------------------------------------------------ */
 /* The full integrator's settings: Part I's, and what the desc asks of Part II. */
 typedef struct fogrt__xs {
-    fogrt__settings base;
     bool equiangular, glow, footprint, by_power, expected_emission;
 #ifndef FOGRT_NO_MEDIA
     bool emits;                /* G: the fog emits (fogrt__media_emission on every fog segment) */
