@@ -1185,8 +1185,8 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const struct fogrt__job *job, size_t 
    8-bit output) and the checks of what a build left out, which every build keeps.
    FOGRT_MINIMAL compiles Part I and those two, without Part II.
 
-   Part I reaches Part II only at these seams, each marked "SEAM n" where it stands (their
-   declarations are in the set-up above):
+   Part I reaches Part II only at these eight seams: fifteen one-line calls, each marked
+   "SEAM n" where it stands (their declarations are in the set-up above):
      1. fogrt__traverse            the wide tree, when the build made one (A)
      2. fogrt_scene_build          how small a binary node may stay, for the wide tree (A);
         fogrt__bvh_split_binned    and a node's whole binned split in SIMD lanes (A);
@@ -5739,6 +5739,12 @@ typedef struct fogrt__path {
 
 /* ------------------------------------------------------------------------------------------
    D. The path trace (FOGRT_TRACE)
+   What it adds: fogrt_trace_path, one pixel sample rendered as fogrt_render renders it, with
+   every step of its path (free flight, surface, light sample, scattering, roulette, ...)
+   handed to a callback: what the tests and examples/fogrt_cli_trace.c read a path by.
+   What it costs: nothing without FOGRT_TRACE (the hooks in E compile to nothing); compiled
+   in, a render without a callback pays a test per hook (docs/benchmarks.md, table "Strip
+   cost").
    ------------------------------------------------------------------------------------------ */
 #ifdef FOGRT_TRACE
 /* Tracing a path (FOGRT_TRACE): each hook below fills one fogrt_trace_event and hands it to
@@ -6850,10 +6856,12 @@ FOGRT__PUBLIC void fogrt_trace_describe(const fogrt_trace_event *e, char *buf, s
 #endif
 #endif
 /* ------------------------------------------------------------------------------------------
-   F. Inspecting a scene (benchmarks and tests): the BVH as built, its SAH cost (the expected
-   number of node visits and primitive tests of a random ray, relative to the root's area),
-   a brute-force ray query to check the tree against, and the bytes the scene holds, Part
-   II's tables included.
+   F. Inspecting a scene (benchmarks and tests)
+   What it adds: the BVH as built, its SAH cost (the expected number of node visits and
+   primitive tests of a random ray, relative to the root's area), a brute-force ray query to
+   check the tree against, and the bytes the scene holds, Part II's tables included.
+   What it costs: nothing unless called (the roulette's pilot (C) reads the SAH cost once per
+   build). Its figures: docs/benchmarks.md, "make bench" (bytes per triangle) and "Slivers".
    ------------------------------------------------------------------------------------------ */
 /* The binary tree's references (its leaves' primitive counts, summed): the primitives, and
    the pieces of long slivers (A). */
