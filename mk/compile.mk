@@ -4,3 +4,9 @@
 # Also builds the README's examples/minimal.c as C++ ($(BUILD)/minimal_cxx; make test builds it as C).
 check-compile: $(BUILD)/minimal_cxx
 	@sh tests/compile_check.sh
+
+# The size of each region of fogrt.h's implementation (Part I, Part II's appendices, the API
+# after both), in lines and code lines; check-compile also checks Part I's limits with it.
+.PHONY: part-sizes
+part-sizes:
+	@sh tools/part_sizes.sh

@@ -18,6 +18,8 @@
 #     functions of the feature are defined without the macro and absent with it
 #   - FOGRT_MINIMAL: no function defined in Part II of fogrt.h is left in the object file
 #     (nm, at -O0 with every static function kept), Part I's are
+#   - Part I keeps its limits: lines and code lines, at most 8 seams, no SIMD or platform #if
+#     (tools/part_sizes.sh --check)
 # The C checks use -Wshadow -Wconversion -Wcast-qual on top of -Wall -Wextra -pedantic.
 # Exit status 1 if any check failed.
 #
@@ -343,6 +345,14 @@ if have "$GCC" && have nm; then
     run "nm: FOGRT_MINIMAL leaves out every function of Part II and keeps Part I" minimal_nm
 else
     skip "nm FOGRT_MINIMAL check: gcc or nm not installed"
+fi
+
+# ---- Part I's limits (tools/part_sizes.sh, `make part-sizes`) -----------------------------
+if have "$GCC"; then
+    run "Part I within its limits (lines, code lines, seams, no SIMD or platform #if)" \
+        env GCC="$GCC" sh "$ROOT/tools/part_sizes.sh" --check "$ROOT/fogrt.h"
+else
+    skip "Part I's limits: gcc not installed"
 fi
 
 echo "compile: $passed passed, $failed failed, $skipped skipped"
