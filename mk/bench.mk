@@ -6,6 +6,7 @@
 #   make bench-spot  the paper's spot-lit fog at equal time, this tree against the header of
 #                    commit SPOT_BASE in the same run (default 7a4a5f3, the goal's reference)
 #   make bench-base  make bench's figures against the header of commit BENCH_BASE, same run
+#   make same-image  this tree's images against those of commit IMAGE_BASE (cmp, and means)
 #   make callgrind   instructions a scene pays for features it does not use (fails above +1%)
 #   make variance-sources  which samples carry an image's noise (VS_ARGS: scene and flags)
 #
@@ -16,7 +17,7 @@
 #     (fogrt's figures alone, no ratios).
 #   - the CS184 bunny: when fogrt_load.h declares fogrt_load_dae and $(SHARED) has CBbunny.dae
 #     (otherwise bench.c uses a synthetic mesh of the same size).
-.PHONY: bench bench-base callgrind bench-levers deps-embree bench-spot variance-sources
+.PHONY: bench bench-base callgrind bench-levers deps-embree bench-spot variance-sources same-image
 
 BENCH_EMBREE        ?= 1
 BENCH_EMBREE_HEADER := /usr/include/embree3/rtcore.h
@@ -67,6 +68,13 @@ BENCH_BASE ?= HEAD~1
 BENCH_RUNS ?= 3
 bench-base:
 	sh bench/same_run.sh $(BENCH_BASE) $(BENCH_RUNS) "$(BENCH_ARGS)" $(SHARED)
+
+# This tree's images against those of the header of commit IMAGE_BASE, at fixed seeds
+# (bench/same_image.sh): identical with per-pixel rates off, channel means within 0.1% with the
+# default settings; the default scene and the spot-lit bunny. About a minute after the build.
+IMAGE_BASE ?= HEAD~1
+same-image: $(BUILD)/fogrt
+	sh bench/same_image.sh $(IMAGE_BASE) $(SHARED)
 
 # No OpenMP here on purpose: one thread, a deterministic instruction count.
 callgrind:
