@@ -664,8 +664,17 @@ fi
 
 # -- stopping: SIGTERM, SIGINT and SIGHUP stop every long loop within about a second; SIGHUP
 #    leaves no temporary file --
+# sample_tau FILE: from fogrt's messages in FILE, the time one sample took on one thread in
+# that run: seconds x threads / samples (empty when no sample was written). The time a render
+# takes to stop is measured in it: a busy machine, or a sanitizer build, makes it longer.
+sample_tau() {
+    sed -n 's/.*(\([0-9]*\)x\([0-9]*\)): \([0-9.e+-]*\)\/[0-9]* spp in \([0-9.]*\) s .*/\1 \2 \3 \4/p' "$1" | tail -1 |
+        awk -v n="$(sed -n 's/.*, \([0-9]*\) threads\{0,1\}).*/\1/p' "$1" | head -1)" \
+            '$1 * $2 * $3 > 0 && n > 0 { printf "%.3f", $4 * n / ($1 * $2 * $3) }'
+}
 # stop_latency NAME SIGNAL LIMIT ARGS...: starts a render, signals it a second after its
-# header line (the render has begun, whatever the build's speed), prints and checks
+# header line (the render has begun, whatever the build's speed), prints and checks. LIMIT
+# "tau": the render must stop within 3 tau + 0.5 s (sample_tau), for samples of a second.
 stop_latency() {
     name=$1 sig=$2 limit=$3
     shift 3
@@ -676,22 +685,33 @@ stop_latency() {
     sleep 1
     t_sig=$(now); kill -"$sig" "$pid"; wait "$pid"; st=$?; t_end=$(now)
     lat=$(echo "$t_end $t_sig" | awk '{ printf "%.2f", $1 - $2 }')
-    echo "test_cli.sh: $name: stopped $lat s after SIG$sig (exit $st)"
-    check "[ $st -eq 130 ] && awk 'BEGIN { exit !($lat < $limit) }'" "$name: exit $st, $lat s after SIG$sig (limit $limit s)"
+    if [ "$limit" = tau ]; then
+        tau=$(sample_tau "$tmp/$name.err")
+        limit=$(awk -v t="${tau:-0}" 'BEGIN { printf "%.2f", 3 * t + 0.5 }')
+        [ -n "$tau" ] || limit=0
+    fi
+    echo "test_cli.sh: $name: stopped $lat s after SIG$sig (exit $st; limit $limit s)"
+    check "[ $st -eq 130 ] && awk 'BEGIN { exit !($lat < $limit) }'" "$name: exit $st, $lat s after SIG$sig (limit $limit s): $(cat "$tmp/$name.err")"
 }
 mkdir "$tmp/hup"
 stop_latency stop_adaptive TERM 1.5 -a 1 1e-6 -s 100000 -r 16 12 -f "$tmp/hup/a.pfm"
 stop_latency stop_sighup HUP 1.5 -s 100000 -r 64 48 -f "$tmp/hup/h.pfm"
 check "pfm_ok '$tmp/hup/h.pfm' 64 48 && [ -z \"\$(ls -A '$tmp/hup' | grep tmp)\" ]" "stop_sighup: no image, or a temporary file left behind"
-# -l 65536: a row of 200 pixels takes a minute; the render checks the flag before every sample
-stop_latency stop_light_samples TERM 2 -l 65536 -s 1 -r 200 150 -f "$tmp/hup/l.pfm"
+# -l 65536: a row of 200 pixels takes a minute; the render checks the flag before every sample,
+# so it stops once each thread has finished the sample it is in (about 0.1 s)
+stop_latency stop_light_samples TERM tau -l 65536 -s 1 -r 200 150 -f "$tmp/hup/l.pfm"
 check "pfm_ok '$tmp/hup/l.pfm' 200 150" "stop_light_samples: no 200x150 image written"
 # --time stops a first pass slower than the whole limit (-l 65536: about a minute per spp
-# here): a timer cancels the batch within a sample and the image so far is written (exit 0)
+# here): a timer cancels the batch within a sample and the image so far is written (exit 0).
+# Each thread finishes the sample it is in, so the time past the limit is measured in the
+# run's own sample time tau = seconds x threads / samples (about 0.1 s; several times that
+# under sanitizers on a busy machine): at most 3 tau + 0.5 s. A check per row instead of per
+# sample would overrun by 200 tau, a check per pass by the whole pass.
 "$fogrt" --time 1 -l 65536 -s 1 -r 200 150 -f "$tmp/hup/t.pfm" 2>"$tmp/time_first.err"; st=$?
 secs=$(sed -n 's/.* spp in \([0-9.]*\) s .*/\1/p' "$tmp/time_first.err")
-echo "test_cli.sh: time_first_pass: stopped after ${secs:-?} s of a 1 s limit (exit $st)"
-check "[ $st -eq 0 ] && pfm_ok '$tmp/hup/t.pfm' 200 150 && [ -n '$secs' ] && awk 'BEGIN { exit !($secs < 2.0) }'" "time_first_pass: exit $st after ${secs:-?} s: $(cat "$tmp/time_first.err")"
+tau=$(sample_tau "$tmp/time_first.err")
+echo "test_cli.sh: time_first_pass: stopped after ${secs:-?} s of a 1 s limit, a sample taking ${tau:-?} s on one thread (exit $st)"
+check "[ $st -eq 0 ] && pfm_ok '$tmp/hup/t.pfm' 200 150 && [ -n '$tau' ] && awk 'BEGIN { exit !($secs - 1 <= 3 * $tau + 0.5) }'" "time_first_pass: exit $st after ${secs:-?} s, tau ${tau:-?} s: $(cat "$tmp/time_first.err")"
 # a signal while the scene loads and builds (nothing rendered yet) quits at once: a fan of
 # 300000 slivers takes seconds to build (the roulette pilot)
 awk 'BEGIN { n = 300000; print "v 0 0.5 0"; for (i = 0; i <= n; i++) { a = 6.283185307 * i / n; printf "v %f 0.5 %f\n", 0.4 * cos(a), 0.4 * sin(a) }
