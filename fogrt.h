@@ -5262,9 +5262,10 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment_map(fogrt_scene *s, int w
 FOGRT__PRIVATE size_t fogrt__env_pixel(const fogrt_scene *s, fogrt__v3 d, float *sin_theta) {
     float y = acosf(FOGRT__CLAMP(d.y, -1.0f, 1.0f)) * FOGRT__INV_PI;
     float x = (atan2f(-d.z, d.x) + FOGRT__PI) * (0.5f * FOGRT__INV_PI);
-    int i = FOGRT__CLAMP((int)(x * (float)s->env_map->w), 0, s->env_map->w - 1), j = FOGRT__CLAMP((int)(y * (float)s->env_map->h), 0, s->env_map->h - 1);
+    int w = s->env_map->w, h = s->env_map->h;
+    int i = FOGRT__CLAMP((int)(x * (float)w), 0, w - 1), j = FOGRT__CLAMP((int)(y * (float)h), 0, h - 1);
     *sin_theta = sqrtf(FOGRT__MAX(0.0f, (1.0f - d.y) * (1.0f + d.y)));
-    return (size_t)j * (size_t)s->env_map->w + (size_t)i;
+    return (size_t)j * (size_t)w + (size_t)i;
 }
 FOGRT__PRIVATE fogrt__v3 fogrt__env_map_radiance(const fogrt_scene *s, fogrt__v3 d) {
     float sin_t;
@@ -5284,11 +5285,12 @@ FOGRT__PRIVATE fogrt__v3 fogrt__env_dir(float x, float y, float *sin_theta) {
 }
 /* The probability (per unit x, y) of pixel p in the sampling tables. */
 FOGRT__PRIVATE float fogrt__env_cell_pdf(const fogrt_scene *s, size_t p) {
-    const float *rows = s->x->env_cdf + (size_t)s->env_map->w * (size_t)s->env_map->h;
-    size_t i = p % (size_t)s->env_map->w, j = p / (size_t)s->env_map->w;
-    const float *cdf = s->x->env_cdf + j * (size_t)s->env_map->w;
+    size_t w = (size_t)s->env_map->w, h = (size_t)s->env_map->h;
+    const float *rows = s->x->env_cdf + w * h;
+    size_t i = p % w, j = p / w;
+    const float *cdf = s->x->env_cdf + j * w;
     float pr = rows[j] - (j ? rows[j - 1] : 0.0f), pc = cdf[i] - (i ? cdf[i - 1] : 0.0f);
-    return pr * pc * (float)s->env_map->w * (float)s->env_map->h;
+    return pr * pc * (float)w * (float)h;
 }
 FOGRT__PRIVATE float fogrt__env_pdf(const fogrt_scene *s, fogrt__v3 d) {
     float sin_t;
@@ -5299,14 +5301,16 @@ FOGRT__PRIVATE float fogrt__env_pdf(const fogrt_scene *s, fogrt__v3 d) {
 }
 FOGRT__PRIVATE bool fogrt__sample_env(const fogrt_scene *s, const float *u, fogrt_light_sample *ls) {
     float fy, fx, sin_t;
-    int j = fogrt__cdf_find(s->x->env_cdf + (size_t)s->env_map->w * (size_t)s->env_map->h, s->env_map->h, u[0], &fy);
-    int i = fogrt__cdf_find(s->x->env_cdf + (size_t)j * (size_t)s->env_map->w, s->env_map->w, u[1], &fx);
-    size_t p = (size_t)j * (size_t)s->env_map->w + (size_t)i;
-    ls->wi = fogrt__env_dir(((float)i + fx) / (float)s->env_map->w, ((float)j + fy) / (float)s->env_map->h, &sin_t);
+    int w = s->env_map->w, h = s->env_map->h;
+    int j = fogrt__cdf_find(s->x->env_cdf + (size_t)w * (size_t)h, h, u[0], &fy);
+    int i = fogrt__cdf_find(s->x->env_cdf + (size_t)j * (size_t)w, w, u[1], &fx);
+    size_t p = (size_t)j * (size_t)w + (size_t)i;
+    ls->wi = fogrt__env_dir(((float)i + fx) / (float)w, ((float)j + fy) / (float)h, &sin_t);
     ls->dist = INFINITY;
     ls->is_delta = false;
     ls->pdf = sin_t > 0.0f ? fogrt__env_cell_pdf(s, p) / (2.0f * FOGRT__PI * FOGRT__PI * sin_t) : 0.0f;
-    ls->Le = fogrt__v(s->env_map->rgb[3 * p], s->env_map->rgb[3 * p + 1], s->env_map->rgb[3 * p + 2]);
+    const float *c = s->env_map->rgb + 3 * p;
+    ls->Le = fogrt__v(c[0], c[1], c[2]);
     return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
 }
 
