@@ -1151,8 +1151,13 @@ FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3
 FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_medium_desc *m);    /* 6 (G) */
 #endif
 FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const struct fogrt__settings *st);      /* 7 (E) */
-FOGRT__PRIVATE fogrt_vec3 fogrt__x_radiance(const fogrt_scene *s, const struct fogrt__settings *st, fogrt_vec3 o,
-                                           fogrt_vec3 d, fogrt_rng *rng, uint64_t *rays);
+struct fogrt__walk; struct fogrt__path;
+FOGRT__PRIVATE fogrt_vec3 fogrt__x_radiance(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__walk *w);
+FOGRT__PRIVATE bool fogrt__x_next_event(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
+                                        int limit);                                              /* 7a */
+FOGRT__PRIVATE void fogrt__x_light_step(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
+FOGRT__PRIVATE bool fogrt__x_scatter(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
+FOGRT__PRIVATE float fogrt__x_roulette_q(const struct fogrt__settings *st, struct fogrt__path *P, float u);   /* 7d */
 #endif
 #ifndef FOGRT_NO_ESTIMATION
 FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy);   /* 8 (C) */
@@ -1185,7 +1190,7 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const struct fogrt__job *job, size_t 
    8-bit output) and the checks of what a build left out, which every build keeps.
    FOGRT_MINIMAL compiles Part I and those two, without Part II.
 
-   Part I reaches Part II only at these eight seams: fifteen one-line calls, each marked
+   Part I reaches Part II only at these eight seams: nineteen one-line calls, each marked
    "SEAM n" where it stands (their declarations are in the set-up above):
      1. fogrt__traverse            the wide tree, when the build made one (A)
      2. fogrt_scene_build          how small a binary node may stay, for the wide tree (A);
@@ -1197,7 +1202,15 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const struct fogrt__job *job, size_t 
                                    on the scene (C's environment map, H's media)
      5. fogrt__fresnel             the exact dielectric Fresnel (C)
      6. fogrt__fog_transmittance   fog bounded by a box (C); fogrt__check_medium: G's medium fields
-     7. fogrt__radiance            the full integrator, for every setting beyond the paper (E)
+     7. fogrt__radiance            Part II's state of the path, for every setting beyond the
+                                   paper (E); Algorithm 1's four steps then hand it on:
+        fogrt__next_vertex         7a. the next event: free flight in fog in a box, G's media,
+                                       H's media inside shapes, equiangular sampling (B, G, H)
+        fogrt__light_at_vertex     7b. light at a vertex: lights by power, the glow, the light
+                                       behind a fog collision, shadows through media (B, C, H)
+        fogrt__new_direction       7c. the new direction: the glow and footprint, G's phase
+                                       functions, H's media (B, G, H)
+        fogrt__roulette            7d. roulette's q: the pilot's (C)
      8. fogrt__pixel_ray           stratified pixel positions (C); fogrt__render_row: per-pixel rates
    ========================================================================================== */
 /* ------------------------------------------------------------------------------------------
@@ -2552,8 +2565,10 @@ FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi) {
    3.4 The global illumination pipeline: Algorithm 1 (eq. 13) and the one-bounce baseline
    Algorithm 1 is written as a recursion; fogrt__algorithm1 below runs it as a loop (the
    recursion's tail call), keeping the product of the weights of eq. 13 as the throughput
-   beta = prod f cos / pdf, so that the light found at depth k counts beta_k Le. Its steps
-   carry the numbers of the algorithm's lines:
+   beta = prod f cos / pdf, so that the light found at depth k counts beta_k Le. It is the
+   one loop of every render: Part II's settings (fogrt_render_defaults) run it too, each of
+   its steps handing on to Part II at its seam (7a-7d) when the walk carries Part II's
+   state. Its steps carry the numbers of the algorithm's lines:
      2     "ray depth > 0 and coin flip(p)": the depth limit, and Russian roulette after
            rr_depth bounces: continue with probability q = min(0.95, max(beta)), weight 1/q
            (unbiased: the path's expected value is unchanged);
@@ -2656,58 +2671,92 @@ FOGRT__PRIVATE float fogrt__emission_weight(const fogrt_scene *s, const fogrt__s
     return fogrt__power_heuristic(prev_pdf, (float)st->desc.light_samples * fogrt__area_light_pdf(s, hit->prim, prev_p, p, ng));
 }
 /* Algorithm 1's state between two vertices: the ray, the throughput beta, the light
-   gathered, and what MIS needs of the vertex the ray left. */
+   gathered, the vertex just found, and what MIS needs of the vertex the ray left. */
+struct fogrt__path;
 typedef struct fogrt__walk {
     fogrt__v3 o, d, beta, L, prev_p;
     float prev_pdf;            /* the density with which the ray's direction was chosen */
     bool prev_delta;           /* camera ray or specular bounce: emission counts in full */
     bool in_fog;               /* the ray travels in fog */
     int depth;                 /* scattering events so far */
+    fogrt__vertex v;           /* the vertex the ray reached */
+    fogrt_rng *rng;
+    uint64_t *rays;            /* rays traced, for the render's statistics */
+    struct fogrt__path *x;     /* Part II's state of the path (E), or NULL: the paper's steps */
 } fogrt__walk;
 
 /* Lines 3-4, 5 and 14 (a fog particle), 8 and 18 (an object): the next vertex along the
    ray, with the emission the ray reaches on the way. Returns false when the path ends
-   there (it left the scene, or hit a black diffuse surface). */
-FOGRT__PRIVATE bool fogrt__a1_vertex(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w, fogrt__vertex *v,
-                                     fogrt_rng *rng, uint64_t *rays) {
+   there (it left the scene, or hit a black diffuse surface). limit: the depth at which the
+   path stops (Part II's steps skip what only a deeper path would use). */
+FOGRT__PRIVATE bool fogrt__next_vertex(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w, int limit) {
+#ifndef FOGRT_MINIMAL
+    if (w->x) return fogrt__x_next_event(s, st, w->x, limit);           /* SEAM 7a: E's next event */
+#endif
+    (void)limit;
     fogrt_hit hit;
     float t_fog = INFINITY;
-    ++*rays;
-    bool found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, &hit, false);            /* 3: t_i */
-    (void)rng;                                           /* unread in a build without fog */
+    ++*w->rays;
+    bool found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, &hit, false);         /* 3: t_i */
 #ifndef FOGRT_NO_MEDIUM
-    if (w->in_fog) t_fog = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(rng));   /* 4: t_fog */
+    if (w->in_fog) t_fog = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(w->rng));   /* 4 */
 #endif
+    fogrt__vertex *v = &w->v;
     if (t_fog < (found ? hit.t : INFINITY)) {                                          /* 5, 14 */
         w->beta = fogrt__mul(w->beta, s->medium.albedo);
-        v->p = fogrt__madd(w->o, w->d, t_fog); v->wo = fogrt__neg(w->d);
-        v->is_medium = true; v->in_medium = true; v->m = NULL;
+        v->p = fogrt__madd(w->o, w->d, t_fog);
+        v->wo = fogrt__neg(w->d);
+        v->is_medium = true;
+        v->in_medium = true;
+        v->m = NULL;
         v->ng = fogrt__v(0.0f, 0.0f, 0.0f);
         return true;
     }
     if (!found) {                                                                       /* the sky */
-        if (s->has_env && w->depth >= st->desc.min_depth) w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__env_radiance(s, w->d)));
+        if (s->has_env && w->depth >= st->desc.min_depth)
+            w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__env_radiance(s, w->d)));
         return false;
     }
     const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit.prim)];   /* 8, 18 */
     fogrt__v3 p, ng, ns;
     fogrt__surface_frame(s, w->o, w->d, &hit, &p, &ng, &ns);
-    if (!fogrt__is_black(m->emission) && fogrt__dot(w->d, ng) < 0.0f && w->depth >= st->desc.min_depth)
-        w->L = fogrt__add(w->L, fogrt__scale(fogrt__mul(w->beta, m->emission),
-                                             fogrt__emission_weight(s, st, w->prev_delta, w->prev_pdf, w->prev_p, &hit, p, ng)));
+    if (!fogrt__is_black(m->emission) && fogrt__dot(w->d, ng) < 0.0f && w->depth >= st->desc.min_depth) {
+        float mis = fogrt__emission_weight(s, st, w->prev_delta, w->prev_pdf, w->prev_p, &hit, p, ng);
+        w->L = fogrt__add(w->L, fogrt__scale(fogrt__mul(w->beta, m->emission), mis));
+    }
     if (fogrt__bsdf_type(m) == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance)) return false;
     (void)fogrt__surface_vertex_set(v, m, fogrt__neg(w->d), p, ng, ns, w->in_fog);
     return true;
 }
-/* Lines 11-22: the new direction, inverse HG in fog (15-17, eq. 11-12: weight p / pdf = 1),
-   the BSDF on an object (19-21, weight f cos / pdf: eq. 13, line 22). Returns false when
-   no direction could be drawn. */
-FOGRT__PRIVATE bool fogrt__a1_scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w,
-                                      const fogrt__vertex *v, fogrt_rng *rng) {
-    fogrt_bsdf_sample bs;
-    fogrt__v3 wi;
-    float cos_o, u[3];
-    u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng); u[2] = fogrt_rng_float(rng);
+/* Whether the vertex scatters: fog, or a surface whose BSDF is not a mirror or glass (light
+   sampling cannot reach those, line 9's "if not specular"). */
+FOGRT__PRIVATE bool fogrt__scatters(const fogrt__vertex *v) {
+    return v->is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v->m));
+}
+/* Lines 5-10: the light sampled at a scattering vertex (6 in fog, 9 on a surface). */
+FOGRT__PRIVATE void fogrt__light_at_vertex(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w) {
+#ifndef FOGRT_MINIMAL
+    if (w->x) {                                                          /* SEAM 7b: E's light step */
+        fogrt__x_light_step(s, st, w->x);
+        return;
+    }
+#endif
+    if (st->desc.nee && fogrt__scatters(&w->v) && w->depth + 1 >= st->desc.min_depth)
+        w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__nee(s, st, &w->v, w->rng, w->rays)));
+}
+/* Lines 11-22: the new direction, inverse HG in fog (15-17, eq. 11-12), the BSDF on an
+   object (19-21), and the weight of eq. 13 (line 22), f |cos theta| / pdf. In fog that
+   weight is p / pdf = 1: eq. 12 samples the phase function exactly. Returns false when no
+   direction could be drawn. */
+FOGRT__PRIVATE bool fogrt__new_direction(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w) {
+#ifndef FOGRT_MINIMAL
+    if (w->x) return fogrt__x_scatter(s, st, w->x);                      /* SEAM 7c: E's scatter */
+#endif
+    const fogrt__vertex *v = &w->v;
+    float u[3];
+    u[0] = fogrt_rng_float(w->rng);
+    u[1] = fogrt_rng_float(w->rng);
+    u[2] = fogrt_rng_float(w->rng);
 #ifndef FOGRT_NO_MEDIUM
     if (v->is_medium) {
         w->d = fogrt__sample_hg_unit(s->medium.g, v->wo, u[1], u[2], &w->prev_pdf);
@@ -2716,9 +2765,13 @@ FOGRT__PRIVATE bool fogrt__a1_scatter(const fogrt_scene *s, const fogrt__setting
         return true;
     }
 #endif
+    fogrt_bsdf_sample bs;
+    fogrt__v3 wi;
+    float cos_o;
     if (!fogrt__sample_surface(st, v, u, &bs, &wi, &cos_o)) return false;
     w->beta = fogrt__mul(w->beta, bs.weight);
-    w->prev_pdf = bs.pdf; w->prev_delta = bs.is_delta;
+    w->prev_pdf = bs.pdf;
+    w->prev_delta = bs.is_delta;
     if (bs.is_transmission)                             /* into or out of a refractive object */
         w->in_fog = !(fogrt__dot(v->wo, v->ng) > 0.0f) && (s->features & FOGRT_FEATURE_MEDIUM);
     w->d = wi;
@@ -2726,36 +2779,52 @@ FOGRT__PRIVATE bool fogrt__a1_scatter(const fogrt_scene *s, const fogrt__setting
     w->prev_p = v->p;
     return true;
 }
+/* Line 2's coin flip, after lines 12 and 23 (one bounce more): after rr_depth bounces the
+   path goes on with probability q = min(0.95, max(beta)), weighted 1/q (unbiased: the
+   path's expected value is unchanged). */
+FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__walk *w) {
+    ++w->depth;                                                          /* 12, 23 */
+    if (w->depth <= st->desc.rr_depth) return true;
+    float q = FOGRT__MIN(0.95f, fogrt__max3(w->beta));
+    float u = fogrt_rng_float(w->rng);
+#ifndef FOGRT_MINIMAL
+    if (w->x) q = fogrt__x_roulette_q(st, w->x, u);                      /* SEAM 7d: the pilot's q (C) */
+#endif
+    if (!(u < q)) return false;
+    w->beta = fogrt__scale(w->beta, 1.0f / q);
+    return true;
+}
 
-/* Algorithm 1. one_bounce: the paper's baseline instead (section 4.3): the camera ray is
-   followed through mirrors and glass to the first scattering vertex, which samples the
-   lights and takes one more step that only adds the emission it finds (its MIS half). */
-FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
-                                           fogrt_rng *rng, uint64_t *rays, bool one_bounce) {
-    bool last = false;
-    fogrt__walk w;
-    w.o = o; w.d = d; w.prev_p = o;
-    w.beta = fogrt__v(1.0f, 1.0f, 1.0f); w.L = fogrt__v(0.0f, 0.0f, 0.0f);
-    w.prev_pdf = 1.0f; w.prev_delta = true;
-    w.in_fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0;                 /* the camera is in the fog */
-    w.depth = 0;
+/* The walk of a camera ray from o along d. */
+FOGRT__PRIVATE void fogrt__walk_start(fogrt__walk *w, const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, fogrt_rng *rng,
+                                      uint64_t *rays) {
+    memset(w, 0, sizeof *w);
+    w->o = o;
+    w->d = d;
+    w->prev_p = o;
+    w->beta = fogrt__v(1.0f, 1.0f, 1.0f);
+    w->prev_pdf = 1.0f;
+    w->prev_delta = true;
+    w->in_fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0;             /* the camera is in the fog */
+    w->rng = rng;
+    w->rays = rays;
+}
+/* Algorithm 1, the loop every render runs. one_bounce: the paper's baseline instead
+   (section 4.3): the camera ray is followed through mirrors and glass to the first
+   scattering vertex, which samples the lights and takes one more step that only adds the
+   emission it finds (its MIS half). */
+FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w,
+                                           bool one_bounce) {
+    int limit = st->max_depth;                                           /* 2: ray depth > 0 */
     for (uint32_t vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
-        fogrt__vertex v;
-        if (!fogrt__a1_vertex(s, st, &w, &v, rng, rays)) break;           /* 3-5, 8, 14, 18 */
-        if (last || w.depth >= st->max_depth) break;                       /* 2: ray depth > 0 */
-        bool scattering = v.is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v.m));
-        if (st->desc.nee && scattering && w.depth + 1 >= st->desc.min_depth)         /* 6, 9 */
-            w.L = fogrt__add(w.L, fogrt__mul(w.beta, fogrt__nee(s, st, &v, rng, rays)));
-        if (one_bounce && scattering) last = true;                         /* the baseline: one step more */
-        if (!fogrt__a1_scatter(s, st, &w, &v, rng)) break;                 /* 11-22 */
-        ++w.depth;                                                         /* 12, 23 */
-        if (w.depth > st->desc.rr_depth) {                                      /* 2: coin flip(p) */
-            float q = FOGRT__MIN(0.95f, fogrt__max3(w.beta));
-            if (!(fogrt_rng_float(rng) < q)) break;
-            w.beta = fogrt__scale(w.beta, 1.0f / q);
-        }
+        if (!fogrt__next_vertex(s, st, w, limit)) break;                 /* 3-5, 8, 14, 18 */
+        if (w->depth >= limit || fogrt__is_black(w->beta)) break;        /* 2: ray depth > 0 */
+        fogrt__light_at_vertex(s, st, w);                                /* 5-10 */
+        if (one_bounce && fogrt__scatters(&w->v)) limit = w->depth + 1;  /* the baseline: one step more */
+        if (!fogrt__new_direction(s, st, w)) break;                      /* 11-22 */
+        if (!fogrt__roulette(st, w)) break;                              /* 2: coin flip(p); 12, 23 */
     }
-    return w.L;
+    return w->L;
 }
 
 /* ------------------------------------------------------------------------------------------
@@ -3065,10 +3134,12 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
 FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
                                          fogrt_rng *rng, uint64_t *rays) {
     if (st->desc.radiance) return st->desc.radiance(s, o, d, rng, st->desc.user_data);   /* the caller's */
+    fogrt__walk w;
+    fogrt__walk_start(&w, s, o, d, rng, rays);
 #ifndef FOGRT_MINIMAL
-    if (fogrt__x_wanted(s, st)) return fogrt__x_radiance(s, st, o, d, rng, rays);   /* SEAM 7 */
+    if (fogrt__x_wanted(s, st)) return fogrt__x_radiance(s, st, &w);   /* SEAM 7: E's state for the walk */
 #endif
-    return fogrt__algorithm1(s, st, o, d, rng, rays, st->integrator == FOGRT_INTEGRATOR_DIRECT);
+    return fogrt__algorithm1(s, st, &w, st->integrator == FOGRT_INTEGRATOR_DIRECT);
 }
 
 FOGRT__PUBLIC void fogrt_image_resolve(const fogrt_image *img, float *rgb) {
@@ -3448,8 +3519,11 @@ FOGRT__PRIVATE bool fogrt__media_next_event(const fogrt_scene *s, const struct f
 /* H's steps, which E's dispatch and the build call before their chapter. */
 FOGRT__PRIVATE bool fogrt__shapes_build(fogrt_scene *s);
 FOGRT__PRIVATE void fogrt__x_shapes_release(fogrt_scene *s);
-FOGRT__PRIVATE fogrt__v3 fogrt__h_radiance(const fogrt_scene *s, const struct fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
-                                           fogrt_rng *rng, uint64_t *rays);
+FOGRT__PRIVATE void fogrt__h_start(const fogrt_scene *s, struct fogrt__path *P);
+FOGRT__PRIVATE bool fogrt__h_next_event(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
+                                        int limit);
+FOGRT__PRIVATE void fogrt__h_light_step(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
+FOGRT__PRIVATE bool fogrt__h_scatter(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
 #endif
 
 #ifndef FOGRT_NO_WIDE_BVH
@@ -5701,32 +5775,29 @@ typedef struct fogrt__glow {
     fogrt__v3 dir[FOGRT__GLOW_MAX];   /* unit, from the vertex to each of them */
 } fogrt__glow;
 
-/* The state of a path as the full integrator follows it. */
+/* The state of a path as the full integrator follows it: Part I's walk (the ray, the
+   throughput, the light gathered, the vertex), which Algorithm 1's loop steps, and what
+   Part II's steps keep besides. */
 typedef struct fogrt__path {
-    fogrt__v3 o, d;            /* the ray being followed (d unit) */
-    fogrt__v3 beta;            /* throughput */
-    fogrt__v3 L;               /* radiance gathered so far */
-    fogrt__v3 prev_p;          /* the vertex the ray left, and the solid-angle pdf of its */
-    float prev_pdf;            /*   direction: the BSDF/phase half of MIS at an emitter */
-    bool prev_delta;           /* camera ray or specular bounce: emission counts in full */
+    fogrt__walk w;             /* Part I's state; w.x points back here */
     float rr_scale;            /* roulette reads beta x this: the mixed sampling's pdf / the
                                   phase or BSDF pdf after a step d', else 1 */
-    bool in_medium;            /* the ray travels in fog */
     bool entering;             /* surface: wo is on the front side of the geometry */
-    int bounces;               /* scattering events so far */
     fogrt_bsdf_type type;      /* surface: the BSDF of v */
-    fogrt__vertex v;           /* the vertex just found */
     fogrt__glow glow;          /* the lamps v may aim at (d') */
     float seg_tr;              /* the fog's transmittance over the ray to the surface it reached (b') */
-    fogrt_rng *rng;
-    uint64_t *rays;
     const fogrt__xs *xs;
+    bool (*next_event)(const fogrt_scene *s, const fogrt__settings *st, struct fogrt__path *P, int limit);
 #ifndef FOGRT_NO_MEDIA
     bool media_light;          /* G: a light sample needs fogrt__media_light (another phase, chroma) */
     bool chroma;               /* G: sigma_t per channel */
     int hero;                  /* G, chroma: the channel whose sigma_t samples every free flight */
     fogrt__v3 r;               /* G, chroma: each channel's density of the path's free flights so
                                   far, relative to one another (fogrt__chroma_mix) */
+#endif
+#ifndef FOGRT_NO_SHAPES
+    uint32_t med;              /* H: the medium the ray travels in */
+    uint32_t prim;             /* H: the surface of the vertex (a refraction crosses it) */
 #endif
     float probe_lum, probe_b;  /* the pilot (xs->rr_probe): luminance gathered, throughput x */
     uint64_t probe_rays;       /*   rr_scale, and rays traced when the path met its first roulette */
@@ -5757,8 +5828,8 @@ FOGRT__PRIVATE fogrt_trace_event fogrt__event(fogrt_trace_kind kind, const fogrt
     fogrt_trace_event e;
     memset(&e, 0, sizeof e);
     e.kind = kind;
-    e.bounce = P->bounces;
-    e.p = P->o; e.d = P->d; e.beta = P->beta;
+    e.bounce = P->w.depth;
+    e.p = P->w.o; e.d = P->w.d; e.beta = P->w.beta;
     return e;
 }
 FOGRT__PRIVATE void fogrt__emit(const fogrt__path *P, const fogrt_trace_event *e) {
@@ -5772,7 +5843,7 @@ FOGRT__PRIVATE void fogrt__trace_free_flight(const fogrt__path *P, float u, floa
 }
 FOGRT__PRIVATE void fogrt__trace_surface(const fogrt__path *P, uint32_t prim) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_SURFACE, P);
-    e.p = P->v.p; e.prim = prim; e.bsdf = P->type;
+    e.p = P->w.v.p; e.prim = prim; e.bsdf = P->type;
     fogrt__emit(P, &e);
 }
 FOGRT__PRIVATE void fogrt__trace_simple(const fogrt__path *P, fogrt_trace_kind kind) {
@@ -5797,8 +5868,8 @@ FOGRT__PRIVATE void fogrt__trace_equiangular(const fogrt__path *P, uint32_t ligh
 FOGRT__PRIVATE void fogrt__trace_phase(const fogrt__path *P, const fogrt_medium_desc *m, float u1, float u2) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_PHASE_SAMPLE, P);
     e.u[0] = u1; e.u[1] = u2; e.cos_theta = fogrt_sample_hg_mu(m->g, u1); e.phi = 2.0f * FOGRT__PI * u2;
-    if (m->phase != FOGRT_PHASE_HG) e.cos_theta = -fogrt__dot(P->v.wo, P->d);   /* G's phases: the angle drawn */
-    e.pdf = P->prev_pdf;
+    if (m->phase != FOGRT_PHASE_HG) e.cos_theta = -fogrt__dot(P->w.v.wo, P->w.d);   /* G's phases: the angle drawn */
+    e.pdf = P->w.prev_pdf;
     fogrt__emit(P, &e);
 }
 #endif
@@ -5807,17 +5878,17 @@ FOGRT__PRIVATE void fogrt__trace_glow(const fogrt__path *P, const float *u, bool
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_GLOW_SAMPLE, P);
     memcpy(e.u, u, sizeof e.u);
     e.source = footprint ? "footprint" : NULL;
-    e.p = P->v.p; e.flag = glow; e.light = light; e.pdf = pdf; e.pdf_other = pdf_b; e.value = weight;
+    e.p = P->w.v.p; e.flag = glow; e.light = light; e.pdf = pdf; e.pdf_other = pdf_b; e.value = weight;
     fogrt__emit(P, &e);
 }
 FOGRT__PRIVATE void fogrt__trace_bsdf(const fogrt__settings *st, const fogrt__path *P, const float *u,
                                       const fogrt_bsdf_sample *bs, float cos_o) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_BSDF_SAMPLE, P);
     memcpy(e.u, u, sizeof e.u);
-    e.p = P->v.p; e.bsdf = P->type; e.pdf = bs->pdf; e.value = bs->weight;
+    e.p = P->w.v.p; e.bsdf = P->type; e.pdf = bs->pdf; e.value = bs->weight;
     e.lobe = bs->is_transmission ? FOGRT_LOBE_REFRACT : (bs->is_delta ? FOGRT_LOBE_REFLECT : FOGRT_LOBE_DIFFUSE);
 #ifndef FOGRT_NO_GLASS
-    if (P->type == FOGRT_BSDF_GLASS) e.fresnel = fogrt__fresnel(st->desc.fresnel, FOGRT__DEF(P->v.m->ior, 1.5f), cos_o);
+    if (P->type == FOGRT_BSDF_GLASS) e.fresnel = fogrt__fresnel(st->desc.fresnel, FOGRT__DEF(P->w.v.m->ior, 1.5f), cos_o);
 #else
     (void)cos_o;
 #endif
@@ -5826,6 +5897,7 @@ FOGRT__PRIVATE void fogrt__trace_bsdf(const fogrt__settings *st, const fogrt__pa
 FOGRT__PRIVATE void fogrt__trace_roulette(const fogrt__path *P, float q, float u, bool survived) {
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_ROULETTE, P);
     e.q = q; e.u[0] = u; e.flag = survived;
+    if (survived) e.beta = fogrt__scale(e.beta, 1.0f / q);   /* the weight it goes on with */
     fogrt__emit(P, &e);
 }
 FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__path *P, fogrt__v3 c, bool counted,
@@ -5841,10 +5913,13 @@ FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__path *P, fogrt__v3 c, bool 
 
 /* ------------------------------------------------------------------------------------------
    E. The full integrator
-   What it adds: Part I's Algorithm 1 with the steps of B and C, as fogrt_render_defaults()
-   runs it. What it costs: nothing for a feature a scene does not use (make callgrind; table
-   "Strip cost"). A path is followed event by event, one named function per step:
-     a. fogrt__free_flight: in fog, sample a collision distance t (3.1). If t comes before
+   What it adds: the steps of B and C inside Part I's Algorithm 1, as fogrt_render_defaults()
+   runs it. It has no loop of its own: fogrt__full_radiance puts Part I's walk inside the
+   path state below (fogrt__path) and runs fogrt__algorithm1, whose four steps hand the
+   path to the functions here at seams 7a-7d. What it costs: nothing for a feature a scene
+   does not use (make callgrind; table "Strip cost"). The steps, named as the seams
+   reach them:
+     a. (seam 7a, fogrt__next_vertex) fogrt__free_flight: in fog, sample a collision distance t (3.1). If t comes before
         the surface, the event is a fog collision and the path weight is multiplied by the
         albedo sigma_s/sigma_t (transmittance and pdf cancel); otherwise the ray reaches the
         surface with probability T and weight T/T = 1. Point and spot lights are gathered
@@ -5856,17 +5931,18 @@ FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__path *P, fogrt__v3 c, bool 
      b'. fogrt__light_behind (B): after a fog collision, the light of point and spot lights
         sampled at the surface behind it, times T; step c counts it T times when the ray
         gets there.
-     c. fogrt__light_step: at the scattering vertex, fog or surface, sample the lights (2.3),
+     c. (seam 7b, fogrt__light_at_vertex) fogrt__x_light_step: at the scattering vertex, fog or surface, sample the lights (2.3),
         one chosen by power where asked (C).
-     d. fogrt__scatter: the new direction: Henyey-Greenstein in the fog (3.3), the BSDF on a
-        surface (2.2).
+     d. (seam 7c, fogrt__new_direction) fogrt__x_scatter: the new direction:
+        Henyey-Greenstein in the fog (3.3), the BSDF on a surface (2.2).
      d'. fogrt__scatter_glow (B): near point and spot lights in fog, some of the new
         directions aim at the glow around a lamp instead, so that the paths that pass next
         to it are common and light, not rare and huge; some of those aimed at a spot light
         aim at the floor it lights (its footprint).
-     e. fogrt__roulette: Russian roulette, scaled by the scene's pilot (C).
+     e. (seam 7d, fogrt__roulette) fogrt__x_roulette_q: Russian roulette's q, scaled by the
+        scene's pilot (C).
    A scene without fog never enters step a: it pays one well-predicted branch per bounce.
-   The one-bounce baseline (fogrt__radiance_direct) uses the same steps.
+   The one-bounce baseline is the same loop with its rule (fogrt__algorithm1's one_bounce).
    ------------------------------------------------------------------------------------------ */
 /* The fog's phase function where E samples or evaluates it: Henyey-Greenstein (3.3), or
    with another phase (G) G's. In a build without G these are 3.3's calls as they were; with
@@ -5889,29 +5965,39 @@ FOGRT__HOT fogrt__v3 fogrt__fog_phase_sample(const fogrt_scene *s, fogrt__v3 wo,
     return fogrt__sample_hg_unit(s->medium.g, wo, u1, u2, pdf);
 }
 #endif
-FOGRT__HOT void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fogrt__xs *xs, fogrt__v3 o,
-                                  fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
+typedef bool (*fogrt__step)(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit);
+FOGRT__PRIVATE fogrt__step fogrt__next_event_of(const fogrt_scene *s);
+/* Part II's state for the walk w that Part I started: w moves into the path, and
+   Algorithm 1 then steps P->w. */
+FOGRT__HOT void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fogrt__xs *xs, const fogrt__walk *w) {
     memset(P, 0, sizeof *P);
-    P->o = o; P->d = d; P->prev_p = o;
-    P->beta = fogrt__v(1.0f, 1.0f, 1.0f);
-    P->prev_delta = true;
+    P->w = *w;
+    P->w.x = P;
     P->rr_scale = 1.0f;
-    P->in_medium = (s->features & FOGRT_FEATURE_MEDIUM) != 0;   /* the camera sits in the fog */
     P->type = FOGRT_BSDF_DIFFUSE;
-    P->rng = rng; P->rays = rays; P->xs = xs;
+    P->xs = xs;
+    P->next_event = fogrt__next_event_of(s);            /* a + b: the paper's medium, G's or H's */
+#ifndef FOGRT_NO_SHAPES
+    if (s->x->h) {                                       /* H: the medium the camera is in */
+        fogrt__h_start(s, P);
+        return;
+    }
+#endif
 #ifndef FOGRT_NO_MEDIA
     if (s->x->media) fogrt__media_start(s, P);          /* G: which steps need it, the hero channel */
+#else
+    (void)s;
 #endif
 }
 /* Light that reaches the camera after `bounces` scattering events (min_depth drops the
    shorter paths: CS184's -o 0). source says what it is, for the trace. */
 FOGRT__PRIVATE void fogrt__gather(fogrt__path *P, const fogrt__settings *st, int bounces, fogrt__v3 c, const char *source) {
-    if (bounces >= st->desc.min_depth) P->L = fogrt__add(P->L, c);
+    if (bounces >= st->desc.min_depth) P->w.L = fogrt__add(P->w.L, c);
     FOGRT__HOOK(fogrt__trace_gather(P, c, bounces >= st->desc.min_depth, source));
     (void)source;
 }
 FOGRT__PRIVATE bool fogrt__is_scattering(const fogrt__path *P) {
-    return P->v.is_medium || !fogrt__bsdf_is_delta(P->type);
+    return P->w.v.is_medium || !fogrt__bsdf_is_delta(P->type);
 }
 #ifdef FOGRT__LAMPS
 /* The lamps whose glow (B) a scattering vertex in fog may aim its next direction
@@ -5986,7 +6072,7 @@ FOGRT__HOT fogrt__v3 fogrt__light_contribution(const fogrt_scene *s, const fogrt
 #endif
     {
         f = fogrt__vertex_f(s, v, ls->wi, &pdf_b);
-        if (!fogrt__is_black(f)) tr = fogrt__shadow(s, v, ls, P->rays);
+        if (!fogrt__is_black(f)) tr = fogrt__shadow(s, v, ls, P->w.rays);
     }
     if (tr != 0.0f) {
 #ifdef FOGRT__LAMPS
@@ -6016,20 +6102,20 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_light_n(const fogrt_scene *s, const fogrt
     for (j = 0; j < n; ++j) {
         fogrt_light_sample ls;
         float u[3];
-        fogrt__draw(s, i, P->rng, u);
-        if (fogrt__sample_light(s, i, P->v.p, u, &ls))
-            L = fogrt__add(L, fogrt__light_contribution(s, st, P, &P->v, &P->glow, i, &ls, (float)n * pick, true));
+        fogrt__draw(s, i, P->w.rng, u);
+        if (fogrt__sample_light(s, i, P->w.v.p, u, &ls))
+            L = fogrt__add(L, fogrt__light_contribution(s, st, P, &P->w.v, &P->glow, i, &ls, (float)n * pick, true));
     }
     return L;
 }
 FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
                                                float lamp_scale, bool lamps_only) {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
-    uint32_t i = P->v.is_medium && P->xs->equiangular ? s->light_count : 0, first = i, total = fogrt__light_total(s);
+    uint32_t i = P->w.v.is_medium && P->xs->equiangular ? s->light_count : 0, first = i, total = fogrt__light_total(s);
     if (lamps_only) total = s->light_count;
     if (P->xs->by_power) {                                  /* one light, chosen by power */
         float frac;
-        i = (uint32_t)fogrt__cdf_find(s->x->light_pick, (int)fogrt__light_total(s), fogrt_rng_float(P->rng), &frac);
+        i = (uint32_t)fogrt__cdf_find(s->x->light_pick, (int)fogrt__light_total(s), fogrt_rng_float(P->w.rng), &frac);
         if (i < first || i >= total) return L;
         return fogrt__scale(fogrt__sample_light_n(s, st, P, i, fogrt__pick_prob(s, P->xs->by_power, i)), i < s->light_count ? lamp_scale : 1.0f);
     }
@@ -6063,7 +6149,7 @@ FOGRT__HOT float fogrt__equiangular_lights(const fogrt_scene *s, const fogrt__se
     *first = 0; *last = s->light_count;
     if (!P->xs->by_power || s->light_count < 2 || !(s->x->light_pick[s->light_count - 1] > 0.0f)) return 1.0f;
     top = s->x->light_pick[s->light_count - 1];
-    *first = (uint32_t)fogrt__cdf_find(s->x->light_pick, (int)s->light_count, fogrt_rng_float(P->rng) * top, &frac);
+    *first = (uint32_t)fogrt__cdf_find(s->x->light_pick, (int)s->light_count, fogrt_rng_float(P->w.rng) * top, &frac);
     *last = *first + 1;
     return fogrt__pick_prob(s, P->xs->by_power, *first) / top;
 }
@@ -6087,21 +6173,21 @@ FOGRT__HOT fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__setti
     float pick;
     uint32_t i, last;
     fogrt__vertex v;
-    fogrt__fog_vertex(&v, P->o, fogrt__neg(P->d));
+    fogrt__fog_vertex(&v, P->w.o, fogrt__neg(P->w.d));
     pick = fogrt__equiangular_lights(s, st, P, &i, &last);
     for (; i < last; ++i) {
         const fogrt_light_desc *l = &s->lights[i];
         int j, n = fogrt_light_sample_count(s, st, i);
         for (j = 0; j < n; ++j) {
-            fogrt__v3 oc = fogrt__sub(l->position, P->o);
+            fogrt__v3 oc = fogrt__sub(l->position, P->w.o);
             fogrt_light_sample ls;
             float u[3], t, pdf_t, t_lo = t_min, t_hi = t_max, h;
-            u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
-            if (l->type == FOGRT_LIGHT_SPOT && !fogrt__clip_to_cone(l, s->spot_cos[2 * i], P->o, P->d, &t_lo, &t_hi)) continue;
-            h = FOGRT__MAX(fogrt__length(fogrt__cross(oc, P->d)), sqrtf(s->r2_min));  /* ray through the light */
-            t = fogrt__sample_equiangular_hg(s->x->hg, fogrt__dot(oc, P->d), h, t_lo, t_hi, u[0], &pdf_t);
+            u[0] = fogrt_rng_float(P->w.rng); u[1] = fogrt_rng_float(P->w.rng); u[2] = fogrt_rng_float(P->w.rng);
+            if (l->type == FOGRT_LIGHT_SPOT && !fogrt__clip_to_cone(l, s->spot_cos[2 * i], P->w.o, P->w.d, &t_lo, &t_hi)) continue;
+            h = FOGRT__MAX(fogrt__length(fogrt__cross(oc, P->w.d)), sqrtf(s->r2_min));  /* ray through the light */
+            t = fogrt__sample_equiangular_hg(s->x->hg, fogrt__dot(oc, P->w.d), h, t_lo, t_hi, u[0], &pdf_t);
             if (!(pdf_t > 0.0f)) continue;
-            v.p = fogrt__madd(P->o, P->d, t);
+            v.p = fogrt__madd(P->w.o, P->w.d, t);
             FOGRT__HOOK(fogrt__trace_equiangular(P, i, u[0], t, pdf_t, fogrt__equiangular_weight(s, chroma, t - t_min, pdf_t)));
             if (!fogrt__sample_point_light(s, l, v.p, u + 1, &ls)) continue;
             L = fogrt__add(L, fogrt__mul(fogrt__mul(fogrt__light_contribution(s, st, P, &v, NULL, i, &ls, (float)n * pick, media), s->medium.albedo),
@@ -6121,21 +6207,21 @@ FOGRT__HOT fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__setti
 FOGRT__HOT bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                    float t_surface, bool may_scatter, float *tr, bool media) {
     float u, t, a, b;
-    if (!P->in_medium) return false;
-    u = fogrt_rng_float(P->rng);
-    if (!fogrt__x_fog_span(s, P->o, P->d, t_surface, &a, &b)) return false;   /* misses the fog's box */
+    if (!P->w.in_fog) return false;
+    u = fogrt_rng_float(P->w.rng);
+    if (!fogrt__x_fog_span(s, P->w.o, P->w.d, t_surface, &a, &b)) return false;   /* misses the fog's box */
     *tr = b < INFINITY ? fogrt_transmittance(s->medium.sigma_t, b - a) : 0.0f;
     t = a + fogrt_sample_exponential(s->medium.sigma_t, u);
     FOGRT__HOOK(fogrt__trace_free_flight(P, u, t, b, t < b));
 #ifdef FOGRT__LAMPS
     if (st->desc.nee && P->xs->equiangular && s->light_count > 0 && may_scatter)
-        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__equiangular(s, st, P, a, b, media, false)), "equiangular");
+        fogrt__gather(P, st, P->w.depth + 1, fogrt__mul(P->w.beta, fogrt__equiangular(s, st, P, a, b, media, false)), "equiangular");
 #else
     (void)st; (void)may_scatter; (void)media;
 #endif
     if (!(t < b)) return false;                          /* leaves the fog or reaches the surface: T / T = 1 */
-    P->beta = fogrt__mul(P->beta, s->medium.albedo);     /* sigma_s T / (sigma_t T) */
-    fogrt__fog_vertex(&P->v, fogrt__madd(P->o, P->d, t), fogrt__neg(P->d));
+    P->w.beta = fogrt__mul(P->w.beta, s->medium.albedo);     /* sigma_s T / (sigma_t T) */
+    fogrt__fog_vertex(&P->w.v, fogrt__madd(P->w.o, P->w.d, t), fogrt__neg(P->w.d));
     P->glow.n = 0;
     return true;
 }
@@ -6156,12 +6242,12 @@ FOGRT__HOT void fogrt__surface_emission(const fogrt_scene *s, const fogrt__setti
                                         const fogrt_material_desc *m, const fogrt_hit *hit, fogrt__v3 p,
                                         fogrt__v3 ng, fogrt__v3 beta, float tr) {
     float w = 1.0f;
-    if (fogrt__is_black(m->emission) || !(tr > 0.0f) || !(fogrt__dot(P->d, ng) < 0.0f)) return;   /* the front side emits */
-    if (!P->prev_delta && st->desc.nee)
-        w = st->desc.mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->desc.light_samples *
+    if (fogrt__is_black(m->emission) || !(tr > 0.0f) || !(fogrt__dot(P->w.d, ng) < 0.0f)) return;   /* the front side emits */
+    if (!P->w.prev_delta && st->desc.nee)
+        w = st->desc.mis ? fogrt__power_heuristic(P->w.prev_pdf, (float)st->desc.light_samples *
                                              fogrt__pick_prob(s, P->xs->by_power, s->light_count + s->prim_light[hit->prim]) *
-                                             fogrt__area_light_pdf(s, hit->prim, P->prev_p, p, ng)) : 0.0f;
-    fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, m->emission), w * tr), "emission");
+                                             fogrt__area_light_pdf(s, hit->prim, P->w.prev_p, p, ng)) : 0.0f;
+    fogrt__gather(P, st, P->w.depth, fogrt__scale(fogrt__mul(beta, m->emission), w * tr), "emission");
 }
 /* b. The surface the ray reached, at p with normals ng, ns (fogrt__surface_frame; its
    emission was added by fogrt__next_event): its shading frame. Returns false when the path
@@ -6178,10 +6264,10 @@ FOGRT__HOT bool fogrt__surface_event(const fogrt__settings *st, fogrt__path *P, 
 /* The vertex itself: its BSDF, sides and frame (also set up on the side by b' below). */
 FOGRT__HOT bool fogrt__surface_vertex(fogrt__path *P, const fogrt_material_desc *m, int limit, fogrt__v3 p,
                                           fogrt__v3 ng, fogrt__v3 ns) {
-    P->v.p = p;
+    P->w.v.p = p;
     P->type = fogrt__bsdf_type(m);
-    if (P->bounces >= limit || (P->type == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance))) return false;
-    P->entering = fogrt__surface_vertex_set(&P->v, m, fogrt__neg(P->d), p, ng, ns, P->in_medium);
+    if (P->w.depth >= limit || (P->type == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance))) return false;
+    P->entering = fogrt__surface_vertex_set(&P->w.v, m, fogrt__neg(P->w.d), p, ng, ns, P->w.in_fog);
     P->glow.n = 0;
     return true;
 }
@@ -6195,7 +6281,7 @@ FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__set
    (the paper's scene) the floor and the bunny in the beam, seen through fog, flickered so.
    So the light of point and spot lights sampled at the surface counts T times, always:
    here, behind a collision (the surface's vertex is set up on the side, then the fog vertex
-   put back), and at the surface itself in step c when the ray gets there (fogrt__light_step
+   put back), and at the surface itself in step c when the ray gets there (fogrt__x_light_step
    scales their share by T). Its mean is the paper's; the path still goes on from one of
    the two, as in the paper. Area lights and the sky keep the paper's way: their own light
    sample is noisy enough that the extra shadow ray does not pay (docs/benchmarks.md,
@@ -6209,22 +6295,22 @@ FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__set
 FOGRT__PRIVATE bool fogrt__light_behind_wanted(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
     float tr = P->seg_tr;
     if (!P->xs->expected_emission || !st->desc.nee || s->light_count == 0 || !(tr > 0.0f)) return false;
-    return tr >= FOGRT__BEHIND_MIN || fogrt_rng_float(P->rng) * FOGRT__BEHIND_MIN < tr;
+    return tr >= FOGRT__BEHIND_MIN || fogrt_rng_float(P->w.rng) * FOGRT__BEHIND_MIN < tr;
 }
 /* The sample itself, at the surface point p with normals ng, ns (fogrt__surface_frame). */
 FOGRT__HOT void fogrt__light_behind(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                     const fogrt_material_desc *m, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns,
                                     fogrt__v3 beta, int limit) {
-    fogrt__vertex keep = P->v;
+    fogrt__vertex keep = P->w.v;
     fogrt__glow keep_glow = P->glow;
     fogrt_bsdf_type type = P->type;
     bool entering = P->entering;
     if (fogrt__surface_vertex(P, m, limit, p, ng, ns) && fogrt__is_scattering(P)) {
-        fogrt__glow_setup(s, P, &P->v, &P->glow, P->type == FOGRT_BSDF_DIFFUSE);
-        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(beta, fogrt__sample_lights(s, st, P, FOGRT__MAX(P->seg_tr, FOGRT__BEHIND_MIN), true)),
+        fogrt__glow_setup(s, P, &P->w.v, &P->glow, P->type == FOGRT_BSDF_DIFFUSE);
+        fogrt__gather(P, st, P->w.depth + 1, fogrt__mul(beta, fogrt__sample_lights(s, st, P, FOGRT__MAX(P->seg_tr, FOGRT__BEHIND_MIN), true)),
                       "light behind");
     }
-    P->v = keep; P->glow = keep_glow; P->type = type; P->entering = entering;
+    P->w.v = keep; P->glow = keep_glow; P->type = type; P->entering = entering;
 }
 #endif
 
@@ -6234,14 +6320,14 @@ FOGRT__PRIVATE void fogrt__escape(const fogrt_scene *s, const fogrt__settings *s
     if (s->has_env && tr > 0.0f) {
         float w = 1.0f;                                 /* a map is also sampled by NEE: MIS */
 #ifndef FOGRT_NO_ESTIMATION
-        if (s->env_map && !P->prev_delta && st->desc.nee)
-            w = st->desc.mis ? fogrt__power_heuristic(P->prev_pdf, (float)st->desc.light_samples * fogrt__env_pdf(s, P->d) *
+        if (s->env_map && !P->w.prev_delta && st->desc.nee)
+            w = st->desc.mis ? fogrt__power_heuristic(P->w.prev_pdf, (float)st->desc.light_samples * fogrt__env_pdf(s, P->w.d) *
                                                  fogrt__pick_prob(s, P->xs->by_power, fogrt__light_total(s) - 1)) : 0.0f;
 #endif
 #ifndef FOGRT_NO_ESTIMATION
-        fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, fogrt__env_map_radiance(s, P->d)), w * tr), "environment");
+        fogrt__gather(P, st, P->w.depth, fogrt__scale(fogrt__mul(beta, fogrt__env_map_radiance(s, P->w.d)), w * tr), "environment");
 #else
-        fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, fogrt__env_radiance(s, P->d)), w * tr), "environment");
+        fogrt__gather(P, st, P->w.depth, fogrt__scale(fogrt__mul(beta, fogrt__env_radiance(s, P->w.d)), w * tr), "environment");
 #endif
     }
 }
@@ -6260,7 +6346,7 @@ FOGRT__HOT bool fogrt__collided(const fogrt_scene *s, const fogrt__settings *st,
         bool behind = false;
 #endif
         if (!behind && (fogrt__is_black(m->emission) || !(tr > 0.0f))) return true;   /* nothing to add there */
-        fogrt__surface_frame(s, P->o, P->d, hit, &p, &ng, &ns);
+        fogrt__surface_frame(s, P->w.o, P->w.d, hit, &p, &ng, &ns);
 #ifdef FOGRT__LAMPS
         if (behind) fogrt__light_behind(s, st, P, m, p, ng, ns, beta, limit);               /* b' */
 #else
@@ -6281,7 +6367,7 @@ FOGRT__HOT bool fogrt__ray_end(const fogrt_scene *s, const fogrt__settings *st, 
     if (found) {
         const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit->prim)];
         fogrt__v3 p, ng, ns;
-        fogrt__surface_frame(s, P->o, P->d, hit, &p, &ng, &ns);    /* once, for both */
+        fogrt__surface_frame(s, P->w.o, P->w.d, hit, &p, &ng, &ns);    /* once, for both */
         fogrt__surface_emission(s, st, P, m, hit, p, ng, beta, tr);
         return fogrt__surface_event(st, P, m, hit->prim, limit, p, ng, ns);
     }
@@ -6295,9 +6381,9 @@ FOGRT__HOT bool fogrt__ray_end(const fogrt_scene *s, const fogrt__settings *st, 
    emitting fog, whose light this adds along the way). */
 FOGRT__HOT bool fogrt__fog_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, bool found,
                                  const fogrt_hit *hit, int limit, bool media) {
-    const fogrt__v3 beta = P->beta;                     /* before a collision's albedo */
+    const fogrt__v3 beta = P->w.beta;                     /* before a collision's albedo */
     float tr = 1.0f;                                    /* the fog's transmittance to the end of the ray */
-    bool collided = fogrt__free_flight(s, st, P, found ? hit->t : INFINITY, P->bounces < limit, &tr, media);
+    bool collided = fogrt__free_flight(s, st, P, found ? hit->t : INFINITY, P->w.depth < limit, &tr, media);
     P->seg_tr = tr;
 #ifndef FOGRT_NO_MEDIA
     if (media && P->xs->emits) fogrt__media_emission(s, st, P, beta, found ? hit->t : INFINITY, collided);   /* G */
@@ -6312,18 +6398,20 @@ FOGRT__HOT bool fogrt__fog_event(const fogrt_scene *s, const fogrt__settings *st
 FOGRT__PRIVATE bool fogrt__next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
     fogrt_hit hit;
     bool found;
-    ++*P->rays;
-    found = fogrt__traverse(s, P->o, P->d, 0.0f, INFINITY, &hit, false);
+    ++*P->w.rays;
+    found = fogrt__traverse(s, P->w.o, P->w.d, 0.0f, INFINITY, &hit, false);
     P->seg_tr = 1.0f;
 #ifndef FOGRT_NO_MEDIUM
-    if (P->in_medium) return fogrt__fog_event(s, st, P, found, &hit, limit, false);   /* (a fog-free ray skips it) */
+    if (P->w.in_fog) return fogrt__fog_event(s, st, P, found, &hit, limit, false);   /* (a fog-free ray skips it) */
 #endif
-    return fogrt__ray_end(s, st, P, found, &hit, P->beta, 1.0f, limit);
+    return fogrt__ray_end(s, st, P, found, &hit, P->w.beta, 1.0f, limit);
 }
-/* The path's a + b: G's (fogrt__media_next_event) in G's media, chosen once per path, so
-   that the paper's medium pays no test per segment. */
-typedef bool (*fogrt__step)(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit);
+/* The path's a + b: G's (fogrt__media_next_event) in G's media, H's through media inside
+   shapes, chosen once per path, so that the paper's medium pays no test per segment. */
 FOGRT__PRIVATE fogrt__step fogrt__next_event_of(const fogrt_scene *s) {
+#ifndef FOGRT_NO_SHAPES
+    if (s->x->h) return fogrt__h_next_event;
+#endif
 #ifndef FOGRT_NO_MEDIA
     if (s->x->media) return fogrt__media_next_event;
 #else
@@ -6334,26 +6422,32 @@ FOGRT__PRIVATE fogrt__step fogrt__next_event_of(const fogrt_scene *s) {
 
 /* c. Light sampling at the scattering vertex (next-event estimation, 2.3); a mirror
    or glass vertex cannot be reached by a light sample and is skipped. */
-FOGRT__HOT void fogrt__light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
+FOGRT__PRIVATE void fogrt__x_light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
+#ifndef FOGRT_NO_SHAPES
+    if (s->x->h) {                                       /* H: shadow rays through the media */
+        fogrt__h_light_step(s, st, P);
+        return;
+    }
+#endif
 #ifdef FOGRT__LAMPS
-    if (P->xs->glow) fogrt__glow_setup(s, P, &P->v, &P->glow, fogrt__is_scattering(P) && (P->v.is_medium || P->type == FOGRT_BSDF_DIFFUSE));
+    if (P->xs->glow) fogrt__glow_setup(s, P, &P->w.v, &P->glow, fogrt__is_scattering(P) && (P->w.v.is_medium || P->type == FOGRT_BSDF_DIFFUSE));
 #endif
     if (st->desc.nee && fogrt__is_scattering(P))             /* lamps at a surface seen through fog: T times (b') */
-        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(P->beta, fogrt__sample_lights(s, st, P,
-                      P->v.is_medium || !P->xs->expected_emission ? 1.0f : P->seg_tr, false)), "light sample");
+        fogrt__gather(P, st, P->w.depth + 1, fogrt__mul(P->w.beta, fogrt__sample_lights(s, st, P,
+                      P->w.v.is_medium || !P->xs->expected_emission ? 1.0f : P->seg_tr, false)), "light sample");
 }
 
 /* d. The new direction from a surface: sample the BSDF in the shading frame. */
 FOGRT__HOT bool fogrt__scatter_surface(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
     fogrt_bsdf_sample bs;
     float u[3], cos_o;
-    u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
-    if (!fogrt__sample_surface(st, &P->v, u, &bs, &P->d, &cos_o)) return false;
-    P->beta = fogrt__mul(P->beta, bs.weight);
-    P->prev_pdf = bs.pdf; P->prev_delta = bs.is_delta;
+    u[0] = fogrt_rng_float(P->w.rng); u[1] = fogrt_rng_float(P->w.rng); u[2] = fogrt_rng_float(P->w.rng);
+    if (!fogrt__sample_surface(st, &P->w.v, u, &bs, &P->w.d, &cos_o)) return false;
+    P->w.beta = fogrt__mul(P->w.beta, bs.weight);
+    P->w.prev_pdf = bs.pdf; P->w.prev_delta = bs.is_delta;
     /* Refraction moves the ray into or out of the object: fog exists only outside. */
-    if (bs.is_transmission) P->in_medium = !P->entering && (s->features & FOGRT_FEATURE_MEDIUM) != 0;
-    P->o = fogrt__offset(s, P->v.p, P->v.ng, P->d);
+    if (bs.is_transmission) P->w.in_fog = !P->entering && (s->features & FOGRT_FEATURE_MEDIUM) != 0;
+    P->w.o = fogrt__offset(s, P->w.v.p, P->w.v.ng, P->w.d);
     FOGRT__HOOK(fogrt__trace_bsdf(st, P, u, &bs, cos_o));
     return true;
 }
@@ -6393,7 +6487,7 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
     float u[3], pdf_b, pdf, pdf_k = 0.0f;
     int k = -1;
     bool glow, footprint = false;
-    u[0] = fogrt_rng_float(P->rng); u[1] = fogrt_rng_float(P->rng); u[2] = fogrt_rng_float(P->rng);
+    u[0] = fogrt_rng_float(P->w.rng); u[1] = fogrt_rng_float(P->w.rng); u[2] = fogrt_rng_float(P->w.rng);
     glow = u[0] < s->x->glow_share;
     if (glow) {
         float uk = u[0] / s->x->glow_share * (float)P->glow.n;   /* the lamp k, then in [k, k + 1): what of it */
@@ -6401,28 +6495,28 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
         light = P->glow.lamp[k];
         if ((P->glow.fp & (1u << k)) && uk - (float)k < FOGRT__FOOTPRINT_SHARE) {   /* its footprint */
             footprint = true;
-            if (!fogrt__sample_footprint(&s->x->footprints[light], P->v.p, u[1], u[2], &wi)) return false;
+            if (!fogrt__sample_footprint(&s->x->footprints[light], P->w.v.p, u[1], u[2], &wi)) return false;
             pdf_k = fogrt__glow_hg_pdf(s->x->hg, P->glow.dir[k], wi);
         } else {
             wi = fogrt__sample_glow_hg(s->x->hg, P->glow.dir[k], u[1], u[2], &pdf_k);
         }
-    } else if (P->v.is_medium) {                        /* the phase function at the angle drawn */
-        wi = fogrt__fog_phase_sample(s, P->v.wo, u[1], u[2], &pdf_b);
+    } else if (P->w.v.is_medium) {                        /* the phase function at the angle drawn */
+        wi = fogrt__fog_phase_sample(s, P->w.v.wo, u[1], u[2], &pdf_b);
     } else {
-        wo_l = fogrt__to_local(&P->v.frame, P->v.wo);
-        if (!fogrt_sample_bsdf(P->v.m, st->desc.fresnel, wo_l, 0.5f, u[1], u[2], &bs)) return false;
-        wi = fogrt__normalize(fogrt__to_world(&P->v.frame, bs.wi));
+        wo_l = fogrt__to_local(&P->w.v.frame, P->w.v.wo);
+        if (!fogrt_sample_bsdf(P->w.v.m, st->desc.fresnel, wo_l, 0.5f, u[1], u[2], &bs)) return false;
+        wi = fogrt__normalize(fogrt__to_world(&P->w.v.frame, bs.wi));
     }
-    if (!glow && P->v.is_medium) f = fogrt__v(pdf_b, pdf_b, pdf_b);
-    else f = fogrt__fog_vertex_f(s, &P->v, wi, &pdf_b);   /* phase, or f |cos| (0 through the surface) */
+    if (!glow && P->w.v.is_medium) f = fogrt__v(pdf_b, pdf_b, pdf_b);
+    else f = fogrt__fog_vertex_f(s, &P->w.v, wi, &pdf_b);   /* phase, or f |cos| (0 through the surface) */
     if (fogrt__is_black(f)) return false;
-    pdf = fogrt__glow_mix_known(s, &P->v, &P->glow, wi, pdf_b, k, pdf_k);
+    pdf = fogrt__glow_mix_known(s, &P->w.v, &P->glow, wi, pdf_b, k, pdf_k);
     if (!(pdf > 0.0f)) return false;
-    P->d = wi;
-    P->beta = fogrt__mul(P->beta, fogrt__scale(f, 1.0f / pdf));
-    P->prev_pdf = pdf; P->prev_delta = false;
+    P->w.d = wi;
+    P->w.beta = fogrt__mul(P->w.beta, fogrt__scale(f, 1.0f / pdf));
+    P->w.prev_pdf = pdf; P->w.prev_delta = false;
     P->rr_scale = pdf / pdf_b;                           /* > 0: f > 0 needs pdf_b > 0 */
-    P->o = P->v.is_medium ? P->v.p : fogrt__offset(s, P->v.p, P->v.ng, wi);
+    P->w.o = P->w.v.is_medium ? P->w.v.p : fogrt__offset(s, P->w.v.p, P->w.v.ng, wi);
     FOGRT__HOOK(fogrt__trace_glow(P, u, glow, footprint, light, pdf_b, pdf, fogrt__scale(f, 1.0f / pdf)));
     (void)light; (void)footprint;                        /* read by the trace hook only */
     return true;
@@ -6431,18 +6525,22 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
 
 /* d. The new direction: Henyey-Greenstein in the fog (eq. 11-12, weight p / pdf = 1), the
    BSDF on a surface; near a lamp, the mixture of d'. */
-FOGRT__HOT bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
-    P->prev_p = P->v.p;
+FOGRT__PRIVATE bool fogrt__x_scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
+    P->w.prev_p = P->w.v.p;
+    P->rr_scale = 1.0f;                                  /* (d' sets it for the roulette after it) */
+#ifndef FOGRT_NO_SHAPES
+    if (s->x->h) return fogrt__h_scatter(s, st, P);     /* H: the vertex's medium, its boundary */
+#endif
 #ifndef FOGRT_NO_MEDIUM
-    if (!P->v.in_medium) return fogrt__scatter_surface(s, st, P);   /* (a vertex outside the fog: only d) */
+    if (!P->w.v.in_medium) return fogrt__scatter_surface(s, st, P);   /* (a vertex outside the fog: only d) */
 #ifdef FOGRT__LAMPS
     if (P->glow.n > 0) return fogrt__scatter_glow(s, st, P);
 #endif
-    if (P->v.is_medium) {
-        float u1 = fogrt_rng_float(P->rng), u2 = fogrt_rng_float(P->rng);
-        P->d = fogrt__fog_phase_sample(s, P->v.wo, u1, u2, &P->prev_pdf);
-        P->prev_delta = false;
-        P->o = P->v.p;
+    if (P->w.v.is_medium) {
+        float u1 = fogrt_rng_float(P->w.rng), u2 = fogrt_rng_float(P->w.rng);
+        P->w.d = fogrt__fog_phase_sample(s, P->w.v.wo, u1, u2, &P->w.prev_pdf);
+        P->w.prev_delta = false;
+        P->w.o = P->w.v.p;
         FOGRT__HOOK(fogrt__trace_phase(P, &s->medium, u1, u2));
         return true;
     }
@@ -6453,77 +6551,19 @@ FOGRT__HOT bool fogrt__scatter(const fogrt_scene *s, const fogrt__settings *st, 
 /* e. Russian roulette after rr_depth bounces: continue with probability q, weight 1/q;
    q = min(0.95, k x throughput), k in [1, 4] chosen for the scene by its pilot (chapter
    15): the k that makes variance x time least. */
-FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__path *P) {
-    float q, u, scale = P->rr_scale;
-    P->bounces++;
-    P->rr_scale = 1.0f;
-    if (P->bounces <= st->desc.rr_depth) return true;
-    if (P->xs->rr_probe && !P->probed) {
+FOGRT__PRIVATE float fogrt__x_roulette_q(const fogrt__settings *st, fogrt__path *P, float u) {
+    if (P->xs->rr_probe && !P->probed) {                 /* the pilot: the path's first roulette */
         P->probed = true;
-        P->probe_lum = fogrt__luminance(P->L);
-        P->probe_rays = *P->rays;
-        P->probe_b = fogrt__max3(P->beta) * scale;
+        P->probe_lum = fogrt__luminance(P->w.L);
+        P->probe_rays = *P->w.rays;
+        P->probe_b = fogrt__max3(P->w.beta) * P->rr_scale;
     }
-    q = FOGRT__MIN(0.95f, P->xs->rr_k * fogrt__max3(P->beta) * scale);
-    u = fogrt_rng_float(P->rng);
-    if (u < q) P->beta = fogrt__scale(P->beta, 1.0f / q);
+    float q = FOGRT__MIN(0.95f, P->xs->rr_k * fogrt__max3(P->w.beta) * P->rr_scale);
     FOGRT__HOOK(fogrt__trace_roulette(P, q, u, u < q));
-    return u < q;
+    (void)st; (void)u;                                   /* read by the trace hook only */
+    return q;
 }
 
-/* Algorithm 1: global illumination with Russian roulette and next-event estimation.
-   probe (the roulette's pilot, C, with P->xs->rr_probe; else NULL): the luminance
-   gathered and the rays traced after the path's first roulette (both 0 when it never got
-   there). */
-typedef struct fogrt__probe { float after, b; uint64_t rays_after; } fogrt__probe;
-FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path_probe(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs, fogrt__v3 o,
-                                                    fogrt__v3 d, fogrt_rng *rng, uint64_t *rays, fogrt__probe *probe) {
-    fogrt__path P;
-    fogrt__step next_event;
-    uint32_t vertex;
-    fogrt__path_start(s, &P, xs, o, d, rng, rays);
-    next_event = fogrt__next_event_of(s);
-    for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
-        if (!next_event(s, st, &P, st->max_depth)) break;                     /* a, b */
-        if (P.bounces >= st->max_depth || fogrt__is_black(P.beta)) break;
-        fogrt__light_step(s, st, &P);                                          /* c */
-        if (!fogrt__scatter(s, st, &P)) break;                                 /* d */
-        if (!fogrt__roulette(st, &P)) break;                                   /* e */
-    }
-    if (probe) {
-        probe->after = P.probed ? fogrt__luminance(P.L) - P.probe_lum : 0.0f;
-        probe->rays_after = P.probed ? *rays - P.probe_rays : 0;
-        probe->b = P.probed ? P.probe_b : 0.0f;
-    }
-    return P.L;
-}
-FOGRT__PRIVATE fogrt__v3 fogrt__radiance_path(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs, fogrt__v3 o,
-                                              fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
-    return fogrt__radiance_path_probe(s, st, xs, o, d, rng, rays, NULL);
-}
-
-/* The paper's baseline: direct lighting at the first scattering vertex only. */
-FOGRT__PRIVATE fogrt__v3 fogrt__radiance_direct(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs, fogrt__v3 o,
-                                                fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
-    fogrt__path P;
-    fogrt__step next_event;
-    uint32_t vertex;
-    fogrt__path_start(s, &P, xs, o, d, rng, rays);
-    next_event = fogrt__next_event_of(s);
-    for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {   /* through mirrors and glass */
-        if (!next_event(s, st, &P, st->max_depth)) return P.L;
-        if (P.bounces >= st->max_depth || fogrt__is_black(P.beta)) return P.L;
-        if (fogrt__is_scattering(&P)) break;
-        if (!fogrt__scatter(s, st, &P) || !fogrt__roulette(st, &P)) return P.L;
-    }
-    if (vertex == FOGRT_MAX_PATH_VERTICES) return P.L;
-    fogrt__light_step(s, st, &P);
-    /* One more step, which only adds the emission it finds (its MIS half: without it the
-       light sample above would count area lights at half weight). */
-    if (fogrt__scatter(s, st, &P) && fogrt__roulette(st, &P))
-        (void)next_event(s, st, &P, P.bounces);
-    return P.L;
-}
 /* Point or spot lights in fog: what the glow of d' needs (without them the glow's checks
    are skipped at every vertex). */
 FOGRT__PRIVATE bool fogrt__lamps_in_fog(const fogrt_scene *s) {
@@ -6577,23 +6617,30 @@ FOGRT__PRIVATE fogrt__pilot_sums fogrt__pilot_row(const fogrt_scene *s, const fo
             uint64_t key = ((uint64_t)(y * FOGRT__PILOT_W + x) << 8) | (uint64_t)i, rays = 0;
             fogrt_rng rng;
             fogrt__v3 o, d, L;
-            fogrt__probe p;
+            fogrt__walk w;
+            fogrt__path P;
             double l, q, g2;
             fogrt_rng_seed(&rng, fogrt__hash64(key ^ 0x50494C4F54ULL), 0);
             fogrt__camera_generate(cam, FOGRT__PILOT_W, FOGRT__PILOT_H, (float)x + 0.5f, (float)y + 0.5f, 0.5f, 0.5f,
                                    &o, &d);
-            L = fogrt__radiance_path_probe(s, st, xs, o, d, &rng, &rays, &p);
+            fogrt__walk_start(&w, s, o, d, &rng, &rays);
+            fogrt__path_start(s, &P, xs, &w);
+            L = fogrt__algorithm1(s, st, &P.w, false);
+            /* after the first roulette: the luminance gathered, the rays traced, the throughput */
+            float after = P.probed ? fogrt__luminance(L) - P.probe_lum : 0.0f;
+            uint64_t rays_after = P.probed ? rays - P.probe_rays : 0;
+            float b = P.probed ? P.probe_b : 0.0f;
             l = (double)fogrt__luminance(L);
-            if (!fogrt__v3_finite(L) || !(fabs(l) < 1e30) || !(fabsf(p.after) < 1e30f)) continue;
+            if (!fogrt__v3_finite(L) || !(fabs(l) < 1e30) || !(fabsf(after) < 1e30f)) continue;
             sum += l; sum2 += l * l; n += 1.0;
             r.T += (double)rays;
-            if (!(p.b > 0.0f)) continue;                 /* no roulette met */
-            q = FOGRT__MIN(0.95, (double)xs->rr_k * (double)p.b);
-            g2 = (double)p.after * (double)p.after;
-            r.M0 += g2; r.C0 += (double)p.rays_after;
+            if (!(b > 0.0f)) continue;                   /* no roulette met */
+            q = FOGRT__MIN(0.95, (double)xs->rr_k * (double)b);
+            g2 = (double)after * (double)after;
+            r.M0 += g2; r.C0 += (double)rays_after;
             for (j = 0; j < FOGRT__PILOT_K; ++j) {
-                double q2 = FOGRT__MIN(0.95, FOGRT__PILOT_KJ(j) * (double)p.b);
-                r.M[j] += g2 * q / q2; r.C[j] += (double)p.rays_after * q2 / q;
+                double q2 = FOGRT__MIN(0.95, FOGRT__PILOT_KJ(j) * (double)b);
+                r.M[j] += g2 * q / q2; r.C[j] += (double)rays_after * q2 / q;
             }
         }
         if (n > 1.0) r.V += FOGRT__MAX(sum2 - sum * sum / n, 0.0) * n / (n - 1.0);
@@ -6672,19 +6719,22 @@ FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const fogrt__settings 
     return d->equiangular || d->glow || d->footprint || d->light_by_power || d->expected_emission ||
            s->x->fog_bounded || s->env_map;
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance_xs(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs,
-                                              fogrt__v3 o, fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
-    return st->integrator == FOGRT_INTEGRATOR_DIRECT ? fogrt__radiance_direct(s, st, xs, o, d, rng, rays)
-                                                     : fogrt__radiance_path(s, st, xs, o, d, rng, rays);
+/* One sample of the full integrator with settings xs: Part I's Algorithm 1, stepping the
+   walk w inside Part II's path state. */
+FOGRT__PRIVATE fogrt__v3 fogrt__full_radiance(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs,
+                                              const fogrt__walk *w) {
+    fogrt__path P;
+    fogrt__path_start(s, &P, xs, w);
+    return fogrt__algorithm1(s, st, &P.w, st->integrator == FOGRT_INTEGRATOR_DIRECT);
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
-                                           fogrt_rng *rng, uint64_t *rays) {
+FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w) {
     fogrt__xs xs;
-#ifndef FOGRT_NO_SHAPES
-    if (s->x->h) return fogrt__h_radiance(s, st, o, d, rng, rays);   /* H */
-#endif
     fogrt__x_settings(s, st, &xs);
-    return fogrt__x_radiance_xs(s, st, &xs, o, d, rng, rays);
+    return fogrt__full_radiance(s, st, &xs, w);
+}
+/* Seam 7a: the next event, by the steps chosen for the path (E's, G's or H's). */
+FOGRT__PRIVATE bool fogrt__x_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
+    return P->next_event(s, st, P, limit);
 }
 
 /* Seams 3 and 4: Part II's tables, made after Part I's build (the tree and the lights),
@@ -6792,7 +6842,9 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_trace_path(const fogrt_scene *s, const fogrt_rend
         e.u[0] = u.x; e.u[1] = u.y;
         fn(&e, user_data);
     }
-    L = fogrt__x_radiance_xs(s, &job.st, &xs, o, dir, &rng, &rays);
+    fogrt__walk w;
+    fogrt__walk_start(&w, s, o, dir, &rng, &rays);
+    L = fogrt__full_radiance(s, &job.st, &xs, &w);
     memset(&e, 0, sizeof e);
     e.kind = FOGRT_TRACE_END; e.value = L;
     if (fn) fn(&e, user_data);
@@ -7111,10 +7163,10 @@ FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__set
                                           fogrt__v3 beta, float t_end, bool collided) {
     float a, b, w = collided ? 1.0f : 0.0f;
     if (P->xs->expected_emission) {
-        if (!fogrt__x_fog_span(s, P->o, P->d, t_end, &a, &b)) return;   /* misses the fog's box */
+        if (!fogrt__x_fog_span(s, P->w.o, P->w.d, t_end, &a, &b)) return;   /* misses the fog's box */
         w = b < INFINITY ? -expm1f(-s->medium.sigma_t * (b - a)) : 1.0f;
     }
-    if (w > 0.0f) fogrt__gather(P, st, P->bounces, fogrt__scale(fogrt__mul(beta, s->x->emit), w), "fog emission");
+    if (w > 0.0f) fogrt__gather(P, st, P->w.depth, fogrt__scale(fogrt__mul(beta, s->x->emit), w), "fog emission");
 }
 
 /* Chromatic media: sigma_t per colour channel, so that each channel's light is attenuated and
@@ -7160,7 +7212,7 @@ FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__set
 FOGRT__PRIVATE void fogrt__media_start(const fogrt_scene *s, fogrt__path *P) {
     P->media_light = s->medium.phase != FOGRT_PHASE_HG || s->x->chroma;
     if (s->x->chroma) {
-        int hero = (int)(3.0f * fogrt_rng_float(P->rng));
+        int hero = (int)(3.0f * fogrt_rng_float(P->w.rng));
         P->chroma = true;
         P->hero = FOGRT__MIN(hero, 2);
         P->r = fogrt__v(1.0f, 1.0f, 1.0f);
@@ -7202,7 +7254,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__media_light(const fogrt_scene *s, const fogrt__p
                                             const fogrt_light_sample *ls, float *pdf_b, float *tr) {
     fogrt__v3 f = fogrt__fog_vertex_f(s, v, ls->wi, pdf_b);
     if (fogrt__is_black(f)) return f;
-    *tr = P->chroma && v->in_medium ? fogrt__chroma_shadow(s, v, ls, P->rays, &f) : fogrt__shadow(s, v, ls, P->rays);
+    *tr = P->chroma && v->in_medium ? fogrt__chroma_shadow(s, v, ls, P->w.rays, &f) : fogrt__shadow(s, v, ls, P->w.rays);
     return f;
 }
 /* One event of a free flight, of density p_c (any scale common to the channels) had channel
@@ -7223,7 +7275,7 @@ FOGRT__PRIVATE void fogrt__chroma_emission(const fogrt_scene *s, const fogrt__se
     fogrt__v3 w = fogrt__v(0.0f, 0.0f, 0.0f);
     if (P->xs->expected_emission) w = fogrt__chroma_absorbed(s, d);
     else if (collided) w = k;
-    if (!fogrt__is_black(w)) fogrt__gather(P, st, P->bounces, fogrt__mul(fogrt__mul(beta, s->x->emit), w), "fog emission");
+    if (!fogrt__is_black(w)) fogrt__gather(P, st, P->w.depth, fogrt__mul(fogrt__mul(beta, s->x->emit), w), "fog emission");
 }
 /* E's a and b for chromatic fog: the free flight [a, b] of the ray (as fogrt__free_flight,
    with the hero's sigma_t), the equiangular lights along it, then what the end of the ray
@@ -7231,18 +7283,18 @@ FOGRT__PRIVATE void fogrt__chroma_emission(const fogrt_scene *s, const fogrt__se
    T_c (their product beta T_c is expected emission's), and the new throughput. */
 FOGRT__PRIVATE bool fogrt__chroma_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                              bool found, const fogrt_hit *hit, int limit) {
-    const fogrt__v3 beta = P->beta;                     /* before this flight */
+    const fogrt__v3 beta = P->w.beta;                     /* before this flight */
     fogrt__v3 T, p, k, end = fogrt__v(0.0f, 0.0f, 0.0f);
-    float u = fogrt_rng_float(P->rng), a, b, t, m, tau;
+    float u = fogrt_rng_float(P->w.rng), a, b, t, m, tau;
     bool collided, expected = P->xs->expected_emission;
-    if (!fogrt__x_fog_span(s, P->o, P->d, found ? hit->t : INFINITY, &a, &b))   /* misses the fog's box */
+    if (!fogrt__x_fog_span(s, P->w.o, P->w.d, found ? hit->t : INFINITY, &a, &b))   /* misses the fog's box */
         return fogrt__ray_end(s, st, P, found, hit, beta, 1.0f, limit);
     t = a + fogrt_sample_exponential(fogrt__comp(s->x->sigma, P->hero), u);
     collided = t < b;
     FOGRT__HOOK(fogrt__trace_free_flight(P, u, t, b, collided));
 #ifdef FOGRT__LAMPS
-    if (st->desc.nee && P->xs->equiangular && s->light_count > 0 && P->bounces < limit)
-        fogrt__gather(P, st, P->bounces + 1, fogrt__mul(beta, fogrt__equiangular(s, st, P, a, b, true, true)), "equiangular");
+    if (st->desc.nee && P->xs->equiangular && s->light_count > 0 && P->w.depth < limit)
+        fogrt__gather(P, st, P->w.depth + 1, fogrt__mul(beta, fogrt__equiangular(s, st, P, a, b, true, true)), "equiangular");
 #endif
     T = fogrt__chroma_tr(s, b - a);
     p = collided ? fogrt__mul(s->x->sigma_n, fogrt__chroma_tr(s, t - a)) : T;
@@ -7252,15 +7304,15 @@ FOGRT__PRIVATE bool fogrt__chroma_next_event(const fogrt_scene *s, const fogrt__
     tau = fogrt__max3(T);
     if (tau > 0.0f) end = fogrt__scale(fogrt__mul(beta, T), 1.0f / tau);
     if (collided) {                                     /* sigma_s,c T_c / m = albedo_c k_c */
-        P->beta = fogrt__mul(fogrt__mul(beta, s->medium.albedo), k);
-        fogrt__fog_vertex(&P->v, fogrt__madd(P->o, P->d, t), fogrt__neg(P->d));
+        P->w.beta = fogrt__mul(fogrt__mul(beta, s->medium.albedo), k);
+        fogrt__fog_vertex(&P->w.v, fogrt__madd(P->w.o, P->w.d, t), fogrt__neg(P->w.d));
         P->glow.n = 0;
         P->seg_tr = tau;
         return fogrt__collided(s, st, P, found ? hit : NULL, end, expected ? tau : 0.0f, limit);
     }
-    P->beta = fogrt__mul(beta, k);                      /* T_c / m */
+    P->w.beta = fogrt__mul(beta, k);                      /* T_c / m */
     P->seg_tr = m;                                      /* the lamps at the surface: T_c / m, times m */
-    if (!expected) { end = P->beta; tau = 1.0f; }       /* the paper's: Le with the crossing's weight */
+    if (!expected) { end = P->w.beta; tau = 1.0f; }       /* the paper's: Le with the crossing's weight */
     return fogrt__ray_end(s, st, P, found, hit, end, tau, limit);
 }
 /* E's a + b (fogrt__next_event) in G's media: another phase function, emitting fog, or
@@ -7268,10 +7320,10 @@ FOGRT__PRIVATE bool fogrt__chroma_next_event(const fogrt_scene *s, const fogrt__
 FOGRT__PRIVATE bool fogrt__media_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
     fogrt_hit hit;
     bool found;
-    ++*P->rays;
-    found = fogrt__traverse(s, P->o, P->d, 0.0f, INFINITY, &hit, false);
+    ++*P->w.rays;
+    found = fogrt__traverse(s, P->w.o, P->w.d, 0.0f, INFINITY, &hit, false);
     P->seg_tr = 1.0f;
-    if (!P->in_medium) return fogrt__ray_end(s, st, P, found, &hit, P->beta, 1.0f, limit);
+    if (!P->w.in_fog) return fogrt__ray_end(s, st, P, found, &hit, P->w.beta, 1.0f, limit);
     if (P->chroma) return fogrt__chroma_next_event(s, st, P, found, &hit, limit);
     return fogrt__fog_event(s, st, P, found, &hit, limit, true);
 }
@@ -7786,49 +7838,55 @@ FOGRT__PRIVATE bool fogrt__h_vertex(const fogrt_scene *s, const fogrt__settings 
     }
     return false;
 }
-/* Algorithm 1 through media inside shapes: fogrt__algorithm1's loop, the medium carried
-   along (a refraction through a boundary changes it, as an interface does in h_vertex). */
-FOGRT__PRIVATE fogrt__v3 fogrt__h_radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
-                                           fogrt_rng *rng, uint64_t *rays) {
-    fogrt__walk w;
-    uint32_t vertex, med = s->x->h->camera_medium;
-    bool last = false, one_bounce = st->integrator == FOGRT_INTEGRATOR_DIRECT;
-    float u_hero = s->x->h->chroma ? fogrt_rng_float(rng) : 0.0f;   /* chromatic media: the path's hero channel */
-    int hero = FOGRT__MIN((int)(3.0f * u_hero), 2);
-    w.o = o; w.d = d; w.prev_p = o;
-    w.beta = fogrt__v(1.0f, 1.0f, 1.0f); w.L = fogrt__v(0.0f, 0.0f, 0.0f);
-    w.prev_pdf = 1.0f; w.prev_delta = true; w.in_fog = false; w.depth = 0;
-    for (vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
-        fogrt__vertex v;
-        fogrt_hit hit;
-        fogrt_bsdf_sample bs;
-        fogrt__v3 wi;
-        float u[3], cos_o;
-        bool scattering;
-        if (!fogrt__h_vertex(s, st, &w, &med, hero, &v, &hit, rng, rays) || last || w.depth >= st->max_depth) break;
-        scattering = v.is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v.m));
-        if (st->desc.nee && scattering && w.depth + 1 >= st->desc.min_depth)
-            w.L = fogrt__add(w.L, fogrt__mul(w.beta, fogrt__h_nee(s, st, &v, med, rng, rays)));
-        if (one_bounce && scattering) last = true;
-        u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng); u[2] = fogrt_rng_float(rng);
-        if (v.is_medium) {                                                              /* 15-17 */
-            w.d = fogrt__media_sample(&s->x->h->media[med], v.wo, u[1], u[2], &w.prev_pdf);
-            w.prev_delta = false;
-            w.o = w.prev_p = v.p;
-        } else {                                                                        /* 19-22 */
-            if (!fogrt__sample_surface(st, &v, u, &bs, &wi, &cos_o)) break;
-            w.beta = fogrt__mul(w.beta, bs.weight);
-            w.prev_pdf = bs.pdf; w.prev_delta = bs.is_delta;
-            if (bs.is_transmission) med = fogrt__h_cross(s, hit.prim, med);
-            w.d = wi; w.o = fogrt__offset(s, v.p, v.ng, wi); w.prev_p = v.p;
-        }
-        if (++w.depth > st->desc.rr_depth) {                                                 /* 2 */
-            float q = FOGRT__MIN(0.95f, fogrt__max3(w.beta));
-            if (!(fogrt_rng_float(rng) < q)) break;
-            w.beta = fogrt__scale(w.beta, 1.0f / q);
-        }
+/* Algorithm 1's steps through media inside shapes: the path carries the medium it travels
+   in; a refraction through a boundary changes it, as an interface does in h_vertex. */
+FOGRT__PRIVATE void fogrt__h_start(const fogrt_scene *s, fogrt__path *P) {
+    const struct fogrt__hbuilt *h = s->x->h;
+    float u_hero = h->chroma ? fogrt_rng_float(P->w.rng) : 0.0f;   /* chromatic media: the path's hero channel */
+    P->med = h->camera_medium;
+    P->hero = FOGRT__MIN((int)(3.0f * u_hero), 2);
+    P->w.in_fog = false;
+}
+/* Lines 3-5, 8, 14, 18. */
+FOGRT__PRIVATE bool fogrt__h_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
+    fogrt_hit hit;
+    hit.prim = 0;
+    (void)limit;
+    bool goes_on = fogrt__h_vertex(s, st, &P->w, &P->med, P->hero, &P->w.v, &hit, P->w.rng, P->w.rays);
+    P->prim = hit.prim;
+    return goes_on;
+}
+/* Lines 5-10, with shadow rays through the media. */
+FOGRT__PRIVATE void fogrt__h_light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
+    fogrt__walk *w = &P->w;
+    if (st->desc.nee && fogrt__scatters(&w->v) && w->depth + 1 >= st->desc.min_depth)
+        w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__h_nee(s, st, &w->v, P->med, w->rng, w->rays)));
+}
+/* Lines 11-22: the phase function of the vertex's medium, or the BSDF. */
+FOGRT__PRIVATE bool fogrt__h_scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
+    fogrt__walk *w = &P->w;
+    const fogrt__vertex *v = &w->v;
+    fogrt_bsdf_sample bs;
+    fogrt__v3 wi;
+    float u[3], cos_o;
+    u[0] = fogrt_rng_float(w->rng);
+    u[1] = fogrt_rng_float(w->rng);
+    u[2] = fogrt_rng_float(w->rng);
+    if (v->is_medium) {                                                              /* 15-17 */
+        w->d = fogrt__media_sample(&s->x->h->media[P->med], v->wo, u[1], u[2], &w->prev_pdf);
+        w->prev_delta = false;
+        w->o = w->prev_p = v->p;
+        return true;
     }
-    return w.L;
+    if (!fogrt__sample_surface(st, v, u, &bs, &wi, &cos_o)) return false;          /* 19-22 */
+    w->beta = fogrt__mul(w->beta, bs.weight);
+    w->prev_pdf = bs.pdf;
+    w->prev_delta = bs.is_delta;
+    if (bs.is_transmission) P->med = fogrt__h_cross(s, P->prim, P->med);
+    w->d = wi;
+    w->o = fogrt__offset(s, v->p, v->ng, wi);
+    w->prev_p = v->p;
+    return true;
 }
 #endif /* FOGRT_NO_SHAPES */
 
