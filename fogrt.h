@@ -951,6 +951,11 @@ FOGRT_API fogrt_result fogrt_render(const fogrt_scene *scene, const fogrt_render
 /* One radiance sample along a ray (for tests and custom cameras). */
 FOGRT_API fogrt_vec3 fogrt_trace(const fogrt_scene *scene, const fogrt_render_desc *desc,
                                  fogrt_vec3 o, fogrt_vec3 d, fogrt_rng *rng, uint64_t *ray_count);
+/* The samplers a render with desc runs in the built scene, in Algorithm 1's order, as one
+   line ("free flight, equiangular, light sampling + MIS, glow, ..."): what a render's
+   summary shows. buf (size bytes) is always terminated; returns buf. */
+FOGRT_API const char *fogrt_render_samplers(const fogrt_scene *scene, const fogrt_render_desc *desc, char *buf,
+                                            size_t size);
 /* Camera ray through image position (px, py) in pixels (0..width, 0..height, y down). */
 FOGRT_API void fogrt_camera_ray(const fogrt_scene *scene, int width, int height, float px, float py,
                                 float lens_u1, float lens_u2, fogrt_vec3 *o, fogrt_vec3 *d);
@@ -1158,6 +1163,8 @@ FOGRT__PRIVATE bool fogrt__x_next_event(const fogrt_scene *s, const struct fogrt
 FOGRT__PRIVATE void fogrt__x_light_step(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
 FOGRT__PRIVATE bool fogrt__x_scatter(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
 FOGRT__PRIVATE float fogrt__x_roulette_q(const struct fogrt__settings *st, struct fogrt__path *P, float u);   /* 7d */
+FOGRT__PRIVATE void fogrt__x_samplers(const fogrt_scene *s, const struct fogrt__settings *st, char *buf, size_t size);
+FOGRT__PRIVATE void fogrt__say(char *buf, size_t size, bool yes, const char *name);
 #endif
 #ifndef FOGRT_NO_ESTIMATION
 FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy);   /* 8 (C) */
@@ -3474,6 +3481,28 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
 struct fogrt__wbvh;
 struct fogrt__footprint;
 struct fogrt__hg_table;
+/* A homogeneous medium as the full integrator's steps read it: the world's fog (the scene's
+   medium), or with H the medium inside a shape. A path holds the one its ray is in. */
+typedef struct fogrt__med {
+    fogrt_medium_desc d;
+    fogrt__v3 sigma;           /* sigma_t per channel (sigma_t three times in grey fog) */
+    fogrt__v3 sigma_n;         /* sigma over its largest component (the collision densities' scale) */
+    fogrt__v3 emit;            /* G: sigma_a Le / sigma_t = (1 - albedo) Le, per collision */
+    bool chroma;               /* G: sigma_t differs between the colour channels */
+    bool emits;                /* G: the medium emits */
+    bool world;                /* the scene's fog: C's box bounds it, B's tables are for it */
+} fogrt__med;
+FOGRT__PRIVATE void fogrt__med_set(fogrt__med *r, const fogrt_medium_desc *m, bool world) {
+    float top;
+    r->d = *m;
+    r->chroma = !fogrt__is_black(m->sigma_t_rgb);
+    r->sigma = r->chroma ? m->sigma_t_rgb : fogrt__v(m->sigma_t, m->sigma_t, m->sigma_t);
+    top = fogrt__max3(r->sigma);
+    r->sigma_n = top > 0.0f ? fogrt__scale(r->sigma, 1.0f / top) : r->sigma;
+    r->emit = fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), m->albedo), m->emission);
+    r->emits = top > 0.0f && !fogrt__is_black(r->emit);
+    r->world = world;
+}
 /* Part II's per-scene state, made by fogrt_scene_build (seam 3) and released with the
    built data (seam 4). */
 struct fogrt__x {
@@ -3490,14 +3519,10 @@ struct fogrt__x {
 #ifndef FOGRT_NO_SHAPES
     struct fogrt__hbuilt *h;   /* H: media inside shapes, or NULL */
 #endif
+    fogrt__med world;          /* the world's fog (sigma_t 0 without one) */
 #ifndef FOGRT_NO_MEDIA
     bool media;                /* G: the fog has another phase function than HG, emits, or has
                                   sigma_t per channel (the path's steps are G's: fogrt__media_start) */
-    bool emits;                /* G: the fog emits */
-    fogrt__v3 emit;            /* G: sigma_a Le / sigma_t = (1 - albedo) Le, per collision */
-    bool chroma;               /* G: sigma_t differs between the colour channels */
-    fogrt__v3 sigma;           /* G, chroma: sigma_t per channel */
-    fogrt__v3 sigma_n;         /*   and over its largest component (the collision densities' scale) */
 #endif
 };
 #ifndef FOGRT_NO_MEDIA
@@ -3511,7 +3536,8 @@ FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s);
 FOGRT__PRIVATE void fogrt__media_start(const fogrt_scene *s, struct fogrt__path *P);
 FOGRT__PRIVATE fogrt__v3 fogrt__media_light(const fogrt_scene *s, const struct fogrt__path *P, const fogrt__vertex *v,
                                             const fogrt_light_sample *ls, float *pdf_b, float *tr);
-FOGRT__PRIVATE fogrt__v3 fogrt__chroma_collision(const fogrt_scene *s, float t, float pdf);
+struct fogrt__med;
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_collision(const struct fogrt__med *m, float t, float pdf);
 FOGRT__PRIVATE bool fogrt__media_next_event(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
                                             int limit);
 #endif
@@ -3522,8 +3548,12 @@ FOGRT__PRIVATE void fogrt__x_shapes_release(fogrt_scene *s);
 FOGRT__PRIVATE void fogrt__h_start(const fogrt_scene *s, struct fogrt__path *P);
 FOGRT__PRIVATE bool fogrt__h_next_event(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
                                         int limit);
-FOGRT__PRIVATE void fogrt__h_light_step(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
-FOGRT__PRIVATE bool fogrt__h_scatter(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
+FOGRT__PRIVATE void fogrt__h_enter(const fogrt_scene *s, struct fogrt__path *P, uint32_t med);
+FOGRT__PRIVATE uint32_t fogrt__h_cross(const fogrt_scene *s, uint32_t prim, uint32_t med);
+FOGRT__PRIVATE bool fogrt__h_boundary(const fogrt_scene *s, struct fogrt__path *P, uint32_t prim,
+                                      const fogrt_material_desc *m, fogrt__v3 p, fogrt__v3 ng);
+FOGRT__PRIVATE fogrt__v3 fogrt__h_shadow(const fogrt_scene *s, const fogrt__vertex *v, uint32_t med,
+                                         const fogrt_light_sample *ls, uint64_t *rays);
 #endif
 
 #ifndef FOGRT_NO_WIDE_BVH
@@ -5753,7 +5783,6 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix) {
 typedef struct fogrt__xs {
     bool equiangular, glow, footprint, by_power, expected_emission;
 #ifndef FOGRT_NO_MEDIA
-    bool emits;                /* G: the fog emits (fogrt__media_emission on every fog segment) */
     bool hero_pdf;             /* G, chroma: weigh by the hero channel's density alone, not the
                                   channels' mean: the wrong estimator, which fogrt never sets, for
                                   the negative control of tests/test_chroma.c */
@@ -5787,6 +5816,7 @@ typedef struct fogrt__path {
     fogrt__glow glow;          /* the lamps v may aim at (d') */
     float seg_tr;              /* the fog's transmittance over the ray to the surface it reached (b') */
     const fogrt__xs *xs;
+    const fogrt__med *m;       /* the medium the ray travels in (the world's, or H's) */
     bool (*next_event)(const fogrt_scene *s, const fogrt__settings *st, struct fogrt__path *P, int limit);
 #ifndef FOGRT_NO_MEDIA
     bool media_light;          /* G: a light sample needs fogrt__media_light (another phase, chroma) */
@@ -5796,8 +5826,9 @@ typedef struct fogrt__path {
                                   far, relative to one another (fogrt__chroma_mix) */
 #endif
 #ifndef FOGRT_NO_SHAPES
-    uint32_t med;              /* H: the medium the ray travels in */
+    uint32_t med;              /* H: the index of m in H's table */
     uint32_t prim;             /* H: the surface of the vertex (a refraction crosses it) */
+    bool crossed;              /* H: the ray passed an interface: the next event goes on beyond it */
 #endif
     float probe_lum, probe_b;  /* the pilot (xs->rr_probe): luminance gathered, throughput x */
     uint64_t probe_rays;       /*   rr_scale, and rays traced when the path met its first roulette */
@@ -5947,22 +5978,34 @@ FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__path *P, fogrt__v3 c, bool 
 /* The fog's phase function where E samples or evaluates it: Henyey-Greenstein (3.3), or
    with another phase (G) G's. In a build without G these are 3.3's calls as they were; with
    it, one compare where a fog vertex samples or evaluates (make callgrind). */
-FOGRT__HOT fogrt__v3 fogrt__fog_vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf) {
+FOGRT__HOT fogrt__v3 fogrt__fog_vertex_f(const fogrt_scene *s, const fogrt__med *m, const fogrt__vertex *v, fogrt__v3 wi,
+                                         float *pdf) {
 #ifndef FOGRT_NO_MEDIA
-    if (v->is_medium && s->medium.phase != FOGRT_PHASE_HG) {
-        float p = fogrt__media_pdf(&s->medium, v->wo, wi);
+    if (v->is_medium && (m->d.phase != FOGRT_PHASE_HG || !m->world)) {   /* (Part I's reads the world's g) */
+        float p = fogrt__media_pdf(&m->d, v->wo, wi);
         *pdf = p;
         return fogrt__v(p, p, p);
     }
+#else
+    (void)m;
 #endif
     return fogrt__vertex_f(s, v, wi, pdf);
 }
 #ifndef FOGRT_NO_MEDIUM
-FOGRT__HOT fogrt__v3 fogrt__fog_phase_sample(const fogrt_scene *s, fogrt__v3 wo, float u1, float u2, float *pdf) {
+FOGRT__HOT fogrt__v3 fogrt__fog_phase_sample(const fogrt__med *m, fogrt__v3 wo, float u1, float u2, float *pdf) {
 #ifndef FOGRT_NO_MEDIA
-    if (s->medium.phase != FOGRT_PHASE_HG) return fogrt__media_sample(&s->medium, wo, u1, u2, pdf);
+    if (m->d.phase != FOGRT_PHASE_HG) return fogrt__media_sample(&m->d, wo, u1, u2, pdf);
 #endif
-    return fogrt__sample_hg_unit(s->medium.g, wo, u1, u2, pdf);
+    return fogrt__sample_hg_unit(m->d.g, wo, u1, u2, pdf);
+}
+/* Where the ray o + t d, t in [0, tmax], is in medium m: [a, b]; the world's fog may be
+   bounded by a box (C). False: it misses it. */
+FOGRT__HOT bool fogrt__med_span(const fogrt_scene *s, const fogrt__med *m, fogrt__v3 o, fogrt__v3 d, float tmax,
+                                float *a, float *b) {
+    if (m->world) return fogrt__x_fog_span(s, o, d, tmax, a, b);
+    *a = 0.0f;
+    *b = tmax;
+    return true;
 }
 #endif
 typedef bool (*fogrt__step)(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit);
@@ -5976,6 +6019,7 @@ FOGRT__HOT void fogrt__path_start(const fogrt_scene *s, fogrt__path *P, const fo
     P->rr_scale = 1.0f;
     P->type = FOGRT_BSDF_DIFFUSE;
     P->xs = xs;
+    P->m = &s->x->world;
     P->next_event = fogrt__next_event_of(s);            /* a + b: the paper's medium, G's or H's */
 #ifndef FOGRT_NO_SHAPES
     if (s->x->h) {                                       /* H: the medium the camera is in */
@@ -6010,7 +6054,8 @@ FOGRT__PRIVATE void fogrt__glow_setup(const fogrt_scene *s, const fogrt__path *P
     uint32_t i;
     g->n = 0;
     g->fp = 0;
-    if (!P->xs->glow || !scattering || !v->in_medium || !(s->medium.sigma_t > 0.0f) || !(s->x->glow_share > 0.0f)) return;
+    if (!P->xs->glow || !scattering || !v->in_medium || !P->m->world || !(s->medium.sigma_t > 0.0f) ||
+        !(s->x->glow_share > 0.0f)) return;                 /* (B's tables are the world fog's) */
     for (i = 0; i < s->light_count && g->n < FOGRT__GLOW_MAX; ++i) {
         const fogrt_light_desc *l = &s->lights[i];
         fogrt__v3 w = fogrt__sub(l->position, v->p);
@@ -6111,7 +6156,8 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_light_n(const fogrt_scene *s, const fogrt
 FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__settings *st, const fogrt__path *P,
                                                float lamp_scale, bool lamps_only) {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
-    uint32_t i = P->w.v.is_medium && P->xs->equiangular ? s->light_count : 0, first = i, total = fogrt__light_total(s);
+    bool gathered = P->w.v.is_medium && P->xs->equiangular && P->m->world;   /* by equiangular sampling (a) */
+    uint32_t i = gathered ? s->light_count : 0, first = i, total = fogrt__light_total(s);
     if (lamps_only) total = s->light_count;
     if (P->xs->by_power) {                                  /* one light, chosen by power */
         float frac;
@@ -6158,7 +6204,7 @@ FOGRT__HOT float fogrt__equiangular_lights(const fogrt_scene *s, const fogrt__se
 FOGRT__HOT fogrt__v3 fogrt__equiangular_weight(const fogrt_scene *s, bool chroma, float t, float pdf) {
     float w;
 #ifndef FOGRT_NO_MEDIA
-    if (chroma) return fogrt__chroma_collision(s, t, pdf);
+    if (chroma) return fogrt__chroma_collision(&s->x->world, t, pdf);
 #else
     (void)chroma;
 #endif
@@ -6206,21 +6252,22 @@ FOGRT__HOT fogrt__v3 fogrt__equiangular(const fogrt_scene *s, const fogrt__setti
    constant): the path may be in G's media. */
 FOGRT__HOT bool fogrt__free_flight(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                    float t_surface, bool may_scatter, float *tr, bool media) {
+    const fogrt__med *m = P->m;
     float u, t, a, b;
     if (!P->w.in_fog) return false;
     u = fogrt_rng_float(P->w.rng);
-    if (!fogrt__x_fog_span(s, P->w.o, P->w.d, t_surface, &a, &b)) return false;   /* misses the fog's box */
-    *tr = b < INFINITY ? fogrt_transmittance(s->medium.sigma_t, b - a) : 0.0f;
-    t = a + fogrt_sample_exponential(s->medium.sigma_t, u);
+    if (!fogrt__med_span(s, m, P->w.o, P->w.d, t_surface, &a, &b)) return false;   /* misses the fog's box */
+    *tr = b < INFINITY ? fogrt_transmittance(m->d.sigma_t, b - a) : 0.0f;
+    t = a + fogrt_sample_exponential(m->d.sigma_t, u);
     FOGRT__HOOK(fogrt__trace_free_flight(P, u, t, b, t < b));
 #ifdef FOGRT__LAMPS
-    if (st->desc.nee && P->xs->equiangular && s->light_count > 0 && may_scatter)
+    if (st->desc.nee && P->xs->equiangular && s->light_count > 0 && may_scatter && m->world)
         fogrt__gather(P, st, P->w.depth + 1, fogrt__mul(P->w.beta, fogrt__equiangular(s, st, P, a, b, media, false)), "equiangular");
 #else
     (void)st; (void)may_scatter; (void)media;
 #endif
     if (!(t < b)) return false;                          /* leaves the fog or reaches the surface: T / T = 1 */
-    P->w.beta = fogrt__mul(P->w.beta, s->medium.albedo);     /* sigma_s T / (sigma_t T) */
+    P->w.beta = fogrt__mul(P->w.beta, m->d.albedo);     /* sigma_s T / (sigma_t T) */
     fogrt__fog_vertex(&P->w.v, fogrt__madd(P->w.o, P->w.d, t), fogrt__neg(P->w.d));
     P->glow.n = 0;
     return true;
@@ -6369,6 +6416,9 @@ FOGRT__HOT bool fogrt__ray_end(const fogrt_scene *s, const fogrt__settings *st, 
         fogrt__v3 p, ng, ns;
         fogrt__surface_frame(s, P->w.o, P->w.d, hit, &p, &ng, &ns);    /* once, for both */
         fogrt__surface_emission(s, st, P, m, hit, p, ng, beta, tr);
+#ifndef FOGRT_NO_SHAPES
+        if (s->x->h && fogrt__h_boundary(s, P, hit->prim, m, p, ng)) return true;   /* H: an interface, passed */
+#endif
         return fogrt__surface_event(st, P, m, hit->prim, limit, p, ng, ns);
     }
     fogrt__escape(s, st, P, beta, tr);
@@ -6386,7 +6436,7 @@ FOGRT__HOT bool fogrt__fog_event(const fogrt_scene *s, const fogrt__settings *st
     bool collided = fogrt__free_flight(s, st, P, found ? hit->t : INFINITY, P->w.depth < limit, &tr, media);
     P->seg_tr = tr;
 #ifndef FOGRT_NO_MEDIA
-    if (media && P->xs->emits) fogrt__media_emission(s, st, P, beta, found ? hit->t : INFINITY, collided);   /* G */
+    if (media && P->m->emits) fogrt__media_emission(s, st, P, beta, found ? hit->t : INFINITY, collided);   /* G */
 #endif
     if (!P->xs->expected_emission) tr = collided ? 0.0f : 1.0f;   /* the paper's: Le when reached */
     if (collided) return fogrt__collided(s, st, P, found ? hit : NULL, beta, tr, limit);
@@ -6423,12 +6473,6 @@ FOGRT__PRIVATE fogrt__step fogrt__next_event_of(const fogrt_scene *s) {
 /* c. Light sampling at the scattering vertex (next-event estimation, 2.3); a mirror
    or glass vertex cannot be reached by a light sample and is skipped. */
 FOGRT__PRIVATE void fogrt__x_light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
-#ifndef FOGRT_NO_SHAPES
-    if (s->x->h) {                                       /* H: shadow rays through the media */
-        fogrt__h_light_step(s, st, P);
-        return;
-    }
-#endif
 #ifdef FOGRT__LAMPS
     if (P->xs->glow) fogrt__glow_setup(s, P, &P->w.v, &P->glow, fogrt__is_scattering(P) && (P->w.v.is_medium || P->type == FOGRT_BSDF_DIFFUSE));
 #endif
@@ -6445,7 +6489,12 @@ FOGRT__HOT bool fogrt__scatter_surface(const fogrt_scene *s, const fogrt__settin
     if (!fogrt__sample_surface(st, &P->w.v, u, &bs, &P->w.d, &cos_o)) return false;
     P->w.beta = fogrt__mul(P->w.beta, bs.weight);
     P->w.prev_pdf = bs.pdf; P->w.prev_delta = bs.is_delta;
-    /* Refraction moves the ray into or out of the object: fog exists only outside. */
+    /* Refraction moves the ray into or out of the object: fog exists only outside (or, with
+       H, the medium on the other side of the surface). */
+#ifndef FOGRT_NO_SHAPES
+    if (bs.is_transmission && s->x->h) fogrt__h_enter(s, P, fogrt__h_cross(s, P->prim, P->med));
+    else
+#endif
     if (bs.is_transmission) P->w.in_fog = !P->entering && (s->features & FOGRT_FEATURE_MEDIUM) != 0;
     P->w.o = fogrt__offset(s, P->w.v.p, P->w.v.ng, P->w.d);
     FOGRT__HOOK(fogrt__trace_bsdf(st, P, u, &bs, cos_o));
@@ -6501,14 +6550,14 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
             wi = fogrt__sample_glow_hg(s->x->hg, P->glow.dir[k], u[1], u[2], &pdf_k);
         }
     } else if (P->w.v.is_medium) {                        /* the phase function at the angle drawn */
-        wi = fogrt__fog_phase_sample(s, P->w.v.wo, u[1], u[2], &pdf_b);
+        wi = fogrt__fog_phase_sample(P->m, P->w.v.wo, u[1], u[2], &pdf_b);
     } else {
         wo_l = fogrt__to_local(&P->w.v.frame, P->w.v.wo);
         if (!fogrt_sample_bsdf(P->w.v.m, st->desc.fresnel, wo_l, 0.5f, u[1], u[2], &bs)) return false;
         wi = fogrt__normalize(fogrt__to_world(&P->w.v.frame, bs.wi));
     }
     if (!glow && P->w.v.is_medium) f = fogrt__v(pdf_b, pdf_b, pdf_b);
-    else f = fogrt__fog_vertex_f(s, &P->w.v, wi, &pdf_b);   /* phase, or f |cos| (0 through the surface) */
+    else f = fogrt__fog_vertex_f(s, P->m, &P->w.v, wi, &pdf_b);   /* phase, or f |cos| (0 through the surface) */
     if (fogrt__is_black(f)) return false;
     pdf = fogrt__glow_mix_known(s, &P->w.v, &P->glow, wi, pdf_b, k, pdf_k);
     if (!(pdf > 0.0f)) return false;
@@ -6528,9 +6577,7 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
 FOGRT__PRIVATE bool fogrt__x_scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
     P->w.prev_p = P->w.v.p;
     P->rr_scale = 1.0f;                                  /* (d' sets it for the roulette after it) */
-#ifndef FOGRT_NO_SHAPES
-    if (s->x->h) return fogrt__h_scatter(s, st, P);     /* H: the vertex's medium, its boundary */
-#endif
+
 #ifndef FOGRT_NO_MEDIUM
     if (!P->w.v.in_medium) return fogrt__scatter_surface(s, st, P);   /* (a vertex outside the fog: only d) */
 #ifdef FOGRT__LAMPS
@@ -6538,10 +6585,10 @@ FOGRT__PRIVATE bool fogrt__x_scatter(const fogrt_scene *s, const fogrt__settings
 #endif
     if (P->w.v.is_medium) {
         float u1 = fogrt_rng_float(P->w.rng), u2 = fogrt_rng_float(P->w.rng);
-        P->w.d = fogrt__fog_phase_sample(s, P->w.v.wo, u1, u2, &P->w.prev_pdf);
+        P->w.d = fogrt__fog_phase_sample(P->m, P->w.v.wo, u1, u2, &P->w.prev_pdf);
         P->w.prev_delta = false;
         P->w.o = P->w.v.p;
-        FOGRT__HOOK(fogrt__trace_phase(P, &s->medium, u1, u2));
+        FOGRT__HOOK(fogrt__trace_phase(P, &P->m->d, u1, u2));
         return true;
     }
 #endif
@@ -6696,7 +6743,6 @@ FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__setting
     xs->footprint = xs->glow && d->footprint;
     xs->expected_emission = d->expected_emission;
 #ifndef FOGRT_NO_MEDIA
-    xs->emits = s->x->emits;
     xs->hero_pdf = false;
 #endif
     xs->by_power = d->light_by_power && s->x->light_pick && fogrt__light_total(s) > 1;
@@ -6705,6 +6751,36 @@ FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__setting
 #ifdef FOGRT_TRACE
     xs->trace = NULL; xs->trace_user = NULL;
 #endif
+}
+/* The samplers the full integrator runs (fogrt_render_samplers), in the loop's order. */
+FOGRT__PRIVATE void fogrt__x_samplers(const fogrt_scene *s, const fogrt__settings *st, char *buf, size_t size) {
+    const fogrt_render_desc *d = &st->desc;
+    fogrt__xs xs;
+    bool world = (s->features & FOGRT_FEATURE_MEDIUM) != 0, shapes = false, lamps = world && s->light_count > 0;
+    fogrt__x_settings(s, st, &xs);
+#ifndef FOGRT_NO_SHAPES
+    shapes = s->x->h != NULL;
+#endif
+    fogrt__say(buf, size, world || shapes, "free flight");
+    fogrt__say(buf, size, s->x->fog_bounded, "fog in a box");
+    fogrt__say(buf, size, shapes, "media in shapes");
+#ifndef FOGRT_NO_MEDIA
+    fogrt__say(buf, size, s->x->world.chroma, "hero channel");
+    fogrt__say(buf, size, s->x->world.emits, "emitting fog");
+#endif
+    fogrt__say(buf, size, d->nee && xs.equiangular && lamps, "equiangular");
+    fogrt__say(buf, size, xs.expected_emission && (world || shapes), "expected emission");
+    fogrt__say(buf, size, d->nee, d->mis ? "light sampling + MIS" : "light sampling");
+    fogrt__say(buf, size, d->nee && xs.by_power, "lights by power");
+    fogrt__say(buf, size, d->nee && s->env_map != NULL, "environment-map sampling");
+    fogrt__say(buf, size, d->nee && xs.expected_emission && lamps, "light behind collisions");
+    fogrt__say(buf, size, xs.glow, "glow");
+    bool spot = false;
+    for (uint32_t i = 0; i < s->light_count; ++i) spot |= s->lights[i].type == FOGRT_LIGHT_SPOT;
+    fogrt__say(buf, size, xs.footprint && spot, "footprint");
+    fogrt__say(buf, size, world || shapes, s->medium.phase == FOGRT_PHASE_HG || !world ? "HG" : "phase function");
+    fogrt__say(buf, size, true, "BSDF");
+    fogrt__say(buf, size, st->max_depth > d->rr_depth, xs.rr_k > 1.0f ? "roulette (pilot's k)" : "roulette");
 }
 /* Seam 7: the full integrator for every desc that asks for more than the paper, and for
    fog in a box or G's media (which Part I does not know). */
@@ -6755,6 +6831,9 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
     memset(x, 0, sizeof *x);
     s->x = x;
     x->rr_k = 1.0f;
+    fogrt__med_set(&x->world, &s->medium, true);
+    if (!(s->features & FOGRT_FEATURE_MEDIUM)) memset(&x->world, 0, sizeof x->world);
+    x->world.world = true;
 #ifndef FOGRT_NO_MEDIA
     fogrt__media_build(s);                              /* G */
 #endif
@@ -7151,22 +7230,17 @@ FOGRT__PUBLIC float fogrt_phase_pdf(const fogrt_medium_desc *m, fogrt_vec3 wo, f
    the ray gets through, whose mean over the free flight, with collision density
    sigma_t T(t), is the same integral. beta is the weight before the collision's albedo. */
 FOGRT__PRIVATE void fogrt__media_build(fogrt_scene *s) {
-    const fogrt_medium_desc *m = &s->medium;
-    s->x->emit = fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), m->albedo), m->emission);
-    s->x->emits = (s->features & FOGRT_FEATURE_MEDIUM) && !fogrt__is_black(s->x->emit);
-    s->x->chroma = (s->features & FOGRT_FEATURE_MEDIUM) && !fogrt__is_black(m->sigma_t_rgb);
-    s->x->sigma = m->sigma_t_rgb;
-    s->x->sigma_n = s->x->chroma ? fogrt__scale(m->sigma_t_rgb, 1.0f / fogrt__max3(m->sigma_t_rgb)) : m->sigma_t_rgb;
-    s->x->media = (s->features & FOGRT_FEATURE_MEDIUM) && (m->phase != FOGRT_PHASE_HG || s->x->emits || s->x->chroma);
+    const fogrt__med *w = &s->x->world;
+    s->x->media = (s->features & FOGRT_FEATURE_MEDIUM) && (w->d.phase != FOGRT_PHASE_HG || w->emits || w->chroma);
 }
 FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                           fogrt__v3 beta, float t_end, bool collided) {
     float a, b, w = collided ? 1.0f : 0.0f;
     if (P->xs->expected_emission) {
-        if (!fogrt__x_fog_span(s, P->w.o, P->w.d, t_end, &a, &b)) return;   /* misses the fog's box */
-        w = b < INFINITY ? -expm1f(-s->medium.sigma_t * (b - a)) : 1.0f;
+        if (!fogrt__med_span(s, P->m, P->w.o, P->w.d, t_end, &a, &b)) return;   /* misses the fog's box */
+        w = b < INFINITY ? -expm1f(-P->m->d.sigma_t * (b - a)) : 1.0f;
     }
-    if (w > 0.0f) fogrt__gather(P, st, P->w.depth, fogrt__scale(fogrt__mul(beta, s->x->emit), w), "fog emission");
+    if (w > 0.0f) fogrt__gather(P, st, P->w.depth, fogrt__scale(fogrt__mul(beta, P->m->emit), w), "fog emission");
 }
 
 /* Chromatic media: sigma_t per colour channel, so that each channel's light is attenuated and
@@ -7210,8 +7284,8 @@ FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__set
    one test per light sample, where it had one anyway), and in chromatic fog its hero
    channel. */
 FOGRT__PRIVATE void fogrt__media_start(const fogrt_scene *s, fogrt__path *P) {
-    P->media_light = s->medium.phase != FOGRT_PHASE_HG || s->x->chroma;
-    if (s->x->chroma) {
+    P->media_light = s->medium.phase != FOGRT_PHASE_HG || s->x->world.chroma;
+    if (s->x->world.chroma) {
         int hero = (int)(3.0f * fogrt_rng_float(P->w.rng));
         P->chroma = true;
         P->hero = FOGRT__MIN(hero, 2);
@@ -7219,8 +7293,8 @@ FOGRT__PRIVATE void fogrt__media_start(const fogrt_scene *s, fogrt__path *P) {
     }
 }
 /* T_c(d) per channel (d = +inf: 0 where sigma_t,c > 0, else 1). */
-FOGRT__PRIVATE fogrt__v3 fogrt__chroma_tr(const fogrt_scene *s, float d) {
-    const fogrt__v3 k = s->x->sigma;
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_tr(const fogrt__med *m, float d) {
+    const fogrt__v3 k = m->sigma;
     return fogrt__v(fogrt_transmittance(k.x, d), fogrt_transmittance(k.y, d), fogrt_transmittance(k.z, d));
 }
 /* 1 - T_c(d) per channel, without cancellation (expm1) for small optical depths. */
@@ -7228,14 +7302,14 @@ FOGRT__PRIVATE float fogrt__chroma_absorbed1(float sigma, float d) {
     if (!(sigma > 0.0f)) return 0.0f;
     return d < INFINITY ? -expm1f(-sigma * d) : 1.0f;
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__chroma_absorbed(const fogrt_scene *s, float d) {
-    const fogrt__v3 k = s->x->sigma;
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_absorbed(const fogrt__med *m, float d) {
+    const fogrt__v3 k = m->sigma;
     return fogrt__v(fogrt__chroma_absorbed1(k.x, d), fogrt__chroma_absorbed1(k.y, d), fogrt__chroma_absorbed1(k.z, d));
 }
 /* A point drawn at distance t into the fog with density pdf, not by the free flight: its
    weight sigma_t,c T_c(t) / pdf per channel. */
-FOGRT__PRIVATE fogrt__v3 fogrt__chroma_collision(const fogrt_scene *s, float t, float pdf) {
-    return fogrt__scale(fogrt__mul(s->x->sigma, fogrt__chroma_tr(s, t)), 1.0f / pdf);
+FOGRT__PRIVATE fogrt__v3 fogrt__chroma_collision(const fogrt__med *m, float t, float pdf) {
+    return fogrt__scale(fogrt__mul(m->sigma, fogrt__chroma_tr(m, t)), 1.0f / pdf);
 }
 /* Visibility by Part I's shadow ray (the vertex taken as clear air, so that it adds no grey
    T), then T_c over the ray's length in the fog, as fogrt__fog_transmittance measures it. */
@@ -7245,15 +7319,22 @@ FOGRT__PRIVATE float fogrt__chroma_shadow(const fogrt_scene *s, const fogrt__ver
     float a, b;
     clear.in_medium = false;
     if (fogrt__shadow(s, &clear, ls, rays) == 0.0f) return 0.0f;
-    if (fogrt__x_fog_span(s, v->p, ls->wi, ls->dist, &a, &b)) *f = fogrt__mul(*f, fogrt__chroma_tr(s, b - a));
+    if (fogrt__x_fog_span(s, v->p, ls->wi, ls->dist, &a, &b)) *f = fogrt__mul(*f, fogrt__chroma_tr(&s->x->world, b - a));
     return 1.0f;
 }
 /* A light sample's f (G's phase function at a fog vertex) and visibility times T (T_c in f
    in chromatic fog), for fogrt__light_contribution. */
 FOGRT__PRIVATE fogrt__v3 fogrt__media_light(const fogrt_scene *s, const fogrt__path *P, const fogrt__vertex *v,
                                             const fogrt_light_sample *ls, float *pdf_b, float *tr) {
-    fogrt__v3 f = fogrt__fog_vertex_f(s, v, ls->wi, pdf_b);
+    fogrt__v3 f = fogrt__fog_vertex_f(s, P->m, v, ls->wi, pdf_b);
     if (fogrt__is_black(f)) return f;
+#ifndef FOGRT_NO_SHAPES
+    if (s->x->h) {                                       /* H: through interfaces, T of each medium */
+        f = fogrt__mul(f, fogrt__h_shadow(s, v, P->med, ls, P->w.rays));
+        *tr = fogrt__is_black(f) ? 0.0f : 1.0f;
+        return f;
+    }
+#endif
     *tr = P->chroma && v->in_medium ? fogrt__chroma_shadow(s, v, ls, P->w.rays, &f) : fogrt__shadow(s, v, ls, P->w.rays);
     return f;
 }
@@ -7270,12 +7351,12 @@ FOGRT__PRIVATE float fogrt__chroma_mix(fogrt__path *P, fogrt__v3 p) {
 }
 /* The fog's emission along this flight (fogrt__media_emission's, per channel): in closed
    form with expected_emission, else at a collision with its weight k. */
-FOGRT__PRIVATE void fogrt__chroma_emission(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, fogrt__v3 beta,
+FOGRT__PRIVATE void fogrt__chroma_emission(const fogrt__settings *st, fogrt__path *P, fogrt__v3 beta,
                                            float d, bool collided, fogrt__v3 k) {
     fogrt__v3 w = fogrt__v(0.0f, 0.0f, 0.0f);
-    if (P->xs->expected_emission) w = fogrt__chroma_absorbed(s, d);
+    if (P->xs->expected_emission) w = fogrt__chroma_absorbed(P->m, d);
     else if (collided) w = k;
-    if (!fogrt__is_black(w)) fogrt__gather(P, st, P->w.depth, fogrt__mul(fogrt__mul(beta, s->x->emit), w), "fog emission");
+    if (!fogrt__is_black(w)) fogrt__gather(P, st, P->w.depth, fogrt__mul(fogrt__mul(beta, P->m->emit), w), "fog emission");
 }
 /* E's a and b for chromatic fog: the free flight [a, b] of the ray (as fogrt__free_flight,
    with the hero's sigma_t), the equiangular lights along it, then what the end of the ray
@@ -7284,27 +7365,28 @@ FOGRT__PRIVATE void fogrt__chroma_emission(const fogrt_scene *s, const fogrt__se
 FOGRT__PRIVATE bool fogrt__chroma_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P,
                                              bool found, const fogrt_hit *hit, int limit) {
     const fogrt__v3 beta = P->w.beta;                     /* before this flight */
+    const fogrt__med *med = P->m;
     fogrt__v3 T, p, k, end = fogrt__v(0.0f, 0.0f, 0.0f);
     float u = fogrt_rng_float(P->w.rng), a, b, t, m, tau;
     bool collided, expected = P->xs->expected_emission;
-    if (!fogrt__x_fog_span(s, P->w.o, P->w.d, found ? hit->t : INFINITY, &a, &b))   /* misses the fog's box */
+    if (!fogrt__med_span(s, med, P->w.o, P->w.d, found ? hit->t : INFINITY, &a, &b))   /* misses the fog's box */
         return fogrt__ray_end(s, st, P, found, hit, beta, 1.0f, limit);
-    t = a + fogrt_sample_exponential(fogrt__comp(s->x->sigma, P->hero), u);
+    t = a + fogrt_sample_exponential(fogrt__comp(med->sigma, P->hero), u);
     collided = t < b;
     FOGRT__HOOK(fogrt__trace_free_flight(P, u, t, b, collided));
 #ifdef FOGRT__LAMPS
-    if (st->desc.nee && P->xs->equiangular && s->light_count > 0 && P->w.depth < limit)
+    if (st->desc.nee && P->xs->equiangular && s->light_count > 0 && P->w.depth < limit && med->world)
         fogrt__gather(P, st, P->w.depth + 1, fogrt__mul(beta, fogrt__equiangular(s, st, P, a, b, true, true)), "equiangular");
 #endif
-    T = fogrt__chroma_tr(s, b - a);
-    p = collided ? fogrt__mul(s->x->sigma_n, fogrt__chroma_tr(s, t - a)) : T;
+    T = fogrt__chroma_tr(med, b - a);
+    p = collided ? fogrt__mul(med->sigma_n, fogrt__chroma_tr(med, t - a)) : T;
     m = fogrt__chroma_mix(P, p);
     k = m > 0.0f ? fogrt__scale(p, 1.0f / m) : fogrt__v(0.0f, 0.0f, 0.0f);   /* the event's weight per channel */
-    if (P->xs->emits) fogrt__chroma_emission(s, st, P, beta, b - a, collided, k);
+    if (med->emits) fogrt__chroma_emission(st, P, beta, b - a, collided, k);
     tau = fogrt__max3(T);
     if (tau > 0.0f) end = fogrt__scale(fogrt__mul(beta, T), 1.0f / tau);
     if (collided) {                                     /* sigma_s,c T_c / m = albedo_c k_c */
-        P->w.beta = fogrt__mul(fogrt__mul(beta, s->medium.albedo), k);
+        P->w.beta = fogrt__mul(fogrt__mul(beta, med->d.albedo), k);
         fogrt__fog_vertex(&P->w.v, fogrt__madd(P->w.o, P->w.d, t), fogrt__neg(P->w.d));
         P->glow.n = 0;
         P->seg_tr = tau;
@@ -7324,7 +7406,7 @@ FOGRT__PRIVATE bool fogrt__media_next_event(const fogrt_scene *s, const fogrt__s
     found = fogrt__traverse(s, P->w.o, P->w.d, 0.0f, INFINITY, &hit, false);
     P->seg_tr = 1.0f;
     if (!P->w.in_fog) return fogrt__ray_end(s, st, P, found, &hit, P->w.beta, 1.0f, limit);
-    if (P->chroma) return fogrt__chroma_next_event(s, st, P, found, &hit, limit);
+    if (P->m->chroma) return fogrt__chroma_next_event(s, st, P, found, &hit, limit);
     return fogrt__fog_event(s, st, P, found, &hit, limit, true);
 }
 #endif /* FOGRT_NO_MEDIA */
@@ -7337,10 +7419,16 @@ FOGRT__PRIVATE bool fogrt__media_next_event(const fogrt_scene *s, const fogrt__s
    (fogrt_scene_set_interior): smoke in a glass, a fog volume of any shape behind an
    index-matched surface (FOGRT_BSDF_INTERFACE, given to a shape already added by
    fogrt_scene_set_shape_material), media inside media, the camera inside any of them.
-   What it costs: nothing for a scene without such media (seam 7 tests one pointer); a scene
-   with them is rendered by the path tracer below, which samples lights with MIS as
-   Algorithm 1 (3.4) does, but has none of B's or C's variance reduction.
-   Its tests: tests/test_shapes.c; docs/validation.md, "Media inside shapes".
+   What it costs: nothing for a scene without such media (a test of one pointer where a ray
+   reaches a surface or refracts). A scene with them runs Algorithm 1 (3.4) with E's steps,
+   B's and C's samplers included: H adds only where the path is (the medium it travels in,
+   E's fogrt__med, whose fog E's and G's steps read), what a surface does to that (an
+   interface is passed, a refraction crosses into the medium on the other side), and shadow
+   rays through interfaces. B's samplers (equiangular sampling, the glow, the footprint) work
+   in the world's fog, whose tables they read; in a shape's medium the lamps are found by
+   light sampling at its collisions.
+   Its tests: tests/test_shapes.c, tests/test_compose.c; docs/validation.md, "Media inside
+   shapes".
 
    The media form a tree. Every shape that bounds a medium (one with an interior, or a
    refractive or interface one) has an inside medium and an outside one, the inside of the
@@ -7362,9 +7450,7 @@ typedef struct fogrt__boundary {
     fogrt__aabb box;
 } fogrt__boundary;
 struct fogrt__hbuilt {
-    fogrt_medium_desc *media;    /* 0: the world's (sigma_t 0 without fog), 1: empty, then the interiors */
-    fogrt__v3 *emit;             /* per medium: (1 - albedo) Le, added at each collision (G) */
-    fogrt__v3 *sig;              /* per medium: sigma_t per channel (equal channels: grey) */
+    fogrt__med *media;           /* 0: the world's (sigma_t 0 without fog), 1: empty, then the interiors */
     bool chroma;                 /* some medium's channels differ: a path draws a hero channel */
     fogrt__boundary *bounds;
     uint32_t *mesh_bound, *sph_bound;   /* per mesh and per sphere: its boundary, or UINT32_MAX */
@@ -7630,8 +7716,6 @@ FOGRT__PRIVATE fogrt_result fogrt__shapes_check(const fogrt_scene *s) {
     uint32_t n;
     fogrt_result r;
     if (!fogrt__shapes_wanted(s)) return FOGRT_RESULT_OK;
-    FOGRT__REFUSE_IF(s->medium.sigma_t > 0.0f && (s->medium.bounded || s->has_env), UNSUPPORTED,
-                     "media inside shapes: the world's fog must fill all space, without medium.bounded or an environment light");
     if ((r = fogrt__find_boundaries(s, &B, &n)) == FOGRT_RESULT_OK) fogrt__free(&s->allocator, B);
     return r;
 }
@@ -7650,11 +7734,29 @@ FOGRT__PRIVATE void fogrt__resolve_media(struct fogrt__hbuilt *h) {
 FOGRT__PRIVATE void fogrt__x_shapes_release(fogrt_scene *s) {
     struct fogrt__hbuilt *h = s->x->h;
     if (!h) return;
-    fogrt__free(&s->allocator, h->media); fogrt__free(&s->allocator, h->emit); fogrt__free(&s->allocator, h->bounds);
-    fogrt__free(&s->allocator, h->sig);
+    fogrt__free(&s->allocator, h->media);
+    fogrt__free(&s->allocator, h->bounds);
     fogrt__free(&s->allocator, h->mesh_bound); fogrt__free(&s->allocator, h->sph_bound);
     fogrt__free(&s->allocator, h);
     s->x->h = NULL;
+}
+/* A medium inside a shape whose surface lets no ray through (it neither refracts nor is an
+   interface) is never seen: one warning saying what to do. */
+FOGRT__PRIVATE void fogrt__warn_unseen(const fogrt_scene *s, const fogrt__boundary *b) {
+    char msg[256];
+    bool through = false;
+    if (b->declared < 0) return;
+    if (b->kind == FOGRT_SHAPE_SPHERE) {
+        through = fogrt__transmits(s, s->sph_material[b->index]);
+    } else {
+        uint32_t end = fogrt__mesh_first(s, b->index + 1);
+        for (uint32_t t = fogrt__mesh_first(s, b->index); t < end && !through; ++t)
+            through = fogrt__transmits(s, s->tri_material[t]);
+    }
+    if (through) return;
+    fogrt__log(s, FOGRT_LOG_WARNING, fogrt__shape_msg(msg, "the medium inside ", b,
+               " cannot be seen: its surface is opaque, so no ray enters it; give it a refractive"
+               " material or make it an interface (fogrt's --interface)"));
 }
 /* H's tables (x->h stays NULL for a scene without media inside shapes). False: out of memory. */
 FOGRT__PRIVATE bool fogrt__shapes_build(fogrt_scene *s) {
@@ -7665,28 +7767,22 @@ FOGRT__PRIVATE bool fogrt__shapes_build(fogrt_scene *s) {
     h = s->x->h = (struct fogrt__hbuilt *)fogrt__alloc(&s->allocator, sizeof *h);
     if (!h) return false;
     memset(h, 0, sizeof *h);
-    h->media = (fogrt_medium_desc *)fogrt__alloc(&s->allocator, sizeof *h->media * nm);
-    h->emit = (fogrt__v3 *)fogrt__alloc(&s->allocator, sizeof *h->emit * nm);
-    h->sig = (fogrt__v3 *)fogrt__alloc(&s->allocator, sizeof *h->sig * nm);
+    h->media = (fogrt__med *)fogrt__alloc(&s->allocator, sizeof *h->media * nm);
     h->mesh_bound = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * ((size_t)s->mesh_count + 1));
     h->sph_bound = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * ((size_t)s->sph_count + 1));
-    if (!h->media || !h->emit || !h->sig || !h->mesh_bound || !h->sph_bound ||
+    if (!h->media || !h->mesh_bound || !h->sph_bound ||
         fogrt__find_boundaries(s, &h->bounds, &h->bound_count) != FOGRT_RESULT_OK) return false;
     h->media_count = nm;
     memset(h->media, 0, sizeof *h->media * 2);
-    if (s->features & FOGRT_FEATURE_MEDIUM) h->media[0] = s->medium;
-    for (i = 2; i < nm; ++i) h->media[i] = s->shapes->items[i - 2].m;
-    for (i = 0; i < nm; ++i) {
-        const fogrt_medium_desc *m = &h->media[i];
-        h->emit[i] = fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), m->albedo), m->emission);
-        h->sig[i] = fogrt__is_black(m->sigma_t_rgb) ? fogrt__v(m->sigma_t, m->sigma_t, m->sigma_t) : m->sigma_t_rgb;
-        h->chroma |= !fogrt__is_black(m->sigma_t_rgb);
-    }
+    h->media[0] = s->x->world;                          /* the world's fog, bounded by C's box */
+    for (i = 2; i < nm; ++i) fogrt__med_set(&h->media[i], &s->shapes->items[i - 2].m, false);
+    for (i = 0; i < nm; ++i) h->chroma |= h->media[i].chroma;
     for (i = 0; i < s->mesh_count; ++i) h->mesh_bound[i] = UINT32_MAX;
     for (i = 0; i < s->sph_count; ++i) h->sph_bound[i] = UINT32_MAX;
     for (b = 0; b < h->bound_count; ++b)
         *(h->bounds[b].kind == FOGRT_SHAPE_MESH ? &h->mesh_bound[h->bounds[b].index] : &h->sph_bound[h->bounds[b].index]) = b;
     fogrt__resolve_media(h);
+    for (b = 0; b < h->bound_count; ++b) fogrt__warn_unseen(s, &h->bounds[b]);
     cam = fogrt__camera_setup(s, 1, 1);                 /* where the camera is: its medium */
     b = fogrt__innermost(s, h->bounds, h->bound_count, cam.pos, UINT32_MAX);
     h->camera_medium = b == UINT32_MAX ? 0u : h->bounds[b].inside;
@@ -7703,190 +7799,85 @@ FOGRT__PRIVATE uint32_t fogrt__h_cross(const fogrt_scene *s, uint32_t prim, uint
 FOGRT__PRIVATE bool fogrt__is_interface(const fogrt_scene *s, uint32_t prim) {
     return fogrt__bsdf_type(&s->materials[fogrt_scene_get_prim_material(s, prim)]) == FOGRT_BSDF_INTERFACE;
 }
-/* Lines 7 and 10 through media: whether the light sample is visible from p (in medium med),
-   times the transmittance (eq. 8) of each medium on the way; interface surfaces let the
-   shadow ray through (into the medium on their other side), every other surface stops it. */
-/* The transmittance of medium k over t, per channel (eq. 8). */
-FOGRT__PRIVATE fogrt__v3 fogrt__h_tr(const struct fogrt__hbuilt *h, uint32_t k, float t) {
-    fogrt__v3 c = h->sig[k];
-    return fogrt__v(fogrt_transmittance(c.x, t), fogrt_transmittance(c.y, t), fogrt_transmittance(c.z, t));
+/* The transmittance (eq. 8), per channel, of medium k along o + t d for t in [0, len]: the
+   world's fog only where its box is (C). */
+FOGRT__PRIVATE fogrt__v3 fogrt__h_tr(const fogrt_scene *s, uint32_t k, fogrt__v3 o, fogrt__v3 d, float len) {
+    const fogrt__med *m = &s->x->h->media[k];
+    float a, b;
+    if (!fogrt__med_span(s, m, o, d, len, &a, &b)) return fogrt__v(1.0f, 1.0f, 1.0f);
+    fogrt__v3 c = m->sigma;
+    return fogrt__v(fogrt_transmittance(c.x, b - a), fogrt_transmittance(c.y, b - a), fogrt_transmittance(c.z, b - a));
 }
+/* Lines 7 and 10 through media: whether the light sample is visible from the vertex (in
+   medium med), times the transmittance of each medium on the way; interface surfaces let the
+   shadow ray through (into the medium on their other side), every other surface stops it. */
 FOGRT__PRIVATE fogrt__v3 fogrt__h_shadow(const fogrt_scene *s, const fogrt__vertex *v, uint32_t med,
                                          const fogrt_light_sample *ls, uint64_t *rays) {
-    const struct fogrt__hbuilt *h = s->x->h;
-    fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, ls->wi), y = fogrt__madd(v->p, ls->wi, ls->dist);
+    fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, ls->wi);
     fogrt__v3 T = fogrt__v(1.0f, 1.0f, 1.0f);
-    int k;
-    for (k = 0; k < FOGRT__H_MAX_CROSSINGS && fogrt__max3(T) > 0.0f; ++k) {
+    bool far = !(ls->dist < INFINITY);                   /* toward the environment */
+    fogrt__v3 y = far ? fogrt__v(0.0f, 0.0f, 0.0f) : fogrt__madd(v->p, ls->wi, ls->dist);
+    for (int k = 0; k < FOGRT__H_MAX_CROSSINGS && fogrt__max3(T) > 0.0f; ++k) {
         fogrt_hit hit;
-        fogrt__v3 to = fogrt__sub(y, o), p, ng, ns;
-        float len = fogrt__length(to), tmax = len - fogrt__offset_size(s, y);
+        fogrt__v3 dir = ls->wi, p, ng, ns;
+        float len = INFINITY, tmax = INFINITY;
+        if (!far) {
+            fogrt__v3 to = fogrt__sub(y, o);
+            len = fogrt__length(to);
+            tmax = len - fogrt__offset_size(s, y);
+            dir = fogrt__scale(to, 1.0f / len);
+        }
         ++*rays;
-        if (!(tmax > 0.0f) || !fogrt__traverse(s, o, fogrt__scale(to, 1.0f / len), 0.0f, tmax, &hit, false))
-            return fogrt__mul(T, fogrt__h_tr(h, med, len));
+        if (!(tmax > 0.0f) || !fogrt__traverse(s, o, dir, 0.0f, tmax, &hit, false))
+            return fogrt__mul(T, fogrt__h_tr(s, med, o, dir, len));
         if (!fogrt__is_interface(s, hit.prim)) break;
-        T = fogrt__mul(T, fogrt__h_tr(h, med, hit.t));
+        T = fogrt__mul(T, fogrt__h_tr(s, med, o, dir, hit.t));
         med = fogrt__h_cross(s, hit.prim, med);
-        fogrt__surface_frame(s, o, fogrt__scale(to, 1.0f / len), &hit, &p, &ng, &ns);
-        o = fogrt__offset(s, p, ng, to);
+        fogrt__surface_frame(s, o, dir, &hit, &p, &ng, &ns);
+        o = fogrt__offset(s, p, ng, dir);
     }
     return fogrt__v(0.0f, 0.0f, 0.0f);
 }
-/* f of the vertex: the phase function of its medium in fog, else Part I's. */
-FOGRT__PRIVATE fogrt__v3 fogrt__h_vertex_f(const fogrt_scene *s, const fogrt__vertex *v, const fogrt_medium_desc *m,
-                                           fogrt__v3 wi, float *pdf) {
-    if (!v->is_medium) return fogrt__vertex_f(s, v, wi, pdf);
-    *pdf = fogrt__media_pdf(m, v->wo, wi);
-    return fogrt__v(*pdf, *pdf, *pdf);
+/* The path now travels in medium med. */
+FOGRT__PRIVATE void fogrt__h_enter(const fogrt_scene *s, fogrt__path *P, uint32_t med) {
+    P->med = med;
+    P->m = &s->x->h->media[med];
+    P->w.in_fog = fogrt__max3(P->m->sigma) > 0.0f;
 }
-/* Lines 5-10 (as fogrt__nee) with the shadow rays above. */
-FOGRT__PRIVATE fogrt__v3 fogrt__h_nee(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v, uint32_t med,
-                                      fogrt_rng *rng, uint64_t *rays) {
-    fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
-    uint32_t i, total = fogrt_scene_light_total(s);
-    for (i = 0; i < total; ++i) {
-        int j, n = i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->desc.light_samples;
-        for (j = 0; j < n; ++j) {
-            fogrt_light_sample ls;
-            fogrt__v3 f;
-            fogrt__v3 tr;
-            float u1 = fogrt_rng_float(rng), u2 = fogrt_rng_float(rng), u3 = fogrt_rng_float(rng), pdf_b, w;
-            if (!fogrt_scene_sample_light(s, i, v->p, u1, u2, u3, &ls)) continue;
-            f = fogrt__h_vertex_f(s, v, &s->x->h->media[med], ls.wi, &pdf_b);
-            if (fogrt__is_black(f) || fogrt__is_black(tr = fogrt__h_shadow(s, v, med, &ls, rays))) continue;
-            w = ls.is_delta || !st->desc.mis ? 1.0f : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
-            L = fogrt__add(L, fogrt__scale(fogrt__mul(fogrt__mul(f, ls.Le), tr), w / (ls.pdf * (float)n)));
-        }
-    }
-    return L;
-}
-FOGRT__PRIVATE fogrt__v3 fogrt__h_sky(const fogrt_scene *s, fogrt__v3 d) {
-#ifndef FOGRT_NO_ESTIMATION
-    return fogrt__env_map_radiance(s, d);
-#else
-    return fogrt__env_radiance(s, d);
-#endif
-}
-/* Chromatic media (G's sigma_t per channel): the free flight is drawn with the path's hero
-   channel, and the weights divide by the channels' mean density (one-sample spectral MIS,
-   as in G): at a collision at t the weight is sigma_s,c T_c(t) / p(t) with p the mean of
-   sigma_c T_c(t), and the emission sigma_a,c Le_c T_c(t) / p(t); past a segment of length d
-   without one, T_c(d) / P(d) with P the mean of T_c(d). Grey media keep the plain steps. */
-FOGRT__PRIVATE void fogrt__h_chroma_collision(const struct fogrt__hbuilt *h, uint32_t k, float t, fogrt__walk *w, bool counts) {
-    const fogrt_medium_desc *m = &h->media[k];
-    fogrt__v3 f = fogrt__mul(h->sig[k], fogrt__h_tr(h, k, t));
-    float p = (f.x + f.y + f.z) / 3.0f;
-    f = p > 0.0f ? fogrt__scale(f, 1.0f / p) : fogrt__v(0.0f, 0.0f, 0.0f);
-    if (counts) w->L = fogrt__add(w->L, fogrt__mul(fogrt__mul(w->beta, f), fogrt__mul(fogrt__sub(fogrt__v(1.0f, 1.0f, 1.0f), m->albedo), m->emission)));
-    w->beta = fogrt__mul(fogrt__mul(w->beta, f), m->albedo);
-}
-FOGRT__PRIVATE void fogrt__h_chroma_pass(const struct fogrt__hbuilt *h, uint32_t k, float d, fogrt__walk *w) {
-    fogrt__v3 T = fogrt__h_tr(h, k, d);
-    float P = (T.x + T.y + T.z) / 3.0f;
-    w->beta = P > 0.0f ? fogrt__scale(fogrt__mul(w->beta, T), 1.0f / P) : fogrt__v(0.0f, 0.0f, 0.0f);
-}
-/* A collision at t in medium k: its emission, the weight, and the vertex there. */
-FOGRT__PRIVATE void fogrt__h_collide(const struct fogrt__hbuilt *h, uint32_t k, bool chroma, float t, fogrt__walk *w,
-                                     bool counts, fogrt__vertex *v) {
-    if (chroma) {
-        fogrt__h_chroma_collision(h, k, t, w, counts);
-    } else {
-        if (counts) w->L = fogrt__add(w->L, fogrt__mul(w->beta, h->emit[k]));
-        w->beta = fogrt__mul(w->beta, h->media[k].albedo);
-    }
-    v->p = fogrt__madd(w->o, w->d, t); v->wo = fogrt__neg(w->d);
-    v->is_medium = v->in_medium = true; v->m = NULL; v->ng = fogrt__v(0.0f, 0.0f, 0.0f);
-}
-/* Lines 3-5, 8, 14, 18 in the medium *med: the next vertex, with the emission reached on the
-   way (an emitter, the sky, an emitting medium's collision); an interface surface on the way
-   is passed (into the medium on its other side) without a vertex. False: the path ends. */
-FOGRT__PRIVATE bool fogrt__h_vertex(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w, uint32_t *med,
-                                    int hero, fogrt__vertex *v, fogrt_hit *hit, fogrt_rng *rng, uint64_t *rays) {
-    const struct fogrt__hbuilt *h = s->x->h;
-    int k;
-    for (k = 0; k < FOGRT__H_MAX_CROSSINGS; ++k) {
-        const fogrt_medium_desc *m = &h->media[*med];
-        const fogrt_material_desc *mat;
-        fogrt__v3 p, ng, ns;
-        bool chroma = h->chroma && !fogrt__is_black(m->sigma_t_rgb);
-        float sig = chroma ? fogrt__comp(h->sig[*med], hero) : m->sigma_t;
-        float t_fog = sig > 0.0f ? fogrt_sample_exponential(sig, fogrt_rng_float(rng)) : INFINITY;
-        bool found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, hit, false);
-        bool counts = w->depth >= st->desc.min_depth;
-        ++*rays;
-        if (t_fog < (found ? hit->t : INFINITY)) {                                  /* 5, 14 */
-            fogrt__h_collide(h, *med, chroma, t_fog, w, counts, v);
-            return true;
-        }
-        if (chroma) fogrt__h_chroma_pass(h, *med, found ? hit->t : INFINITY, w);
-        if (!found) {                                                                 /* the sky */
-            if (s->has_env && counts) w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__h_sky(s, w->d)));
-            return false;
-        }
-        mat = &s->materials[fogrt_scene_get_prim_material(s, hit->prim)];
-        fogrt__surface_frame(s, w->o, w->d, hit, &p, &ng, &ns);
-        if (!fogrt__is_black(mat->emission) && fogrt__dot(w->d, ng) < 0.0f && counts)   /* 8, 18 */
-            w->L = fogrt__add(w->L, fogrt__scale(fogrt__mul(w->beta, mat->emission),
-                                                 fogrt__emission_weight(s, st, w->prev_delta, w->prev_pdf, w->prev_p, hit, p, ng)));
-        if (fogrt__bsdf_type(mat) != FOGRT_BSDF_INTERFACE) {
-            if (fogrt__bsdf_type(mat) == FOGRT_BSDF_DIFFUSE && fogrt__is_black(mat->reflectance)) return false;
-            (void)fogrt__surface_vertex_set(v, mat, fogrt__neg(w->d), p, ng, ns, h->media[*med].sigma_t > 0.0f);
-            return true;
-        }
-        *med = fogrt__h_cross(s, hit->prim, *med);                                     /* through */
-        w->o = fogrt__offset(s, p, ng, w->d);
-    }
-    return false;
-}
-/* Algorithm 1's steps through media inside shapes: the path carries the medium it travels
-   in; a refraction through a boundary changes it, as an interface does in h_vertex. */
+/* A path's start: the medium the camera is in; G's steps for every medium (another phase,
+   emission, sigma_t per channel), with a hero channel where some medium is chromatic. */
 FOGRT__PRIVATE void fogrt__h_start(const fogrt_scene *s, fogrt__path *P) {
     const struct fogrt__hbuilt *h = s->x->h;
-    float u_hero = h->chroma ? fogrt_rng_float(P->w.rng) : 0.0f;   /* chromatic media: the path's hero channel */
-    P->med = h->camera_medium;
-    P->hero = FOGRT__MIN((int)(3.0f * u_hero), 2);
-    P->w.in_fog = false;
-}
-/* Lines 3-5, 8, 14, 18. */
-FOGRT__PRIVATE bool fogrt__h_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
-    fogrt_hit hit;
-    hit.prim = 0;
-    (void)limit;
-    bool goes_on = fogrt__h_vertex(s, st, &P->w, &P->med, P->hero, &P->w.v, &hit, P->w.rng, P->w.rays);
-    P->prim = hit.prim;
-    return goes_on;
-}
-/* Lines 5-10, with shadow rays through the media. */
-FOGRT__PRIVATE void fogrt__h_light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
-    fogrt__walk *w = &P->w;
-    if (st->desc.nee && fogrt__scatters(&w->v) && w->depth + 1 >= st->desc.min_depth)
-        w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__h_nee(s, st, &w->v, P->med, w->rng, w->rays)));
-}
-/* Lines 11-22: the phase function of the vertex's medium, or the BSDF. */
-FOGRT__PRIVATE bool fogrt__h_scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
-    fogrt__walk *w = &P->w;
-    const fogrt__vertex *v = &w->v;
-    fogrt_bsdf_sample bs;
-    fogrt__v3 wi;
-    float u[3], cos_o;
-    u[0] = fogrt_rng_float(w->rng);
-    u[1] = fogrt_rng_float(w->rng);
-    u[2] = fogrt_rng_float(w->rng);
-    if (v->is_medium) {                                                              /* 15-17 */
-        w->d = fogrt__media_sample(&s->x->h->media[P->med], v->wo, u[1], u[2], &w->prev_pdf);
-        w->prev_delta = false;
-        w->o = w->prev_p = v->p;
-        return true;
+    fogrt__h_enter(s, P, h->camera_medium);
+    P->media_light = true;                               /* shadow rays through the media */
+    if (h->chroma) {
+        int hero = (int)(3.0f * fogrt_rng_float(P->w.rng));
+        P->chroma = true;
+        P->hero = FOGRT__MIN(hero, 2);
+        P->r = fogrt__v(1.0f, 1.0f, 1.0f);
     }
-    if (!fogrt__sample_surface(st, v, u, &bs, &wi, &cos_o)) return false;          /* 19-22 */
-    w->beta = fogrt__mul(w->beta, bs.weight);
-    w->prev_pdf = bs.pdf;
-    w->prev_delta = bs.is_delta;
-    if (bs.is_transmission) P->med = fogrt__h_cross(s, P->prim, P->med);
-    w->d = wi;
-    w->o = fogrt__offset(s, v->p, v->ng, wi);
-    w->prev_p = v->p;
+}
+/* The surface the ray reached at p (primitive prim, material m): the vertex's surface (a
+   refraction from it crosses it), or an interface, which the ray passes into the medium on
+   its other side without a vertex (returns true). */
+FOGRT__PRIVATE bool fogrt__h_boundary(const fogrt_scene *s, fogrt__path *P, uint32_t prim,
+                                      const fogrt_material_desc *m, fogrt__v3 p, fogrt__v3 ng) {
+    P->prim = prim;
+    if (fogrt__bsdf_type(m) != FOGRT_BSDF_INTERFACE) return false;
+    fogrt__h_enter(s, P, fogrt__h_cross(s, prim, P->med));
+    P->w.o = fogrt__offset(s, p, ng, P->w.d);
+    P->crossed = true;
     return true;
+}
+/* Lines 3-5, 8, 14, 18 through media inside shapes: E's next event (G's steps) in the
+   medium the ray is in, again past each interface the ray crosses, until a vertex. */
+FOGRT__PRIVATE bool fogrt__h_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
+    for (int k = 0; k < FOGRT__H_MAX_CROSSINGS; ++k) {
+        P->crossed = false;
+        if (!fogrt__media_next_event(s, st, P, limit)) return false;
+        if (!P->crossed) return true;
+    }
+    return false;
 }
 #endif /* FOGRT_NO_SHAPES */
 
@@ -8097,6 +8088,35 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_trace(const fogrt_scene *s, const fogrt_render_de
     o = fogrt__radiance(s, &st, o, fogrt__normalize(d), rng, &rays);
     if (ray_count) *ray_count += rays;
     return o;
+}
+/* One more name in a list of samplers. */
+FOGRT__PRIVATE void fogrt__say(char *buf, size_t size, bool yes, const char *name) {
+    size_t n = strlen(buf);
+    if (!yes || n + 1 >= size) return;
+    if (n) strncat(buf, ", ", size - n - 1);
+    strncat(buf, name, size - strlen(buf) - 1);
+}
+FOGRT__PUBLIC const char *fogrt_render_samplers(const fogrt_scene *s, const fogrt_render_desc *desc, char *buf,
+                                                size_t size) {
+    fogrt__settings st;
+    FOGRT_ASSERT(s && buf && size > 0);
+    buf[0] = '\0';
+    if (!s->built || fogrt__resolve_render(s, desc, &st, NULL) != FOGRT_RESULT_OK) return buf;
+    const fogrt_render_desc *d = &st.desc;
+    fogrt__say(buf, size, st.integrator == FOGRT_INTEGRATOR_DIRECT, "one bounce");
+#ifndef FOGRT_MINIMAL
+    if (fogrt__x_wanted(s, &st)) {
+        fogrt__x_samplers(s, &st, buf, size);
+        return buf;
+    }
+#endif
+    bool fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0;
+    fogrt__say(buf, size, fog, "free flight");
+    fogrt__say(buf, size, d->nee, d->mis ? "light sampling + MIS" : "light sampling");
+    fogrt__say(buf, size, fog, "HG");
+    fogrt__say(buf, size, true, "BSDF");
+    fogrt__say(buf, size, st.max_depth > d->rr_depth, "roulette");
+    return buf;
 }
 /* 8-bit output. */
 /* The sRGB curve: 12.92 x below 0.0031308, else 1.055 x^(1/2.4) - 0.055. */

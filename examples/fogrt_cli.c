@@ -1537,12 +1537,7 @@ static int build_failed(const cli_options *o, cli_log *L, const fogrt_scene *sce
 {
     if (o->c.media_count && r != FOGRT_RESULT_OUT_OF_MEMORY && r != FOGRT_RESULT_EMPTY_SCENE) {
         const char *msg = L->error[0] ? L->error : fogrt_scene_last_error(scene);
-        int st;
-        if (r == FOGRT_RESULT_UNSUPPORTED && (o->fog_where == CLI_FOG_BOX || o->fog_where == CLI_FOG_SCENE))
-            msg = "media inside objects need the world's fog to fill all space: drop --fog-bounds (or the world's fog: --density 0 before --medium)";
-        else if (r == FOGRT_RESULT_UNSUPPORTED && o->env_map)
-            msg = "media inside objects need the world's fog to fill all space, and with -e it fills the box of the geometry: drop -e or the world's fog (--density 0 before --medium)";
-        st = cli_media_build_failed(&o->c, msg, r);
+        int st = cli_media_build_failed(&o->c, msg, r);
         L->error[0] = 0;
         return st;
     }
@@ -1569,7 +1564,7 @@ static int run(int argc, char **argv)
     cli_output out, rate_out;
     cli_membuf enc;
     cli_shapes shapes;
-    char rate_name[4096], where[4200], err_a[64], err_b[64], reason[256], target[64], fog_text[1024];
+    char rate_name[4096], where[4200], err_a[64], err_b[64], reason[256], target[64], fog_text[1024], samplers[512];
     const char *why, *stopped_by = NULL, *cam_where;
     float *rgb = NULL, *ref = NULL, *rates = NULL;
     unsigned char *rgb8 = NULL;
@@ -1860,11 +1855,11 @@ static int run(int argc, char **argv)
         target[0] = 0;
         if (o.adaptive || ps.show_target) snprintf(target, sizeof target, "/%d", o.spp);
         fprintf(stderr, "fogrt: %swrote %s%s%s (%dx%d): %s%.6g%s spp in %.2f s (load %.2f s), %.3g M samples/s, "
-                "rel. error %s%s, %llu non-finite samples dropped; %s\n",
+                "rel. error %s%s, %llu non-finite samples dropped; %s; samplers: %s\n",
                 cli_interrupted ? "interrupted: " : "", o.output, o.adaptive ? " and " : "", o.adaptive ? rate_name : "",
                 o.width, o.height, o.adaptive ? "adaptive, mean " : "", spp_mean, target, elapsed, t_load,
                 elapsed > 0 ? (double)ee.samples / elapsed * 1e-6 : 0.0, err_a, err_b,
-                (unsigned long long)img.rejected, fog_text);
+                (unsigned long long)img.rejected, fog_text, fogrt_render_samplers(scene, &rd, samplers, sizeof samplers));
     }
     if (ps.log_failed) status = 1;
     else if (cli_interrupted) status = 130;

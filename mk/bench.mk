@@ -5,6 +5,8 @@
 #                    run, BENCH_ARGS=--fan for the fan alone
 #   make bench-spot  the paper's spot-lit fog at equal time, this tree against the header of
 #                    commit SPOT_BASE in the same run (default 7a4a5f3, the goal's reference)
+#   make bench-shapes  a medium inside a shape under a spot lamp, relMSE x seconds against the
+#                    header of commit SHAPES_BASE at equal time
 #   make bench-base  make bench's figures against the header of commit BENCH_BASE, same run
 #   make same-image  this tree's images against those of commit IMAGE_BASE (cmp, and means)
 #   make callgrind   instructions a scene pays for features it does not use (fails above +1%)
@@ -17,7 +19,7 @@
 #     (fogrt's figures alone, no ratios).
 #   - the CS184 bunny: when fogrt_load.h declares fogrt_load_dae and $(SHARED) has CBbunny.dae
 #     (otherwise bench.c uses a synthetic mesh of the same size).
-.PHONY: bench bench-base callgrind bench-levers deps-embree bench-spot variance-sources same-image
+.PHONY: bench bench-base callgrind bench-levers deps-embree bench-spot bench-shapes variance-sources same-image
 
 BENCH_EMBREE        ?= 1
 BENCH_EMBREE_HEADER := /usr/include/embree3/rtcore.h
@@ -60,6 +62,16 @@ SPOT_GOAL ?= 25
 SPOT_GOAL_REF ?= 7a4a5f3
 bench-spot: $(BUILD)/fogrt
 	sh bench/spot_goal.sh $(BUILD)/fogrt $(SHARED) $(SPOT_RUNS) $(SPOT_BASE) $(SPOT_GOAL) $(SPOT_GOAL_REF)
+
+# A lamp-lit scene with a medium inside a shape (the spot-lit bunny as a fog volume in fog),
+# relMSE against a reference x seconds, this tree against SHAPES_BASE's header at equal time
+# (bench/shapes_gain.sh): SHAPES_SECONDS per render, SHAPES_RUNS runs, after a 4096-spp
+# reference (a few minutes, made once per build).
+SHAPES_BASE ?= HEAD~1
+SHAPES_SECONDS ?= 10
+SHAPES_RUNS ?= 3
+bench-shapes: $(BUILD)/fogrt
+	sh bench/shapes_gain.sh $(BUILD)/fogrt $(SHARED) $(SHAPES_BASE) $(SHAPES_SECONDS) $(SHAPES_RUNS)
 
 # make bench's figures, this tree against the header of commit BENCH_BASE in the same run:
 # both bench programs alternately, BENCH_RUNS rounds, each figure's median ratio

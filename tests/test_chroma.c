@@ -537,7 +537,7 @@ static void test_chroma_equal_channels_are_grey(void)
     CHECK_OK(fogrt_render(a, &rd, &ia, 8, NULL));
     CHECK_OK(fogrt_render(b, &rd, &ib, 8, NULL));
     TEST_ASSERT_TRUE_MESSAGE(memcmp(ia.sum, ib.sum, sizeof(double) * 3 * 16 * 12) == 0, "equal channels do not render grey fog bit for bit");
-    TEST_ASSERT_FALSE(a->x->chroma);
+    TEST_ASSERT_FALSE(a->x->world.chroma);
     fogrt_image_free(&ia); fogrt_image_free(&ib);
     fogrt_scene_destroy(a); fogrt_scene_destroy(b);
 #endif

@@ -771,7 +771,12 @@ refused "--medium cube" "no fog flag" "media_in_objects: --medium with nothing a
 refused "--medium cube" "need --density" "media_in_objects: fog flags without --density" -- --medium cube --albedo 0.5 -f "$out" "$tmp/cube.obj"
 refused "--medium box" "names the same object as --medium cube" "media_in_objects: two names of one object" -- --medium cube --density 1 --medium box --density 2 -f "$out" "$tmp/cube.obj"
 refused "--phase" "rayleigh cannot be combined" "media_in_objects: a medium's own flags are checked" -- --medium cube --density 1 --phase rayleigh --g 0.5,0.1,0.5 -f "$out" "$tmp/cube.obj"
-refused "--medium cube" "fill all space: drop --fog-bounds" "media_in_objects: with the world's fog in a box" -- --fog-bounds 0,0,0,1,1,1 --medium cube --density 1 -f "$out" "$tmp/cube.obj"
+# the world's fog in a box and a medium in an object together: the box's fog changes the image
+expect 0 "" "media_in_objects: with the world's fog in a box" -- $mio --fog-bounds -1,-1,-1,2,2,2 --density 0.5 --medium cube --interface --density 3 -f "$tmp/mo_box.pfm" "$tmp/cube.obj"
+check "pfm_ok '$tmp/mo_box.pfm' 24 18 && ! cmp -s '$tmp/mo_box.pfm' '$tmp/mo_fog.pfm'" "media_in_objects: the world's fog in a box left the image as without it"
+# a medium inside an opaque object cannot be seen: one warning saying what to do
+expect 0 "cannot be seen: its surface is opaque" "media_in_objects: a medium in an opaque object is told" -- $mio --medium cube --density 3 -f "$tmp/mo_opaque.pfm" "$tmp/cube.obj"
+check "grep -qF -- '--interface' '$tmp/err'" "media_in_objects: the warning on an opaque object does not name --interface"
 # the CS184 example: smoke in the glass sphere (node Sphere1; both spheres share geometry Sphere1)
 if [ -f ../shared/scenes/cs184/CBspheres.dae ]; then
     cbs=../shared/scenes/cs184/CBspheres.dae

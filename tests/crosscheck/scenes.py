@@ -154,7 +154,16 @@ def all_scenes():
     fog_cube["shapes"].append(cube("fogcube", (-0.5, 0.2, -0.6), (0.4, 1.1, 0.2), "interface"))
     fog_cube["interiors"] = [dict(shape="fogcube", interface=True,
                                   medium=dict(sigma_t=3.0, albedo=(0.6, 0.6, 0.6), g=-0.3))]
-    scenes += [smoke, fog_cube]
+    # Both together with B's samplers: a spot lamp in the box's fog above a glass sphere
+    # filled with smoke (one Algorithm 1 runs equiangular sampling, the glow and the
+    # footprint in the world's fog, and the smoke's free flights inside the sphere).
+    spot_smoke = dict(box_scene("spot_smoke", "Spot light in fog above a glass sphere filled with smoke, no lamp",
+                                dict(sigma_t=0.3, albedo=(0.9, 0.9, 0.9), g=0.4), [((0.0, 0.5, 0.0), 0.45, "glass")],
+                                lamp=False, lights=[spot]),
+                      interiors=[])
+    spot_smoke["interiors"].append(dict(shape=spot_smoke["shapes"][-1]["name"],
+                                        medium=dict(sigma_t=3.0, albedo=(0.9, 0.9, 0.9), g=0.3)))
+    scenes += [smoke, fog_cube, spot_smoke]
     # Appendix G's phase functions: two HG lobes (Mitsuba's blendphase) and Rayleigh.
     scenes += [
         box_scene("fog_hg2", "Two-lobe HG fog, 0.7 HG(+0.8) + 0.3 HG(-0.5)",
