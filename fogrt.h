@@ -644,14 +644,16 @@ FOGRT_API bool fogrt_intersect_sphere(fogrt_vec3 center, float radius, fogrt_vec
 
 /* ------------------------------------------------------------------------------------------
    Sampling routines: pure functions of their uniform numbers u in [0,1).
-   Naming: fogrt_sample_X (the sampler), fogrt_X_pdf (its density), fogrt_invert_X.
+   Naming: fogrt_sample_X (the sampler), fogrt_X_pdf (its density), fogrt_X_cdf (its CDF).
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_NO_MEDIUM
 /* Free flight (paper eq. 4-6): t = -ln(1 - u) / sigma_t, written with log1p.
    sigma_t = 0 returns +infinity (the ray never collides).                                  */
 FOGRT_API float fogrt_sample_exponential(float sigma_t, float u);
 FOGRT_API float fogrt_exponential_pdf(float sigma_t, float t);        /* sigma_t exp(-sigma_t t) */
-FOGRT_API float fogrt_invert_exponential(float sigma_t, float t);     /* 1 - exp(-sigma_t t) */
+FOGRT_API float fogrt_exponential_cdf(float sigma_t, float t);        /* 1 - exp(-sigma_t t) */
+/* The same CDF under the name older code calls it by (the sampler inverts it). */
+FOGRT_API float fogrt_invert_exponential(float sigma_t, float t);
 /* Beer-Lambert transmittance (paper eq. 7-8): T = exp(-sigma_t d). */
 FOGRT_API float fogrt_transmittance(float sigma_t, float distance);
 
@@ -1315,8 +1317,8 @@ FOGRT__PRIVATE fogrt__v3 fogrt__to_world(const fogrt__frame *f, fogrt__v3 v) {
 /* The direction at polar angle theta (given by its cosine and sine) from the frame's n and
    azimuth 2 pi u: how every sampler of a cone or lobe (HG eq. 12, spheres) turns its two
    angles into a direction. */
-FOGRT__HOT fogrt__v3 fogrt__around(const fogrt__frame *f, float cos_theta, float sin_theta,
-                                   float u) {
+FOGRT__HOT fogrt__v3 fogrt__direction_at(const fogrt__frame *f, float cos_theta,
+                                         float sin_theta, float u) {
     float phi = 2.0f * FOGRT__PI * u;
     return fogrt__normalize(
             fogrt__to_world(f, fogrt__v(sin_theta * cosf(phi), sin_theta * sinf(phi), cos_theta)));
@@ -1966,9 +1968,9 @@ FOGRT__PRIVATE uint32_t fogrt__bvh_split_binned(fogrt__build *b, const fogrt__bj
     float best = FLT_MAX;
     int best_ax = -1, best_k = 0;
 #ifndef FOGRT_NO_WIDE_BVH
-    uint32_t x_left;
-    if (fogrt__x_split_binned(b, job, child, left, right, halve, &x_left))
-        return x_left; /* SEAM 2 */
+    uint32_t wide_left_count;
+    if (fogrt__x_split_binned(b, job, child, left, right, halve, &wide_left_count))   /* SEAM 2 */
+        return wide_left_count;
 #endif
     fogrt__bins_fill(&bins, &b->desc, &job->cb, b->box + first, count);
     for (int ax = 0; ax < 3; ++ax)
@@ -2411,7 +2413,7 @@ FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 c, float r, fogrt
    uniformly in [0, 1 - cos theta_max) samples a cone uniformly (spheres here, spot lights'
    footprints below). */
 FOGRT__HOT fogrt__v3 fogrt__in_cone(const fogrt__frame *f, float omc, float u) {
-    return fogrt__around(f, 1.0f - omc, sqrtf(FOGRT__MAX(0.0f, omc * (2.0f - omc))), u);
+    return fogrt__direction_at(f, 1.0f - omc, sqrtf(FOGRT__MAX(0.0f, omc * (2.0f - omc))), u);
 }
 FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 center, float radius,
                                                          fogrt_vec3 p, float u1, float u2,
@@ -2628,7 +2630,7 @@ FOGRT__PUBLIC float fogrt_exponential_pdf(float sigma_t, float t) {
     if (!(sigma_t > 0.0f) || t < 0.0f) return 0.0f;
     return sigma_t * expf(-sigma_t * t);
 }
-FOGRT__PUBLIC float fogrt_invert_exponential(float sigma_t, float t) {
+FOGRT__PUBLIC float fogrt_exponential_cdf(float sigma_t, float t) {
     if (!(sigma_t > 0.0f) || t <= 0.0f) return 0.0f;
     return -expm1f(-sigma_t * t);
 }
@@ -2745,12 +2747,13 @@ FOGRT__PRIVATE void fogrt__sample_hg_pm(float g, float u, float *one_minus_mu, f
 FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg_unit(float g, fogrt__v3 wo, float u1, float u2,
                                                float *pdf) {
     fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));   /* z: propagation */
-    float omm, opm;
+    float one_minus_mu, one_plus_mu;
     g = fogrt__clamp_g(g);
-    fogrt__sample_hg_pm(g, FOGRT__CLAMP(u1, 0.0f, 1.0f), &omm, &opm);
-    float mu = omm < opm ? 1.0f - omm : opm - 1.0f;    /* from the nearer end: no rounding */
-    if (pdf) *pdf = fogrt__hg_phase_pm(g, omm, opm);
-    return fogrt__around(&f, mu, sqrtf(omm * opm), u2);
+    fogrt__sample_hg_pm(g, FOGRT__CLAMP(u1, 0.0f, 1.0f), &one_minus_mu, &one_plus_mu);
+    /* mu from the nearer end: no rounding */
+    float mu = one_minus_mu < one_plus_mu ? 1.0f - one_minus_mu : one_plus_mu - 1.0f;
+    if (pdf) *pdf = fogrt__hg_phase_pm(g, one_minus_mu, one_plus_mu);
+    return fogrt__direction_at(&f, mu, sqrtf(one_minus_mu * one_plus_mu), u2);
 }
 FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf) {
     return fogrt__sample_hg_unit(g, fogrt__normalize(wo), u1, u2, pdf);
@@ -5276,7 +5279,7 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_sample_glow(fogrt_vec3 to_light, float u1, float 
     float r = sqrtf(FOGRT__MAX(0.0f, 1.0f - FOGRT__CLAMP(u1, 0.0f, 1.0f)));   /* beta = pi r */
     float alpha = FOGRT__PI * (1.0f - r), beta = FOGRT__PI * r;
     if (pdf) *pdf = fogrt__glow_density(alpha, beta);
-    return fogrt__around(&f, cosf(alpha), sinf(FOGRT__MIN(alpha, beta)), u2);
+    return fogrt__direction_at(&f, cosf(alpha), sinf(FOGRT__MIN(alpha, beta)), u2);
 }
 FOGRT__PUBLIC float fogrt_glow_pdf(fogrt_vec3 to_light, fogrt_vec3 wi) {
     fogrt__v3 a = fogrt__sub(wi, to_light), b = fogrt__add(wi, to_light);
@@ -5349,7 +5352,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_glow_hg(const fogrt__hg_table *T, fogrt__
     float ca, sa;
     fogrt__cos_sin(alpha, &ca, &sa);
     *pdf = fogrt__glow_hg_density(T, (double)sa, dens);
-    return fogrt__around(&f, ca, sa, u2);
+    return fogrt__direction_at(&f, ca, sa, u2);
 }
 /* alpha from the chords |wi - l| = 2 sin(alpha/2) and |wi + l| = 2 cos(alpha/2), as the
    angle to the nearer end (fogrt__psi_of); sin(alpha) is half their product. */
@@ -7452,7 +7455,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_rayleigh_unit(fogrt__v3 wo, float u1, flo
     fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));   /* z: propagation */
     float mu = fogrt_sample_rayleigh_mu(u1);
     if (pdf) *pdf = fogrt_rayleigh_phase(mu);
-    return fogrt__around(&f, mu, sqrtf(FOGRT__MAX(0.0f, (1.0f - mu) * (1.0f + mu))), u2);
+    return fogrt__direction_at(&f, mu, sqrtf(FOGRT__MAX(0.0f, (1.0f - mu) * (1.0f + mu))), u2);
 }
 FOGRT__PUBLIC fogrt_vec3 fogrt_sample_rayleigh(fogrt_vec3 wo, float u1, float u2, float *pdf) {
     return fogrt__sample_rayleigh_unit(fogrt__normalize(wo), u1, u2, pdf);
@@ -8271,6 +8274,12 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void) {
 #endif
     return d;
 }
+#ifndef FOGRT_NO_MEDIUM
+/* fogrt_exponential_cdf (3.1) under the name older code calls it by. */
+FOGRT__PUBLIC float fogrt_invert_exponential(float sigma_t, float t) {
+    return fogrt_exponential_cdf(sigma_t, t);
+}
+#endif
 FOGRT__PUBLIC const char *fogrt_result_string(fogrt_result result) {
     static const char *names[FOGRT_RESULT_NUM] = {
 #define FOGRT__RESULT_TEXT(name, text) text,

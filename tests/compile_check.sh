@@ -278,7 +278,7 @@ gone_nm() {
 strip_nm() { gone_nm "-std=c99 -O2" TU "$@"; }
 if have "$GCC" && have nm; then
     run "nm: FOGRT_NO_MEDIUM removes free flight, transmittance, HG and equiangular" strip_nm FOGRT_NO_MEDIUM \
-        fogrt_sample_exponential fogrt_exponential_pdf fogrt_invert_exponential fogrt_transmittance \
+        fogrt_sample_exponential fogrt_exponential_pdf fogrt_exponential_cdf fogrt_invert_exponential fogrt_transmittance \
         fogrt_hg_phase fogrt_sample_hg_mu fogrt_sample_hg fogrt_hg_pdf fogrt_sample_equiangular fogrt_equiangular_pdf
     run "nm: FOGRT_NO_GLASS removes Fresnel and refraction" strip_nm FOGRT_NO_GLASS \
         fogrt_fresnel_schlick fogrt_fresnel_dielectric fogrt_refract
