@@ -1244,9 +1244,7 @@ FOGRT__PRIVATE bool fogrt__finite(float x) { return x - x == 0.0f; }  /* false f
 /* Coordinates must be finite and at most 1e30 in size, so that squared distances and box
    areas stay finite in float. */
 #define FOGRT__MAX_COORD 1e30f
-FOGRT__PRIVATE bool fogrt__coord_ok(float x) {
-    return x >= -FOGRT__MAX_COORD && x <= FOGRT__MAX_COORD;
-}
+FOGRT__PRIVATE bool fogrt__coord_ok(float x) { return fabsf(x) <= FOGRT__MAX_COORD; }  /* NaN: no */
 
 typedef fogrt_vec3 fogrt__v3;
 FOGRT__PRIVATE fogrt__v3 fogrt__v(float x, float y, float z) {
@@ -1369,11 +1367,10 @@ typedef struct fogrt__area_light {
     float area;               /* total area */
 } fogrt__area_light;
 
-struct fogrt__x; /* Part II's tables (wide tree, lamps in fog, maps, pilot), or NULL */
+struct fogrt__x;   /* Part II's tables (wide tree, lamps in fog, maps, pilot), or NULL */
 struct fogrt_scene {
     fogrt_allocator allocator;
     fogrt_logger logger;
-    /* materials */
     fogrt_material_desc *materials;
     uint32_t material_count, material_cap;
     /* triangles, in the order they were added: 3 vertices, 3 normals, flags */
@@ -1381,13 +1378,11 @@ struct fogrt_scene {
     uint8_t *tri_has_n;
     uint32_t *tri_material, *tri_mesh;
     uint32_t tri_count, tri_cap, mesh_count;
-    /* spheres */
-    fogrt__v3 *sph_c;
+    fogrt__v3 *sph_c;          /* spheres: centres, radii, materials */
     float *sph_r;
     uint32_t *sph_material;
     uint32_t sph_count, sph_cap;
-    /* point and spot lights */
-    fogrt_light_desc *lights;
+    fogrt_light_desc *lights;  /* point and spot lights */
     uint32_t light_count, light_cap;
     float *spot_cos;           /* built: per point or spot light, cos(cutoff) and cos(beam) */
     /* environment: a constant radiance, or a map (3 floats per pixel, CS184's mapping) */
@@ -1405,8 +1400,8 @@ struct fogrt_scene {
     fogrt__prim *prims;        /* prim_count, in BVH order (parallel to prim_index) */
     fogrt__area_light *area_lights;
     uint32_t area_light_count;
-    uint32_t *light_prims;
-    float *light_cdf; /* emissive triangles of each area light */
+    uint32_t *light_prims;     /* the emissive triangles of each area light, and their CDF */
+    float *light_cdf;
     uint32_t *prim_light;      /* per primitive id: area light index or UINT32_MAX */
     uint32_t features;
     fogrt__v3 bmin, bmax;
@@ -1417,7 +1412,6 @@ struct fogrt_scene {
     char *error;               /* the last failure's message: points at error_text (writable */
     char error_text[256];      /*   through a const scene, as a log line is) */
 };
-
 FOGRT__PRIVATE void fogrt__log(const fogrt_scene *s, fogrt_log_level level, const char *msg) {
     if (s && s->logger.func) s->logger.func(level, msg, s->logger.user_data);
 }
@@ -1457,7 +1451,6 @@ FOGRT__PRIVATE uint32_t fogrt__grow_cap(uint32_t cap, uint32_t need) {
     while (c < need) c *= 2;
     return c > 0x7FFFFFFFu ? 0x7FFFFFFFu : (uint32_t)c;
 }
-
 FOGRT__PUBLIC fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc,
                                               fogrt_scene **out_scene) {
     fogrt_scene_desc d;
@@ -1511,7 +1504,6 @@ FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s) {
     fogrt__free(&a, s->lights);
     fogrt__free(&a, s);
 }
-
 FOGRT__PRIVATE bool fogrt__colour_ok(fogrt__v3 c) {
     return fogrt__v3_finite(c) && c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f;
 }
@@ -1620,7 +1612,6 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh
     s->built = false;
     return FOGRT_RESULT_OK;
 }
-
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 center, float radius,
                                                   uint32_t material) {
     FOGRT_ASSERT(s);
@@ -1648,7 +1639,6 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 cen
     s->built = false;
     return FOGRT_RESULT_OK;
 }
-
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_light(fogrt_scene *s, const fogrt_light_desc *desc) {
     FOGRT_ASSERT(s && desc);
     fogrt_light_desc l = *desc;
@@ -1680,7 +1670,6 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_light(fogrt_scene *s, const fogrt_lig
     s->built = false;
     return FOGRT_RESULT_OK;
 }
-
 FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment(fogrt_scene *s, fogrt_vec3 radiance,
                                                        bool upper_only) {
     FOGRT_ASSERT(s);
@@ -1771,14 +1760,6 @@ FOGRT__PRIVATE fogrt__aabb fogrt__aabb_empty(void) {
     fogrt__aabb b = { { FLT_MAX, FLT_MAX, FLT_MAX }, { -FLT_MAX, -FLT_MAX, -FLT_MAX } };
     return b;
 }
-FOGRT__HOT void fogrt__aabb_grow(fogrt__aabb *b, fogrt__v3 p) {
-    b->lo.x = FOGRT__MIN(b->lo.x, p.x);
-    b->lo.y = FOGRT__MIN(b->lo.y, p.y);
-    b->lo.z = FOGRT__MIN(b->lo.z, p.z);
-    b->hi.x = FOGRT__MAX(b->hi.x, p.x);
-    b->hi.y = FOGRT__MAX(b->hi.y, p.y);
-    b->hi.z = FOGRT__MAX(b->hi.z, p.z);
-}
 FOGRT__HOT void fogrt__aabb_union(fogrt__aabb *b, const fogrt__aabb *o) {   /* o may be empty */
     b->lo.x = FOGRT__MIN(b->lo.x, o->lo.x);
     b->lo.y = FOGRT__MIN(b->lo.y, o->lo.y);
@@ -1786,6 +1767,10 @@ FOGRT__HOT void fogrt__aabb_union(fogrt__aabb *b, const fogrt__aabb *o) {   /* o
     b->hi.x = FOGRT__MAX(b->hi.x, o->hi.x);
     b->hi.y = FOGRT__MAX(b->hi.y, o->hi.y);
     b->hi.z = FOGRT__MAX(b->hi.z, o->hi.z);
+}
+FOGRT__HOT void fogrt__aabb_grow(fogrt__aabb *b, fogrt__v3 p) {   /* the union with the point */
+    fogrt__aabb point = { p, p };
+    fogrt__aabb_union(b, &point);
 }
 FOGRT__PRIVATE float fogrt__aabb_area(const fogrt__aabb *b) {     /* 0 for the empty box */
     fogrt__v3 e = fogrt__sub(b->hi, b->lo);
@@ -1869,11 +1854,9 @@ FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt_build_desc *
         float lo = fogrt__comp(cb->lo, ax), hi = fogrt__comp(cb->hi, ax);
         sc[ax] = (float)nb / (hi - lo);
         if (!(hi > lo && sc[ax] > 0.0f && sc[ax] < FLT_MAX)) sc[ax] = 0.0f;
-        for (int k = 0; k < nb; ++k) {
-            bins->box[ax][k] = fogrt__aabb_empty();
-            bins->n[ax][k] = 0;
-        }
+        for (int k = 0; k < nb; ++k) bins->box[ax][k] = fogrt__aabb_empty();
     }
+    memset(bins->n, 0, sizeof bins->n);
     bins->nb = nb;
     bins->origin = cb->lo;
     bins->scale = fogrt__v(sc[0], sc[1], sc[2]);
@@ -2021,8 +2004,7 @@ FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count) {
     memset(&b->nodes[1], 0, sizeof b->nodes[1]);
     root->left_first = 0;
     root->prim_count = prim_count;
-    stack[0].node = 0;
-    stack[0].depth = 0;
+    stack[0].node = stack[0].depth = 0;
     fogrt__boxes_bounds(b->box, prim_count, root, &stack[0].cb);
     b->node_count = 2;
     while (sp > 0) {
@@ -2077,15 +2059,10 @@ FOGRT__HOT bool fogrt__hit_sphere(fogrt__v3 o, fogrt__v3 d, fogrt__v3 c, float r
         t0 = t1;
         t1 = tmp;
     }
-    if (t0 > tmin && t0 < tmax) {
-        *t = t0;
-        return true;
-    }
-    if (t1 > tmin && t1 < tmax) {
-        *t = t1;
-        return true;
-    }
-    return false;
+    float nearest = t0 > tmin && t0 < tmax ? t0 : t1;   /* the nearer root in range, if any */
+    if (!(nearest > tmin && nearest < tmax)) return false;
+    *t = nearest;
+    return true;
 }
 
 /* The reciprocal of a direction component, never a division by zero: +-0 (and anything
@@ -2208,11 +2185,8 @@ FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3
    ------------------------------------------------------------------------------------------ */
 FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *y) {
     float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
-    if (a == 0.0f && b == 0.0f) {
-        *x = 0.0f;
-        *y = 0.0f;
-        return;
-    }
+    *x = *y = 0.0f;
+    if (a == 0.0f && b == 0.0f) return;
     bool wide = fabsf(a) > fabsf(b);
     float r = wide ? a : b, phi = wide ? (FOGRT__PI / 4.0f) * (b / a)
                                        : FOGRT__PI / 2.0f - (FOGRT__PI / 4.0f) * (a / b);
@@ -2301,7 +2275,6 @@ FOGRT__PRIVATE fogrt_bsdf_type fogrt__bsdf_type(const fogrt_material_desc *m) {
     return m->type == FOGRT_BSDF_DEFAULT ? FOGRT_BSDF_DIFFUSE : m->type;
 }
 FOGRT__PRIVATE bool fogrt__bsdf_is_delta(fogrt_bsdf_type t) { return t != FOGRT_BSDF_DIFFUSE; }
-
 FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel fresnel,
                                      fogrt_vec3 wo, float u_lobe, float u1, float u2,
                                      fogrt_bsdf_sample *out) {
@@ -2476,10 +2449,8 @@ FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *
         return fogrt__v(p, p, p);
     }
 #endif
-    if (fogrt__dot(wi, v->ng) <= 0.0f) {
-        *pdf = 0.0f;
-        return fogrt__v(0.0f, 0.0f, 0.0f);
-    }
+    *pdf = 0.0f;
+    if (fogrt__dot(wi, v->ng) <= 0.0f) return fogrt__v(0.0f, 0.0f, 0.0f);
     fogrt__v3 wo_l = fogrt__to_local(&v->frame, v->wo), wi_l = fogrt__to_local(&v->frame, wi);
     *pdf = fogrt_bsdf_pdf(v->m, wo_l, wi_l);
     return fogrt__scale(fogrt_bsdf_eval(v->m, wo_l, wi_l), fabsf(wi_l.z));
@@ -3066,7 +3037,6 @@ typedef struct fogrt__camera {
     fogrt__v3 pos, right, up, fwd;
     float tan_x, tan_y, lens, focal;
 } fogrt__camera;
-
 FOGRT__PRIVATE fogrt__camera fogrt__camera_setup(const fogrt_scene *s, int width, int height) {
     fogrt__camera c;
     fogrt_camera_desc d = s->camera;
@@ -3085,13 +3055,8 @@ FOGRT__PRIVATE fogrt__camera fogrt__camera_setup(const fogrt_scene *s, int width
     c.right = fogrt__normalize(fogrt__cross(c.fwd, d.up));
     c.up = fogrt__cross(c.right, c.fwd);
     float t = tanf(0.5f * d.fov_deg * FOGRT__PI / 180.0f);
-    if (d.fov_is_horizontal) {
-        c.tan_x = t;
-        c.tan_y = t / aspect;
-    } else {
-        c.tan_y = t;
-        c.tan_x = t * aspect;
-    }
+    c.tan_x = d.fov_is_horizontal ? t : t * aspect;
+    c.tan_y = d.fov_is_horizontal ? t / aspect : t;
     c.lens = d.lens_radius;
     c.focal = d.focal_distance > 0.0f ? d.focal_distance
                                       : fogrt__length(fogrt__sub(d.look_at, d.position));
@@ -3193,8 +3158,7 @@ FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s) {
     for (i = 0; i < s->sph_count; ++i) {      /* an emissive sphere is a light of its own */
         if (!fogrt__sphere_emits(s, i)) continue;
         fogrt__area_light *L = &s->area_lights[g];
-        L->first = 0;
-        L->count = 0;
+        L->first = L->count = 0;
         L->sphere = i;
         L->area = 4.0f * FOGRT__PI * s->sph_r[i] * s->sph_r[i];
         s->prim_light[s->tri_count + i] = g++;
@@ -3226,10 +3190,7 @@ FOGRT__PRIVATE void fogrt__bounds(fogrt_scene *s, fogrt__build *b, uint32_t n) {
         fogrt__aabb_union(&sb, &box);
         s->prim_index[i] = i;
     }
-    if (n == 0) {
-        sb.lo = fogrt__v(0, 0, 0);
-        sb.hi = fogrt__v(0, 0, 0);
-    }
+    if (n == 0) sb.lo = sb.hi = fogrt__v(0, 0, 0);
     s->bmin = sb.lo;
     s->bmax = sb.hi;
     float diag = fogrt__length(fogrt__sub(s->bmax, s->bmin));
@@ -3255,7 +3216,6 @@ FOGRT__PRIVATE void fogrt__pack_prims(fogrt_scene *s, uint32_t n) {
         }
     }
 }
-
 FOGRT__PUBLIC fogrt_build_desc fogrt_build_defaults(void) {
     /* heuristic, bins, c_trav, c_int, max_leaf_size, layout, roulette_pilot,
        release_binary, resolved */
@@ -3426,7 +3386,6 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__sett
 #endif
     return fogrt__algorithm1(s, st, &w, st->integrator == FOGRT_INTEGRATOR_DIRECT);
 }
-
 FOGRT__PUBLIC void fogrt_image_resolve(const fogrt_image *img, float *rgb) {
     FOGRT_ASSERT(img && rgb);
     size_t n = (size_t)img->width * (size_t)img->height;
@@ -3473,9 +3432,8 @@ FOGRT__PUBLIC double fogrt_image_pixel_variance(const fogrt_image *img, size_t p
             }
         return ssb / ((double)(used - 1) * n);
     }
-    mean = fogrt__luminance_d(img->sum[3 * pixel], img->sum[3 * pixel + 1],
-                              img->sum[3 * pixel + 2]) /
-           c;
+    const double *sum = img->sum + 3 * pixel;
+    mean = fogrt__luminance_d(sum[0], sum[1], sum[2]) / c;
     double var = (img->sum_sq[pixel] / c - mean * mean) / (c - 1.0);
     return var > 0.0 ? var : 0.0;   /* rounding can make a noise-free pixel slightly negative */
 }
@@ -3581,10 +3539,7 @@ FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *ra
 }
 FOGRT__PRIVATE bool fogrt__report(const fogrt_render_desc *d, int rows_done, int rows_total,
                                   int spp) {
-    fogrt_progress p;
-    p.rows_done = rows_done;
-    p.rows_total = rows_total;
-    p.samples_per_pixel = spp;
+    fogrt_progress p = { rows_done, rows_total, spp };
     return d->progress(&p, d->user_data);
 }
 FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt_render_desc *d,
@@ -3646,7 +3601,6 @@ FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render
     return !(d->progress && last_report != height &&
              !fogrt__report(d, height, height, job->spp)); /* the final report */
 }
-
 FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render_desc *desc,
                                         fogrt_image *img, int spp, fogrt_render_stats *stats) {
     fogrt__job job;
