@@ -2677,24 +2677,39 @@ FOGRT__PUBLIC float fogrt_hg_phase(float g, float mu) {
     mu = FOGRT__CLAMP(mu, -1.0f, 1.0f);
     return fogrt__hg_phase_pm(fogrt__clamp_g(g), 1.0f - mu, 1.0f + mu);
 }
-/* Eq. 10-11: the inverse of HG's CDF, as the paper writes it:
-     mu = (1 + g^2 - ((1 - g^2) / (1 - g + 2 g u))^2) / (2 g).
-   At g = 0 it divides 0 by 0 (the limit is isotropic, 2u - 1), and for small |g| it
-   subtracts nearly equal numbers and divides the rounding by 2g: its error grows like
-   1e-7 / |g|. test_hg_eq11_matches_stable_form shows where it agrees with the form below. */
-FOGRT__PRIVATE float fogrt__sample_hg_mu_eq11(float g, float u) {
-    if (g == 0.0f) return 2.0f * u - 1.0f;
-    float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
-    return FOGRT__CLAMP((1.0f + g * g - s * s) / (2.0f * g), -1.0f, 1.0f);
-}
-/* The same inverse, expanded so that nothing divides by g:
-     D = (1 - g) + 2 g u,  mu = (2u - (1 - g)) / D + 2 g (1 - g)(1 + g) u (1 - u) / D^2.
-   g = 0 gives mu = 2u - 1 (isotropic) with no special branch; u = 0 gives -1, u -> 1 gives 1. */
 /* D = (1 - g) + 2 g u, as a sum of two non-negative terms: for g < 0 and u -> 1 the direct
    form would cancel, so it is written (1 + g) - 2 g (1 - u) there. */
 FOGRT__PRIVATE float fogrt__hg_D(float g, float u) {
     return g >= 0.0f ? (1.0f - g) + 2.0f * g * u : (1.0f + g) - 2.0f * g * (1.0f - u);
 }
+/* Eq. 10-11: the inverse of HG's CDF. As the paper writes it (one_minus_mu NULL),
+     mu = (1 + g^2 - s^2) / (2 g),  s = (1 - g^2) / D,  D = 1 - g + 2 g u,
+   it divides 0 by 0 at g = 0 (the limit is isotropic, 2u - 1), and for small |g| subtracts
+   nearly equal numbers and divides the rounding by 2g: its error grows like 1e-7 / |g|
+   (test_hg_eq11_matches_stable_form). The renderer asks for 1 - mu and 1 + mu, and gets eq. 11
+   rearranged: 2 g (1 - mu) = s^2 - (1 - g)^2 and 2 g (1 + mu) = (1 + g)^2 - s^2, each a
+   difference of squares, with 1 + g - D = 2 g (1 - u) and D - (1 - g) = 2 g u, give
+     1 - mu = (1 - g)^2 (1 - u) (1 + g + D) / D^2,   1 + mu = (1 + g)^2 u (1 - g + D) / D^2:
+   no division by g and nothing that cancels. Near the peak (|g| -> 1) mu itself rounds to
+   +-1 long before the angle is 0 (at g = 0.99 one sample in 2000 would land on the peak
+   direction); sin(theta) = sqrt((1 - mu)(1 + mu)) from these keeps its full precision. */
+FOGRT__PRIVATE float fogrt__sample_hg_mu_eq11(float g, float u, float *one_minus_mu,
+                                              float *one_plus_mu) {
+    if (one_minus_mu) {                       /* the cancellation-free branch: eq. 11 rearranged */
+        float D = fogrt__hg_D(g, u), D2 = D * D;
+        *one_minus_mu = FOGRT__CLAMP((1.0f - g) * (1.0f - g) * (1.0f - u) * (1.0f + g + D) / D2,
+                                     0.0f, 2.0f);
+        *one_plus_mu = FOGRT__CLAMP((1.0f + g) * (1.0f + g) * u * (1.0f - g + D) / D2, 0.0f, 2.0f);
+        /* mu from the nearer end: no rounding */
+        return *one_minus_mu < *one_plus_mu ? 1.0f - *one_minus_mu : *one_plus_mu - 1.0f;
+    }
+    if (g == 0.0f) return 2.0f * u - 1.0f;
+    float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
+    return FOGRT__CLAMP((1.0f + g * g - s * s) / (2.0f * g), -1.0f, 1.0f);
+}
+/* The same inverse as mu, expanded so that nothing divides by g:
+     mu = (2u - (1 - g)) / D + 2 g (1 - g)(1 + g) u (1 - u) / D^2.
+   g = 0 gives mu = 2u - 1 (isotropic) with no special branch; u = 0 gives -1, u -> 1 gives 1. */
 FOGRT__PUBLIC float fogrt_sample_hg_mu(float g, float u) {
     g = fogrt__clamp_g(g);
     u = FOGRT__CLAMP(u, 0.0f, 1.0f);
@@ -2703,26 +2718,13 @@ FOGRT__PUBLIC float fogrt_sample_hg_mu(float g, float u) {
                2.0f * g * (1.0f - g) * (1.0f + g) * u * (1.0f - u) / (D * D);
     return FOGRT__CLAMP(mu, -1.0f, 1.0f);
 }
-/* Near the peak (|g| -> 1) mu rounds to +-1 long before the angle is 0: at g = 0.99 about
-   one sample in 2000 would land exactly on the peak direction. The same expansion gives
-   the distances to both ends as products, with nothing that cancels:
-     1 - mu = (1 - g)^2 (1 - u) (1 + g + D) / D^2,   1 + mu = (1 + g)^2 u (1 - g + D) / D^2,
-   so sin(theta) = sqrt((1 - mu)(1 + mu)) keeps its full precision (eq. 11, rearranged). */
-FOGRT__PRIVATE void fogrt__sample_hg_pm(float g, float u, float *one_minus_mu, float *one_plus_mu) {
-    float D = fogrt__hg_D(g, u), D2 = D * D;
-    *one_minus_mu =
-            FOGRT__CLAMP((1.0f - g) * (1.0f - g) * (1.0f - u) * (1.0f + g + D) / D2, 0.0f, 2.0f);
-    *one_plus_mu = FOGRT__CLAMP((1.0f + g) * (1.0f + g) * u * (1.0f - g + D) / D2, 0.0f, 2.0f);
-}
 /* The same for a unit wo (the integrator's, which skips the normalisation). */
 FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg_unit(float g, fogrt__v3 wo, float u1, float u2,
                                                float *pdf) {
     fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));   /* z: propagation */
-    float one_minus_mu, one_plus_mu;
+    float one_minus_mu, one_plus_mu, mu;
     g = fogrt__clamp_g(g);
-    fogrt__sample_hg_pm(g, FOGRT__CLAMP(u1, 0.0f, 1.0f), &one_minus_mu, &one_plus_mu);
-    /* mu from the nearer end: no rounding */
-    float mu = one_minus_mu < one_plus_mu ? 1.0f - one_minus_mu : one_plus_mu - 1.0f;
+    mu = fogrt__sample_hg_mu_eq11(g, FOGRT__CLAMP(u1, 0.0f, 1.0f), &one_minus_mu, &one_plus_mu);
     if (pdf) *pdf = fogrt__hg_phase_pm(g, one_minus_mu, one_plus_mu);
     return fogrt__direction_at(&f, mu, sqrtf(one_minus_mu * one_plus_mu), u2);
 }
