@@ -3686,6 +3686,36 @@ static const float fogrt__default_quads[6][12] = {
     { 1, 0, -1,   1, 0, 1,   1, 1.5f, 1,   1, 1.5f, -1 },                    /* right */
     { -0.35f, 1.49f, -0.35f,   0.35f, 1.49f, -0.35f,                         /* lamp */
       0.35f, 1.49f, 0.35f,   -0.35f, 1.49f, 0.35f } };
+/* The default scene's lamp, camera and fog. */
+FOGRT__PRIVATE fogrt_result fogrt__add_default_view(fogrt_scene *s) {
+    fogrt_light_desc ld;
+    fogrt_camera_desc cd;
+    /* The spot light: high on the left, aimed at the floor right of centre; its cone shows
+       in the fog. */
+    memset(&ld, 0, sizeof ld);
+    ld.type = FOGRT_LIGHT_SPOT;
+    ld.position = fogrt__v(-0.8f, 1.4f, 0.6f);
+    ld.direction = fogrt__sub(fogrt__v(0.3f, 0.0f, 0.0f), ld.position);
+    ld.intensity = fogrt__v(16.0f, 20.0f, 26.0f);
+    ld.cutoff_deg = 16.0f;
+    ld.beam_deg = 11.0f;
+    ld.radius = 0.02f;
+    FOGRT__PASS(fogrt_scene_add_light(s, &ld));
+    memset(&cd, 0, sizeof cd);
+    cd.position = fogrt__v(0.0f, 0.75f, 3.6f);
+    cd.look_at = fogrt__v(0.0f, 0.7f, 0.0f);
+    cd.fov_deg = 38.0f;
+    FOGRT__PASS(fogrt_scene_set_camera(s, &cd));
+#ifndef FOGRT_NO_MEDIUM   /* a build without fog gets the same box, without fog */
+    fogrt_medium_desc fd;
+    memset(&fd, 0, sizeof fd);
+    fd.sigma_t = 0.3f;
+    fd.albedo = fogrt__v(0.9f, 0.9f, 0.9f);
+    fd.g = 0.6f;
+    FOGRT__PASS(fogrt_scene_set_medium(s, &fd));
+#endif
+    return FOGRT_RESULT_OK;
+}
 FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
     /* white, red, blue, matte: reflectance; the lamp: black, emitting (r, g, b, then emission) */
     static const float diffuse[5][6] = { { 0.73f, 0.73f, 0.73f, 0, 0, 0 },
@@ -3698,8 +3728,6 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
     uint32_t base = s->material_count, glass;
     fogrt_material_desc md;
     fogrt_mesh_desc mesh;
-    fogrt_light_desc ld;
-    fogrt_camera_desc cd;
     memset(&md, 0, sizeof md);
     md.type = FOGRT_BSDF_DIFFUSE;
     for (int i = 0; i < 5; ++i) {
@@ -3728,31 +3756,7 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
     }
     FOGRT__PASS(fogrt_scene_add_sphere(s, fogrt__v(-0.45f, 0.35f, -0.35f), 0.35f, base + 3));
     FOGRT__PASS(fogrt_scene_add_sphere(s, fogrt__v(0.45f, 0.35f, 0.25f), 0.35f, glass));
-    /* The spot light: high on the left, aimed at the floor right of centre; its cone shows
-       in the fog. */
-    memset(&ld, 0, sizeof ld);
-    ld.type = FOGRT_LIGHT_SPOT;
-    ld.position = fogrt__v(-0.8f, 1.4f, 0.6f);
-    ld.direction = fogrt__sub(fogrt__v(0.3f, 0.0f, 0.0f), ld.position);
-    ld.intensity = fogrt__v(16.0f, 20.0f, 26.0f);
-    ld.cutoff_deg = 16.0f;
-    ld.beam_deg = 11.0f;
-    ld.radius = 0.02f;
-    FOGRT__PASS(fogrt_scene_add_light(s, &ld));
-    memset(&cd, 0, sizeof cd);
-    cd.position = fogrt__v(0.0f, 0.75f, 3.6f);
-    cd.look_at = fogrt__v(0.0f, 0.7f, 0.0f);
-    cd.fov_deg = 38.0f;
-    FOGRT__PASS(fogrt_scene_set_camera(s, &cd));
-#ifndef FOGRT_NO_MEDIUM   /* a build without fog gets the same box, without fog */
-    fogrt_medium_desc fd;
-    memset(&fd, 0, sizeof fd);
-    fd.sigma_t = 0.3f;
-    fd.albedo = fogrt__v(0.9f, 0.9f, 0.9f);
-    fd.g = 0.6f;
-    FOGRT__PASS(fogrt_scene_set_medium(s, &fd));
-#endif
-    return FOGRT_RESULT_OK;
+    return fogrt__add_default_view(s);
 }
 
 #ifndef FOGRT_MINIMAL
