@@ -644,14 +644,16 @@ FOGRT_API bool fogrt_intersect_sphere(fogrt_vec3 center, float radius, fogrt_vec
 
 /* ------------------------------------------------------------------------------------------
    Sampling routines: pure functions of their uniform numbers u in [0,1).
-   Naming: fogrt_sample_X (the sampler), fogrt_X_pdf (its density), fogrt_invert_X.
+   Naming: fogrt_sample_X (the sampler), fogrt_X_pdf (its density), fogrt_X_cdf (its CDF).
    ------------------------------------------------------------------------------------------ */
 #ifndef FOGRT_NO_MEDIUM
 /* Free flight (paper eq. 4-6): t = -ln(1 - u) / sigma_t, written with log1p.
    sigma_t = 0 returns +infinity (the ray never collides).                                  */
 FOGRT_API float fogrt_sample_exponential(float sigma_t, float u);
 FOGRT_API float fogrt_exponential_pdf(float sigma_t, float t);        /* sigma_t exp(-sigma_t t) */
-FOGRT_API float fogrt_invert_exponential(float sigma_t, float t);     /* 1 - exp(-sigma_t t) */
+FOGRT_API float fogrt_exponential_cdf(float sigma_t, float t);        /* 1 - exp(-sigma_t t) */
+/* The same CDF under the name older code calls it by (the sampler inverts it). */
+FOGRT_API float fogrt_invert_exponential(float sigma_t, float t);
 /* Beer-Lambert transmittance (paper eq. 7-8): T = exp(-sigma_t d). */
 FOGRT_API float fogrt_transmittance(float sigma_t, float distance);
 
@@ -1218,7 +1220,7 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const struct fogrt__job *job, size_t 
         fogrt__new_direction       7c. the new direction: the glow and footprint, G's phase
                                        functions, H's media (B, G, H)
         fogrt__roulette            7d. roulette's q: the pilot's (C)
-     8. fogrt__pixel_ray           stratified pixel positions (C); fogrt__render_row: per-pixel rates
+     8. fogrt__pixel_ray           stratified pixel positions (C); fogrt__render_row: rates
    ========================================================================================== */
 /* ------------------------------------------------------------------------------------------
    I.1 Configuration, vectors, random numbers
@@ -1236,7 +1238,6 @@ FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const struct fogrt__job *job, size_t 
 #define FOGRT__DEF(val, def) ((val) == 0 ? (def) : (val))   /* "zero means default" */
 #define FOGRT__MAX_PRIMS (1u << 28)   /* triangles + spheres: keeps every index and size in range */
 
-
 FOGRT__PRIVATE void *fogrt__alloc(const fogrt_allocator *a, size_t size) {
     if (a && a->alloc_fn) return a->alloc_fn(size, a->user_data);
     return FOGRT_MALLOC(size, a ? a->user_data : NULL);
@@ -1250,17 +1251,32 @@ FOGRT__PRIVATE bool fogrt__finite(float x) { return x - x == 0.0f; }  /* false f
 /* Coordinates must be finite and at most 1e30 in size, so that squared distances and box
    areas stay finite in float. */
 #define FOGRT__MAX_COORD 1e30f
-FOGRT__PRIVATE bool fogrt__coord_ok(float x) { return x >= -FOGRT__MAX_COORD && x <= FOGRT__MAX_COORD; }
+FOGRT__PRIVATE bool fogrt__coord_ok(float x) { return fabsf(x) <= FOGRT__MAX_COORD; }  /* NaN: no */
 
 typedef fogrt_vec3 fogrt__v3;
-FOGRT__PRIVATE fogrt__v3 fogrt__v(float x, float y, float z) { fogrt__v3 r; r.x = x; r.y = y; r.z = z; return r; }
-FOGRT__PRIVATE fogrt__v3 fogrt__add(fogrt__v3 a, fogrt__v3 b) { return fogrt__v(a.x + b.x, a.y + b.y, a.z + b.z); }
-FOGRT__PRIVATE fogrt__v3 fogrt__sub(fogrt__v3 a, fogrt__v3 b) { return fogrt__v(a.x - b.x, a.y - b.y, a.z - b.z); }
-FOGRT__PRIVATE fogrt__v3 fogrt__mul(fogrt__v3 a, fogrt__v3 b) { return fogrt__v(a.x * b.x, a.y * b.y, a.z * b.z); }
-FOGRT__PRIVATE fogrt__v3 fogrt__scale(fogrt__v3 a, float s) { return fogrt__v(a.x * s, a.y * s, a.z * s); }
-FOGRT__PRIVATE fogrt__v3 fogrt__madd(fogrt__v3 a, fogrt__v3 b, float s) { return fogrt__v(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s); }
+FOGRT__PRIVATE fogrt__v3 fogrt__v(float x, float y, float z) {
+    fogrt__v3 r = { x, y, z };
+    return r;
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__add(fogrt__v3 a, fogrt__v3 b) {
+    return fogrt__v(a.x + b.x, a.y + b.y, a.z + b.z);
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__sub(fogrt__v3 a, fogrt__v3 b) {
+    return fogrt__v(a.x - b.x, a.y - b.y, a.z - b.z);
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__mul(fogrt__v3 a, fogrt__v3 b) {
+    return fogrt__v(a.x * b.x, a.y * b.y, a.z * b.z);
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__scale(fogrt__v3 a, float s) {
+    return fogrt__v(a.x * s, a.y * s, a.z * s);
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__madd(fogrt__v3 a, fogrt__v3 b, float s) {
+    return fogrt__v(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s);
+}
 FOGRT__PRIVATE fogrt__v3 fogrt__neg(fogrt__v3 a) { return fogrt__v(-a.x, -a.y, -a.z); }
-FOGRT__PRIVATE float fogrt__dot(fogrt__v3 a, fogrt__v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+FOGRT__PRIVATE float fogrt__dot(fogrt__v3 a, fogrt__v3 b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 FOGRT__PRIVATE fogrt__v3 fogrt__cross(fogrt__v3 a, fogrt__v3 b) {
     return fogrt__v(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
@@ -1270,10 +1286,18 @@ FOGRT__HOT fogrt__v3 fogrt__normalize(fogrt__v3 a) {
     return len > 0.0f ? fogrt__scale(a, 1.0f / len) : fogrt__v(0.0f, 0.0f, 1.0f);
 }
 FOGRT__PRIVATE float fogrt__max3(fogrt__v3 a) { return FOGRT__MAX(a.x, FOGRT__MAX(a.y, a.z)); }
-FOGRT__PRIVATE float fogrt__luminance(fogrt__v3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-FOGRT__PRIVATE bool fogrt__v3_finite(fogrt__v3 a) { return fogrt__finite(a.x) && fogrt__finite(a.y) && fogrt__finite(a.z); }
-FOGRT__PRIVATE bool fogrt__is_black(fogrt__v3 a) { return a.x == 0.0f && a.y == 0.0f && a.z == 0.0f; }
-FOGRT__PRIVATE float fogrt__comp(fogrt__v3 a, int axis) { return axis == 0 ? a.x : (axis == 1 ? a.y : a.z); }
+FOGRT__PRIVATE float fogrt__luminance(fogrt__v3 c) {
+    return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
+FOGRT__PRIVATE bool fogrt__v3_finite(fogrt__v3 a) {
+    return fogrt__finite(a.x) && fogrt__finite(a.y) && fogrt__finite(a.z);
+}
+FOGRT__PRIVATE bool fogrt__is_black(fogrt__v3 a) {
+    return a.x == 0.0f && a.y == 0.0f && a.z == 0.0f;
+}
+FOGRT__PRIVATE float fogrt__comp(fogrt__v3 a, int axis) {
+    return axis == 0 ? a.x : (axis == 1 ? a.y : a.z);
+}
 
 /* Orthonormal basis around a unit vector n (Duff et al. 2017, "Building an Orthonormal
    Basis, Revisited"): no branch on a threshold, exact for n = +-z, any axis-parallel n. */
@@ -1292,14 +1316,17 @@ FOGRT__PRIVATE fogrt__v3 fogrt__to_local(const fogrt__frame *f, fogrt__v3 v) {
     return fogrt__v(fogrt__dot(v, f->s), fogrt__dot(v, f->t), fogrt__dot(v, f->n));
 }
 FOGRT__PRIVATE fogrt__v3 fogrt__to_world(const fogrt__frame *f, fogrt__v3 v) {
-    return fogrt__add(fogrt__add(fogrt__scale(f->s, v.x), fogrt__scale(f->t, v.y)), fogrt__scale(f->n, v.z));
+    return fogrt__add(fogrt__add(fogrt__scale(f->s, v.x), fogrt__scale(f->t, v.y)),
+                      fogrt__scale(f->n, v.z));
 }
 /* The direction at polar angle theta (given by its cosine and sine) from the frame's n and
    azimuth 2 pi u: how every sampler of a cone or lobe (HG eq. 12, spheres) turns its two
    angles into a direction. */
-FOGRT__HOT fogrt__v3 fogrt__around(const fogrt__frame *f, float cos_theta, float sin_theta, float u) {
+FOGRT__HOT fogrt__v3 fogrt__direction_at(const fogrt__frame *f, float cos_theta,
+                                         float sin_theta, float u) {
     float phi = 2.0f * FOGRT__PI * u;
-    return fogrt__normalize(fogrt__to_world(f, fogrt__v(sin_theta * cosf(phi), sin_theta * sinf(phi), cos_theta)));
+    return fogrt__normalize(
+            fogrt__to_world(f, fogrt__v(sin_theta * cosf(phi), sin_theta * sinf(phi), cos_theta)));
 }
 
 /* Random numbers: PCG32 (M. O'Neill, pcg-random.org), one stream per (pixel, sample). */
@@ -1317,7 +1344,8 @@ FOGRT__PUBLIC void fogrt_rng_seed(fogrt_rng *rng, uint64_t seed, uint64_t stream
     (void)fogrt_rng_u32(rng);
 }
 FOGRT__PUBLIC float fogrt_rng_float(fogrt_rng *rng) {
-    return (float)(fogrt_rng_u32(rng) >> 8) * 5.9604644775390625e-8f;   /* 24 bits times 2^-24: [0, 1 - 2^-24] */
+    return (float)(fogrt_rng_u32(rng) >> 8) *
+           5.9604644775390625e-8f; /* 24 bits times 2^-24: [0, 1 - 2^-24] */
 }
 /* A 64-bit mix (SplitMix64 finaliser) to turn (seed, pixel) into a well spread state. */
 FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x) {
@@ -1327,7 +1355,6 @@ FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x) {
     return x ^ (x >> 31);
 }
 
-
 /* ------------------------------------------------------------------------------------------
    I.2 The scene: storage and validation
    Every add_* call validates all of its input before it changes anything, so an error
@@ -1335,7 +1362,10 @@ FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x) {
    ------------------------------------------------------------------------------------------ */
 /* A primitive as the traversal sees it, in BVH order: a triangle stores v0 and its two edges
    (Moller-Trumbore needs nothing else); a sphere stores its centre in a and radius in b.x. */
-typedef struct fogrt__prim { fogrt__v3 a, b, c; uint32_t id; } fogrt__prim;
+typedef struct fogrt__prim {
+    fogrt__v3 a, b, c;
+    uint32_t id;
+} fogrt__prim;
 
 /* An area light: all emissive triangles of one mesh, or one emissive sphere. */
 typedef struct fogrt__area_light {
@@ -1344,35 +1374,41 @@ typedef struct fogrt__area_light {
     float area;               /* total area */
 } fogrt__area_light;
 
-
-struct fogrt__x;               /* Part II's tables (wide tree, lamps in fog, maps, pilot), or NULL */
+struct fogrt__x;   /* Part II's tables (wide tree, lamps in fog, maps, pilot), or NULL */
 struct fogrt_scene {
     fogrt_allocator allocator;
     fogrt_logger logger;
-    /* materials */
-    fogrt_material_desc *materials; uint32_t material_count, material_cap;
+    fogrt_material_desc *materials;
+    uint32_t material_count, material_cap;
     /* triangles, in the order they were added: 3 vertices, 3 normals, flags */
     fogrt__v3 *tri_v, *tri_n;  /* 3 per triangle; the normals valid where tri_has_n */
-    uint8_t *tri_has_n; uint32_t *tri_material, *tri_mesh;
+    uint8_t *tri_has_n;
+    uint32_t *tri_material, *tri_mesh;
     uint32_t tri_count, tri_cap, mesh_count;
-    /* spheres */
-    fogrt__v3 *sph_c; float *sph_r; uint32_t *sph_material;
+    fogrt__v3 *sph_c;          /* spheres: centres, radii, materials */
+    float *sph_r;
+    uint32_t *sph_material;
     uint32_t sph_count, sph_cap;
-    /* point and spot lights */
-    fogrt_light_desc *lights; uint32_t light_count, light_cap;
+    fogrt_light_desc *lights;  /* point and spot lights */
+    uint32_t light_count, light_cap;
     float *spot_cos;           /* built: per point or spot light, cos(cutoff) and cos(beam) */
     /* environment: a constant radiance, or a map (3 floats per pixel, CS184's mapping) */
-    fogrt__v3 env; bool env_upper_only, has_env;
+    fogrt__v3 env;
+    bool env_upper_only, has_env;
     struct fogrt__env_map *env_map;     /* Part II's environment map (C), or NULL */
-    fogrt_camera_desc camera; bool has_camera;
+    fogrt_camera_desc camera;
+    bool has_camera;
     fogrt_medium_desc medium;
     /* built data (fogrt_scene_build) */
     bool built;
-    fogrt_bvh_node *nodes; uint32_t node_count;
+    fogrt_bvh_node *nodes;
+    uint32_t node_count;
     uint32_t *prim_index;
     fogrt__prim *prims;        /* prim_count, in BVH order (parallel to prim_index) */
-    fogrt__area_light *area_lights; uint32_t area_light_count;
-    uint32_t *light_prims; float *light_cdf;   /* emissive triangles of each area light */
+    fogrt__area_light *area_lights;
+    uint32_t area_light_count;
+    uint32_t *light_prims;     /* the emissive triangles of each area light, and their CDF */
+    float *light_cdf;
     uint32_t *prim_light;      /* per primitive id: area light index or UINT32_MAX */
     uint32_t features;
     fogrt__v3 bmin, bmax;
@@ -1383,7 +1419,6 @@ struct fogrt_scene {
     char *error;               /* the last failure's message: points at error_text (writable */
     char error_text[256];      /*   through a const scene, as a log line is) */
 };
-
 FOGRT__PRIVATE void fogrt__log(const fogrt_scene *s, fogrt_log_level level, const char *msg) {
     if (s && s->logger.func) s->logger.func(level, msg, s->logger.user_data);
 }
@@ -1391,21 +1426,30 @@ FOGRT__PRIVATE fogrt_result fogrt__fail(const fogrt_scene *s, fogrt_result r, co
     fogrt__log(s, FOGRT_LOG_ERROR, msg);
     if (s && s->error) {                                 /* the message, cut to fit */
         size_t n = FOGRT__MIN(strlen(msg), sizeof s->error_text - 1);
-        memcpy(s->error, msg, n); s->error[n] = '\0';
+        memcpy(s->error, msg, n);
+        s->error[n] = '\0';
     }
     return r;
 }
 /* A validation rule, in the manner of sokol_gfx's _SG_VALIDATE: if cond holds, the call
    fails with FOGRT_RESULT_<result> and msg (in a function whose scene is named s). */
-#define FOGRT__REFUSE_IF(cond, result, msg) do { if (cond) return fogrt__fail(s, FOGRT_RESULT_##result, msg); } while (0)
-#define FOGRT__PASS(call) do { fogrt_result r_ = (call); if (r_ != FOGRT_RESULT_OK) return r_; } while (0)
+#define FOGRT__REFUSE_IF(cond, result, msg) \
+    do { if (cond) return fogrt__fail(s, FOGRT_RESULT_##result, msg); } while (0)
+#define FOGRT__PASS(call) do {                \
+        fogrt_result r_ = (call);             \
+        if (r_ != FOGRT_RESULT_OK) return r_; \
+    } while (0)
 
 /* Move *ptr to a new array of new_cap elements, keeping its first used elements. Returns
    false when out of memory, leaving the old array untouched. */
-FOGRT__PRIVATE bool fogrt__reserve(fogrt_scene *s, void **ptr, uint32_t used, uint32_t new_cap, size_t elem) {
+FOGRT__PRIVATE bool fogrt__reserve(fogrt_scene *s, void **ptr, uint32_t used, uint32_t new_cap,
+                                   size_t elem) {
     void *p = fogrt__alloc(&s->allocator, (size_t)new_cap * elem);
     if (!p) return false;
-    if (*ptr) { memcpy(p, *ptr, (size_t)used * elem); fogrt__free(&s->allocator, *ptr); }
+    if (*ptr) {
+        memcpy(p, *ptr, (size_t)used * elem);
+        fogrt__free(&s->allocator, *ptr);
+    }
     *ptr = p;
     return true;
 }
@@ -1414,8 +1458,8 @@ FOGRT__PRIVATE uint32_t fogrt__grow_cap(uint32_t cap, uint32_t need) {
     while (c < need) c *= 2;
     return c > 0x7FFFFFFFu ? 0x7FFFFFFFu : (uint32_t)c;
 }
-
-FOGRT__PUBLIC fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogrt_scene **out_scene) {
+FOGRT__PUBLIC fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc,
+                                              fogrt_scene **out_scene) {
     fogrt_scene_desc d;
     FOGRT_ASSERT(out_scene);
     *out_scene = NULL;
@@ -1435,47 +1479,57 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogr
 /* Drops the built data without freeing it (fogrt_scene_build keeps it until the new build
    has succeeded), or frees it. */
 FOGRT__PRIVATE void fogrt__forget_built(fogrt_scene *s) {
-    s->nodes = NULL; s->node_count = 0; s->prim_index = NULL; s->prims = NULL;
-    s->area_lights = NULL; s->area_light_count = 0; s->light_prims = NULL; s->light_cdf = NULL;
-    s->prim_light = NULL; s->spot_cos = NULL; s->x = NULL; s->built = false;
+    s->nodes = NULL;
+    s->prims = NULL;
+    s->area_lights = NULL;
+    s->prim_index = s->light_prims = s->prim_light = NULL;
+    s->light_cdf = s->spot_cos = NULL;
+    s->node_count = s->area_light_count = 0;
+    s->x = NULL;
+    s->built = false;
 }
 FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s) {
 #ifndef FOGRT_MINIMAL
     fogrt__x_release(s);                                 /* SEAM 4 */
 #endif
-    fogrt__free(&s->allocator, s->nodes); fogrt__free(&s->allocator, s->prim_index);
-    fogrt__free(&s->allocator, s->prims); fogrt__free(&s->allocator, s->area_lights);
-    fogrt__free(&s->allocator, s->light_prims); fogrt__free(&s->allocator, s->light_cdf);
-    fogrt__free(&s->allocator, s->prim_light); fogrt__free(&s->allocator, s->spot_cos);
+    void *built[] = { s->nodes, s->prim_index, s->prims, s->area_lights,
+                      s->light_prims, s->light_cdf, s->prim_light, s->spot_cos };
+    for (size_t i = 0; i < sizeof built / sizeof built[0]; ++i)
+        fogrt__free(&s->allocator, built[i]);
     fogrt__forget_built(s);
 }
 FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s) {
     if (!s) return;
     fogrt_allocator a = s->allocator;
     fogrt__free_built(s);
-    fogrt__free(&a, s->materials); fogrt__free(&a, s->tri_v); fogrt__free(&a, s->tri_n); fogrt__free(&a, s->tri_has_n);
-    fogrt__free(&a, s->tri_material); fogrt__free(&a, s->tri_mesh);
-    fogrt__free(&a, s->sph_c); fogrt__free(&a, s->sph_r); fogrt__free(&a, s->sph_material);
+    void *added[] = { s->materials, s->tri_v, s->tri_n, s->tri_has_n, s->tri_material,
+                      s->tri_mesh, s->sph_c, s->sph_r, s->sph_material };
+    for (size_t i = 0; i < sizeof added / sizeof added[0]; ++i) fogrt__free(&a, added[i]);
 #ifndef FOGRT_MINIMAL
     fogrt__x_scene_free(s);                              /* SEAM 4: what Part II set on the scene */
 #endif
-    fogrt__free(&a, s->lights); fogrt__free(&a, s);
+    fogrt__free(&a, s->lights);
+    fogrt__free(&a, s);
 }
-
-FOGRT__PRIVATE bool fogrt__colour_ok(fogrt__v3 c) { return fogrt__v3_finite(c) && c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f; }
+FOGRT__PRIVATE bool fogrt__colour_ok(fogrt__v3 c) {
+    return fogrt__v3_finite(c) && c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f;
+}
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_material_desc *desc,
                                                     uint32_t *out_id) {
     FOGRT_ASSERT(s && desc);
     fogrt_material_desc m = *desc;
-    FOGRT__REFUSE_IF((unsigned)m.type >= (unsigned)FOGRT_BSDF_NUM, INVALID_MATERIAL, "material.type: unknown BSDF type");
+    FOGRT__REFUSE_IF((unsigned)m.type >= (unsigned)FOGRT_BSDF_NUM, INVALID_MATERIAL,
+                     "material.type: unknown BSDF type");
     FOGRT__REFUSE_IF(!fogrt__colour_ok(m.reflectance) || !fogrt__colour_ok(m.transmittance) ||
                      !fogrt__colour_ok(m.emission), INVALID_MATERIAL,
                      "material.reflectance/transmittance/emission: negative or not finite");
-    FOGRT__REFUSE_IF(!fogrt__finite(m.ior) || m.ior < 0.0f, INVALID_MATERIAL, "material.ior: must be > 0 (0 means the default 1.5)");
+    FOGRT__REFUSE_IF(!fogrt__finite(m.ior) || m.ior < 0.0f, INVALID_MATERIAL,
+                     "material.ior: must be > 0 (0 means the default 1.5)");
     if (m.type == FOGRT_BSDF_DEFAULT) m.type = FOGRT_BSDF_DIFFUSE;
     FOGRT__PASS(fogrt__beyond_material(s, &m));
     m.ior = FOGRT__DEF(m.ior, 1.5f);
-    if (s->material_count == 0xFFFFFFFEu) return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "too many materials");
+    if (s->material_count == 0xFFFFFFFEu)
+        return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "too many materials");
     if (s->material_count + 1 > s->material_cap) {
         uint32_t cap = fogrt__grow_cap(s->material_cap, s->material_count + 1);
         if (!fogrt__reserve(s, (void **)&s->materials, s->material_count, cap, sizeof m))
@@ -1492,20 +1546,26 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_material(fogrt_scene *s, const fogrt_
 /* Everything a mesh must satisfy, checked before anything is copied. */
 FOGRT__PRIVATE fogrt_result fogrt__check_mesh(const fogrt_scene *s, const fogrt_mesh_desc *desc) {
     uint32_t n = desc->triangle_count;
-    if (!desc->positions) return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "mesh.positions: NULL");
-    FOGRT__REFUSE_IF((uint64_t)s->tri_count + s->sph_count + n > FOGRT__MAX_PRIMS, TOO_LARGE, "mesh.triangle_count: too many triangles");
+    if (!desc->positions)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "mesh.positions: NULL");
+    FOGRT__REFUSE_IF((uint64_t)s->tri_count + s->sph_count + n > FOGRT__MAX_PRIMS, TOO_LARGE,
+                     "mesh.triangle_count: too many triangles");
     FOGRT__REFUSE_IF(!desc->indices && (uint64_t)n * 3 > desc->vertex_count, INVALID_GEOMETRY,
                      "mesh.vertex_count: fewer than 3 * triangle_count vertices and no indices");
     for (uint32_t i = 0; i < (uint64_t)desc->vertex_count * 3; ++i) {
-        FOGRT__REFUSE_IF(!fogrt__coord_ok(desc->positions[i]), INVALID_GEOMETRY, "mesh.positions: not finite or beyond +-1e30");
-        FOGRT__REFUSE_IF(desc->normals && !fogrt__finite(desc->normals[i]), INVALID_GEOMETRY, "mesh.normals: not finite");
+        FOGRT__REFUSE_IF(!fogrt__coord_ok(desc->positions[i]), INVALID_GEOMETRY,
+                         "mesh.positions: not finite or beyond +-1e30");
+        FOGRT__REFUSE_IF(desc->normals && !fogrt__finite(desc->normals[i]), INVALID_GEOMETRY,
+                         "mesh.normals: not finite");
     }
     if (desc->indices)
         for (uint32_t i = 0; i < (uint64_t)n * 3; ++i)
-            FOGRT__REFUSE_IF(desc->indices[i] >= desc->vertex_count, INVALID_GEOMETRY, "mesh.indices: index out of range");
+            FOGRT__REFUSE_IF(desc->indices[i] >= desc->vertex_count, INVALID_GEOMETRY,
+                             "mesh.indices: index out of range");
     for (uint32_t i = 0; i < n; ++i) {
         uint32_t mat = desc->triangle_materials ? desc->triangle_materials[i] : desc->material;
-        FOGRT__REFUSE_IF(mat >= s->material_count, INVALID_MATERIAL, "mesh.material: material id out of range");
+        FOGRT__REFUSE_IF(mat >= s->material_count, INVALID_MATERIAL,
+                         "mesh.material: material id out of range");
     }
     return FOGRT_RESULT_OK;
 }
@@ -1517,7 +1577,8 @@ FOGRT__PRIVATE bool fogrt__reserve_triangles(fogrt_scene *s, uint32_t n, bool no
         uint32_t cap = fogrt__grow_cap(s->tri_cap, c + n);
         /* On failure the arrays that did grow hold the old data; tri_cap is the smallest. */
         if (!fogrt__reserve(s, (void **)&s->tri_v, c * 3, cap * 3, sizeof(fogrt__v3)) ||
-            (s->tri_n && !fogrt__reserve(s, (void **)&s->tri_n, c * 3, cap * 3, sizeof(fogrt__v3))) ||
+            (s->tri_n &&
+             !fogrt__reserve(s, (void **)&s->tri_n, c * 3, cap * 3, sizeof(fogrt__v3))) ||
             !fogrt__reserve(s, (void **)&s->tri_has_n, c, cap, 1) ||
             !fogrt__reserve(s, (void **)&s->tri_material, c, cap, sizeof(uint32_t)) ||
             !fogrt__reserve(s, (void **)&s->tri_mesh, c, cap, sizeof(uint32_t)))
@@ -1525,7 +1586,8 @@ FOGRT__PRIVATE bool fogrt__reserve_triangles(fogrt_scene *s, uint32_t n, bool no
         s->tri_cap = cap;
     }
     if (normals && !s->tri_n) {                         /* the first mesh with normals */
-        if (!fogrt__reserve(s, (void **)&s->tri_n, 0, s->tri_cap * 3, sizeof(fogrt__v3))) return false;
+        if (!fogrt__reserve(s, (void **)&s->tri_n, 0, s->tri_cap * 3, sizeof(fogrt__v3)))
+            return false;
         memset(s->tri_n, 0, sizeof(fogrt__v3) * 3 * (size_t)c);
     }
     return true;
@@ -1548,7 +1610,8 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh
             }
         }
         s->tri_has_n[t] = desc->normals != NULL;
-        s->tri_material[t] = desc->triangle_materials ? desc->triangle_materials[i] : desc->material;
+        s->tri_material[t] =
+                desc->triangle_materials ? desc->triangle_materials[i] : desc->material;
         s->tri_mesh[t] = s->mesh_count;
     }
     s->tri_count += n;
@@ -1556,14 +1619,18 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_mesh(fogrt_scene *s, const fogrt_mesh
     s->built = false;
     return FOGRT_RESULT_OK;
 }
-
-FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 center, float radius, uint32_t material) {
+FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 center, float radius,
+                                                  uint32_t material) {
     FOGRT_ASSERT(s);
     if (!fogrt__coord_ok(center.x) || !fogrt__coord_ok(center.y) || !fogrt__coord_ok(center.z) ||
         !fogrt__coord_ok(radius) || !(radius > 0.0f))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_GEOMETRY, "sphere.center or sphere.radius not finite or beyond 1e30, or sphere.radius <= 0");
-    FOGRT__REFUSE_IF(material >= s->material_count, INVALID_MATERIAL, "sphere.material: material id out of range");
-    FOGRT__REFUSE_IF((uint64_t)s->tri_count + s->sph_count + 1 > FOGRT__MAX_PRIMS, TOO_LARGE, "too many spheres");
+        return fogrt__fail(
+                s, FOGRT_RESULT_INVALID_GEOMETRY,
+                "sphere.center or sphere.radius not finite or beyond 1e30, or sphere.radius <= 0");
+    FOGRT__REFUSE_IF(material >= s->material_count, INVALID_MATERIAL,
+                     "sphere.material: material id out of range");
+    FOGRT__REFUSE_IF((uint64_t)s->tri_count + s->sph_count + 1 > FOGRT__MAX_PRIMS, TOO_LARGE,
+                     "too many spheres");
     if (s->sph_count + 1 > s->sph_cap) {
         uint32_t cap = fogrt__grow_cap(s->sph_cap, s->sph_count + 1), c = s->sph_count;
         if (!fogrt__reserve(s, (void **)&s->sph_c, c, cap, sizeof(fogrt__v3)) ||
@@ -1579,35 +1646,42 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_sphere(fogrt_scene *s, fogrt_vec3 cen
     s->built = false;
     return FOGRT_RESULT_OK;
 }
-
 FOGRT__PUBLIC fogrt_result fogrt_scene_add_light(fogrt_scene *s, const fogrt_light_desc *desc) {
     FOGRT_ASSERT(s && desc);
     fogrt_light_desc l = *desc;
     if (l.type == FOGRT_LIGHT_DEFAULT) l.type = FOGRT_LIGHT_POINT;
-    FOGRT__REFUSE_IF((unsigned)l.type >= (unsigned)FOGRT_LIGHT_NUM, INVALID_LIGHT, "light.type: unknown light type");
+    FOGRT__REFUSE_IF((unsigned)l.type >= (unsigned)FOGRT_LIGHT_NUM, INVALID_LIGHT,
+                     "light.type: unknown light type");
     FOGRT__REFUSE_IF(!fogrt__v3_finite(l.position), INVALID_LIGHT, "light.position: not finite");
-    FOGRT__REFUSE_IF(!fogrt__colour_ok(l.intensity), INVALID_LIGHT, "light.intensity: negative or not finite");
-    FOGRT__REFUSE_IF(!fogrt__finite(l.radius) || l.radius < 0.0f, INVALID_LIGHT, "light.radius: negative or not finite");
+    FOGRT__REFUSE_IF(!fogrt__colour_ok(l.intensity), INVALID_LIGHT,
+                     "light.intensity: negative or not finite");
+    FOGRT__REFUSE_IF(!fogrt__finite(l.radius) || l.radius < 0.0f, INVALID_LIGHT,
+                     "light.radius: negative or not finite");
     if (l.type == FOGRT_LIGHT_SPOT) {
-        FOGRT__REFUSE_IF(!fogrt__v3_finite(l.direction) || fogrt__dot(l.direction, l.direction) == 0.0f, INVALID_LIGHT,
-                         "light.direction: zero or not finite");
-        FOGRT__REFUSE_IF(!(l.cutoff_deg >= 0.0f && l.cutoff_deg <= 180.0f), INVALID_LIGHT, "light.cutoff_deg: outside [0, 180]");
-        FOGRT__REFUSE_IF(!(l.beam_deg >= 0.0f && l.beam_deg <= l.cutoff_deg), INVALID_LIGHT, "light.beam_deg: outside [0, cutoff_deg]");
+        FOGRT__REFUSE_IF(!fogrt__v3_finite(l.direction) ||
+                                 fogrt__dot(l.direction, l.direction) == 0.0f,
+                         INVALID_LIGHT, "light.direction: zero or not finite");
+        FOGRT__REFUSE_IF(!(l.cutoff_deg >= 0.0f && l.cutoff_deg <= 180.0f), INVALID_LIGHT,
+                         "light.cutoff_deg: outside [0, 180]");
+        FOGRT__REFUSE_IF(!(l.beam_deg >= 0.0f && l.beam_deg <= l.cutoff_deg), INVALID_LIGHT,
+                         "light.beam_deg: outside [0, cutoff_deg]");
         l.direction = fogrt__normalize(l.direction);
     }
     if (s->light_count + 1 > s->light_cap) {
         uint32_t cap = fogrt__grow_cap(s->light_cap, s->light_count + 1);
-        if (!fogrt__reserve(s, (void **)&s->lights, s->light_count, cap, sizeof l)) return FOGRT_RESULT_OUT_OF_MEMORY;
+        if (!fogrt__reserve(s, (void **)&s->lights, s->light_count, cap, sizeof l))
+            return FOGRT_RESULT_OUT_OF_MEMORY;
         s->light_cap = cap;
     }
     s->lights[s->light_count++] = l;
     s->built = false;
     return FOGRT_RESULT_OK;
 }
-
-FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment(fogrt_scene *s, fogrt_vec3 radiance, bool upper_only) {
+FOGRT__PUBLIC fogrt_result fogrt_scene_set_environment(fogrt_scene *s, fogrt_vec3 radiance,
+                                                       bool upper_only) {
     FOGRT_ASSERT(s);
-    FOGRT__REFUSE_IF(!fogrt__colour_ok(radiance), INVALID_ARGUMENT, "environment radiance: negative or not finite");
+    FOGRT__REFUSE_IF(!fogrt__colour_ok(radiance), INVALID_ARGUMENT,
+                     "environment radiance: negative or not finite");
     s->env = radiance;
     s->env_upper_only = upper_only;
     s->has_env = !fogrt__is_black(radiance) || s->env_map;
@@ -1619,20 +1693,24 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_ca
     fogrt_camera_desc c = *desc;
     if (fogrt__is_black(c.up)) c.up = fogrt__v(0.0f, 1.0f, 0.0f);
     c.fov_deg = FOGRT__DEF(c.fov_deg, 45.0f);
-    FOGRT__REFUSE_IF(!fogrt__v3_finite(c.position) || !fogrt__v3_finite(c.look_at) || !fogrt__v3_finite(c.up), INVALID_CAMERA,
-                     "camera.position/look_at/up: not finite");
+    FOGRT__REFUSE_IF(!fogrt__v3_finite(c.position) || !fogrt__v3_finite(c.look_at) ||
+                             !fogrt__v3_finite(c.up),
+                     INVALID_CAMERA, "camera.position/look_at/up: not finite");
     float m = FOGRT__MAX(fabsf(c.up.x), FOGRT__MAX(fabsf(c.up.y), fabsf(c.up.z)));
     c.up = fogrt__normalize(fogrt__scale(c.up, 1.0f / m));   /* any length: its direction */
     fogrt__v3 fwd = fogrt__sub(c.look_at, c.position);
     FOGRT__REFUSE_IF(!fogrt__finite(fogrt__dot(fwd, fwd)), INVALID_CAMERA,
                      "camera: look_at - position too long for float: its squared length overflows");
-    FOGRT__REFUSE_IF(fogrt__dot(fwd, fwd) == 0.0f, INVALID_CAMERA, "camera.look_at: equals camera.position");
+    FOGRT__REFUSE_IF(fogrt__dot(fwd, fwd) == 0.0f, INVALID_CAMERA,
+                     "camera.look_at: equals camera.position");
     fogrt__v3 up = fogrt__cross(fogrt__normalize(fwd), fogrt__normalize(c.up));
-    FOGRT__REFUSE_IF(fogrt__dot(up, up) < 1e-12f, INVALID_CAMERA, "camera.up: parallel to the view direction");
-    FOGRT__REFUSE_IF(!(c.fov_deg > 0.0f && c.fov_deg < 180.0f), INVALID_CAMERA, "camera.fov_deg: outside (0, 180)");
-    FOGRT__REFUSE_IF(!fogrt__finite(c.lens_radius) || c.lens_radius < 0.0f || !fogrt__finite(c.focal_distance) ||
-                     c.focal_distance < 0.0f, INVALID_CAMERA,
-                     "camera.lens_radius/focal_distance: negative or not finite");
+    FOGRT__REFUSE_IF(fogrt__dot(up, up) < 1e-12f, INVALID_CAMERA,
+                     "camera.up: parallel to the view direction");
+    FOGRT__REFUSE_IF(!(c.fov_deg > 0.0f && c.fov_deg < 180.0f), INVALID_CAMERA,
+                     "camera.fov_deg: outside (0, 180)");
+    FOGRT__REFUSE_IF(!fogrt__finite(c.lens_radius) || c.lens_radius < 0.0f ||
+                             !fogrt__finite(c.focal_distance) || c.focal_distance < 0.0f,
+                     INVALID_CAMERA, "camera.lens_radius/focal_distance: negative or not finite");
     if (c.focal_distance == 0.0f) c.focal_distance = fogrt__length(fwd);
     s->camera = c;
     s->has_camera = true;
@@ -1641,13 +1719,16 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_camera(fogrt_scene *s, const fogrt_ca
 
 /* Checks a medium and clamps |g| to FOGRT_HG_G_MAX (with a warning). */
 FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medium_desc *m) {
-    FOGRT__REFUSE_IF(!fogrt__finite(m->sigma_t) || m->sigma_t < 0.0f, INVALID_MEDIUM, "medium.sigma_t: negative or not finite");
-    FOGRT__REFUSE_IF(!fogrt__colour_ok(m->albedo) || fogrt__max3(m->albedo) > 1.0f, INVALID_MEDIUM, "medium.albedo: outside [0, 1]");
+    FOGRT__REFUSE_IF(!fogrt__finite(m->sigma_t) || m->sigma_t < 0.0f, INVALID_MEDIUM,
+                     "medium.sigma_t: negative or not finite");
+    FOGRT__REFUSE_IF(!fogrt__colour_ok(m->albedo) || fogrt__max3(m->albedo) > 1.0f, INVALID_MEDIUM,
+                     "medium.albedo: outside [0, 1]");
     FOGRT__REFUSE_IF(!(m->g >= -1.0f && m->g <= 1.0f), INVALID_MEDIUM, "medium.g: outside [-1, 1]");
     FOGRT__PASS(fogrt__beyond_medium(s, m));
     if (fabsf(m->g) >= FOGRT_HG_G_MAX && fabsf(m->g) != FOGRT_HG_G_MAX) {
         m->g = copysignf(FOGRT_HG_G_MAX, m->g);
-        fogrt__log(s, FOGRT_LOG_WARNING, "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
+        fogrt__log(s, FOGRT_LOG_WARNING,
+                   "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
     }
 #ifndef FOGRT_NO_MEDIA
     return fogrt__x_check_media(s, m);                   /* SEAM 6: G's medium fields */
@@ -1663,8 +1744,6 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_me
     s->built = false;
     return FOGRT_RESULT_OK;
 }
-
-
 
 /* ------------------------------------------------------------------------------------------
    2.1 Bounding Volume Hierarchy (paper eq. 1-2)
@@ -1688,13 +1767,17 @@ FOGRT__PRIVATE fogrt__aabb fogrt__aabb_empty(void) {
     fogrt__aabb b = { { FLT_MAX, FLT_MAX, FLT_MAX }, { -FLT_MAX, -FLT_MAX, -FLT_MAX } };
     return b;
 }
-FOGRT__HOT void fogrt__aabb_grow(fogrt__aabb *b, fogrt__v3 p) {
-    b->lo.x = FOGRT__MIN(b->lo.x, p.x); b->lo.y = FOGRT__MIN(b->lo.y, p.y); b->lo.z = FOGRT__MIN(b->lo.z, p.z);
-    b->hi.x = FOGRT__MAX(b->hi.x, p.x); b->hi.y = FOGRT__MAX(b->hi.y, p.y); b->hi.z = FOGRT__MAX(b->hi.z, p.z);
-}
 FOGRT__HOT void fogrt__aabb_union(fogrt__aabb *b, const fogrt__aabb *o) {   /* o may be empty */
-    b->lo.x = FOGRT__MIN(b->lo.x, o->lo.x); b->lo.y = FOGRT__MIN(b->lo.y, o->lo.y); b->lo.z = FOGRT__MIN(b->lo.z, o->lo.z);
-    b->hi.x = FOGRT__MAX(b->hi.x, o->hi.x); b->hi.y = FOGRT__MAX(b->hi.y, o->hi.y); b->hi.z = FOGRT__MAX(b->hi.z, o->hi.z);
+    b->lo.x = FOGRT__MIN(b->lo.x, o->lo.x);
+    b->lo.y = FOGRT__MIN(b->lo.y, o->lo.y);
+    b->lo.z = FOGRT__MIN(b->lo.z, o->lo.z);
+    b->hi.x = FOGRT__MAX(b->hi.x, o->hi.x);
+    b->hi.y = FOGRT__MAX(b->hi.y, o->hi.y);
+    b->hi.z = FOGRT__MAX(b->hi.z, o->hi.z);
+}
+FOGRT__HOT void fogrt__aabb_grow(fogrt__aabb *b, fogrt__v3 p) {   /* the union with the point */
+    fogrt__aabb point = { p, p };
+    fogrt__aabb_union(b, &point);
 }
 FOGRT__PRIVATE float fogrt__aabb_area(const fogrt__aabb *b) {     /* 0 for the empty box */
     fogrt__v3 e = fogrt__sub(b->hi, b->lo);
@@ -1704,7 +1787,9 @@ FOGRT__PRIVATE float fogrt__aabb_volume(const fogrt__aabb *b) {
     fogrt__v3 e = fogrt__sub(b->hi, b->lo);
     return e.x < 0.0f ? 0.0f : e.x * e.y * e.z;
 }
-FOGRT__HOT fogrt__v3 fogrt__aabb_centre(const fogrt__aabb *b) { return fogrt__scale(fogrt__add(b->lo, b->hi), 0.5f); }
+FOGRT__HOT fogrt__v3 fogrt__aabb_centre(const fogrt__aabb *b) {
+    return fogrt__scale(fogrt__add(b->lo, b->hi), 0.5f);
+}
 
 #define FOGRT__BVH_SAH_DEPTH 56
 #define FOGRT__BVH_MAX_DEPTH 96   /* 56 + 32 halvings of at most 2^32 primitives, and margin */
@@ -1719,18 +1804,24 @@ typedef struct fogrt__build {
     uint32_t leaf_keep;    /* nodes of at most this many primitives stay leaves, unpriced */
 } fogrt__build;
 /* A node waiting on the build's stack, with the bounds of its primitives' centroids. */
-typedef struct fogrt__bjob { uint32_t node, depth; fogrt__aabb cb; } fogrt__bjob;
+typedef struct fogrt__bjob {
+    uint32_t node, depth;
+    fogrt__aabb cb;
+} fogrt__bjob;
 
 /* The heuristic's measure of one side: N A (SAH) or N V (the paper's eq. 1). */
-FOGRT__PRIVATE float fogrt__side_cost(const fogrt_build_desc *d, uint32_t n, const fogrt__aabb *box) {
-    return (float)n * (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(box) : fogrt__aabb_area(box));
+FOGRT__PRIVATE float fogrt__side_cost(const fogrt_build_desc *d, uint32_t n,
+                                      const fogrt__aabb *box) {
+    return (float)n *
+           (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(box) : fogrt__aabb_area(box));
 }
 FOGRT__PRIVATE void fogrt__node_set_box(fogrt_bvh_node *node, const fogrt__aabb *b) {
-    node->bmin[0] = b->lo.x; node->bmin[1] = b->lo.y; node->bmin[2] = b->lo.z;
-    node->bmax[0] = b->hi.x; node->bmax[1] = b->hi.y; node->bmax[2] = b->hi.z;
+    for (int k = 0; k < 3; ++k) node->bmin[k] = fogrt__comp(b->lo, k);
+    for (int k = 0; k < 3; ++k) node->bmax[k] = fogrt__comp(b->hi, k);
 }
 /* Box and centroid bounds of count primitives (the root, and the halved nodes). */
-FOGRT__PRIVATE void fogrt__boxes_bounds(const fogrt__aabb *box, uint32_t count, fogrt_bvh_node *node, fogrt__aabb *cb) {
+FOGRT__PRIVATE void fogrt__boxes_bounds(const fogrt__aabb *box, uint32_t count,
+                                        fogrt_bvh_node *node, fogrt__aabb *cb) {
     fogrt__aabb b = fogrt__aabb_empty();
     *cb = fogrt__aabb_empty();
     for (uint32_t i = 0; i < count; ++i) {
@@ -1760,8 +1851,9 @@ FOGRT__HOT int fogrt__bin_of(const fogrt__bins *bins, fogrt__v3 c, int ax) {
    bins = 1 prices the single plane through the middle). An axis on which every centroid
    has the same coordinate gets scale 0 (no plane to try there). Then every primitive goes
    into its bin on each axis. */
-FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt_build_desc *d, const fogrt__aabb *cb,
-                                     const fogrt__aabb *box, uint32_t count) {
+FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt_build_desc *d,
+                                     const fogrt__aabb *cb, const fogrt__aabb *box,
+                                     uint32_t count) {
     float sc[3];
     int nb = count < (uint32_t)d->bins ? (int)count : d->bins;
     if (nb == 1) nb = 2;
@@ -1769,8 +1861,9 @@ FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt_build_desc *
         float lo = fogrt__comp(cb->lo, ax), hi = fogrt__comp(cb->hi, ax);
         sc[ax] = (float)nb / (hi - lo);
         if (!(hi > lo && sc[ax] > 0.0f && sc[ax] < FLT_MAX)) sc[ax] = 0.0f;
-        for (int k = 0; k < nb; ++k) { bins->box[ax][k] = fogrt__aabb_empty(); bins->n[ax][k] = 0; }
+        for (int k = 0; k < nb; ++k) bins->box[ax][k] = fogrt__aabb_empty();
     }
+    memset(bins->n, 0, sizeof bins->n);
     bins->nb = nb;
     bins->origin = cb->lo;
     bins->scale = fogrt__v(sc[0], sc[1], sc[2]);
@@ -1786,8 +1879,8 @@ FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt_build_desc *
 /* The cheapest plane of one axis: sweep from the left and from the right to price the
    nb - 1 planes between the bins (plane k: bins 0..k-1 on the left). Improves *best, and
    *best_k, where a plane with primitives on both sides is cheaper. */
-FOGRT__PRIVATE bool fogrt__bins_sweep(const fogrt_build_desc *d, const fogrt__bins *bins, int ax, uint32_t count,
-                                      float *best, int *best_k) {
+FOGRT__PRIVATE bool fogrt__bins_sweep(const fogrt_build_desc *d, const fogrt__bins *bins, int ax,
+                                      uint32_t count, float *best, int *best_k) {
     fogrt__aabb b = fogrt__aabb_empty();
     uint32_t left_n = 0, right_n = 0;
     float left_cost[FOGRT__BVH_MAX_BINS];
@@ -1803,23 +1896,32 @@ FOGRT__PRIVATE bool fogrt__bins_sweep(const fogrt_build_desc *d, const fogrt__bi
         fogrt__aabb_union(&b, &bins->box[ax][k]);
         if (right_n == 0 || right_n == count) continue;
         float cost = left_cost[k - 1] + fogrt__side_cost(d, right_n, &b);
-        if (cost < *best) { *best = cost; *best_k = k; improved = true; }
+        if (cost < *best) {
+            *best = cost;
+            *best_k = k;
+            improved = true;
+        }
     }
     return improved;
 }
 /* The leaf rule: with the SAH, split when it is cheaper than a leaf, and always above the
    largest leaf size; with the volume heuristic, split down to the largest leaf size. */
-FOGRT__PRIVATE bool fogrt__split_pays(const fogrt_build_desc *d, const fogrt_bvh_node *node, uint32_t count, float best) {
+FOGRT__PRIVATE bool fogrt__split_pays(const fogrt_build_desc *d, const fogrt_bvh_node *node,
+                                      uint32_t count, float best) {
     if (count > (uint32_t)d->max_leaf_size) return true;
     if (d->heuristic == FOGRT_BVH_VOLUME) return false;
-    fogrt__aabb box = { { node->bmin[0], node->bmin[1], node->bmin[2] }, { node->bmax[0], node->bmax[1], node->bmax[2] } };
-    return d->c_trav + d->c_int * best / FOGRT__MAX(fogrt__aabb_area(&box), FLT_MIN) < d->c_int * (float)count;
+    fogrt__aabb box = { { node->bmin[0], node->bmin[1], node->bmin[2] },
+                        { node->bmax[0], node->bmax[1], node->bmax[2] } };
+    return d->c_trav + d->c_int * best / FOGRT__MAX(fogrt__aabb_area(&box), FLT_MIN) <
+           d->c_int * (float)count;
 }
 /* The primitives whose bin on axis ax is below k to the front (with their indices), growing
    both sides' centroid bounds; the children's boxes are the unions of their bins. Returns
    the number on the left. */
-FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__aabb *box, uint32_t *id, uint32_t count,
-                                              int ax, int k, fogrt_bvh_node *child, fogrt__bjob *left, fogrt__bjob *right) {
+FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__aabb *box,
+                                              uint32_t *id, uint32_t count, int ax, int k,
+                                              fogrt_bvh_node *child, fogrt__bjob *left,
+                                              fogrt__bjob *right) {
     fogrt__aabb side[2];
     uint32_t lo = 0, hi = count;
     side[0] = side[1] = left->cb = right->cb = fogrt__aabb_empty();
@@ -1836,8 +1938,10 @@ FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__aa
             uint32_t tid = id[lo];
             fogrt__aabb_grow(&right->cb, c);
             --hi;
-            box[lo] = box[hi]; box[hi] = t;
-            id[lo] = id[hi]; id[hi] = tid;
+            box[lo] = box[hi];
+            box[hi] = t;
+            id[lo] = id[hi];
+            id[hi] = tid;
         }
     }
     return lo;
@@ -1845,29 +1949,35 @@ FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__aa
 /* The binned split of job's node into child[0] and child[1]. Returns the number of
    primitives on the left, or 0 when the node stays a leaf, or must be halved instead
    (*halve: its centroids coincide but it is too big). */
-FOGRT__PRIVATE uint32_t fogrt__bvh_split_binned(fogrt__build *b, const fogrt__bjob *job, fogrt_bvh_node *child,
-                                                fogrt__bjob *left, fogrt__bjob *right, bool *halve) {
+FOGRT__PRIVATE uint32_t fogrt__bvh_split_binned(fogrt__build *b, const fogrt__bjob *job,
+                                                fogrt_bvh_node *child, fogrt__bjob *left,
+                                                fogrt__bjob *right, bool *halve) {
     const fogrt_bvh_node *node = &b->nodes[job->node];
     uint32_t first = node->left_first, count = node->prim_count;
     fogrt__bins bins;
     float best = FLT_MAX;
     int best_ax = -1, best_k = 0;
 #ifndef FOGRT_NO_WIDE_BVH
-    uint32_t x_left;
-    if (fogrt__x_split_binned(b, job, child, left, right, halve, &x_left)) return x_left;   /* SEAM 2 */
+    uint32_t wide_left_count;
+    if (fogrt__x_split_binned(b, job, child, left, right, halve, &wide_left_count))   /* SEAM 2 */
+        return wide_left_count;
 #endif
     fogrt__bins_fill(&bins, &b->desc, &job->cb, b->box + first, count);
     for (int ax = 0; ax < 3; ++ax)
-        if (fogrt__comp(bins.scale, ax) > 0.0f && fogrt__bins_sweep(&b->desc, &bins, ax, count, &best, &best_k)) best_ax = ax;
+        if (fogrt__comp(bins.scale, ax) > 0.0f &&
+            fogrt__bins_sweep(&b->desc, &bins, ax, count, &best, &best_k))
+            best_ax = ax;
     if (best_ax < 0) {                                   /* all centroids coincide */
         *halve = count > (uint32_t)b->desc.max_leaf_size;
         return 0;
     }
     if (!fogrt__split_pays(&b->desc, node, count, best)) return 0;
-    return fogrt__bins_partition(&bins, b->box + first, b->idx + first, count, best_ax, best_k, child, left, right);
+    return fogrt__bins_partition(&bins, b->box + first, b->idx + first, count, best_ax, best_k,
+                                 child, left, right);
 }
 /* Split job's node into the next two nodes, or leave it a leaf (returns false). */
-FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fogrt__bjob *left, fogrt__bjob *right) {
+FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fogrt__bjob *left,
+                                     fogrt__bjob *right) {
     fogrt_bvh_node *node = &b->nodes[job->node], *child = &b->nodes[b->node_count];
     uint32_t first = node->left_first, count = node->prim_count, left_count = 0;
     bool halve = job->depth >= FOGRT__BVH_SAH_DEPTH;
@@ -1880,9 +1990,12 @@ FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fo
     }
     if (left_count == 0) return false;
     FOGRT_ASSERT(left_count < count);
-    child[0].left_first = first;              child[0].prim_count = left_count;
-    child[1].left_first = first + left_count; child[1].prim_count = count - left_count;
-    left->node = b->node_count; right->node = b->node_count + 1;
+    child[0].left_first = first;
+    child[0].prim_count = left_count;
+    child[1].left_first = first + left_count;
+    child[1].prim_count = count - left_count;
+    left->node = b->node_count;
+    right->node = b->node_count + 1;
     left->depth = right->depth = job->depth + 1;
     node->left_first = b->node_count;
     node->prim_count = 0;
@@ -1898,16 +2011,16 @@ FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count) {
     memset(&b->nodes[1], 0, sizeof b->nodes[1]);
     root->left_first = 0;
     root->prim_count = prim_count;
-    stack[0].node = 0; stack[0].depth = 0;
+    stack[0].node = stack[0].depth = 0;
     fogrt__boxes_bounds(b->box, prim_count, root, &stack[0].cb);
     b->node_count = 2;
     while (sp > 0) {
         fogrt__bjob job = stack[--sp];
         FOGRT_ASSERT(sp + 2 <= FOGRT__BVH_MAX_DEPTH + 2);
-        if (fogrt__bvh_split(b, &job, &stack[sp + 1], &stack[sp])) sp += 2;   /* the left child on top */
+        if (fogrt__bvh_split(b, &job, &stack[sp + 1], &stack[sp]))
+            sp += 2; /* the left child on top */
     }
 }
-
 
 /* ------------------------------------------------------------------------------------------
    2.1 (continued) Ray queries: primitives and BVH traversal
@@ -1916,8 +2029,9 @@ FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count) {
    degenerate, zero-area triangle) fails it: degenerate triangles are never hit. A ray
    parallel to the triangle's plane (|cos| below 1e-6, where the distance is numerically
    meaningless) misses it too. */
-FOGRT__HOT bool fogrt__hit_triangle(fogrt__v3 o, fogrt__v3 d, fogrt__v3 v0, fogrt__v3 e1, fogrt__v3 e2,
-                                        float tmin, float tmax, float *t, float *u, float *v) {
+FOGRT__HOT bool fogrt__hit_triangle(fogrt__v3 o, fogrt__v3 d, fogrt__v3 v0, fogrt__v3 e1,
+                                    fogrt__v3 e2, float tmin, float tmax, float *t, float *u,
+                                    float *v) {
     fogrt__v3 pvec = fogrt__cross(d, e2);
     float det = fogrt__dot(e1, pvec);
     if (!(det * det > 1e-12f * fogrt__dot(e1, e1) * fogrt__dot(e2, e2))) return false;
@@ -1930,13 +2044,16 @@ FOGRT__HOT bool fogrt__hit_triangle(fogrt__v3 o, fogrt__v3 d, fogrt__v3 v0, fogr
     if (!(vv >= 0.0f && uu + vv <= 1.0f)) return false;
     float tt = fogrt__dot(e2, qvec) * inv_det;
     if (!(tt > tmin && tt < tmax)) return false;
-    *t = tt; *u = uu; *v = vv;
+    *t = tt;
+    *u = uu;
+    *v = vv;
     return true;
 }
 /* Ray-sphere for a unit direction. The discriminant is formed as r^2 - |oc - b d|^2 (the
    squared distance of the centre from the line), which does not cancel for distant spheres,
    and the nearer root comes from q = -b - sign(b) sqrt(disc) (no cancellation either). */
-FOGRT__HOT bool fogrt__hit_sphere(fogrt__v3 o, fogrt__v3 d, fogrt__v3 c, float r, float tmin, float tmax, float *t) {
+FOGRT__HOT bool fogrt__hit_sphere(fogrt__v3 o, fogrt__v3 d, fogrt__v3 c, float r, float tmin,
+                                  float tmax, float *t) {
     fogrt__v3 oc = fogrt__sub(o, c);
     float b = fogrt__dot(oc, d);
     fogrt__v3 f = fogrt__madd(oc, d, -b);
@@ -1944,15 +2061,22 @@ FOGRT__HOT bool fogrt__hit_sphere(fogrt__v3 o, fogrt__v3 d, fogrt__v3 c, float r
     if (!(disc >= 0.0f)) return false;
     float sq = sqrtf(disc), cc = fogrt__dot(oc, oc) - r * r;
     float q = b > 0.0f ? -(b + sq) : (sq - b), t0 = q, t1 = q != 0.0f ? cc / q : q;
-    if (t0 > t1) { float tmp = t0; t0 = t1; t1 = tmp; }
-    if (t0 > tmin && t0 < tmax) { *t = t0; return true; }
-    if (t1 > tmin && t1 < tmax) { *t = t1; return true; }
-    return false;
+    if (t0 > t1) {
+        float tmp = t0;
+        t0 = t1;
+        t1 = tmp;
+    }
+    float nearest = t0 > tmin && t0 < tmax ? t0 : t1;   /* the nearer root in range, if any */
+    if (!(nearest > tmin && nearest < tmax)) return false;
+    *t = nearest;
+    return true;
 }
 
 /* The reciprocal of a direction component, never a division by zero: +-0 (and anything
    too small to invert) becomes +-infinity with the sign of the zero. */
-FOGRT__PRIVATE float fogrt__safe_rcp(float x) { return fabsf(x) > 1e-30f ? 1.0f / x : copysignf(INFINITY, x); }
+FOGRT__PRIVATE float fogrt__safe_rcp(float x) {
+    return fabsf(x) > 1e-30f ? 1.0f / x : copysignf(INFINITY, x);
+}
 
 /* A ray prepared for the box tests: its origin and reciprocal direction. */
 typedef struct fogrt__ray { fogrt__v3 o, inv; } fogrt__ray;
@@ -1989,8 +2113,8 @@ FOGRT__HOT float fogrt__cull(float tmax) {   /* tmax, widened; +-inf and NaN unc
 /* Iterative traversal of the binary tree with a fixed stack: visit the nearer child first,
    push the farther, and skip a popped node whose entry lies beyond the closest hit found so
    far. any_hit: return at the first hit (shadow rays). */
-FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
-                                         fogrt_hit *hit, bool any_hit) {
+FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin,
+                                         float tmax, fogrt_hit *hit, bool any_hit) {
     uint32_t stack[FOGRT__BVH_MAX_DEPTH + 2], sp = 0, tri_count = s->tri_count;
     float stack_t[FOGRT__BVH_MAX_DEPTH + 2];
     const fogrt_bvh_node *nodes = s->nodes, *node = &nodes[0];
@@ -2005,22 +2129,36 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
             for (uint32_t i = node->left_first; i < end; ++i) {
                 const fogrt__prim *p = &s->prims[i];
                 float t, u = 0.0f, v = 0.0f;
-                bool h = p->id < tri_count ? fogrt__hit_triangle(o, d, p->a, p->b, p->c, tmin, tmax, &t, &u, &v)
+                bool h = p->id < tri_count ? fogrt__hit_triangle(o, d, p->a, p->b, p->c, tmin, tmax,
+                                                                 &t, &u, &v)
                                            : fogrt__hit_sphere(o, d, p->a, p->b.x, tmin, tmax, &t);
                 if (h) {
                     found = true;
                     tmax = t;
                     cull = fogrt__cull(t);
                     if (any_hit) return true;
-                    hit->t = t; hit->prim = p->id; hit->u = u; hit->v = v;
+                    hit->t = t;
+                    hit->prim = p->id;
+                    hit->u = u;
+                    hit->v = v;
                 }
             }
         } else {                                         /* inner: order the two children */
             const fogrt_bvh_node *c1 = &nodes[node->left_first], *c2 = c1 + 1;
             float d1 = fogrt__slab(c1, &r, tmin, cull), d2 = fogrt__slab(c2, &r, tmin, cull);
-            if (d1 > d2) { float td = d1; const fogrt_bvh_node *tn = c1; d1 = d2; d2 = td; c1 = c2; c2 = tn; }
+            if (d1 > d2) {
+                float td = d1;
+                const fogrt_bvh_node *tn = c1;
+                d1 = d2;
+                d2 = td;
+                c1 = c2;
+                c2 = tn;
+            }
             if (d1 != FLT_MAX) {
-                if (d2 != FLT_MAX) { stack_t[sp] = d2; stack[sp++] = (uint32_t)(c2 - nodes); }
+                if (d2 != FLT_MAX) {
+                    stack_t[sp] = d2;
+                    stack[sp++] = (uint32_t)(c2 - nodes);
+                }
                 node = c1;
                 continue;
             }
@@ -2037,8 +2175,8 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 
 /* The scene's ray query: the binary tree above, or the wide tree of Part II (A) when the
    build made one. */
-FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
-                                fogrt_hit *hit, bool any_hit) {
+FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin,
+                                    float tmax, fogrt_hit *hit, bool any_hit) {
 #ifndef FOGRT_NO_WIDE_BVH
     bool done, found = fogrt__x_traverse(s, o, d, tmin, tmax, hit, any_hit, &done);   /* SEAM 1 */
     if (done) return found;
@@ -2054,9 +2192,11 @@ FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3
    ------------------------------------------------------------------------------------------ */
 FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *y) {
     float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
-    if (a == 0.0f && b == 0.0f) { *x = 0.0f; *y = 0.0f; return; }
+    *x = *y = 0.0f;
+    if (a == 0.0f && b == 0.0f) return;
     bool wide = fabsf(a) > fabsf(b);
-    float r = wide ? a : b, phi = wide ? (FOGRT__PI / 4.0f) * (b / a) : FOGRT__PI / 2.0f - (FOGRT__PI / 4.0f) * (a / b);
+    float r = wide ? a : b, phi = wide ? (FOGRT__PI / 4.0f) * (b / a)
+                                       : FOGRT__PI / 2.0f - (FOGRT__PI / 4.0f) * (a / b);
     *x = r * cosf(phi);
     *y = r * sinf(phi);
 }
@@ -2080,7 +2220,10 @@ FOGRT__PUBLIC float fogrt_fresnel_schlick(float eta, float cos_i) {
     float r0 = (eta - 1.0f) / (eta + 1.0f), c;
     r0 *= r0;
     cos_i = FOGRT__CLAMP(cos_i, -1.0f, 1.0f);
-    if (eta < 1.0f) { cos_i = -cos_i; eta = 1.0f / eta; }   /* make the inside the denser side */
+    if (eta < 1.0f) {                                   /* make the inside the denser side */
+        cos_i = -cos_i;
+        eta = 1.0f / eta;
+    }
     if (cos_i >= 0.0f) {
         c = cos_i;
     } else {                                            /* leaving: n = eta -> n = 1 */
@@ -2094,11 +2237,16 @@ FOGRT__PUBLIC float fogrt_fresnel_schlick(float eta, float cos_i) {
 /* Snell's law: wi = -wo/eta + (cos_i/eta - cos_t) n, after flipping n (and eta) to wo's side. */
 FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 n, float eta, fogrt_vec3 wo, fogrt_vec3 *wi) {
     float cos_i = fogrt__dot(n, wo);
-    if (cos_i < 0.0f) { eta = 1.0f / eta; cos_i = -cos_i; n = fogrt__neg(n); }
+    if (cos_i < 0.0f) {
+        eta = 1.0f / eta;
+        cos_i = -cos_i;
+        n = fogrt__neg(n);
+    }
     float sin2_i = FOGRT__MAX(0.0f, 1.0f - cos_i * cos_i), sin2_t = sin2_i / (eta * eta);
     if (sin2_t >= 1.0f) return false;
     float cos_t = sqrtf(1.0f - sin2_t);
-    *wi = fogrt__normalize(fogrt__add(fogrt__scale(wo, -1.0f / eta), fogrt__scale(n, cos_i / eta - cos_t)));
+    *wi = fogrt__normalize(
+            fogrt__add(fogrt__scale(wo, -1.0f / eta), fogrt__scale(n, cos_i / eta - cos_t)));
     return true;
 }
 FOGRT__PRIVATE float fogrt__fresnel(fogrt_fresnel mode, float eta, float cos_i) {
@@ -2110,8 +2258,8 @@ FOGRT__PRIVATE float fogrt__fresnel(fogrt_fresnel mode, float eta, float cos_i) 
 }
 /* Refraction and glass: reflect with probability F (glass) or only on total internal
    reflection (refraction), else refract. The probability is the lobe's discrete pdf. */
-FOGRT__PRIVATE void fogrt__sample_dielectric(const fogrt_material_desc *m, fogrt_fresnel fresnel, fogrt__v3 wo,
-                                             float u_lobe, fogrt_bsdf_sample *out) {
+FOGRT__PRIVATE void fogrt__sample_dielectric(const fogrt_material_desc *m, fogrt_fresnel fresnel,
+                                             fogrt__v3 wo, float u_lobe, fogrt_bsdf_sample *out) {
     fogrt__v3 wt;
     float eta = FOGRT__DEF(m->ior, 1.5f);
     bool can_refract = fogrt_refract(fogrt__v(0.0f, 0.0f, 1.0f), eta, wo, &wt);
@@ -2134,7 +2282,6 @@ FOGRT__PRIVATE fogrt_bsdf_type fogrt__bsdf_type(const fogrt_material_desc *m) {
     return m->type == FOGRT_BSDF_DEFAULT ? FOGRT_BSDF_DIFFUSE : m->type;
 }
 FOGRT__PRIVATE bool fogrt__bsdf_is_delta(fogrt_bsdf_type t) { return t != FOGRT_BSDF_DIFFUSE; }
-
 FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel fresnel,
                                      fogrt_vec3 wo, float u_lobe, float u1, float u2,
                                      fogrt_bsdf_sample *out) {
@@ -2143,7 +2290,9 @@ FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel
     if (wo.z == 0.0f) return false;                      /* exactly on the horizon */
     if (type == FOGRT_BSDF_MIRROR) {
         out->wi = fogrt__v(-wo.x, -wo.y, wo.z);
-        out->weight = m->reflectance; out->pdf = 1.0f; out->is_delta = true;
+        out->weight = m->reflectance;
+        out->pdf = 1.0f;
+        out->is_delta = true;
         return true;
     }
 #ifndef FOGRT_NO_GLASS
@@ -2155,11 +2304,14 @@ FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel
     if (type == FOGRT_BSDF_REFRACTION || type == FOGRT_BSDF_GLASS) return false;   /* stripped */
 #endif
     if (type == FOGRT_BSDF_INTERFACE) {                  /* index-matched: straight through */
-        out->wi = fogrt__neg(wo); out->weight = fogrt__v(1.0f, 1.0f, 1.0f); out->pdf = 1.0f;
+        out->wi = fogrt__neg(wo);
+        out->weight = fogrt__v(1.0f, 1.0f, 1.0f);
+        out->pdf = 1.0f;
         out->is_delta = out->is_transmission = true;
         return true;
     }
-    (void)u_lobe; (void)fresnel;                         /* diffuse: cosine-weighted */
+    (void)u_lobe;                                        /* diffuse: cosine-weighted */
+    (void)fresnel;
     fogrt__v3 wi = fogrt_sample_cosine_hemisphere(u1, u2);
     if (wi.z <= 0.0f) return false;
     if (wo.z < 0.0f) wi.z = -wi.z;                       /* on wo's side */
@@ -2168,15 +2320,16 @@ FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel
     out->pdf = fabsf(wi.z) * FOGRT__INV_PI;
     return true;
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_bsdf_eval(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi) {
-    if (fogrt__bsdf_is_delta(fogrt__bsdf_type(m)) || !(wo.z * wi.z > 0.0f)) return fogrt__v(0.0f, 0.0f, 0.0f);
+FOGRT__PUBLIC fogrt_vec3 fogrt_bsdf_eval(const fogrt_material_desc *m, fogrt_vec3 wo,
+                                         fogrt_vec3 wi) {
+    if (fogrt__bsdf_is_delta(fogrt__bsdf_type(m)) || !(wo.z * wi.z > 0.0f))
+        return fogrt__v(0.0f, 0.0f, 0.0f);
     return fogrt__scale(m->reflectance, FOGRT__INV_PI);
 }
 FOGRT__PUBLIC float fogrt_bsdf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi) {
     if (fogrt__bsdf_is_delta(fogrt__bsdf_type(m)) || !(wo.z * wi.z > 0.0f)) return 0.0f;
     return fabsf(wi.z) * FOGRT__INV_PI;
 }
-
 
 /* ------------------------------------------------------------------------------------------
    2.3 Monte Carlo sampling (paper eq. 3): lights, light sampling, MIS
@@ -2197,7 +2350,7 @@ FOGRT__PUBLIC float fogrt_bsdf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, 
    ------------------------------------------------------------------------------------------ */
 /* What the integrators read from a render desc. */
 typedef struct fogrt__settings {
-    fogrt_render_desc desc;    /* the desc, checked: nee, mis, min_depth, rr_depth, light_samples, ... */
+    fogrt_render_desc desc;    /* checked: nee, mis, min_depth, rr_depth, light_samples, ... */
     int max_depth;             /* -1 (no limit) as the largest int */
     fogrt_integrator integrator;
 } fogrt__settings;
@@ -2226,7 +2379,8 @@ FOGRT__PUBLIC void fogrt_sample_triangle(float u1, float u2, float *b1, float *b
 }
 /* Cone of directions subtended by a sphere: cos(theta_max) = sqrt(1 - r^2/d^2). 1 - cos is
    formed as sin^2 / (1 + cos), which stays accurate for a small or distant sphere. */
-FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 c, float r, fogrt__v3 p, float *dist) {
+FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 c, float r, fogrt__v3 p,
+                                                     float *dist) {
     fogrt__v3 pc = fogrt__sub(c, p);
     float d2 = fogrt__dot(pc, pc);
     *dist = sqrtf(d2);
@@ -2239,10 +2393,11 @@ FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 c, float r, fogrt
    uniformly in [0, 1 - cos theta_max) samples a cone uniformly (spheres here, spot lights'
    footprints below). */
 FOGRT__HOT fogrt__v3 fogrt__in_cone(const fogrt__frame *f, float omc, float u) {
-    return fogrt__around(f, 1.0f - omc, sqrtf(FOGRT__MAX(0.0f, omc * (2.0f - omc))), u);
+    return fogrt__direction_at(f, 1.0f - omc, sqrtf(FOGRT__MAX(0.0f, omc * (2.0f - omc))), u);
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 center, float radius, fogrt_vec3 p,
-                                                         float u1, float u2, float *pdf) {
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 center, float radius,
+                                                         fogrt_vec3 p, float u1, float u2,
+                                                         float *pdf) {
     float dist, omc = fogrt__sphere_one_minus_cos_max(center, radius, p, &dist);
     if (omc <= 0.0f) {   /* inside: every direction sees the sphere */
         if (pdf) *pdf = FOGRT__INV_4PI;
@@ -2266,7 +2421,8 @@ FOGRT__PUBLIC float fogrt_spot_falloff(float cutoff_deg, float beam_deg, float c
 /* The same profile for a light of a built scene, from its two cosines (s->spot_cos: the
    cutoff's, the beam's): outside the band between them, by a margin far above acosf's
    rounding, it is 0 or 1 without the acos. */
-FOGRT__PRIVATE float fogrt__spot_profile(const fogrt_light_desc *l, const float *cosines, float cos_theta) {
+FOGRT__PRIVATE float fogrt__spot_profile(const fogrt_light_desc *l, const float *cosines,
+                                         float cos_theta) {
     if (cos_theta < cosines[0] - 1e-4f) return 0.0f;
     if (cos_theta > cosines[1] + 1e-4f) return 1.0f;
     return fogrt_spot_falloff(l->cutoff_deg, l->beam_deg, cos_theta);
@@ -2281,7 +2437,8 @@ FOGRT__PRIVATE float fogrt__power_heuristic(float a, float b) {
 FOGRT__PRIVATE float fogrt__offset_size(const fogrt_scene *s, fogrt__v3 p) {
     return s->eps + 1e-5f * FOGRT__MAX(fabsf(p.x), FOGRT__MAX(fabsf(p.y), fabsf(p.z)));
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt__v3 n, fogrt__v3 w) {
+FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt__v3 n,
+                                       fogrt__v3 w) {
     float e = fogrt__offset_size(s, p);
     return fogrt__madd(p, n, fogrt__dot(w, n) > 0.0f ? e : -e);
 }
@@ -2289,7 +2446,8 @@ FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt_
 /* What the vertex sends toward -wi from light arriving along wi: f |cos| at a surface (in
    world space, with the geometric-side test against light leaks), the phase function in the
    fog. *pdf is the density with which BSDF / phase sampling would have chosen wi. */
-FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi, float *pdf) {
+FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi,
+                                     float *pdf) {
     (void)s;                                             /* read by the fog's branch only */
 #ifndef FOGRT_NO_MEDIUM
     if (v->is_medium) {
@@ -2298,7 +2456,8 @@ FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *
         return fogrt__v(p, p, p);
     }
 #endif
-    if (fogrt__dot(wi, v->ng) <= 0.0f) { *pdf = 0.0f; return fogrt__v(0.0f, 0.0f, 0.0f); }
+    *pdf = 0.0f;
+    if (fogrt__dot(wi, v->ng) <= 0.0f) return fogrt__v(0.0f, 0.0f, 0.0f);
     fogrt__v3 wo_l = fogrt__to_local(&v->frame, v->wo), wi_l = fogrt__to_local(&v->frame, wi);
     *pdf = fogrt_bsdf_pdf(v->m, wo_l, wi_l);
     return fogrt__scale(fogrt_bsdf_eval(v->m, wo_l, wi_l), fabsf(wi_l.z));
@@ -2309,14 +2468,15 @@ FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *
    uniformly in the cone it subtends (inside it: every direction). The spot profile is
    evaluated from the light's centre. Returns false when x gets nothing. (Forced inline:
    as calls, with Part II's second caller, they cost a fog-free render time.) */
-FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l, fogrt__v3 x,
-                                          const float *u, fogrt_light_sample *ls) {
+FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l,
+                                          fogrt__v3 x, const float *u, fogrt_light_sample *ls) {
     fogrt__v3 to = fogrt__sub(l->position, x), I = l->intensity;
     float d2 = fogrt__dot(to, to), pdf, t;
     if (!(d2 > 0.0f)) return false;                    /* x is the light: no direction */
     float d = sqrtf(d2);
     if (l->type == FOGRT_LIGHT_SPOT)
-        I = fogrt__scale(I, fogrt__spot_profile(l, s->spot_cos + 2 * (l - s->lights), -fogrt__dot(to, l->direction) / d));
+        I = fogrt__scale(I, fogrt__spot_profile(l, s->spot_cos + 2 * (l - s->lights),
+                                                -fogrt__dot(to, l->direction) / d));
     if (fogrt__is_black(I)) return false;
     ls->pdf = 1.0f;
     ls->is_delta = true;
@@ -2328,47 +2488,57 @@ FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_ligh
     }
     ls->wi = fogrt_sample_sphere_solid_angle(l->position, l->radius, x, u[0], u[1], &pdf);
     if (d <= l->radius) t = 0.0f;                        /* inside the emitter */
-    else if (!fogrt__hit_sphere(x, ls->wi, l->position, l->radius, 0.0f, INFINITY, &t)) t = fogrt__dot(to, ls->wi);
+    else if (!fogrt__hit_sphere(x, ls->wi, l->position, l->radius, 0.0f, INFINITY, &t))
+        t = fogrt__dot(to, ls->wi);
     ls->dist = t;
     ls->Le = fogrt__scale(I, 1.0f / (FOGRT__PI * l->radius * l->radius * pdf));
     return true;
 }
 
 /* Discrete sampling from a CDF (a mesh light's triangles by area, the environment map's
-   rows and columns): the index of the first CDF entry above u in cdf[0..n), and the fraction of u inside
-   that entry (for a continuous position within it). */
+   rows and columns): the index of the first CDF entry above u in cdf[0..n), and the fraction of u
+   inside that entry (for a continuous position within it). */
 FOGRT__PRIVATE int fogrt__cdf_find(const float *cdf, int n, float u, float *frac) {
     int lo = 0, hi = n - 1;
-    while (lo < hi) { int mid = (lo + hi) / 2; if (cdf[mid] <= u) lo = mid + 1; else hi = mid; }
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (cdf[mid] <= u) lo = mid + 1;
+        else hi = mid;
+    }
     float c0 = lo ? cdf[lo - 1] : 0.0f;
-    *frac = cdf[lo] > c0 ? FOGRT__CLAMP((u - c0) / (cdf[lo] - c0), 0.0f, FOGRT__ONE_MINUS_EPS) : 0.5f;
+    *frac = cdf[lo] > c0 ? FOGRT__CLAMP((u - c0) / (cdf[lo] - c0), 0.0f, FOGRT__ONE_MINUS_EPS)
+                         : 0.5f;
     return lo;
 }
 /* A point y on a mesh light: a triangle chosen by area (fogrt__cdf_find), then a uniform
    point on it. *ny is its geometric normal. */
-FOGRT__HOT uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__area_light *a, const float *u,
-                                                 fogrt__v3 *y, fogrt__v3 *ny) {
+FOGRT__HOT uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__area_light *a,
+                                             const float *u, fogrt__v3 *y, fogrt__v3 *ny) {
     float b1, b2, frac;
-    uint32_t tri = s->light_prims[a->first + (uint32_t)fogrt__cdf_find(s->light_cdf + a->first, (int)a->count, u[0], &frac)];
+    uint32_t tri = s->light_prims[a->first + (uint32_t)fogrt__cdf_find(s->light_cdf + a->first,
+                                                                       (int)a->count, u[0], &frac)];
     const fogrt__v3 *v = &s->tri_v[3 * tri];
     fogrt_sample_triangle(u[1], u[2], &b1, &b2);
-    *y = fogrt__add(v[0], fogrt__add(fogrt__scale(fogrt__sub(v[1], v[0]), b1), fogrt__scale(fogrt__sub(v[2], v[0]), b2)));
+    *y = fogrt__add(v[0], fogrt__add(fogrt__scale(fogrt__sub(v[1], v[0]), b1),
+                                     fogrt__scale(fogrt__sub(v[2], v[0]), b2)));
     *ny = fogrt__normalize(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
     return tri;
 }
 /* Area light a seen from p: an emissive sphere is sampled in the cone it subtends, a mesh
    by area (pdf 1/A, turned into solid angle). False when the sample is unusable: the back
    of a one-sided emitter, or p inside an emitting sphere. */
-FOGRT__HOT bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area_light *a, fogrt__v3 p,
-                                             const float *u, fogrt_light_sample *ls) {
+FOGRT__HOT bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area_light *a,
+                                         fogrt__v3 p, const float *u, fogrt_light_sample *ls) {
     fogrt__v3 y, ny;
     ls->is_delta = false;
     if (a->sphere != UINT32_MAX) {
         fogrt__v3 c = s->sph_c[a->sphere];
         float r = s->sph_r[a->sphere], t;
-        if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r) return false;   /* emits outward only */
+        if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r)
+            return false; /* emits outward only */
         ls->wi = fogrt_sample_sphere_solid_angle(c, r, p, u[1], u[2], &ls->pdf);
-        if (!fogrt__hit_sphere(p, ls->wi, c, r, 0.0f, INFINITY, &t)) t = fogrt__dot(fogrt__sub(c, p), ls->wi);
+        if (!fogrt__hit_sphere(p, ls->wi, c, r, 0.0f, INFINITY, &t))
+            t = fogrt__dot(fogrt__sub(c, p), ls->wi);
         ls->dist = t;
         ls->Le = s->materials[s->sph_material[a->sphere]].emission;
         return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
@@ -2386,7 +2556,8 @@ FOGRT__HOT bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area
 }
 /* The solid-angle pdf with which light sampling would have chosen the emitter point y (on
    primitive prim, geometric normal ny) from p: the MIS partner of BSDF sampling. */
-FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, fogrt__v3 p, fogrt__v3 y, fogrt__v3 ny) {
+FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, fogrt__v3 p,
+                                           fogrt__v3 y, fogrt__v3 ny) {
     uint32_t li = s->prim_light[prim];
     if (li == UINT32_MAX) return 0.0f;
     const fogrt__area_light *a = &s->area_lights[li];
@@ -2401,9 +2572,11 @@ FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, 
     return cos_l > 0.0f ? d2 / (cos_l * a->area) : 0.0f;
 }
 /* One numbering of all lights (point and spot, then area), so that one call samples any. */
-FOGRT__PUBLIC uint32_t fogrt_scene_light_total(const fogrt_scene *s) { return s->light_count + s->area_light_count; }
-FOGRT__PUBLIC bool fogrt_scene_sample_light(const fogrt_scene *s, uint32_t light, fogrt_vec3 p, float u1, float u2,
-                                            float u3, fogrt_light_sample *ls) {
+FOGRT__PUBLIC uint32_t fogrt_scene_light_total(const fogrt_scene *s) {
+    return s->light_count + s->area_light_count;
+}
+FOGRT__PUBLIC bool fogrt_scene_sample_light(const fogrt_scene *s, uint32_t light, fogrt_vec3 p,
+                                            float u1, float u2, float u3, fogrt_light_sample *ls) {
     FOGRT_ASSERT(s && s->built && ls && light < fogrt_scene_light_total(s));
     float u[3] = { u1, u2, u3 };
     if (light < s->light_count) return fogrt__sample_point_light(s, &s->lights[light], p, u, ls);
@@ -2435,7 +2608,7 @@ FOGRT__PUBLIC float fogrt_exponential_pdf(float sigma_t, float t) {
     if (!(sigma_t > 0.0f) || t < 0.0f) return 0.0f;
     return sigma_t * expf(-sigma_t * t);
 }
-FOGRT__PUBLIC float fogrt_invert_exponential(float sigma_t, float t) {
+FOGRT__PUBLIC float fogrt_exponential_cdf(float sigma_t, float t) {
     if (!(sigma_t > 0.0f) || t <= 0.0f) return 0.0f;
     return -expm1f(-sigma_t * t);
 }
@@ -2455,11 +2628,13 @@ FOGRT__PUBLIC float fogrt_transmittance(float sigma_t, float distance) {
     return expf(-sigma_t * distance);   /* underflows to 0 for optical depth > ~87: correct */
 }
 /* Eq. 8 along o + t d for t in [0, dist]: exp(-sigma_t x the length in fog). */
-FOGRT__HOT float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float dist) {
-    (void)o; (void)d;                                    /* read by Part II's bounded fog only */
+FOGRT__HOT float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d,
+                                          float dist) {
+    (void)o;                                             /* o, d: read by Part II's bounded fog */
+    (void)d;
 #ifndef FOGRT_MINIMAL
     float a, b;
-    if (s->x && !fogrt__x_fog_span(s, o, d, dist, &a, &b)) return 1.0f;    /* SEAM 6: fog in a box */
+    if (s->x && !fogrt__x_fog_span(s, o, d, dist, &a, &b)) return 1.0f; /* SEAM 6: fog in a box */
     if (s->x) dist = b - a;
 #endif
     return fogrt_transmittance(s->medium.sigma_t, dist);
@@ -2469,8 +2644,8 @@ FOGRT__HOT float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fog
 /* Visibility times transmittance (eq. 8) between the vertex and the light sample's point.
    The shadow ray starts at the offset origin and aims at the target itself, stopping a ray
    offset short of it (the target may lie on a surface: the emitter). */
-FOGRT__HOT float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, const fogrt_light_sample *ls,
-                                   uint64_t *rays) {
+FOGRT__HOT float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v,
+                               const fogrt_light_sample *ls, uint64_t *rays) {
     fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, ls->wi);
     ++*rays;
     if (!(ls->dist < INFINITY)) {                        /* toward the environment */
@@ -2478,7 +2653,9 @@ FOGRT__HOT float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v, con
     } else {
         fogrt__v3 y = fogrt__madd(v->p, ls->wi, ls->dist), to = fogrt__sub(y, o);
         float len = fogrt__length(to), tmax = len - fogrt__offset_size(s, y);
-        if (tmax > 0.0f && fogrt__traverse(s, o, fogrt__scale(to, 1.0f / len), 0.0f, tmax, NULL, true)) return 0.0f;
+        if (tmax > 0.0f &&
+            fogrt__traverse(s, o, fogrt__scale(to, 1.0f / len), 0.0f, tmax, NULL, true))
+            return 0.0f;
     }
 #ifndef FOGRT_NO_MEDIUM
     if (v->in_medium) return fogrt__fog_transmittance(s, v->p, ls->wi, ls->dist);
@@ -2507,50 +2684,56 @@ FOGRT__PUBLIC float fogrt_hg_phase(float g, float mu) {
     mu = FOGRT__CLAMP(mu, -1.0f, 1.0f);
     return fogrt__hg_phase_pm(fogrt__clamp_g(g), 1.0f - mu, 1.0f + mu);
 }
-/* Eq. 10-11: the inverse of HG's CDF, as the paper writes it:
-     mu = (1 + g^2 - ((1 - g^2) / (1 - g + 2 g u))^2) / (2 g).
-   At g = 0 it divides 0 by 0 (the limit is isotropic, 2u - 1), and for small |g| it
-   subtracts nearly equal numbers and divides the rounding by 2g: its error grows like
-   1e-7 / |g|. test_hg_eq11_matches_stable_form shows where it agrees with the form below. */
-FOGRT__PRIVATE float fogrt__sample_hg_mu_eq11(float g, float u) {
-    if (g == 0.0f) return 2.0f * u - 1.0f;
-    float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
-    return FOGRT__CLAMP((1.0f + g * g - s * s) / (2.0f * g), -1.0f, 1.0f);
-}
-/* The same inverse, expanded so that nothing divides by g:
-     D = (1 - g) + 2 g u,  mu = (2u - (1 - g)) / D + 2 g (1 - g)(1 + g) u (1 - u) / D^2.
-   g = 0 gives mu = 2u - 1 (isotropic) with no special branch; u = 0 gives -1, u -> 1 gives 1. */
 /* D = (1 - g) + 2 g u, as a sum of two non-negative terms: for g < 0 and u -> 1 the direct
    form would cancel, so it is written (1 + g) - 2 g (1 - u) there. */
 FOGRT__PRIVATE float fogrt__hg_D(float g, float u) {
     return g >= 0.0f ? (1.0f - g) + 2.0f * g * u : (1.0f + g) - 2.0f * g * (1.0f - u);
 }
+/* Eq. 10-11: the inverse of HG's CDF. As the paper writes it (one_minus_mu NULL),
+     mu = (1 + g^2 - s^2) / (2 g),  s = (1 - g^2) / D,  D = 1 - g + 2 g u,
+   it divides 0 by 0 at g = 0 (the limit is isotropic, 2u - 1), and for small |g| subtracts
+   nearly equal numbers and divides the rounding by 2g: its error grows like 1e-7 / |g|
+   (test_hg_eq11_matches_stable_form). The renderer asks for 1 - mu and 1 + mu, and gets eq. 11
+   rearranged: 2 g (1 - mu) = s^2 - (1 - g)^2 and 2 g (1 + mu) = (1 + g)^2 - s^2, each a
+   difference of squares, with 1 + g - D = 2 g (1 - u) and D - (1 - g) = 2 g u, give
+     1 - mu = (1 - g)^2 (1 - u) (1 + g + D) / D^2,   1 + mu = (1 + g)^2 u (1 - g + D) / D^2:
+   no division by g and nothing that cancels. Near the peak (|g| -> 1) mu itself rounds to
+   +-1 long before the angle is 0 (at g = 0.99 one sample in 2000 would land on the peak
+   direction); sin(theta) = sqrt((1 - mu)(1 + mu)) from these keeps its full precision. */
+FOGRT__PRIVATE float fogrt__sample_hg_mu_eq11(float g, float u, float *one_minus_mu,
+                                              float *one_plus_mu) {
+    if (one_minus_mu) {                       /* the cancellation-free branch: eq. 11 rearranged */
+        float D = fogrt__hg_D(g, u), D2 = D * D;
+        *one_minus_mu = FOGRT__CLAMP((1.0f - g) * (1.0f - g) * (1.0f - u) * (1.0f + g + D) / D2,
+                                     0.0f, 2.0f);
+        *one_plus_mu = FOGRT__CLAMP((1.0f + g) * (1.0f + g) * u * (1.0f - g + D) / D2, 0.0f, 2.0f);
+        /* mu from the nearer end: no rounding */
+        return *one_minus_mu < *one_plus_mu ? 1.0f - *one_minus_mu : *one_plus_mu - 1.0f;
+    }
+    if (g == 0.0f) return 2.0f * u - 1.0f;
+    float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
+    return FOGRT__CLAMP((1.0f + g * g - s * s) / (2.0f * g), -1.0f, 1.0f);
+}
+/* The same inverse as mu, expanded so that nothing divides by g:
+     mu = (2u - (1 - g)) / D + 2 g (1 - g)(1 + g) u (1 - u) / D^2.
+   g = 0 gives mu = 2u - 1 (isotropic) with no special branch; u = 0 gives -1, u -> 1 gives 1. */
 FOGRT__PUBLIC float fogrt_sample_hg_mu(float g, float u) {
     g = fogrt__clamp_g(g);
     u = FOGRT__CLAMP(u, 0.0f, 1.0f);
     float D = fogrt__hg_D(g, u);
-    float mu = (2.0f * u - (1.0f - g)) / D + 2.0f * g * (1.0f - g) * (1.0f + g) * u * (1.0f - u) / (D * D);
+    float mu = (2.0f * u - (1.0f - g)) / D +
+               2.0f * g * (1.0f - g) * (1.0f + g) * u * (1.0f - u) / (D * D);
     return FOGRT__CLAMP(mu, -1.0f, 1.0f);
 }
-/* Near the peak (|g| -> 1) mu rounds to +-1 long before the angle is 0: at g = 0.99 about
-   one sample in 2000 would land exactly on the peak direction. The same expansion gives
-   the distances to both ends as products, with nothing that cancels:
-     1 - mu = (1 - g)^2 (1 - u) (1 + g + D) / D^2,   1 + mu = (1 + g)^2 u (1 - g + D) / D^2,
-   so sin(theta) = sqrt((1 - mu)(1 + mu)) keeps its full precision (eq. 11, rearranged). */
-FOGRT__PRIVATE void fogrt__sample_hg_pm(float g, float u, float *one_minus_mu, float *one_plus_mu) {
-    float D = fogrt__hg_D(g, u), D2 = D * D;
-    *one_minus_mu = FOGRT__CLAMP((1.0f - g) * (1.0f - g) * (1.0f - u) * (1.0f + g + D) / D2, 0.0f, 2.0f);
-    *one_plus_mu = FOGRT__CLAMP((1.0f + g) * (1.0f + g) * u * (1.0f - g + D) / D2, 0.0f, 2.0f);
-}
 /* The same for a unit wo (the integrator's, which skips the normalisation). */
-FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg_unit(float g, fogrt__v3 wo, float u1, float u2, float *pdf) {
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg_unit(float g, fogrt__v3 wo, float u1, float u2,
+                                               float *pdf) {
     fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));   /* z: propagation */
-    float omm, opm;
+    float one_minus_mu, one_plus_mu, mu;
     g = fogrt__clamp_g(g);
-    fogrt__sample_hg_pm(g, FOGRT__CLAMP(u1, 0.0f, 1.0f), &omm, &opm);
-    float mu = omm < opm ? 1.0f - omm : opm - 1.0f;    /* from the nearer end: no rounding */
-    if (pdf) *pdf = fogrt__hg_phase_pm(g, omm, opm);
-    return fogrt__around(&f, mu, sqrtf(omm * opm), u2);
+    mu = fogrt__sample_hg_mu_eq11(g, FOGRT__CLAMP(u1, 0.0f, 1.0f), &one_minus_mu, &one_plus_mu);
+    if (pdf) *pdf = fogrt__hg_phase_pm(g, one_minus_mu, one_plus_mu);
+    return fogrt__direction_at(&f, mu, sqrtf(one_minus_mu * one_plus_mu), u2);
 }
 FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf) {
     return fogrt__sample_hg_unit(g, fogrt__normalize(wo), u1, u2, pdf);
@@ -2564,9 +2747,6 @@ FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi) {
                               FOGRT__CLAMP(0.5f * fogrt__dot(b, b), 0.0f, 2.0f));
 }
 #endif /* FOGRT_NO_MEDIUM */
-
-
-
 
 /* ------------------------------------------------------------------------------------------
    3.4 The global illumination pipeline: Algorithm 1 (eq. 13) and the one-bounce baseline
@@ -2593,8 +2773,9 @@ FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi) {
    (CS184's -o 0).
    ------------------------------------------------------------------------------------------ */
 /* A ray's hit as a surface point: the point, its geometric normal and its shading normal. */
-FOGRT__HOT void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, const fogrt_hit *h,
-                                     fogrt__v3 *p, fogrt__v3 *ng, fogrt__v3 *ns) {
+FOGRT__HOT void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d,
+                                     const fogrt_hit *h, fogrt__v3 *p, fogrt__v3 *ng,
+                                     fogrt__v3 *ns) {
     *p = fogrt__madd(o, d, h->t);
     if (h->prim < s->tri_count) {
         const fogrt__v3 *v = &s->tri_v[3 * h->prim];
@@ -2602,7 +2783,9 @@ FOGRT__HOT void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v
         *ns = *ng;
         if (s->tri_has_n[h->prim]) {   /* interpolated shading normal, on the side of ng */
             const fogrt__v3 *n = &s->tri_n[3 * h->prim];
-            fogrt__v3 sn = fogrt__add(fogrt__scale(n[0], 1.0f - h->u - h->v), fogrt__add(fogrt__scale(n[1], h->u), fogrt__scale(n[2], h->v)));
+            fogrt__v3 sn =
+                    fogrt__add(fogrt__scale(n[0], 1.0f - h->u - h->v),
+                               fogrt__add(fogrt__scale(n[1], h->u), fogrt__scale(n[2], h->v)));
             if (fogrt__dot(sn, sn) > 0.0f) {
                 sn = fogrt__normalize(sn);
                 *ns = fogrt__dot(sn, *ng) < 0.0f ? fogrt__neg(sn) : sn;
@@ -2620,24 +2803,32 @@ FOGRT__HOT void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v
    along -wo: reflective BSDFs are two-sided (the frame turns to wo's side), refractive ones
    keep the outward normal, so wo.z < 0 in the frame means "inside". Returns whether wo is
    on the front side. */
-FOGRT__HOT bool fogrt__surface_vertex_set(fogrt__vertex *v, const fogrt_material_desc *m, fogrt__v3 wo,
-                                          fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns, bool in_medium) {
+FOGRT__HOT bool fogrt__surface_vertex_set(fogrt__vertex *v, const fogrt_material_desc *m,
+                                          fogrt__v3 wo, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns,
+                                          bool in_medium) {
     fogrt_bsdf_type type = fogrt__bsdf_type(m);
     bool entering = fogrt__dot(wo, ng) > 0.0f;
     if (type < FOGRT_BSDF_REFRACTION) {                  /* reflects only: two-sided */
-        if (!entering) { ng = fogrt__neg(ng); ns = fogrt__neg(ns); }
+        if (!entering) {
+            ng = fogrt__neg(ng);
+            ns = fogrt__neg(ns);
+        }
         if (fogrt__dot(wo, ns) <= 0.0f) ns = ng;
     }
     v->p = p;
     v->frame = fogrt__frame_from_z(ns);
-    v->ng = ng; v->wo = wo; v->m = m;
-    v->is_medium = false; v->in_medium = in_medium;
+    v->ng = ng;
+    v->wo = wo;
+    v->m = m;
+    v->is_medium = false;
+    v->in_medium = in_medium;
     return entering;
 }
 /* Lines 19-20: a new direction from the BSDF at surface vertex v, in world space. A shading
    normal can send a direction through the geometric surface: such a sample is dropped. */
-FOGRT__HOT bool fogrt__sample_surface(const fogrt__settings *st, const fogrt__vertex *v, const float *u,
-                                      fogrt_bsdf_sample *bs, fogrt__v3 *wi, float *cos_o) {
+FOGRT__HOT bool fogrt__sample_surface(const fogrt__settings *st, const fogrt__vertex *v,
+                                      const float *u, fogrt_bsdf_sample *bs, fogrt__v3 *wi,
+                                      float *cos_o) {
     fogrt__v3 wo_l = fogrt__to_local(&v->frame, v->wo);
     *cos_o = wo_l.z;
     if (!fogrt_sample_bsdf(v->m, st->desc.fresnel, wo_l, u[0], u[1], u[2], bs)) return false;
@@ -2648,8 +2839,8 @@ FOGRT__HOT bool fogrt__sample_surface(const fogrt__settings *st, const fogrt__ve
 /* Lines 5-10: light sampling at a scattering vertex v, every light (area lights
    light_samples times), each sample f Le T w / (n pdf) with w the MIS weight (1 for a point
    or spot light, which BSDF sampling can never hit). */
-FOGRT__PRIVATE fogrt__v3 fogrt__nee(const fogrt_scene *s, const fogrt__settings *st, const fogrt__vertex *v,
-                                    fogrt_rng *rng, uint64_t *rays) {
+FOGRT__PRIVATE fogrt__v3 fogrt__nee(const fogrt_scene *s, const fogrt__settings *st,
+                                    const fogrt__vertex *v, fogrt_rng *rng, uint64_t *rays) {
     fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
     uint32_t total = s->light_count + s->area_light_count;
     for (uint32_t i = 0; i < total; ++i) {
@@ -2657,11 +2848,15 @@ FOGRT__PRIVATE fogrt__v3 fogrt__nee(const fogrt_scene *s, const fogrt__settings 
         for (int j = 0; j < n; ++j) {
             fogrt_light_sample ls;
             float pdf_b, tr, u[3];
-            u[0] = fogrt_rng_float(rng); u[1] = fogrt_rng_float(rng); u[2] = fogrt_rng_float(rng);
+            u[0] = fogrt_rng_float(rng);
+            u[1] = fogrt_rng_float(rng);
+            u[2] = fogrt_rng_float(rng);
             if (!fogrt_scene_sample_light(s, i, v->p, u[0], u[1], u[2], &ls)) continue;
             fogrt__v3 f = fogrt__vertex_f(s, v, ls.wi, &pdf_b);
             if (fogrt__is_black(f) || (tr = fogrt__shadow(s, v, &ls, rays)) == 0.0f) continue;
-            float w = ls.is_delta || !st->desc.mis ? 1.0f : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
+            float w = ls.is_delta || !st->desc.mis
+                              ? 1.0f
+                              : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
             L = fogrt__add(L, fogrt__scale(fogrt__mul(f, ls.Le), tr * w / (ls.pdf * (float)n)));
         }
     }
@@ -2670,12 +2865,14 @@ FOGRT__PRIVATE fogrt__v3 fogrt__nee(const fogrt_scene *s, const fogrt__settings 
 /* The MIS weight of emission that the ray found by BSDF or phase sampling from prev_p with
    density prev_pdf (1 after a camera ray or a specular bounce, which light sampling cannot
    produce; 0 with MIS off, where light sampling alone counts area lights). */
-FOGRT__PRIVATE float fogrt__emission_weight(const fogrt_scene *s, const fogrt__settings *st, bool prev_delta,
-                                            float prev_pdf, fogrt__v3 prev_p, const fogrt_hit *hit, fogrt__v3 p,
-                                            fogrt__v3 ng) {
+FOGRT__PRIVATE float fogrt__emission_weight(const fogrt_scene *s, const fogrt__settings *st,
+                                            bool prev_delta, float prev_pdf, fogrt__v3 prev_p,
+                                            const fogrt_hit *hit, fogrt__v3 p, fogrt__v3 ng) {
     if (prev_delta || !st->desc.nee) return 1.0f;
     if (!st->desc.mis) return 0.0f;
-    return fogrt__power_heuristic(prev_pdf, (float)st->desc.light_samples * fogrt__area_light_pdf(s, hit->prim, prev_p, p, ng));
+    return fogrt__power_heuristic(prev_pdf,
+                                  (float)st->desc.light_samples *
+                                          fogrt__area_light_pdf(s, hit->prim, prev_p, p, ng));
 }
 /* Algorithm 1's state between two vertices: the ray, the throughput beta, the light
    gathered, the vertex just found, and what MIS needs of the vertex the ray left. */
@@ -2696,9 +2893,10 @@ typedef struct fogrt__walk {
    ray, with the emission the ray reaches on the way. Returns false when the path ends
    there (it left the scene, or hit a black diffuse surface). limit: the depth at which the
    path stops (Part II's steps skip what only a deeper path would use). */
-FOGRT__PRIVATE bool fogrt__next_vertex(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w, int limit) {
+FOGRT__PRIVATE bool fogrt__next_vertex(const fogrt_scene *s, const fogrt__settings *st,
+                                       fogrt__walk *w, int limit) {
 #ifndef FOGRT_MINIMAL
-    if (w->x) return fogrt__x_next_event(s, st, w->x, limit);           /* SEAM 7a: E's next event */
+    if (w->x) return fogrt__x_next_event(s, st, w->x, limit); /* SEAM 7a: E's next event */
 #endif
     (void)limit;
     fogrt_hit hit;
@@ -2706,7 +2904,8 @@ FOGRT__PRIVATE bool fogrt__next_vertex(const fogrt_scene *s, const fogrt__settin
     ++*w->rays;
     bool found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, &hit, false);         /* 3: t_i */
 #ifndef FOGRT_NO_MEDIUM
-    if (w->in_fog) t_fog = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(w->rng));   /* 4 */
+    if (w->in_fog)
+        t_fog = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(w->rng)); /* 4 */
 #endif
     fogrt__vertex *v = &w->v;
     if (t_fog < (found ? hit.t : INFINITY)) {                                          /* 5, 14 */
@@ -2719,16 +2918,19 @@ FOGRT__PRIVATE bool fogrt__next_vertex(const fogrt_scene *s, const fogrt__settin
         v->ng = fogrt__v(0.0f, 0.0f, 0.0f);
         return true;
     }
-    if (!found) {                                                                       /* the sky */
+    if (!found) { /* the sky */
         if (s->has_env && w->depth >= st->desc.min_depth)
             w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__env_radiance(s, w->d)));
         return false;
     }
-    const fogrt_material_desc *m = &s->materials[fogrt_scene_get_prim_material(s, hit.prim)];   /* 8, 18 */
+    const fogrt_material_desc *m =
+            &s->materials[fogrt_scene_get_prim_material(s, hit.prim)]; /* 8, 18 */
     fogrt__v3 p, ng, ns;
     fogrt__surface_frame(s, w->o, w->d, &hit, &p, &ng, &ns);
-    if (!fogrt__is_black(m->emission) && fogrt__dot(w->d, ng) < 0.0f && w->depth >= st->desc.min_depth) {
-        float mis = fogrt__emission_weight(s, st, w->prev_delta, w->prev_pdf, w->prev_p, &hit, p, ng);
+    if (!fogrt__is_black(m->emission) && fogrt__dot(w->d, ng) < 0.0f &&
+        w->depth >= st->desc.min_depth) {
+        float mis =
+                fogrt__emission_weight(s, st, w->prev_delta, w->prev_pdf, w->prev_p, &hit, p, ng);
         w->L = fogrt__add(w->L, fogrt__scale(fogrt__mul(w->beta, m->emission), mis));
     }
     if (fogrt__bsdf_type(m) == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance)) return false;
@@ -2741,9 +2943,10 @@ FOGRT__PRIVATE bool fogrt__scatters(const fogrt__vertex *v) {
     return v->is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v->m));
 }
 /* Lines 5-10: the light sampled at a scattering vertex (6 in fog, 9 on a surface). */
-FOGRT__PRIVATE void fogrt__light_at_vertex(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w) {
+FOGRT__PRIVATE void fogrt__light_at_vertex(const fogrt_scene *s, const fogrt__settings *st,
+                                           fogrt__walk *w) {
 #ifndef FOGRT_MINIMAL
-    if (w->x) {                                                          /* SEAM 7b: E's light step */
+    if (w->x) { /* SEAM 7b: E's light step */
         fogrt__x_light_step(s, st, w->x);
         return;
     }
@@ -2755,7 +2958,8 @@ FOGRT__PRIVATE void fogrt__light_at_vertex(const fogrt_scene *s, const fogrt__se
    object (19-21), and the weight of eq. 13 (line 22), f |cos theta| / pdf. In fog that
    weight is p / pdf = 1: eq. 12 samples the phase function exactly. Returns false when no
    direction could be drawn. */
-FOGRT__PRIVATE bool fogrt__new_direction(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w) {
+FOGRT__PRIVATE bool fogrt__new_direction(const fogrt_scene *s, const fogrt__settings *st,
+                                         fogrt__walk *w) {
 #ifndef FOGRT_MINIMAL
     if (w->x) return fogrt__x_scatter(s, st, w->x);                      /* SEAM 7c: E's scatter */
 #endif
@@ -2795,7 +2999,7 @@ FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__walk *w) {
     float q = FOGRT__MIN(0.95f, fogrt__max3(w->beta));
     float u = fogrt_rng_float(w->rng);
 #ifndef FOGRT_MINIMAL
-    if (w->x) q = fogrt__x_roulette_q(st, w->x, u);                      /* SEAM 7d: the pilot's q (C) */
+    if (w->x) q = fogrt__x_roulette_q(st, w->x, u); /* SEAM 7d: the pilot's q (C) */
 #endif
     if (!(u < q)) return false;
     w->beta = fogrt__scale(w->beta, 1.0f / q);
@@ -2803,8 +3007,8 @@ FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__walk *w) {
 }
 
 /* The walk of a camera ray from o along d. */
-FOGRT__PRIVATE void fogrt__walk_start(fogrt__walk *w, const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, fogrt_rng *rng,
-                                      uint64_t *rays) {
+FOGRT__PRIVATE void fogrt__walk_start(fogrt__walk *w, const fogrt_scene *s, fogrt__v3 o,
+                                      fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
     memset(w, 0, sizeof *w);
     w->o = o;
     w->d = d;
@@ -2812,7 +3016,7 @@ FOGRT__PRIVATE void fogrt__walk_start(fogrt__walk *w, const fogrt_scene *s, fogr
     w->beta = fogrt__v(1.0f, 1.0f, 1.0f);
     w->prev_pdf = 1.0f;
     w->prev_delta = true;
-    w->in_fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0;             /* the camera is in the fog */
+    w->in_fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0; /* the camera is in the fog */
     w->rng = rng;
     w->rays = rays;
 }
@@ -2820,16 +3024,17 @@ FOGRT__PRIVATE void fogrt__walk_start(fogrt__walk *w, const fogrt_scene *s, fogr
    (section 4.3): the camera ray is followed through mirrors and glass to the first
    scattering vertex, which samples the lights and takes one more step that only adds the
    emission it finds (its MIS half). */
-FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w,
-                                           bool one_bounce) {
+FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__settings *st,
+                                           fogrt__walk *w, bool one_bounce) {
     int limit = st->max_depth;                                           /* 2: ray depth > 0 */
     for (uint32_t vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
         if (!fogrt__next_vertex(s, st, w, limit)) break;                 /* 3-5, 8, 14, 18 */
         if (w->depth >= limit || fogrt__is_black(w->beta)) break;        /* 2: ray depth > 0 */
         fogrt__light_at_vertex(s, st, w);                                /* 5-10 */
-        if (one_bounce && fogrt__scatters(&w->v)) limit = w->depth + 1;  /* the baseline: one step more */
+        if (one_bounce && fogrt__scatters(&w->v))
+            limit = w->depth + 1; /* the baseline: one step more */
         if (!fogrt__new_direction(s, st, w)) break;                      /* 11-22 */
-        if (!fogrt__roulette(st, w)) break;                              /* 2: coin flip(p); 12, 23 */
+        if (!fogrt__roulette(st, w)) break; /* 2: coin flip(p); 12, 23 */
     }
     return w->L;
 }
@@ -2837,8 +3042,10 @@ FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__se
 /* ------------------------------------------------------------------------------------------
    I.3 The camera: pinhole or thin lens (the paper's section 4.2)
    ------------------------------------------------------------------------------------------ */
-typedef struct fogrt__camera { fogrt__v3 pos, right, up, fwd; float tan_x, tan_y, lens, focal; } fogrt__camera;
-
+typedef struct fogrt__camera {
+    fogrt__v3 pos, right, up, fwd;
+    float tan_x, tan_y, lens, focal;
+} fogrt__camera;
 FOGRT__PRIVATE fogrt__camera fogrt__camera_setup(const fogrt_scene *s, int width, int height) {
     fogrt__camera c;
     fogrt_camera_desc d = s->camera;
@@ -2857,23 +3064,27 @@ FOGRT__PRIVATE fogrt__camera fogrt__camera_setup(const fogrt_scene *s, int width
     c.right = fogrt__normalize(fogrt__cross(c.fwd, d.up));
     c.up = fogrt__cross(c.right, c.fwd);
     float t = tanf(0.5f * d.fov_deg * FOGRT__PI / 180.0f);
-    if (d.fov_is_horizontal) { c.tan_x = t; c.tan_y = t / aspect; }
-    else { c.tan_y = t; c.tan_x = t * aspect; }
+    c.tan_x = d.fov_is_horizontal ? t : t * aspect;
+    c.tan_y = d.fov_is_horizontal ? t / aspect : t;
     c.lens = d.lens_radius;
-    c.focal = d.focal_distance > 0.0f ? d.focal_distance : fogrt__length(fogrt__sub(d.look_at, d.position));
+    c.focal = d.focal_distance > 0.0f ? d.focal_distance
+                                      : fogrt__length(fogrt__sub(d.look_at, d.position));
     return c;
 }
-FOGRT__PRIVATE void fogrt__camera_generate(const fogrt__camera *c, int width, int height, float px, float py,
-                                           float lu1, float lu2, fogrt__v3 *o, fogrt__v3 *d) {
+FOGRT__PRIVATE void fogrt__camera_generate(const fogrt__camera *c, int width, int height, float px,
+                                           float py, float lu1, float lu2, fogrt__v3 *o,
+                                           fogrt__v3 *d) {
     float x = (2.0f * px / (float)width - 1.0f) * c->tan_x;
     float y = (1.0f - 2.0f * py / (float)height) * c->tan_y;
-    fogrt__v3 dir = fogrt__normalize(fogrt__add(c->fwd, fogrt__add(fogrt__scale(c->right, x), fogrt__scale(c->up, y))));
+    fogrt__v3 dir = fogrt__normalize(
+            fogrt__add(c->fwd, fogrt__add(fogrt__scale(c->right, x), fogrt__scale(c->up, y))));
     *o = c->pos;
     if (c->lens > 0.0f) {        /* thin lens: aim through the focus point from a lens sample */
         fogrt__v3 focus = fogrt__madd(c->pos, dir, c->focal / fogrt__dot(dir, c->fwd));
         float lx, ly;
         fogrt__concentric_disk(lu1, lu2, &lx, &ly);
-        *o = fogrt__add(c->pos, fogrt__add(fogrt__scale(c->right, lx * c->lens), fogrt__scale(c->up, ly * c->lens)));
+        *o = fogrt__add(c->pos, fogrt__add(fogrt__scale(c->right, lx * c->lens),
+                                           fogrt__scale(c->up, ly * c->lens)));
         dir = fogrt__normalize(fogrt__sub(focus, *o));
     }
     *d = dir;
@@ -2891,14 +3102,16 @@ FOGRT__PRIVATE float fogrt__tri_area(const fogrt_scene *s, uint32_t t) {
 }
 /* An emissive triangle that can be sampled: emission and a non-zero area. */
 FOGRT__PRIVATE bool fogrt__tri_emits(const fogrt_scene *s, uint32_t t) {
-    return !fogrt__is_black(s->materials[s->tri_material[t]].emission) && fogrt__tri_area(s, t) > 0.0f;
+    return !fogrt__is_black(s->materials[s->tri_material[t]].emission) &&
+           fogrt__tri_area(s, t) > 0.0f;
 }
 FOGRT__PRIVATE bool fogrt__sphere_emits(const fogrt_scene *s, uint32_t i) {
     return !fogrt__is_black(s->materials[s->sph_material[i]].emission);
 }
 /* Whether any material emits (if none, no triangle needs looking at). */
 FOGRT__PRIVATE bool fogrt__some_material_emits(const fogrt_scene *s) {
-    for (uint32_t i = 0; i < s->material_count; ++i) if (!fogrt__is_black(s->materials[i].emission)) return true;
+    for (uint32_t i = 0; i < s->material_count; ++i)
+        if (!fogrt__is_black(s->materials[i].emission)) return true;
     return false;
 }
 /* Emissive triangles of one mesh form one light; a CDF over their areas picks one. */
@@ -2908,7 +3121,10 @@ FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s, uint32_t tri_count) {
         if (!fogrt__tri_emits(s, i)) continue;
         if (s->tri_mesh[i] != prev_mesh) {               /* a new mesh: a new light */
             fogrt__area_light *N = &s->area_lights[g++];
-            N->first = k; N->count = 0; N->sphere = UINT32_MAX; N->area = 0.0f;
+            N->first = k;
+            N->count = 0;
+            N->sphere = UINT32_MAX;
+            N->area = 0.0f;
             prev_mesh = s->tri_mesh[i];
         }
         fogrt__area_light *L = &s->area_lights[g - 1];
@@ -2928,15 +3144,21 @@ FOGRT__PRIVATE uint32_t fogrt__mesh_lights(fogrt_scene *s, uint32_t tri_count) {
 }
 FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s) {
     uint32_t i, n_tri = 0, n_groups = 0, n_sph = 0, prev_mesh = UINT32_MAX;
-    uint32_t n_prims = s->tri_count + s->sph_count, tri_count = fogrt__some_material_emits(s) ? s->tri_count : 0;
+    uint32_t n_prims = s->tri_count + s->sph_count,
+             tri_count = fogrt__some_material_emits(s) ? s->tri_count : 0;
     for (i = 0; i < tri_count; ++i) {
         if (!fogrt__tri_emits(s, i)) continue;
-        if (s->tri_mesh[i] != prev_mesh) { n_groups++; prev_mesh = s->tri_mesh[i]; }
+        if (s->tri_mesh[i] != prev_mesh) {
+            n_groups++;
+            prev_mesh = s->tri_mesh[i];
+        }
         n_tri++;
     }
     for (i = 0; i < s->sph_count; ++i) n_sph += fogrt__sphere_emits(s, i);
-    s->prim_light = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n_prims ? n_prims : 1));
-    s->area_lights = (fogrt__area_light *)fogrt__alloc(&s->allocator, sizeof(fogrt__area_light) * (n_groups + n_sph + 1));
+    s->prim_light =
+            (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n_prims ? n_prims : 1));
+    s->area_lights = (fogrt__area_light *)fogrt__alloc(
+            &s->allocator, sizeof(fogrt__area_light) * (n_groups + n_sph + 1));
     s->light_prims = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (n_tri + 1));
     s->light_cdf = (float *)fogrt__alloc(&s->allocator, sizeof(float) * (n_tri + 1));
     if (!s->prim_light || !s->area_lights || !s->light_prims || !s->light_cdf) return false;
@@ -2945,7 +3167,8 @@ FOGRT__PRIVATE bool fogrt__build_lights(fogrt_scene *s) {
     for (i = 0; i < s->sph_count; ++i) {      /* an emissive sphere is a light of its own */
         if (!fogrt__sphere_emits(s, i)) continue;
         fogrt__area_light *L = &s->area_lights[g];
-        L->first = 0; L->count = 0; L->sphere = i;
+        L->first = L->count = 0;
+        L->sphere = i;
         L->area = 4.0f * FOGRT__PI * s->sph_r[i] * s->sph_r[i];
         s->prim_light[s->tri_count + i] = g++;
     }
@@ -2976,8 +3199,9 @@ FOGRT__PRIVATE void fogrt__bounds(fogrt_scene *s, fogrt__build *b, uint32_t n) {
         fogrt__aabb_union(&sb, &box);
         s->prim_index[i] = i;
     }
-    if (n == 0) { sb.lo = fogrt__v(0, 0, 0); sb.hi = fogrt__v(0, 0, 0); }
-    s->bmin = sb.lo; s->bmax = sb.hi;
+    if (n == 0) sb.lo = sb.hi = fogrt__v(0, 0, 0);
+    s->bmin = sb.lo;
+    s->bmax = sb.hi;
     float diag = fogrt__length(fogrt__sub(s->bmax, s->bmin));
     if (!(diag > 0.0f)) diag = 1.0f;
     s->eps = 1e-6f * diag;
@@ -2991,7 +3215,9 @@ FOGRT__PRIVATE void fogrt__pack_prims(fogrt_scene *s, uint32_t n) {
         p->id = id;
         if (id < s->tri_count) {
             const fogrt__v3 *v = &s->tri_v[3 * id];
-            p->a = v[0]; p->b = fogrt__sub(v[1], v[0]); p->c = fogrt__sub(v[2], v[0]);
+            p->a = v[0];
+            p->b = fogrt__sub(v[1], v[0]);
+            p->c = fogrt__sub(v[2], v[0]);
         } else {
             p->a = s->sph_c[id - s->tri_count];
             p->b = fogrt__v(s->sph_r[id - s->tri_count], 0.0f, 0.0f);
@@ -2999,49 +3225,59 @@ FOGRT__PRIVATE void fogrt__pack_prims(fogrt_scene *s, uint32_t n) {
         }
     }
 }
-
-
 FOGRT__PUBLIC fogrt_build_desc fogrt_build_defaults(void) {
-    /* heuristic, bins, c_trav, c_int, max_leaf_size, layout, roulette_pilot, release_binary, resolved */
-    static const fogrt_build_desc d = { FOGRT_BVH_SAH, FOGRT_BVH_BINS, 1.0f, 1.0f, 4, FOGRT_BVH_LAYOUT_DEFAULT, true, false, true };
+    /* heuristic, bins, c_trav, c_int, max_leaf_size, layout, roulette_pilot,
+       release_binary, resolved */
+    static const fogrt_build_desc d = {
+        FOGRT_BVH_SAH, FOGRT_BVH_BINS, 1.0f, 1.0f, 4, FOGRT_BVH_LAYOUT_DEFAULT, true, false, true
+    };
     return d;
 }
 /* The desc (NULL: the defaults), checked. Like the render desc it must come from
    fogrt_build_defaults(): in a zeroed desc, c_trav 0 would mean "traversal is free". */
-FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fogrt_build_desc *in, fogrt_build_desc *d) {
+FOGRT__PRIVATE fogrt_result fogrt__resolve_build(const fogrt_scene *s, const fogrt_build_desc *in,
+                                                 fogrt_build_desc *d) {
     *d = in ? *in : fogrt_build_defaults();
     FOGRT__REFUSE_IF(!d->resolved, INVALID_ARGUMENT, "build desc: not from fogrt_build_defaults()");
-    if ((unsigned)d->heuristic >= (unsigned)FOGRT_BVH_NUM || (unsigned)d->layout >= (unsigned)FOGRT_BVH_LAYOUT_NUM ||
-        d->bins < 1 || d->bins > 64 ||
+    if ((unsigned)d->heuristic >= (unsigned)FOGRT_BVH_NUM ||
+        (unsigned)d->layout >= (unsigned)FOGRT_BVH_LAYOUT_NUM || d->bins < 1 || d->bins > 64 ||
         d->max_leaf_size < 1 || !(d->c_trav >= 0.0f) || !(d->c_int >= 0.0f) ||
         !fogrt__finite(d->c_trav) || !fogrt__finite(d->c_int))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "build desc: heuristic, layout, bins (1..64), max_leaf_size (>= 1), c_trav or c_int out of range");
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT,
+                           "build desc: heuristic, layout, bins (1..64), max_leaf_size (>= 1), "
+                           "c_trav or c_int out of range");
     if (d->heuristic == FOGRT_BVH_DEFAULT) d->heuristic = FOGRT_BVH_SAH;
     return fogrt__beyond_build(s, d);
 }
 /* The tree, and the primitives in BVH order in the form the traversal reads. leaf_keep:
    nodes of at most this many primitives stay leaves (0: the heuristic decides). Returns
    false when out of memory. */
-FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n, uint32_t leaf_keep) {
+FOGRT__PRIVATE bool fogrt__build_tree(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n,
+                                      uint32_t leaf_keep) {
     fogrt__build b;
-    uint32_t m = FOGRT__REFS(s, n, leaf_keep);          /* SEAM 2: references: n, and long slivers' pieces */
+    uint32_t m = FOGRT__REFS(s, n, leaf_keep); /* SEAM 2: references: n, and long slivers' pieces */
     memset(&b, 0, sizeof b);
     b.desc = *d;
-    b.box = (fogrt__aabb *)FOGRT__ALLOC_BUILD(&s->allocator, sizeof(fogrt__aabb) * (m + 1));   /* SEAM 2: huge pages */
-    s->nodes = (fogrt_bvh_node *)FOGRT__ALLOC_BUILD(&s->allocator, sizeof(fogrt_bvh_node) * (2 * (size_t)m + 2));
+    b.box = (fogrt__aabb *)FOGRT__ALLOC_BUILD(
+            &s->allocator, sizeof(fogrt__aabb) * (m + 1)); /* SEAM 2: huge pages */
+    s->nodes = (fogrt_bvh_node *)FOGRT__ALLOC_BUILD(&s->allocator,
+                                                    sizeof(fogrt_bvh_node) * (2 * (size_t)m + 2));
     s->prim_index = (uint32_t *)fogrt__alloc(&s->allocator, sizeof(uint32_t) * (m + 1));
     if (!leaf_keep)    /* else Part II's wide tree (A) will hold the primitives itself */
         s->prims = (fogrt__prim *)fogrt__alloc(&s->allocator, sizeof(fogrt__prim) * (n + 1));
     bool ok = b.box && s->nodes && s->prim_index && (leaf_keep || s->prims);
     if (ok) {
-        memset(&b.box[m], 0, sizeof b.box[m]);          /* a spare box: lane loads may read past the last */
+        memset(&b.box[m], 0, sizeof b.box[m]); /* a spare box: lane loads may read past the last */
         fogrt__bounds(s, &b, n);
         b.nodes = s->nodes;
         b.idx = s->prim_index;
         b.leaf_keep = leaf_keep;
         FOGRT__SPLIT_REFS(s, &b, n, m);                 /* SEAM 2 */
         if (n > 0) fogrt__bvh_build(&b, m);
-        else { memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node)); b.node_count = 2; }
+        else {
+            memset(s->nodes, 0, 2 * sizeof(fogrt_bvh_node));
+            b.node_count = 2;
+        }
         s->node_count = b.node_count;
         if (s->prims) fogrt__pack_prims(s, n);
     }
@@ -3066,8 +3302,9 @@ FOGRT__PRIVATE bool fogrt__build_all(fogrt_scene *s, const fogrt_build_desc *d, 
     leaf_keep = fogrt__x_leaf_keep(d, n);               /* SEAM 2: what the wide tree needs of it */
 #endif
     fogrt__forget_built(s);
-    if (!fogrt__build_lights(s) || !fogrt__build_tree(s, d, n, leaf_keep) || !fogrt__build_spots(s)) return false;
-    s->features = 0u;                                   /* the fog's bit; the report: fogrt_scene_get_features */
+    if (!fogrt__build_lights(s) || !fogrt__build_tree(s, d, n, leaf_keep) || !fogrt__build_spots(s))
+        return false;
+    s->features = 0u; /* the fog's bit; the report: fogrt_scene_get_features */
 #ifndef FOGRT_NO_MEDIUM
     if (s->medium.sigma_t > 0.0f) s->features = FOGRT_FEATURE_MEDIUM;
 #endif
@@ -3082,7 +3319,8 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
     FOGRT_ASSERT(s);
     FOGRT__PASS(fogrt__resolve_build(s, desc, &d));
     uint32_t n = s->tri_count + s->sph_count;
-    FOGRT__REFUSE_IF(n == 0 && s->light_count == 0 && !s->has_env, EMPTY_SCENE, "scene: no geometry and no light");
+    FOGRT__REFUSE_IF(n == 0 && s->light_count == 0 && !s->has_env, EMPTY_SCENE,
+                     "scene: no geometry and no light");
     fogrt_scene old = *s;
     if (!fogrt__build_all(s, &d, n)) {
         fogrt__free_built(s);
@@ -3091,10 +3329,11 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_build(fogrt_scene *s, const fogrt_build_d
     }
     fogrt__free_built(&old);                            /* the previous build's data */
     if (s->area_light_count == 0 && s->light_count == 0 && !s->has_env)
-        fogrt__log(s, FOGRT_LOG_WARNING, "scene: nothing emits light (no light, emissive material or environment): every image will be black");
+        fogrt__log(s, FOGRT_LOG_WARNING,
+                   "scene: nothing emits light (no light, emissive material or environment): every "
+                   "image will be black");
     return FOGRT_RESULT_OK;
 }
-
 
 /* ------------------------------------------------------------------------------------------
    I.3 Rendering, the error estimate, and output
@@ -3112,7 +3351,8 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_paper_defaults(void) {
         0, 0,                                           /* width, height: the image's */
         FOGRT_INTEGRATOR_PATH, FOGRT_FRESNEL_SCHLICK,
         64, 0, 3,                                       /* max_depth, min_depth, rr_depth */
-        true, true, false, false, false, false, false,  /* nee, mis, equiangular, glow, footprint, light_by_power, expected_emission */
+        /* nee, mis, equiangular, glow, footprint, light_by_power, expected_emission */
+        true, true, false, false, false, false, false,
         1, 0, 0,                                        /* light_samples, seed, threads */
         NULL,                                           /* sample_rate: every pixel alike */
         NULL, NULL, NULL, NULL,                         /* progress, user_data, cancel, radiance */
@@ -3126,29 +3366,35 @@ FOGRT__PRIVATE fogrt_result fogrt__resolve_render(const fogrt_scene *s, const fo
                                                   fogrt__settings *st, fogrt_render_desc *out) {
     fogrt_render_desc d = in ? *in : fogrt_render_defaults();
     FOGRT__REFUSE_IF(!d.resolved, INVALID_ARGUMENT,
-                     "render desc: not from fogrt_render_defaults() (a zeroed desc would mean max_depth 0 and no light sampling)");
+                     "render desc: not from fogrt_render_defaults() (a zeroed desc would mean "
+                     "max_depth 0 and no light sampling)");
     if (d.max_depth < -1 || d.min_depth < 0 || d.rr_depth < 0 || d.light_samples < 1 ||
-        (unsigned)d.integrator >= (unsigned)FOGRT_INTEGRATOR_NUM || (unsigned)d.fresnel >= (unsigned)FOGRT_FRESNEL_NUM)
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render desc: max_depth (>= -1), min_depth (>= 0), rr_depth (>= 0), light_samples (>= 1), integrator or fresnel out of range");
+        (unsigned)d.integrator >= (unsigned)FOGRT_INTEGRATOR_NUM ||
+        (unsigned)d.fresnel >= (unsigned)FOGRT_FRESNEL_NUM)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT,
+                           "render desc: max_depth (>= -1), min_depth (>= 0), rr_depth (>= 0), "
+                           "light_samples (>= 1), integrator or fresnel out of range");
     FOGRT__PASS(fogrt__beyond_render(s, &d));
     st->desc = d;
     st->max_depth = d.max_depth < 0 ? 0x7FFFFFFF : d.max_depth;
-    st->integrator = d.integrator == FOGRT_INTEGRATOR_DIRECT ? FOGRT_INTEGRATOR_DIRECT : FOGRT_INTEGRATOR_PATH;
+    st->integrator = d.integrator == FOGRT_INTEGRATOR_DIRECT ? FOGRT_INTEGRATOR_DIRECT
+                                                             : FOGRT_INTEGRATOR_PATH;
     if (out) *out = d;
     return FOGRT_RESULT_OK;
 }
 /* One sample of the radiance arriving at o along -d. */
-FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__v3 o, fogrt__v3 d,
-                                         fogrt_rng *rng, uint64_t *rays) {
-    if (st->desc.radiance) return st->desc.radiance(s, o, d, rng, st->desc.user_data);   /* the caller's */
+FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__settings *st,
+                                         fogrt__v3 o, fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
+    if (st->desc.radiance)
+        return st->desc.radiance(s, o, d, rng, st->desc.user_data); /* the caller's */
     fogrt__walk w;
     fogrt__walk_start(&w, s, o, d, rng, rays);
 #ifndef FOGRT_MINIMAL
-    if (fogrt__x_wanted(s, st)) return fogrt__x_radiance(s, st, &w);   /* SEAM 7: E's state for the walk */
+    if (fogrt__x_wanted(s, st))
+        return fogrt__x_radiance(s, st, &w); /* SEAM 7: E's state for the walk */
 #endif
     return fogrt__algorithm1(s, st, &w, st->integrator == FOGRT_INTEGRATOR_DIRECT);
 }
-
 FOGRT__PUBLIC void fogrt_image_resolve(const fogrt_image *img, float *rgb) {
     FOGRT_ASSERT(img && rgb);
     size_t n = (size_t)img->width * (size_t)img->height;
@@ -3159,7 +3405,9 @@ FOGRT__PUBLIC void fogrt_image_resolve(const fogrt_image *img, float *rgb) {
         rgb[3 * i + 2] = (float)(img->sum[3 * i + 2] * inv);
     }
 }
-FOGRT__PRIVATE double fogrt__luminance_d(double r, double g, double b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
+FOGRT__PRIVATE double fogrt__luminance_d(double r, double g, double b) {
+    return 0.2126 * r + 0.7152 * g + 0.0722 * b;
+}
 /* The variance of one pixel's mean luminance m. With R streams holding n_r samples and
    means m_r (n = sum n_r, m = sum n_r m_r / n), the between-stream spread
      V = sum_r n_r (m_r - m)^2 / ((R - 1) n)
@@ -3179,14 +3427,22 @@ FOGRT__PUBLIC double fogrt_image_pixel_variance(const fogrt_image *img, size_t p
         const uint32_t *N = img->stream_count + (size_t)FOGRT_IMAGE_STREAMS * pixel;
         double total = 0.0, n = 0.0, ssb = 0.0;
         int used = 0;
-        for (int r = 0; r < FOGRT_IMAGE_STREAMS; ++r) { total += S[r]; n += (double)N[r]; used += N[r] > 0; }
+        for (int r = 0; r < FOGRT_IMAGE_STREAMS; ++r) {
+            total += S[r];
+            n += (double)N[r];
+            used += N[r] > 0;
+        }
         if (used < 2) return 0.0;
         mean = total / n;
         for (int r = 0; r < FOGRT_IMAGE_STREAMS; ++r)
-            if (N[r] > 0) { double d = S[r] / (double)N[r] - mean; ssb += (double)N[r] * d * d; }
+            if (N[r] > 0) {
+                double d = S[r] / (double)N[r] - mean;
+                ssb += (double)N[r] * d * d;
+            }
         return ssb / ((double)(used - 1) * n);
     }
-    mean = fogrt__luminance_d(img->sum[3 * pixel], img->sum[3 * pixel + 1], img->sum[3 * pixel + 2]) / c;
+    const double *sum = img->sum + 3 * pixel;
+    mean = fogrt__luminance_d(sum[0], sum[1], sum[2]) / c;
     double var = (img->sum_sq[pixel] / c - mean * mean) / (c - 1.0);
     return var > 0.0 ? var : 0.0;   /* rounding can make a noise-free pixel slightly negative */
 }
@@ -3203,7 +3459,8 @@ FOGRT__PUBLIC void fogrt_image_error(const fogrt_image *img, fogrt_error_estimat
     for (size_t i = 0; i < n; ++i) {
         double c = img->count[i];
         if (c < 1.0) continue;
-        double mean = fogrt__luminance_d(img->sum[3 * i], img->sum[3 * i + 1], img->sum[3 * i + 2]) / c;
+        double mean =
+                fogrt__luminance_d(img->sum[3 * i], img->sum[3 * i + 1], img->sum[3 * i + 2]) / c;
         lum_sum += mean;
         mean_sq_sum += mean * mean;
         out->samples += img->count[i];
@@ -3228,14 +3485,16 @@ typedef struct fogrt__job {
    sample has its own stream, derived from (seed, pixel, sample index): the image does not
    depend on the thread that renders it. The pixel filter is a box: the ray goes through a
    uniform point of the pixel (jx, jy), stratified per stream by Part II (C). */
-FOGRT__PRIVATE void fogrt__pixel_ray(const fogrt__job *job, int width, int height, int x, int y, uint32_t index,
-                                     fogrt_rng *rng, fogrt__v3 *o, fogrt__v3 *d, float *jx, float *jy) {
+FOGRT__PRIVATE void fogrt__pixel_ray(const fogrt__job *job, int width, int height, int x, int y,
+                                     uint32_t index, fogrt_rng *rng, fogrt__v3 *o, fogrt__v3 *d,
+                                     float *jx, float *jy) {
     uint64_t pix = (uint64_t)y * (uint64_t)width + (uint64_t)x, key = (pix << 32) | (uint64_t)index;
     fogrt_rng_seed(rng, fogrt__hash64(key ^ job->base), 0);
 #ifndef FOGRT_NO_ESTIMATION
     fogrt__x_pixel_position(job->base, pix, index, jx, jy);                 /* SEAM 8 */
 #else
-    *jx = fogrt_rng_float(rng); *jy = fogrt_rng_float(rng);
+    *jx = fogrt_rng_float(rng);
+    *jy = fogrt_rng_float(rng);
 #endif
     float l1 = fogrt_rng_float(rng), l2 = fogrt_rng_float(rng);
     fogrt__camera_generate(&job->cam, width, height, (float)x + *jx, (float)y + *jy, l1, l2, o, d);
@@ -3244,21 +3503,27 @@ FOGRT__PRIVATE void fogrt__pixel_ray(const fogrt__job *job, int width, int heigh
 /* One row of pixels, spp samples each (or as many as their rates say). The NaN firewall:
    a non-finite sample is counted, never added (a zero in the mean, in its stream's mean
    too). Sample `index` adds its luminance to stream index mod FOGRT_IMAGE_STREAMS. */
-FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *rays, uint64_t *rejected,
-                                      uint64_t *samples, const volatile int *cancel) {
+FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *rays,
+                                      uint64_t *rejected, uint64_t *samples,
+                                      const volatile int *cancel) {
     fogrt_image *img = job->img;
     int width = img->width, height = img->height;
     bool streams = img->stream_sum && img->stream_count;
     for (int x = 0; x < width; ++x) {
         size_t pix = (size_t)y * (size_t)width + (size_t)x;
 #ifndef FOGRT_NO_ESTIMATION
-        uint32_t spp = job->st.desc.sample_rate ? fogrt__x_pixel_spp(job, pix) : (uint32_t)job->spp;   /* SEAM 8: rates (C) */
+        uint32_t spp = job->st.desc.sample_rate ? fogrt__x_pixel_spp(job, pix)
+                                                : (uint32_t)job->spp; /* SEAM 8: rates (C) */
 #else
         uint32_t spp = (uint32_t)job->spp;
 #endif
         for (uint32_t k = 0; k < spp; ++k) {
             uint32_t index = img->count[pix] + k;
-            if (cancel && *cancel) { spp = k; x = width; break; }   /* stop here: what is done stays counted */
+            if (cancel && *cancel) {                     /* stop here: what is done stays counted */
+                spp = k;
+                x = width;
+                break;
+            }
             size_t slot = (size_t)FOGRT_IMAGE_STREAMS * pix + index % FOGRT_IMAGE_STREAMS;
             fogrt_rng rng;
             fogrt__v3 o, d;
@@ -3266,7 +3531,10 @@ FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *ra
             fogrt__pixel_ray(job, width, height, x, y, index, &rng, &o, &d, &jx, &jy);
             fogrt__v3 Lr = fogrt__radiance(job->s, &job->st, o, d, &rng, rays);
             if (streams) ++img->stream_count[slot];
-            if (!fogrt__v3_finite(Lr)) { ++*rejected; continue; }
+            if (!fogrt__v3_finite(Lr)) {
+                ++*rejected;
+                continue;
+            }
             double lum = fogrt__luminance_d(Lr.x, Lr.y, Lr.z);
             img->sum[3 * pix + 0] += (double)Lr.x;
             img->sum[3 * pix + 1] += (double)Lr.y;
@@ -3278,17 +3546,22 @@ FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *ra
         img->count[pix] += spp;
     }
 }
-FOGRT__PRIVATE bool fogrt__report(const fogrt_render_desc *d, int rows_done, int rows_total, int spp) {
-    fogrt_progress p;
-    p.rows_done = rows_done; p.rows_total = rows_total; p.samples_per_pixel = spp;
+FOGRT__PRIVATE bool fogrt__report(const fogrt_render_desc *d, int rows_done, int rows_total,
+                                  int spp) {
+    fogrt_progress p = { rows_done, rows_total, spp };
     return d->progress(&p, d->user_data);
 }
-FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt_render_desc *d, const fogrt_image *img, int spp) {
-    if (!s->built) return fogrt__fail(s, FOGRT_RESULT_NOT_BUILT, "render: the scene changed since fogrt_scene_build");
+FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt_render_desc *d,
+                                               const fogrt_image *img, int spp) {
+    if (!s->built)
+        return fogrt__fail(s, FOGRT_RESULT_NOT_BUILT,
+                           "render: the scene changed since fogrt_scene_build");
     if (img->width <= 0 || img->height <= 0 || !img->sum || !img->sum_sq || !img->count ||
         (d->width && d->width != img->width) || (d->height && d->height != img->height))
-        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: image size does not match render desc width/height");
-    if (spp < 0) return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: samples_per_pixel < 0");
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT,
+                           "render: image size does not match render desc width/height");
+    if (spp < 0)
+        return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: samples_per_pixel < 0");
     return fogrt__beyond_image(s, d, img);
 }
 
@@ -3298,18 +3571,22 @@ FOGRT__PRIVATE int fogrt__threads(int asked) {
     int n = asked > 0 ? asked : FOGRT__OMP_MAX_THREADS();
     return FOGRT__MIN(n, FOGRT__MIN(FOGRT_MAX_THREADS, 4 * FOGRT__OMP_PROCS()));
 }
-FOGRT__PRIVATE bool fogrt__cancel_asked(const fogrt_render_desc *d) { return d->cancel && *d->cancel; }
+FOGRT__PRIVATE bool fogrt__cancel_asked(const fogrt_render_desc *d) {
+    return d->cancel && *d->cancel;
+}
 /* One parallel loop over the rows, handed out one at a time (rows differ in cost). The
    progress callback runs on the calling thread (OpenMP thread 0) whenever another block of
    rows is done; if it asks to stop, the rows not yet started are skipped. Returns false
    when cancelled. */
-FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render_desc *d, uint64_t *rays_out,
-                                       uint64_t *rejected_out, uint64_t *samples_out) {
+FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render_desc *d,
+                                       uint64_t *rays_out, uint64_t *rejected_out,
+                                       uint64_t *samples_out) {
     uint64_t rays = 0, rejected = 0, samples = 0;
     int y, height = job->img->height, block = height >= 32 ? height / 32 : 1;
     int rows_done = 0, cancelled = 0, last_report = 0, nthreads = fogrt__threads(d->threads);
     (void)nthreads;                                      /* read by OpenMP only */
-    FOGRT__OMP(omp parallel for schedule(dynamic, 1) num_threads(nthreads) reduction(+ : rays, rejected, samples))
+    FOGRT__OMP(omp parallel for schedule(dynamic, 1) num_threads(nthreads)
+               reduction(+ : rays, rejected, samples))
     for (y = 0; y < height; ++y) {
         int stop, done;
         FOGRT__OMP(omp atomic read)
@@ -3326,13 +3603,15 @@ FOGRT__PRIVATE bool fogrt__render_rows(const fogrt__job *job, const fogrt_render
             cancelled = stop;
         }
     }
-    *rays_out = rays; *rejected_out = rejected; *samples_out = samples;
+    *rays_out = rays;
+    *rejected_out = rejected;
+    *samples_out = samples;
     if (cancelled || fogrt__cancel_asked(d)) return false;
-    return !(d->progress && last_report != height && !fogrt__report(d, height, height, job->spp));   /* the final report */
+    return !(d->progress && last_report != height &&
+             !fogrt__report(d, height, height, job->spp)); /* the final report */
 }
-
-FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render_desc *desc, fogrt_image *img,
-                                        int spp, fogrt_render_stats *stats) {
+FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render_desc *desc,
+                                        fogrt_image *img, int spp, fogrt_render_stats *stats) {
     fogrt__job job;
     fogrt_render_desc d;
     fogrt_result result;
@@ -3341,15 +3620,21 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
     if (stats) memset(stats, 0, sizeof *stats);
     if ((result = fogrt__resolve_render(s, desc, &job.st, &d)) != FOGRT_RESULT_OK) return result;
     if ((result = fogrt__check_image(s, &d, img, spp)) != FOGRT_RESULT_OK) return result;
-    job.s = s; job.img = img; job.spp = spp;
+    job.s = s;
+    job.img = img;
+    job.spp = spp;
     job.cam = fogrt__camera_setup(s, img->width, img->height);
     job.base = fogrt__hash64(d.seed);
-    if (spp > 0 && !fogrt__render_rows(&job, &d, &rays, &rejected, &samples)) result = FOGRT_RESULT_CANCELLED;
-    if (d.sample_rate && result == FOGRT_RESULT_OK) img->rated_spp += (uint64_t)spp;   /* for the rates (C) */
+    if (spp > 0 && !fogrt__render_rows(&job, &d, &rays, &rejected, &samples))
+        result = FOGRT_RESULT_CANCELLED;
+    if (d.sample_rate && result == FOGRT_RESULT_OK)
+        img->rated_spp += (uint64_t)spp; /* for the rates (C) */
     img->rejected += rejected;
     if (stats) {
         size_t i = 0, n = 3 * (size_t)img->width * (size_t)img->height;
-        stats->camera_rays = samples; stats->rays = rays; stats->rejected = rejected;
+        stats->camera_rays = samples;
+        stats->rays = rays;
+        stats->rejected = rejected;
         while (i < n && img->sum[i] == 0.0) ++i;
         stats->black = i == n;
     }
@@ -3357,21 +3642,23 @@ FOGRT__PUBLIC fogrt_result fogrt_render(const fogrt_scene *s, const fogrt_render
 }
 
 #ifndef FOGRT_NO_STDIO
-FOGRT__PUBLIC fogrt_result fogrt_write_pfm(const char *path, int width, int height, const float *rgb) {
+FOGRT__PUBLIC fogrt_result fogrt_write_pfm(const char *path, int width, int height,
+                                           const float *rgb) {
     float one = 1.0f;
     unsigned char first;
     if (!path || !rgb || width <= 0 || height <= 0) return FOGRT_RESULT_INVALID_ARGUMENT;
     FILE *f = fopen(path, "wb");
     if (!f) return FOGRT_RESULT_IO_ERROR;
     memcpy(&first, &one, 1);                                     /* 0 on a little-endian machine */
-    bool ok = fprintf(f, "PF\n%d %d\n%s\n", width, height, first == 0 ? "-1.0" : "1.0") > 0;   /* the scale's sign: the byte order */
+    /* the scale's sign: the byte order */
+    bool ok = fprintf(f, "PF\n%d %d\n%s\n", width, height, first == 0 ? "-1.0" : "1.0") > 0;
     for (int y = height - 1; y >= 0 && ok; --y)                  /* PFM stores bottom row first */
-        ok = fwrite(rgb + (size_t)y * (size_t)width * 3, sizeof(float) * 3, (size_t)width, f) == (size_t)width;
+        ok = fwrite(rgb + (size_t)y * (size_t)width * 3, sizeof(float) * 3, (size_t)width, f) ==
+             (size_t)width;
     if (fclose(f) != 0) ok = false;
     return ok ? FOGRT_RESULT_OK : FOGRT_RESULT_IO_ERROR;
 }
 #endif
-
 
 /* ------------------------------------------------------------------------------------------
    I.3 The default scene: the CS184 Cornell box, filled with fog
@@ -3383,9 +3670,15 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s) {
     fogrt_scene keep = *s;
     fogrt_result r = fogrt__add_default(s);
     if (r != FOGRT_RESULT_OK) {
-        s->material_count = keep.material_count; s->tri_count = keep.tri_count; s->mesh_count = keep.mesh_count;
-        s->sph_count = keep.sph_count; s->light_count = keep.light_count;
-        s->camera = keep.camera; s->has_camera = keep.has_camera; s->medium = keep.medium; s->built = keep.built;
+        s->material_count = keep.material_count;
+        s->tri_count = keep.tri_count;
+        s->mesh_count = keep.mesh_count;
+        s->sph_count = keep.sph_count;
+        s->light_count = keep.light_count;
+        s->camera = keep.camera;
+        s->has_camera = keep.has_camera;
+        s->medium = keep.medium;
+        s->built = keep.built;
     }
     return r;
 }
@@ -3393,23 +3686,55 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_add_default(fogrt_scene *s) {
    (a, b, c, d) is counter-clockwise seen from its front, two triangles (a, b, c), (a, c, d);
    the lamp is a square just below the ceiling, facing down. */
 static const float fogrt__default_quads[6][12] = {
-    { -1, 0, -1,   -1, 0, 1,   1, 0, 1,   1, 0, -1 },                                    /* floor */
-    { -1, 1.5f, -1,   1, 1.5f, -1,   1, 1.5f, 1,   -1, 1.5f, 1 },                        /* ceiling */
-    { -1, 0, -1,   1, 0, -1,   1, 1.5f, -1,   -1, 1.5f, -1 },                            /* back */
-    { -1, 0, -1,   -1, 1.5f, -1,   -1, 1.5f, 1,   -1, 0, 1 },                            /* left */
-    { 1, 0, -1,   1, 0, 1,   1, 1.5f, 1,   1, 1.5f, -1 },                                /* right */
-    { -0.35f, 1.49f, -0.35f,   0.35f, 1.49f, -0.35f,   0.35f, 1.49f, 0.35f,   -0.35f, 1.49f, 0.35f } };   /* lamp */
+    { -1, 0, -1,   -1, 0, 1,   1, 0, 1,   1, 0, -1 },                        /* floor */
+    { -1, 1.5f, -1,   1, 1.5f, -1,   1, 1.5f, 1,   -1, 1.5f, 1 },            /* ceiling */
+    { -1, 0, -1,   1, 0, -1,   1, 1.5f, -1,   -1, 1.5f, -1 },                /* back */
+    { -1, 0, -1,   -1, 1.5f, -1,   -1, 1.5f, 1,   -1, 0, 1 },                /* left */
+    { 1, 0, -1,   1, 0, 1,   1, 1.5f, 1,   1, 1.5f, -1 },                    /* right */
+    { -0.35f, 1.49f, -0.35f,   0.35f, 1.49f, -0.35f,                         /* lamp */
+      0.35f, 1.49f, 0.35f,   -0.35f, 1.49f, 0.35f } };
+/* The default scene's lamp, camera and fog. */
+FOGRT__PRIVATE fogrt_result fogrt__add_default_view(fogrt_scene *s) {
+    fogrt_light_desc ld;
+    fogrt_camera_desc cd;
+    /* The spot light: high on the left, aimed at the floor right of centre; its cone shows
+       in the fog. */
+    memset(&ld, 0, sizeof ld);
+    ld.type = FOGRT_LIGHT_SPOT;
+    ld.position = fogrt__v(-0.8f, 1.4f, 0.6f);
+    ld.direction = fogrt__sub(fogrt__v(0.3f, 0.0f, 0.0f), ld.position);
+    ld.intensity = fogrt__v(16.0f, 20.0f, 26.0f);
+    ld.cutoff_deg = 16.0f;
+    ld.beam_deg = 11.0f;
+    ld.radius = 0.02f;
+    FOGRT__PASS(fogrt_scene_add_light(s, &ld));
+    memset(&cd, 0, sizeof cd);
+    cd.position = fogrt__v(0.0f, 0.75f, 3.6f);
+    cd.look_at = fogrt__v(0.0f, 0.7f, 0.0f);
+    cd.fov_deg = 38.0f;
+    FOGRT__PASS(fogrt_scene_set_camera(s, &cd));
+#ifndef FOGRT_NO_MEDIUM   /* a build without fog gets the same box, without fog */
+    fogrt_medium_desc fd;
+    memset(&fd, 0, sizeof fd);
+    fd.sigma_t = 0.3f;
+    fd.albedo = fogrt__v(0.9f, 0.9f, 0.9f);
+    fd.g = 0.6f;
+    FOGRT__PASS(fogrt_scene_set_medium(s, &fd));
+#endif
+    return FOGRT_RESULT_OK;
+}
 FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
     /* white, red, blue, matte: reflectance; the lamp: black, emitting (r, g, b, then emission) */
-    static const float diffuse[5][6] = { { 0.73f, 0.73f, 0.73f, 0, 0, 0 }, { 0.65f, 0.06f, 0.05f, 0, 0, 0 },
-                                         { 0.08f, 0.12f, 0.60f, 0, 0, 0 }, { 0.60f, 0.55f, 0.45f, 0, 0, 0 },
+    static const float diffuse[5][6] = { { 0.73f, 0.73f, 0.73f, 0, 0, 0 },
+                                         { 0.65f, 0.06f, 0.05f, 0, 0, 0 },
+                                         { 0.08f, 0.12f, 0.60f, 0, 0, 0 },
+                                         { 0.60f, 0.55f, 0.45f, 0, 0, 0 },
                                          { 0, 0, 0, 8.5f, 6.0f, 2.0f } };
-    static const uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 }, wall[6] = { 0, 0, 0, 1, 2, 4 };   /* the quads' materials */
+    static const uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
+    static const uint32_t wall[6] = { 0, 0, 0, 1, 2, 4 };                /* the quads' materials */
     uint32_t base = s->material_count, glass;
     fogrt_material_desc md;
     fogrt_mesh_desc mesh;
-    fogrt_light_desc ld;
-    fogrt_camera_desc cd;
     memset(&md, 0, sizeof md);
     md.type = FOGRT_BSDF_DIFFUSE;
     for (int i = 0; i < 5; ++i) {
@@ -3419,38 +3744,26 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
     }
     memset(&md, 0, sizeof md);
 #ifndef FOGRT_NO_GLASS
-    md.type = FOGRT_BSDF_GLASS; md.ior = 1.5f;
+    md.type = FOGRT_BSDF_GLASS;
+    md.ior = 1.5f;
 #else
     md.type = FOGRT_BSDF_MIRROR;                  /* a build without glass: a mirror sphere */
 #endif
-    md.reflectance = fogrt__v(1.0f, 1.0f, 1.0f); md.transmittance = fogrt__v(1.0f, 1.0f, 1.0f);
+    md.reflectance = fogrt__v(1.0f, 1.0f, 1.0f);
+    md.transmittance = fogrt__v(1.0f, 1.0f, 1.0f);
     FOGRT__PASS(fogrt_scene_add_material(s, &md, &glass));
     memset(&mesh, 0, sizeof mesh);
-    mesh.vertex_count = 4; mesh.indices = idx; mesh.triangle_count = 2;
+    mesh.vertex_count = 4;
+    mesh.indices = idx;
+    mesh.triangle_count = 2;
     for (int i = 0; i < 6; ++i) {
-        mesh.positions = fogrt__default_quads[i]; mesh.material = base + wall[i];
+        mesh.positions = fogrt__default_quads[i];
+        mesh.material = base + wall[i];
         FOGRT__PASS(fogrt_scene_add_mesh(s, &mesh));
     }
     FOGRT__PASS(fogrt_scene_add_sphere(s, fogrt__v(-0.45f, 0.35f, -0.35f), 0.35f, base + 3));
     FOGRT__PASS(fogrt_scene_add_sphere(s, fogrt__v(0.45f, 0.35f, 0.25f), 0.35f, glass));
-    /* The spot light: high on the left, aimed at the floor right of centre; its cone shows in the fog. */
-    memset(&ld, 0, sizeof ld);
-    ld.type = FOGRT_LIGHT_SPOT;
-    ld.position = fogrt__v(-0.8f, 1.4f, 0.6f);
-    ld.direction = fogrt__sub(fogrt__v(0.3f, 0.0f, 0.0f), ld.position);
-    ld.intensity = fogrt__v(16.0f, 20.0f, 26.0f);
-    ld.cutoff_deg = 16.0f; ld.beam_deg = 11.0f; ld.radius = 0.02f;
-    FOGRT__PASS(fogrt_scene_add_light(s, &ld));
-    memset(&cd, 0, sizeof cd);
-    cd.position = fogrt__v(0.0f, 0.75f, 3.6f); cd.look_at = fogrt__v(0.0f, 0.7f, 0.0f); cd.fov_deg = 38.0f;
-    FOGRT__PASS(fogrt_scene_set_camera(s, &cd));
-#ifndef FOGRT_NO_MEDIUM   /* a build without fog gets the same box, without fog */
-    fogrt_medium_desc fd;
-    memset(&fd, 0, sizeof fd);
-    fd.sigma_t = 0.3f; fd.albedo = fogrt__v(0.9f, 0.9f, 0.9f); fd.g = 0.6f;
-    FOGRT__PASS(fogrt_scene_set_medium(s, &fd));
-#endif
-    return FOGRT_RESULT_OK;
+    return fogrt__add_default_view(s);
 }
 
 #ifndef FOGRT_MINIMAL
@@ -4956,7 +5269,7 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_sample_glow(fogrt_vec3 to_light, float u1, float 
     float r = sqrtf(FOGRT__MAX(0.0f, 1.0f - FOGRT__CLAMP(u1, 0.0f, 1.0f)));   /* beta = pi r */
     float alpha = FOGRT__PI * (1.0f - r), beta = FOGRT__PI * r;
     if (pdf) *pdf = fogrt__glow_density(alpha, beta);
-    return fogrt__around(&f, cosf(alpha), sinf(FOGRT__MIN(alpha, beta)), u2);
+    return fogrt__direction_at(&f, cosf(alpha), sinf(FOGRT__MIN(alpha, beta)), u2);
 }
 FOGRT__PUBLIC float fogrt_glow_pdf(fogrt_vec3 to_light, fogrt_vec3 wi) {
     fogrt__v3 a = fogrt__sub(wi, to_light), b = fogrt__add(wi, to_light);
@@ -5029,7 +5342,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_glow_hg(const fogrt__hg_table *T, fogrt__
     float ca, sa;
     fogrt__cos_sin(alpha, &ca, &sa);
     *pdf = fogrt__glow_hg_density(T, (double)sa, dens);
-    return fogrt__around(&f, ca, sa, u2);
+    return fogrt__direction_at(&f, ca, sa, u2);
 }
 /* alpha from the chords |wi - l| = 2 sin(alpha/2) and |wi + l| = 2 cos(alpha/2), as the
    angle to the nearer end (fogrt__psi_of); sin(alpha) is half their product. */
@@ -7181,7 +7494,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__sample_rayleigh_unit(fogrt__v3 wo, float u1, flo
     fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));   /* z: propagation */
     float mu = fogrt_sample_rayleigh_mu(u1);
     if (pdf) *pdf = fogrt_rayleigh_phase(mu);
-    return fogrt__around(&f, mu, sqrtf(FOGRT__MAX(0.0f, (1.0f - mu) * (1.0f + mu))), u2);
+    return fogrt__direction_at(&f, mu, sqrtf(FOGRT__MAX(0.0f, (1.0f - mu) * (1.0f + mu))), u2);
 }
 FOGRT__PUBLIC fogrt_vec3 fogrt_sample_rayleigh(fogrt_vec3 wo, float u1, float u2, float *pdf) {
     return fogrt__sample_rayleigh_unit(fogrt__normalize(wo), u1, u2, pdf);
@@ -7912,6 +8225,12 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void) {
 #endif
     return d;
 }
+#ifndef FOGRT_NO_MEDIUM
+/* fogrt_exponential_cdf (3.1) under the name older code calls it by. */
+FOGRT__PUBLIC float fogrt_invert_exponential(float sigma_t, float t) {
+    return fogrt_exponential_cdf(sigma_t, t);
+}
+#endif
 FOGRT__PUBLIC const char *fogrt_result_string(fogrt_result result) {
     static const char *names[FOGRT_RESULT_NUM] = {
 #define FOGRT__RESULT_TEXT(name, text) text,

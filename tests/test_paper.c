@@ -18,11 +18,12 @@ static double hg_mu_truth(double g, double u)
     double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u), mu = (1.0 + g * g - s * s) / (2.0 * g);
     return mu > 1.0 ? 1.0 : (mu < -1.0 ? -1.0 : mu);
 }
-/* Eq. 11 as the paper writes it (fogrt__sample_hg_mu_eq11) and its expansion without a
-   division by g (fogrt_sample_hg_mu; Part I's direction sampler fogrt__sample_hg_pm forms
-   1 - mu and 1 + mu from the same expansion) agree to within 1e-5 for every g the paper tries, and
-   the expanded one stays within 3e-7 of the truth everywhere, while the paper's form
-   loses digits as 1/|g| for small g (and near |g| = 1): the reason for the expansion. */
+/* Eq. 11 as the paper writes it (fogrt__sample_hg_mu_eq11 without 1 - mu and 1 + mu asked
+   for) and its expansions without a division by g (fogrt_sample_hg_mu, and the branch of
+   fogrt__sample_hg_mu_eq11 the renderer takes, which forms 1 - mu and 1 + mu) agree to within
+   1e-5 for every g the paper tries, and the expanded ones stay within 3e-7 of the truth
+   everywhere, while the paper's form loses digits as 1/|g| for small g (and near |g| = 1):
+   the reason for the expansions. */
 static void test_hg_eq11_matches_stable_form(void)
 {
     static const float gs[] = { -0.99f, -0.9f, -0.5f, -0.1f, 1e-4f, 0.1f, 0.5f, 0.9f, 0.99f };
@@ -33,18 +34,25 @@ static void test_hg_eq11_matches_stable_form(void)
         for (i = 0; i <= 1000; ++i) {
             float u = (float)i / 1000.0f, g = gs[k];
             double t = hg_mu_truth((double)g, (double)u);
-            double e11 = fabs((double)fogrt__sample_hg_mu_eq11(g, u) - t), e = fabs((double)fogrt_sample_hg_mu(g, u) - t);
+            float one_minus_mu, one_plus_mu;
+            float mu_r = fogrt__sample_hg_mu_eq11(g, u, &one_minus_mu, &one_plus_mu);
+            double e11 = fabs((double)fogrt__sample_hg_mu_eq11(g, u, NULL, NULL) - t);
+            double e = fabs((double)fogrt_sample_hg_mu(g, u) - t), er = fabs((double)mu_r - t);
             if (e11 > worst11) worst11 = e11;
             if (e > worst) worst = e;
+            if (er > worst) worst = er;
+            /* 1 - mu and 1 + mu to a few ulps of their own size, however small */
+            TEST_ASSERT_TRUE(fabs((double)one_minus_mu - (1.0 - t)) <= 1e-6 * (1.0 - t) + 1e-30);
+            TEST_ASSERT_TRUE(fabs((double)one_plus_mu - (1.0 + t)) <= 1e-6 * (1.0 + t) + 1e-30);
         }
-        snprintf(msg, sizeof msg, "g %+.4f: eq. 11 within %.2e of the truth, the expanded form within %.2e",
+        snprintf(msg, sizeof msg, "g %+.4f: eq. 11 within %.2e of the truth, the expanded forms within %.2e",
                  (double)gs[k], worst11, worst);
         TEST_MESSAGE(msg);
         TEST_ASSERT_TRUE_MESSAGE(worst < 3e-7, msg);
         if (fabsf(gs[k]) >= 0.1f) TEST_ASSERT_TRUE_MESSAGE(worst11 < 1e-5, msg);
         else TEST_ASSERT_TRUE_MESSAGE(worst11 > 100.0 * worst, msg);
     }
-    TEST_ASSERT_EQUAL_FLOAT(0.5f, fogrt__sample_hg_mu_eq11(0.0f, 0.75f));   /* g = 0: isotropic, no 0/0 */
+    TEST_ASSERT_EQUAL_FLOAT(0.5f, fogrt__sample_hg_mu_eq11(0.0f, 0.75f, NULL, NULL));   /* g = 0: isotropic, no 0/0 */
 }
 
 /* The paper preset switches off everything Part II adds to the method. */

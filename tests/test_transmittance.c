@@ -334,7 +334,7 @@ static void test_render_through_absorbing_fog(void)
 /* fogrt_transmittance against exp(-sigma_t d), including no fog, zero and infinite distance
    (an escaping ray: T must be 1 without fog, 0 with fog, never NaN from 0 * inf), tiny and
    huge products (underflow to 0, never negative). It must also agree with the free-flight
-   CDF: 1 - T = fogrt_invert_exponential and pdf = sigma_t T. */
+   CDF: 1 - T = fogrt_exponential_cdf (alias fogrt_invert_exponential) and pdf = sigma_t T. */
 static void test_transmittance_values(void)
 {
     static const struct { float sigma_t, d; double expected; } cases[] = {
@@ -361,7 +361,8 @@ static void test_transmittance_values(void)
         TEST_ASSERT_TRUE_MESSAGE(isfinite(T) && T >= 0.0f && T <= 1.0f, msg);
         TEST_ASSERT_TRUE_MESSAGE(fabs(T - cases[i].expected) <= 1e-6 * cases[i].expected + 1e-37, msg);
         if (isfinite(cases[i].d)) {
-            float cdf = fogrt_invert_exponential(cases[i].sigma_t, cases[i].d);
+            float cdf = fogrt_exponential_cdf(cases[i].sigma_t, cases[i].d);
+            TEST_ASSERT_EQUAL_FLOAT(cdf, fogrt_invert_exponential(cases[i].sigma_t, cases[i].d));
             float pdf = fogrt_exponential_pdf(cases[i].sigma_t, cases[i].d);
             TEST_ASSERT_TRUE_MESSAGE(fabs(cdf - (1.0 - cases[i].expected)) <= 1e-6, msg);
             TEST_ASSERT_TRUE_MESSAGE(isfinite(pdf) && pdf >= 0.0f, msg);
