@@ -1129,48 +1129,48 @@ FOGRT__PRIVATE fogrt_result fogrt__beyond_image(const fogrt_scene *s, const fogr
 struct fogrt__settings;
 struct fogrt__job;
 #ifndef FOGRT_NO_WIDE_BVH
-FOGRT__HOT bool fogrt__x_traverse(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax,
+FOGRT__HOT bool fogrt__wide_traverse(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmin, float tmax,
                                       fogrt_hit *hit, bool any_hit, bool *done);                  /* 1 (A) */
-FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n);                /* 2 (A) */
+FOGRT__PRIVATE uint32_t fogrt__wide_leaf_keep(const fogrt_build_desc *d, uint32_t n);                /* 2 (A) */
 struct fogrt__build; struct fogrt__bjob;
-FOGRT__PRIVATE bool fogrt__x_split_binned(struct fogrt__build *b, const struct fogrt__bjob *job, fogrt_bvh_node *child,
+FOGRT__PRIVATE bool fogrt__split_binned_lanes(struct fogrt__build *b, const struct fogrt__bjob *job, fogrt_bvh_node *child,
                                           struct fogrt__bjob *left, struct fogrt__bjob *right, bool *halve, uint32_t *left_count);
 FOGRT__PRIVATE void *fogrt__alloc_big(const fogrt_allocator *a, size_t size);                     /* 2 (A) */
-FOGRT__PRIVATE uint32_t fogrt__x_refs(const fogrt_scene *s, uint32_t n, uint32_t leaf_keep);      /* 2 (A) */
-FOGRT__PRIVATE void fogrt__x_split_refs(const fogrt_scene *s, struct fogrt__build *b, uint32_t n, uint32_t m);
+FOGRT__PRIVATE uint32_t fogrt__sliver_refs(const fogrt_scene *s, uint32_t n, uint32_t leaf_keep);      /* 2 (A) */
+FOGRT__PRIVATE void fogrt__sliver_split_refs(const fogrt_scene *s, struct fogrt__build *b, uint32_t n, uint32_t m);
 #define FOGRT__ALLOC_BUILD fogrt__alloc_big
-#define FOGRT__REFS(s, n, leaf_keep) fogrt__x_refs(s, n, leaf_keep)
-#define FOGRT__SPLIT_REFS(s, b, n, m) fogrt__x_split_refs(s, b, n, m)
+#define FOGRT__REFS(s, n, leaf_keep) fogrt__sliver_refs(s, n, leaf_keep)
+#define FOGRT__SPLIT_REFS(s, b, n, m) fogrt__sliver_split_refs(s, b, n, m)
 #else
 #define FOGRT__ALLOC_BUILD fogrt__alloc
 #define FOGRT__REFS(s, n, leaf_keep) (n)
 #define FOGRT__SPLIT_REFS(s, b, n, m) ((void)0)
 #endif
 #ifndef FOGRT_MINIMAL
-FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n);        /* 3 */
-FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s);                                             /* 4 */
-FOGRT__PRIVATE void fogrt__x_scene_free(fogrt_scene *s);                                          /* 4 (C, H) */
+FOGRT__PRIVATE bool fogrt__appendix_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n);        /* 3 */
+FOGRT__PRIVATE void fogrt__appendix_release(fogrt_scene *s);                                             /* 4 */
+FOGRT__PRIVATE void fogrt__appendix_scene_free(fogrt_scene *s);                                          /* 4 (C, H) */
 #ifndef FOGRT_NO_MEDIUM
-FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmax,
+FOGRT__HOT bool fogrt__fog_box_span(const fogrt_scene *s, fogrt_vec3 o, fogrt_vec3 d, float tmax,
                                   float *a, float *b);                                            /* 6 (C) */
 #endif
 #ifndef FOGRT_NO_MEDIA
-FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_medium_desc *m);    /* 6 (G) */
+FOGRT__PRIVATE fogrt_result fogrt__media_check(const fogrt_scene *s, fogrt_medium_desc *m);    /* 6 (G) */
 #endif
-FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const struct fogrt__settings *st);      /* 7 (E) */
+FOGRT__PRIVATE bool fogrt__full_wanted(const fogrt_scene *s, const struct fogrt__settings *st);      /* 7 (E) */
 struct fogrt__walk; struct fogrt__path;
-FOGRT__PRIVATE fogrt_vec3 fogrt__x_radiance(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__walk *w);
-FOGRT__PRIVATE bool fogrt__x_next_event(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
+FOGRT__PRIVATE fogrt_vec3 fogrt__full_radiance(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__walk *w);
+FOGRT__PRIVATE bool fogrt__full_next_event(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
                                         int limit);                                              /* 7a */
-FOGRT__PRIVATE void fogrt__x_light_step(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
-FOGRT__PRIVATE bool fogrt__x_scatter(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
-FOGRT__PRIVATE float fogrt__x_roulette_q(const struct fogrt__settings *st, struct fogrt__path *P, float u);   /* 7d */
-FOGRT__PRIVATE void fogrt__x_samplers(const fogrt_scene *s, const struct fogrt__settings *st, char *buf, size_t size);
+FOGRT__PRIVATE void fogrt__full_light_step(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
+FOGRT__PRIVATE bool fogrt__full_scatter(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
+FOGRT__PRIVATE float fogrt__full_roulette_q(const struct fogrt__settings *st, struct fogrt__path *P, float u);   /* 7d */
+FOGRT__PRIVATE void fogrt__full_samplers(const fogrt_scene *s, const struct fogrt__settings *st, char *buf, size_t size);
 FOGRT__PRIVATE void fogrt__say(char *buf, size_t size, bool yes, const char *name);
 #endif
 #ifndef FOGRT_NO_ESTIMATION
-FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy);   /* 8 (C) */
-FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const struct fogrt__job *job, size_t pix);
+FOGRT__PRIVATE void fogrt__stratified_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy);   /* 8 (C) */
+FOGRT__PRIVATE uint32_t fogrt__rated_spp(const struct fogrt__job *job, size_t pix);
 #endif
 
 /* ==========================================================================================
@@ -1490,7 +1490,7 @@ FOGRT__PRIVATE void fogrt__forget_built(fogrt_scene *s) {
 }
 FOGRT__PRIVATE void fogrt__free_built(fogrt_scene *s) {
 #ifndef FOGRT_MINIMAL
-    fogrt__x_release(s);                                 /* SEAM 4 */
+    fogrt__appendix_release(s);                                 /* SEAM 4 */
 #endif
     void *built[] = { s->nodes, s->prim_index, s->prims, s->area_lights,
                       s->light_prims, s->light_cdf, s->prim_light, s->spot_cos };
@@ -1506,7 +1506,7 @@ FOGRT__PUBLIC void fogrt_scene_destroy(fogrt_scene *s) {
                       s->tri_mesh, s->sph_c, s->sph_r, s->sph_material };
     for (size_t i = 0; i < sizeof added / sizeof added[0]; ++i) fogrt__free(&a, added[i]);
 #ifndef FOGRT_MINIMAL
-    fogrt__x_scene_free(s);                              /* SEAM 4: what Part II set on the scene */
+    fogrt__appendix_scene_free(s);                       /* SEAM 4: what Part II set on the scene */
 #endif
     fogrt__free(&a, s->lights);
     fogrt__free(&a, s);
@@ -1731,7 +1731,7 @@ FOGRT__PRIVATE fogrt_result fogrt__check_medium(const fogrt_scene *s, fogrt_medi
                    "medium.g: |g| > 0.9999 clamped to 0.9999 (FOGRT_HG_G_MAX)");
     }
 #ifndef FOGRT_NO_MEDIA
-    return fogrt__x_check_media(s, m);                   /* SEAM 6: G's medium fields */
+    return fogrt__media_check(s, m);                   /* SEAM 6: G's medium fields */
 #else
     return FOGRT_RESULT_OK;
 #endif
@@ -1959,7 +1959,7 @@ FOGRT__PRIVATE uint32_t fogrt__bvh_split_binned(fogrt__build *b, const fogrt__bj
     int best_ax = -1, best_k = 0;
 #ifndef FOGRT_NO_WIDE_BVH
     uint32_t wide_left_count;
-    if (fogrt__x_split_binned(b, job, child, left, right, halve, &wide_left_count))   /* SEAM 2 */
+    if (fogrt__split_binned_lanes(b, job, child, left, right, halve, &wide_left_count)) /* SEAM 2 */
         return wide_left_count;
 #endif
     fogrt__bins_fill(&bins, &b->desc, &job->cb, b->box + first, count);
@@ -2178,7 +2178,7 @@ FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogr
 FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin,
                                     float tmax, fogrt_hit *hit, bool any_hit) {
 #ifndef FOGRT_NO_WIDE_BVH
-    bool done, found = fogrt__x_traverse(s, o, d, tmin, tmax, hit, any_hit, &done);   /* SEAM 1 */
+    bool done, found = fogrt__wide_traverse(s, o, d, tmin, tmax, hit, any_hit, &done);  /* SEAM 1 */
     if (done) return found;
 #endif
     return fogrt__bvh2_traverse(s, o, d, tmin, tmax, hit, any_hit);
@@ -2634,7 +2634,7 @@ FOGRT__HOT float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fog
     (void)d;
 #ifndef FOGRT_MINIMAL
     float a, b;
-    if (s->x && !fogrt__x_fog_span(s, o, d, dist, &a, &b)) return 1.0f; /* SEAM 6: fog in a box */
+    if (s->x && !fogrt__fog_box_span(s, o, d, dist, &a, &b)) return 1.0f; /* SEAM 6: fog in a box */
     if (s->x) dist = b - a;
 #endif
     return fogrt_transmittance(s->medium.sigma_t, dist);
@@ -2896,7 +2896,7 @@ typedef struct fogrt__walk {
 FOGRT__PRIVATE bool fogrt__next_vertex(const fogrt_scene *s, const fogrt__settings *st,
                                        fogrt__walk *w, int limit) {
 #ifndef FOGRT_MINIMAL
-    if (w->x) return fogrt__x_next_event(s, st, w->x, limit); /* SEAM 7a: E's next event */
+    if (w->x) return fogrt__full_next_event(s, st, w->x, limit); /* SEAM 7a: E's next event */
 #endif
     (void)limit;
     fogrt_hit hit;
@@ -2947,7 +2947,7 @@ FOGRT__PRIVATE void fogrt__light_at_vertex(const fogrt_scene *s, const fogrt__se
                                            fogrt__walk *w) {
 #ifndef FOGRT_MINIMAL
     if (w->x) { /* SEAM 7b: E's light step */
-        fogrt__x_light_step(s, st, w->x);
+        fogrt__full_light_step(s, st, w->x);
         return;
     }
 #endif
@@ -2961,7 +2961,7 @@ FOGRT__PRIVATE void fogrt__light_at_vertex(const fogrt_scene *s, const fogrt__se
 FOGRT__PRIVATE bool fogrt__new_direction(const fogrt_scene *s, const fogrt__settings *st,
                                          fogrt__walk *w) {
 #ifndef FOGRT_MINIMAL
-    if (w->x) return fogrt__x_scatter(s, st, w->x);                      /* SEAM 7c: E's scatter */
+    if (w->x) return fogrt__full_scatter(s, st, w->x);                    /* SEAM 7c: E's scatter */
 #endif
     const fogrt__vertex *v = &w->v;
     float u[3];
@@ -2999,7 +2999,7 @@ FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__walk *w) {
     float q = FOGRT__MIN(0.95f, fogrt__max3(w->beta));
     float u = fogrt_rng_float(w->rng);
 #ifndef FOGRT_MINIMAL
-    if (w->x) q = fogrt__x_roulette_q(st, w->x, u); /* SEAM 7d: the pilot's q (C) */
+    if (w->x) q = fogrt__full_roulette_q(st, w->x, u); /* SEAM 7d: the pilot's q (C) */
 #endif
     if (!(u < q)) return false;
     w->beta = fogrt__scale(w->beta, 1.0f / q);
@@ -3299,7 +3299,7 @@ FOGRT__PRIVATE bool fogrt__build_spots(fogrt_scene *s) {
 FOGRT__PRIVATE bool fogrt__build_all(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n) {
     uint32_t leaf_keep = 0;
 #ifndef FOGRT_NO_WIDE_BVH
-    leaf_keep = fogrt__x_leaf_keep(d, n);               /* SEAM 2: what the wide tree needs of it */
+    leaf_keep = fogrt__wide_leaf_keep(d, n);            /* SEAM 2: what the wide tree needs of it */
 #endif
     fogrt__forget_built(s);
     if (!fogrt__build_lights(s) || !fogrt__build_tree(s, d, n, leaf_keep) || !fogrt__build_spots(s))
@@ -3310,7 +3310,7 @@ FOGRT__PRIVATE bool fogrt__build_all(fogrt_scene *s, const fogrt_build_desc *d, 
 #endif
     s->built = true;
 #ifndef FOGRT_MINIMAL
-    if (!fogrt__x_build(s, d, n)) return false;         /* SEAM 3: Part II's tables */
+    if (!fogrt__appendix_build(s, d, n)) return false;         /* SEAM 3: Part II's tables */
 #endif
     return true;
 }
@@ -3390,8 +3390,8 @@ FOGRT__PRIVATE fogrt__v3 fogrt__radiance(const fogrt_scene *s, const fogrt__sett
     fogrt__walk w;
     fogrt__walk_start(&w, s, o, d, rng, rays);
 #ifndef FOGRT_MINIMAL
-    if (fogrt__x_wanted(s, st))
-        return fogrt__x_radiance(s, st, &w); /* SEAM 7: E's state for the walk */
+    if (fogrt__full_wanted(s, st))
+        return fogrt__full_radiance(s, st, &w); /* SEAM 7: E's state for the walk */
 #endif
     return fogrt__algorithm1(s, st, &w, st->integrator == FOGRT_INTEGRATOR_DIRECT);
 }
@@ -3491,7 +3491,7 @@ FOGRT__PRIVATE void fogrt__pixel_ray(const fogrt__job *job, int width, int heigh
     uint64_t pix = (uint64_t)y * (uint64_t)width + (uint64_t)x, key = (pix << 32) | (uint64_t)index;
     fogrt_rng_seed(rng, fogrt__hash64(key ^ job->base), 0);
 #ifndef FOGRT_NO_ESTIMATION
-    fogrt__x_pixel_position(job->base, pix, index, jx, jy);                 /* SEAM 8 */
+    fogrt__stratified_position(job->base, pix, index, jx, jy);                 /* SEAM 8 */
 #else
     *jx = fogrt_rng_float(rng);
     *jy = fogrt_rng_float(rng);
@@ -3512,7 +3512,7 @@ FOGRT__PRIVATE void fogrt__render_row(const fogrt__job *job, int y, uint64_t *ra
     for (int x = 0; x < width; ++x) {
         size_t pix = (size_t)y * (size_t)width + (size_t)x;
 #ifndef FOGRT_NO_ESTIMATION
-        uint32_t spp = job->st.desc.sample_rate ? fogrt__x_pixel_spp(job, pix)
+        uint32_t spp = job->st.desc.sample_rate ? fogrt__rated_spp(job, pix)
                                                 : (uint32_t)job->spp; /* SEAM 8: rates (C) */
 #else
         uint32_t spp = (uint32_t)job->spp;
@@ -3857,7 +3857,7 @@ FOGRT__PRIVATE bool fogrt__media_next_event(const fogrt_scene *s, const struct f
 #ifndef FOGRT_NO_SHAPES
 /* H's steps, which E's dispatch and the build call before their chapter. */
 FOGRT__PRIVATE bool fogrt__shapes_build(fogrt_scene *s);
-FOGRT__PRIVATE void fogrt__x_shapes_release(fogrt_scene *s);
+FOGRT__PRIVATE void fogrt__shapes_release(fogrt_scene *s);
 FOGRT__PRIVATE void fogrt__h_start(const fogrt_scene *s, struct fogrt__path *P);
 FOGRT__PRIVATE bool fogrt__h_next_event(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
                                         int limit);
@@ -3875,7 +3875,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__h_shadow(const fogrt_scene *s, const fogrt__vert
    What it adds: 8 (or 4) children per node, their boxes tested side by side in SIMD lanes
    (SSE, AVX2 where the processor has it), huge pages for the big arrays, 2.1's binned
    split of a node in SSE lanes (the same tree as Part I's, built faster: seam 2), and long
-   slivers' boxes cut into pieces (seam 2, below fogrt__x_leaf_keep).
+   slivers' boxes cut into pieces (seam 2, below fogrt__wide_leaf_keep).
    What it costs: nothing where the binary tree is chosen (fogrt_build_desc.layout); a
    sliver's pieces cost references, build time and memory, and only slivers get them.
    Its gain: docs/benchmarks.md, tables "Wide BVH" and "Slivers".
@@ -4711,7 +4711,7 @@ FOGRT__PRIVATE bool fogrt__wants_wide(const fogrt_build_desc *d, uint32_t n) {
    FOGRT_WBVH_LEAF primitives (and max_leaf_size): the collapse makes each one leaf packet
    whatever its shape, so the wide tree is the same and the build skips its most numerous
    nodes. */
-FOGRT__PRIVATE uint32_t fogrt__x_leaf_keep(const fogrt_build_desc *d, uint32_t n) {
+FOGRT__PRIVATE uint32_t fogrt__wide_leaf_keep(const fogrt_build_desc *d, uint32_t n) {
     if (!fogrt__wants_wide(d, n) || fogrt__wbvh_small_scene(n)) return 0;
     return FOGRT__MIN((uint32_t)d->max_leaf_size, (uint32_t)FOGRT__WBVH_LEAF);
 }
@@ -4768,7 +4768,7 @@ FOGRT__PRIVATE uint64_t fogrt__split_wanted(const fogrt_scene *s, uint32_t n, ui
     for (t = 0; *budget > 0 && t < s->tri_count; ++t) want += fogrt__split_want(s, t, &box, &axis) - 1u;
     return want;
 }
-FOGRT__PRIVATE uint32_t fogrt__x_refs(const fogrt_scene *s, uint32_t n, uint32_t leaf_keep) {
+FOGRT__PRIVATE uint32_t fogrt__sliver_refs(const fogrt_scene *s, uint32_t n, uint32_t leaf_keep) {
     uint64_t budget, want;
     if (!leaf_keep) return n;                          /* the binary layout packs one primitive per reference */
     want = fogrt__split_wanted(s, n, &budget);
@@ -4812,9 +4812,9 @@ FOGRT__PRIVATE void fogrt__split_tri(const fogrt_scene *s, fogrt__build *b, uint
         a = c;
     }
 }
-/* Seam 2: the m - n extra references of fogrt__x_refs, shared out by the slivers' wants
+/* Seam 2: the m - n extra references of fogrt__sliver_refs, shared out by the slivers' wants
    (each gets floor of its running share, so the shares add up to the budget exactly). */
-FOGRT__PRIVATE void fogrt__x_split_refs(const fogrt_scene *s, fogrt__build *b, uint32_t n, uint32_t m) {
+FOGRT__PRIVATE void fogrt__sliver_split_refs(const fogrt_scene *s, fogrt__build *b, uint32_t n, uint32_t m) {
     uint64_t budget, want, before = 0, extra = m - n;
     uint32_t t, next = n;
     fogrt__aabb box;
@@ -4854,12 +4854,12 @@ typedef struct fogrt__xbins {
 } fogrt__xbins;
 /* A box as the binning reads it: two registers, loaded at its lo and at its hi. */
 typedef struct fogrt__xlh { __m128 l, h; } fogrt__xlh;
-FOGRT__HOT fogrt__xlh fogrt__x_lh(const fogrt__aabb *b) {
+FOGRT__HOT fogrt__xlh fogrt__lanes_lh(const fogrt__aabb *b) {
     fogrt__xlh r;
     r.l = _mm_loadu_ps(&b->lo.x); r.h = _mm_loadu_ps(&b->hi.x);
     return r;
 }
-FOGRT__PRIVATE fogrt__aabb fogrt__x_box(__m128 lo, __m128 hi) {
+FOGRT__PRIVATE fogrt__aabb fogrt__lanes_box(__m128 lo, __m128 hi) {
     fogrt__aabb b;
     float l[4], h[4];
     _mm_storeu_ps(l, lo); _mm_storeu_ps(h, hi);
@@ -4927,9 +4927,9 @@ FOGRT__PRIVATE void fogrt__xbins_fill(fogrt__xbins *x, const fogrt__aabb *box, u
     uint32_t i, half = count >= FOGRT__X_TWO_SETS ? count / 2 : 0;
     int ax, k;
     if (half == 0) {
-        a = fogrt__x_lh(&box[0]);
+        a = fogrt__lanes_lh(&box[0]);
         for (i = 1; i < count; ++i) {
-            next_a = fogrt__x_lh(&box[i]);
+            next_a = fogrt__lanes_lh(&box[i]);
             fogrt__xbins_put(x, a, org, sc, top);
             a = next_a;
         }
@@ -4941,16 +4941,16 @@ FOGRT__PRIVATE void fogrt__xbins_fill(fogrt__xbins *x, const fogrt__aabb *box, u
             y.bin[k] = x->bin[k];                        /* empty */
             y.n[k] = 0;
         }
-    a = fogrt__x_lh(&box[0]); b = fogrt__x_lh(&box[half]);
+    a = fogrt__lanes_lh(&box[0]); b = fogrt__lanes_lh(&box[half]);
     for (i = 1; i < half; ++i) {
-        next_a = fogrt__x_lh(&box[i]); next_b = fogrt__x_lh(&box[half + i]);
+        next_a = fogrt__lanes_lh(&box[i]); next_b = fogrt__lanes_lh(&box[half + i]);
         fogrt__xbins_put(x, a, org, sc, top);
         fogrt__xbins_put(&y, b, org, sc, top);
         a = next_a; b = next_b;
     }
     fogrt__xbins_put(x, a, org, sc, top);
     fogrt__xbins_put(&y, b, org, sc, top);
-    if (count & 1) fogrt__xbins_put(&y, fogrt__x_lh(&box[count - 1]), org, sc, top);
+    if (count & 1) fogrt__xbins_put(&y, fogrt__lanes_lh(&box[count - 1]), org, sc, top);
     for (ax = 0; ax < 3; ++ax)
         for (k = ax * FOGRT__BVH_MAX_BINS; k < ax * FOGRT__BVH_MAX_BINS + x->nb; ++k) {
             _mm_storeu_ps(x->bin[k].lo, _mm_min_ps(_mm_loadu_ps(x->bin[k].lo), _mm_loadu_ps(y.bin[k].lo)));
@@ -4960,7 +4960,7 @@ FOGRT__PRIVATE void fogrt__xbins_fill(fogrt__xbins *x, const fogrt__aabb *box, u
 }
 /* fogrt__side_cost of n primitives in the box [lo, hi], with fogrt__aabb_area's and
    fogrt__aabb_volume's expressions. */
-FOGRT__HOT float fogrt__x_side_cost(const fogrt_build_desc *d, uint32_t n, __m128 lo, __m128 hi) {
+FOGRT__HOT float fogrt__lanes_side_cost(const fogrt_build_desc *d, uint32_t n, __m128 lo, __m128 hi) {
     float e[4];
     _mm_storeu_ps(e, _mm_sub_ps(hi, lo));
     if (e[0] < 0.0f) return 0.0f;                        /* the empty box: n times 0 */
@@ -4980,7 +4980,7 @@ FOGRT__PRIVATE bool fogrt__xbins_sweep(const fogrt_build_desc *d, const fogrt__x
     for (k = 0; k < x->nb - 1; ++k) {
         left_n += n[k];
         lo = _mm_min_ps(lo, _mm_loadu_ps(bin[k].lo)); hi = _mm_max_ps(hi, _mm_loadu_ps(bin[k].hi));
-        left_cost[k] = fogrt__x_side_cost(d, left_n, lo, hi);
+        left_cost[k] = fogrt__lanes_side_cost(d, left_n, lo, hi);
     }
     lo = _mm_set1_ps(FLT_MAX); hi = _mm_set1_ps(-FLT_MAX);
     for (k = x->nb - 1; k > 0; --k) {
@@ -4988,7 +4988,7 @@ FOGRT__PRIVATE bool fogrt__xbins_sweep(const fogrt_build_desc *d, const fogrt__x
         right_n += n[k];
         lo = _mm_min_ps(lo, _mm_loadu_ps(bin[k].lo)); hi = _mm_max_ps(hi, _mm_loadu_ps(bin[k].hi));
         if (right_n == 0 || right_n == count) continue;
-        cost = left_cost[k - 1] + fogrt__x_side_cost(d, right_n, lo, hi);
+        cost = left_cost[k - 1] + fogrt__lanes_side_cost(d, right_n, lo, hi);
         if (cost < *best) { *best = cost; *best_k = k; improved = true; }
     }
     return improved;
@@ -5002,24 +5002,24 @@ FOGRT__PRIVATE void fogrt__xbins_child_boxes(const fogrt__xbins *x, int ax, int 
     int j;
     for (j = 0; j < x->nb; ++j) {
         if (j == k) {
-            b = fogrt__x_box(lo, hi);
+            b = fogrt__lanes_box(lo, hi);
             fogrt__node_set_box(&child[0], &b);
             lo = _mm_set1_ps(FLT_MAX); hi = _mm_set1_ps(-FLT_MAX);
         }
         lo = _mm_min_ps(lo, _mm_loadu_ps(bin[j].lo)); hi = _mm_max_ps(hi, _mm_loadu_ps(bin[j].hi));
     }
-    b = fogrt__x_box(lo, hi);
+    b = fogrt__lanes_box(lo, hi);
     fogrt__node_set_box(&child[1], &b);
 }
 /* A box as two registers, its bytes 0-15 (lo, hi.x) and 8-23 (lo.z, hi): every load and
    store stays inside its box, so a load after the partition's stores to the neighbouring
    box is never held up by them (a load across two earlier stores must wait for both to
    reach the cache). */
-FOGRT__HOT void fogrt__x_load(const fogrt__aabb *b, __m128 *a, __m128 *z) {
+FOGRT__HOT void fogrt__lanes_load(const fogrt__aabb *b, __m128 *a, __m128 *z) {
     *a = _mm_loadu_ps(&b->lo.x);
     *z = _mm_loadu_ps(&b->lo.z);
 }
-FOGRT__HOT void fogrt__x_store(fogrt__aabb *b, __m128 a, __m128 z) {
+FOGRT__HOT void fogrt__lanes_store(fogrt__aabb *b, __m128 a, __m128 z) {
     _mm_storeu_ps(&b->lo.x, a);
     _mm_storeu_ps(&b->lo.z, z);
 }
@@ -5033,34 +5033,34 @@ FOGRT__PRIVATE uint32_t fogrt__xbins_partition(const fogrt__xbins *x, fogrt__aab
     const __m128 org = x->org, sc = x->sc, kk = _mm_set1_ps((float)k), zero = _mm_setzero_ps(), half = _mm_set1_ps(0.5f);
     __m128 llo = _mm_set1_ps(FLT_MAX), lhi = _mm_set1_ps(-FLT_MAX), rlo = llo, rhi = lhi, a, z;
     uint32_t l = 0, r = count;
-    fogrt__x_load(&box[0], &a, &z);
+    fogrt__lanes_load(&box[0], &a, &z);
     for (;;) {
         __m128 c = _mm_mul_ps(_mm_add_ps(a, _mm_shuffle_ps(z, z, _MM_SHUFFLE(0, 3, 2, 1))), half);
         __m128 f = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(c, org), sc), zero);
         if ((_mm_movemask_ps(_mm_cmplt_ps(f, kk)) >> ax) & 1) {
             llo = _mm_min_ps(llo, c); lhi = _mm_max_ps(lhi, c);
             if (++l == r) break;
-            fogrt__x_load(&box[l], &a, &z);
+            fogrt__lanes_load(&box[l], &a, &z);
         } else {
             __m128 a2, z2;
             uint32_t tid = id[l];
             rlo = _mm_min_ps(rlo, c); rhi = _mm_max_ps(rhi, c);
             if (--r == l) break;
-            fogrt__x_load(&box[r], &a2, &z2);
-            fogrt__x_store(&box[r], a, z);
-            fogrt__x_store(&box[l], a2, z2);
+            fogrt__lanes_load(&box[r], &a2, &z2);
+            fogrt__lanes_store(&box[r], a, z);
+            fogrt__lanes_store(&box[l], a2, z2);
             id[l] = id[r]; id[r] = tid;
             a = a2; z = z2;
         }
     }
-    left->cb = fogrt__x_box(llo, lhi);
-    right->cb = fogrt__x_box(rlo, rhi);
+    left->cb = fogrt__lanes_box(llo, lhi);
+    right->cb = fogrt__lanes_box(rlo, rhi);
     return l;
 }
 #endif
 /* The seam: fogrt__bvh_split_binned's answer (*left_count, *halve) from the lanes, or false
    without SSE (Part I's scalar split then runs). */
-FOGRT__PRIVATE bool fogrt__x_split_binned(fogrt__build *b, const fogrt__bjob *job, fogrt_bvh_node *child,
+FOGRT__PRIVATE bool fogrt__split_binned_lanes(fogrt__build *b, const fogrt__bjob *job, fogrt_bvh_node *child,
                                           fogrt__bjob *left, fogrt__bjob *right, bool *halve, uint32_t *left_count) {
 #ifdef FOGRT_WBVH_SSE
     const fogrt_bvh_node *node = &b->nodes[job->node];
@@ -5088,7 +5088,7 @@ FOGRT__PRIVATE bool fogrt__x_split_binned(fogrt__build *b, const fogrt__bjob *jo
 #endif
 }
 /* Seam 1: the wide tree when there is one (*done), else Part I's binary tree. */
-FOGRT__HOT bool fogrt__x_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
+FOGRT__HOT bool fogrt__wide_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin, float tmax,
                                       fogrt_hit *hit, bool any_hit, bool *done) {
     *done = s->x && s->x->wide && s->x->wide->node_count;
     return *done && fogrt__wbvh_traverse(s, s->x->wide, o, d, tmin, tmax, hit, any_hit);
@@ -5772,7 +5772,7 @@ FOGRT__PRIVATE bool fogrt__build_env(fogrt_scene *s) {
 /* The part [*a, *b] of the ray segment o + t d, t in [0, tmax], that lies in the fog: all of
    it, or with bounded fog its part inside the box (a slab test like 2.1's, NaN-safe
    for axis-parallel rays on a face). False when the segment misses the fog. */
-FOGRT__HOT bool fogrt__x_fog_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax, float *a, float *b) {
+FOGRT__HOT bool fogrt__fog_box_span(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmax, float *a, float *b) {
     int k;
     *a = 0.0f; *b = tmax;
     if (!s->x->fog_bounded) return true;
@@ -5908,7 +5908,7 @@ FOGRT__PRIVATE float fogrt__pick_prob(const fogrt_scene *s, bool by_power, uint3
    So a pixel's count depends on samples of other pixels only, which are independent of
    its own (each pixel, each sample, has its own random stream): its mean stays an
    average of samples whose number was fixed without looking at them. The rounding of
-   spp x rate to a count is a coin of its own (fogrt__x_pixel_spp).
+   spp x rate to a count is a coin of its own (fogrt__rated_spp).
    The noise is sigma^2 = Var[mean] x n from the streams (so stratification counts). One
    rare path can make one pixel's estimate thousands of times its neighbours'; capped at
    16 times the colour's mean before the boxes sum them, such a pixel no longer drags its
@@ -6066,7 +6066,7 @@ FOGRT__PRIVATE uint32_t fogrt__nested_scramble(uint32_t reversed, uint64_t seed)
    index / FOGRT_IMAGE_STREAMS of that stream's sequence, scrambled with seeds drawn from
    (seed, pixel, stream). A function of (seed, pixel, index) only, so batches and threads do
    not change it, and a later batch continues each stream's sequence. */
-FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy) {
+FOGRT__PRIVATE void fogrt__stratified_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy) {
     uint32_t point = index / FOGRT_IMAGE_STREAMS, stream = index % FOGRT_IMAGE_STREAMS;
     uint64_t key = fogrt__hash64(base ^ fogrt__hash64(0x5354524154494649ULL ^ (pix * FOGRT_IMAGE_STREAMS + stream)));
     uint32_t ux = fogrt__nested_scramble(point, key);
@@ -6079,7 +6079,7 @@ FOGRT__PRIVATE void fogrt__x_pixel_position(uint64_t base, uint64_t pix, uint32_
    pixel has had floor(B x rate + u) of them, u a uniform of its own drawn from (seed,
    pixel) alone, never from its radiance: the mean count is B x rate exactly, and it does
    not depend on how B was split over calls (the image is the same for any batches). */
-FOGRT__PRIVATE uint32_t fogrt__x_pixel_spp(const fogrt__job *job, size_t pix) {
+FOGRT__PRIVATE uint32_t fogrt__rated_spp(const fogrt__job *job, size_t pix) {
     double u = (double)(fogrt__hash64(job->base ^ fogrt__hash64(0x52415445ULL ^ (uint64_t)pix)) >> 11) * (1.0 / 9007199254740992.0);
     double r = (double)job->st.desc.sample_rate[pix], b = (double)job->img->rated_spp;
     double n = floor((b + (double)job->spp) * r + u) - floor(b * r + u);
@@ -6258,7 +6258,7 @@ FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__path *P, fogrt__v3 c, bool 
 /* ------------------------------------------------------------------------------------------
    E. The full integrator
    What it adds: the steps of B and C inside Part I's Algorithm 1, as fogrt_render_defaults()
-   runs it. It has no loop of its own: fogrt__full_radiance puts Part I's walk inside the
+   runs it. It has no loop of its own: fogrt__full_radiance_xs puts Part I's walk inside the
    path state below (fogrt__path) and runs fogrt__algorithm1, whose four steps hand the
    path to the functions here at seams 7a-7d. What it costs: nothing for a feature a scene
    does not use (make callgrind; table "Strip cost"). The steps, named as the seams
@@ -6275,15 +6275,15 @@ FOGRT__PRIVATE void fogrt__trace_gather(const fogrt__path *P, fogrt__v3 c, bool 
      b'. fogrt__light_behind (B): after a fog collision, the light of point and spot lights
         sampled at the surface behind it, times T; step c counts it T times when the ray
         gets there.
-     c. (seam 7b, fogrt__light_at_vertex) fogrt__x_light_step: at the scattering vertex, fog or surface, sample the lights (2.3),
+     c. (seam 7b, fogrt__light_at_vertex) fogrt__full_light_step: at the scattering vertex, fog or surface, sample the lights (2.3),
         one chosen by power where asked (C).
-     d. (seam 7c, fogrt__new_direction) fogrt__x_scatter: the new direction:
+     d. (seam 7c, fogrt__new_direction) fogrt__full_scatter: the new direction:
         Henyey-Greenstein in the fog (3.3), the BSDF on a surface (2.2).
      d'. fogrt__scatter_glow (B): near point and spot lights in fog, some of the new
         directions aim at the glow around a lamp instead, so that the paths that pass next
         to it are common and light, not rare and huge; some of those aimed at a spot light
         aim at the floor it lights (its footprint).
-     e. (seam 7d, fogrt__roulette) fogrt__x_roulette_q: Russian roulette's q, scaled by the
+     e. (seam 7d, fogrt__roulette) fogrt__full_roulette_q: Russian roulette's q, scaled by the
         scene's pilot (C).
    A scene without fog never enters step a: it pays one well-predicted branch per bounce.
    The one-bounce baseline is the same loop with its rule (fogrt__algorithm1's one_bounce).
@@ -6315,7 +6315,7 @@ FOGRT__HOT fogrt__v3 fogrt__fog_phase_sample(const fogrt__med *m, fogrt__v3 wo, 
    bounded by a box (C). False: it misses it. */
 FOGRT__HOT bool fogrt__med_span(const fogrt_scene *s, const fogrt__med *m, fogrt__v3 o, fogrt__v3 d, float tmax,
                                 float *a, float *b) {
-    if (m->world) return fogrt__x_fog_span(s, o, d, tmax, a, b);
+    if (m->world) return fogrt__fog_box_span(s, o, d, tmax, a, b);
     *a = 0.0f;
     *b = tmax;
     return true;
@@ -6641,7 +6641,7 @@ FOGRT__HOT fogrt__v3 fogrt__sample_lights(const fogrt_scene *s, const fogrt__set
    (the paper's scene) the floor and the bunny in the beam, seen through fog, flickered so.
    So the light of point and spot lights sampled at the surface counts T times, always:
    here, behind a collision (the surface's vertex is set up on the side, then the fog vertex
-   put back), and at the surface itself in step c when the ray gets there (fogrt__x_light_step
+   put back), and at the surface itself in step c when the ray gets there (fogrt__full_light_step
    scales their share by T). Its mean is the paper's; the path still goes on from one of
    the two, as in the paper. Area lights and the sky keep the paper's way: their own light
    sample is noisy enough that the extra shadow ray does not pay (docs/benchmarks.md,
@@ -6785,7 +6785,7 @@ FOGRT__PRIVATE fogrt__step fogrt__next_event_of(const fogrt_scene *s) {
 
 /* c. Light sampling at the scattering vertex (next-event estimation, 2.3); a mirror
    or glass vertex cannot be reached by a light sample and is skipped. */
-FOGRT__PRIVATE void fogrt__x_light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
+FOGRT__PRIVATE void fogrt__full_light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
 #ifdef FOGRT__LAMPS
     if (P->xs->glow) fogrt__glow_setup(s, P, &P->w.v, &P->glow, fogrt__is_scattering(P) && (P->w.v.is_medium || P->type == FOGRT_BSDF_DIFFUSE));
 #endif
@@ -6887,7 +6887,7 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
 
 /* d. The new direction: Henyey-Greenstein in the fog (eq. 11-12, weight p / pdf = 1), the
    BSDF on a surface; near a lamp, the mixture of d'. */
-FOGRT__PRIVATE bool fogrt__x_scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
+FOGRT__PRIVATE bool fogrt__full_scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
     P->w.prev_p = P->w.v.p;
     P->rr_scale = 1.0f;                                  /* (d' sets it for the roulette after it) */
 
@@ -6911,7 +6911,7 @@ FOGRT__PRIVATE bool fogrt__x_scatter(const fogrt_scene *s, const fogrt__settings
 /* e. Russian roulette after rr_depth bounces: continue with probability q, weight 1/q;
    q = min(0.95, k x throughput), k in [1, 4] chosen for the scene by its pilot (chapter
    15): the k that makes variance x time least. */
-FOGRT__PRIVATE float fogrt__x_roulette_q(const fogrt__settings *st, fogrt__path *P, float u) {
+FOGRT__PRIVATE float fogrt__full_roulette_q(const fogrt__settings *st, fogrt__path *P, float u) {
     if (P->xs->rr_probe && !P->probed) {                 /* the pilot: the path's first roulette */
         P->probed = true;
         P->probe_lum = fogrt__luminance(P->w.L);
@@ -7029,7 +7029,7 @@ FOGRT__PRIVATE float fogrt__pilot_pass(const fogrt_scene *s, const fogrt__settin
     }
     return (float)FOGRT__PILOT_KJ(jbest);
 }
-FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__settings *st, fogrt__xs *xs);
+FOGRT__PRIVATE void fogrt__full_settings(const fogrt_scene *s, const fogrt__settings *st, fogrt__xs *xs);
 FOGRT__PRIVATE float fogrt__roulette_pilot(const fogrt_scene *s) {
     fogrt__settings st;
     fogrt__xs xs;
@@ -7037,7 +7037,7 @@ FOGRT__PRIVATE float fogrt__roulette_pilot(const fogrt_scene *s) {
     float k;
     if (fogrt__light_total(s) == 0 || fogrt__resolve_render(s, NULL, &st, NULL) != FOGRT_RESULT_OK ||
         st.desc.rr_depth >= st.max_depth) return 1.0f;
-    fogrt__x_settings(s, &st, &xs);
+    fogrt__full_settings(s, &st, &xs);
     xs.rr_k = 1.0f; xs.rr_probe = true;
     cam = fogrt__camera_setup(s, FOGRT__PILOT_W, FOGRT__PILOT_H);
     k = fogrt__pilot_pass(s, &st, &xs, &cam);
@@ -7049,7 +7049,7 @@ FOGRT__PRIVATE float fogrt__roulette_pilot(const fogrt_scene *s) {
 }
 #endif /* FOGRT_NO_ESTIMATION */
 /* The full integrator's settings for a render desc (Part I's settings hold the desc). */
-FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__settings *st, fogrt__xs *xs) {
+FOGRT__PRIVATE void fogrt__full_settings(const fogrt_scene *s, const fogrt__settings *st, fogrt__xs *xs) {
     const fogrt_render_desc *d = &st->desc;
     xs->equiangular = d->equiangular;
     xs->glow = d->glow && d->nee && d->equiangular && fogrt__lamps_in_fog(s);
@@ -7066,11 +7066,11 @@ FOGRT__PRIVATE void fogrt__x_settings(const fogrt_scene *s, const fogrt__setting
 #endif
 }
 /* The samplers the full integrator runs (fogrt_render_samplers), in the loop's order. */
-FOGRT__PRIVATE void fogrt__x_samplers(const fogrt_scene *s, const fogrt__settings *st, char *buf, size_t size) {
+FOGRT__PRIVATE void fogrt__full_samplers(const fogrt_scene *s, const fogrt__settings *st, char *buf, size_t size) {
     const fogrt_render_desc *d = &st->desc;
     fogrt__xs xs;
     bool world = (s->features & FOGRT_FEATURE_MEDIUM) != 0, shapes = false, lamps = world && s->light_count > 0;
-    fogrt__x_settings(s, st, &xs);
+    fogrt__full_settings(s, st, &xs);
 #ifndef FOGRT_NO_SHAPES
     shapes = s->x->h != NULL;
 #endif
@@ -7097,7 +7097,7 @@ FOGRT__PRIVATE void fogrt__x_samplers(const fogrt_scene *s, const fogrt__setting
 }
 /* Seam 7: the full integrator for every desc that asks for more than the paper, and for
    fog in a box or G's media (which Part I does not know). */
-FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const fogrt__settings *st) {
+FOGRT__PRIVATE bool fogrt__full_wanted(const fogrt_scene *s, const fogrt__settings *st) {
     const fogrt_render_desc *d = &st->desc;
 #ifndef FOGRT_NO_SHAPES
     if (s->x->h) return true;                           /* H */
@@ -7110,25 +7110,25 @@ FOGRT__PRIVATE bool fogrt__x_wanted(const fogrt_scene *s, const fogrt__settings 
 }
 /* One sample of the full integrator with settings xs: Part I's Algorithm 1, stepping the
    walk w inside Part II's path state. */
-FOGRT__PRIVATE fogrt__v3 fogrt__full_radiance(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs,
+FOGRT__PRIVATE fogrt__v3 fogrt__full_radiance_xs(const fogrt_scene *s, const fogrt__settings *st, const fogrt__xs *xs,
                                               const fogrt__walk *w) {
     fogrt__path P;
     fogrt__path_start(s, &P, xs, w);
     return fogrt__algorithm1(s, st, &P.w, st->integrator == FOGRT_INTEGRATOR_DIRECT);
 }
-FOGRT__PRIVATE fogrt__v3 fogrt__x_radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w) {
+FOGRT__PRIVATE fogrt__v3 fogrt__full_radiance(const fogrt_scene *s, const fogrt__settings *st, fogrt__walk *w) {
     fogrt__xs xs;
-    fogrt__x_settings(s, st, &xs);
-    return fogrt__full_radiance(s, st, &xs, w);
+    fogrt__full_settings(s, st, &xs);
+    return fogrt__full_radiance_xs(s, st, &xs, w);
 }
 /* Seam 7a: the next event, by the steps chosen for the path (E's, G's or H's). */
-FOGRT__PRIVATE bool fogrt__x_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
+FOGRT__PRIVATE bool fogrt__full_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
     return P->next_event(s, st, P, limit);
 }
 
 /* Seams 3 and 4: Part II's tables, made after Part I's build (the tree and the lights),
    and released with it. The footprints and the pilot trace rays in the finished scene. */
-FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n) {
+FOGRT__PRIVATE bool fogrt__appendix_build(fogrt_scene *s, const fogrt_build_desc *d, uint32_t n) {
     struct fogrt__x *x = (struct fogrt__x *)fogrt__alloc(&s->allocator, sizeof *x);
 #ifndef FOGRT_NO_ESTIMATION
     /* The pilot's rays cost what the tree's do. Where the SAH cost says a ray visits some
@@ -7186,10 +7186,10 @@ FOGRT__PRIVATE bool fogrt__x_build(fogrt_scene *s, const fogrt_build_desc *d, ui
 #endif
     return true;
 }
-FOGRT__PRIVATE void fogrt__x_release(fogrt_scene *s) {
+FOGRT__PRIVATE void fogrt__appendix_release(fogrt_scene *s) {
     if (!s->x) return;
 #ifndef FOGRT_NO_SHAPES
-    fogrt__x_shapes_release(s);
+    fogrt__shapes_release(s);
 #endif
 #ifndef FOGRT_NO_WIDE_BVH
     fogrt__wide_release(s);
@@ -7224,7 +7224,7 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_trace_path(const fogrt_scene *s, const fogrt_rend
     job.s = s;
     job.cam = fogrt__camera_setup(s, width, height);
     job.base = fogrt__hash64(d.seed);
-    fogrt__x_settings(s, &job.st, &xs);
+    fogrt__full_settings(s, &job.st, &xs);
     xs.trace = fn; xs.trace_user = user_data;
     fogrt__pixel_ray(&job, width, height, x, y, sample_index, &rng, &o, &dir, &e.u[0], &e.u[1]);
     if (fn) {
@@ -7236,7 +7236,7 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_trace_path(const fogrt_scene *s, const fogrt_rend
     }
     fogrt__walk w;
     fogrt__walk_start(&w, s, o, dir, &rng, &rays);
-    L = fogrt__full_radiance(s, &job.st, &xs, &w);
+    L = fogrt__full_radiance_xs(s, &job.st, &xs, &w);
     memset(&e, 0, sizeof e);
     e.kind = FOGRT_TRACE_END; e.value = L;
     if (fn) fn(&e, user_data);
@@ -7424,7 +7424,7 @@ FOGRT__PUBLIC bool fogrt_scene_intersect_brute(const fogrt_scene *s, fogrt_vec3 
    against a FOGRT_NO_MEDIA build; docs/benchmarks.md, table "Strip cost"). Validation of
    the medium desc's fields is seam 6's second use.
    ------------------------------------------------------------------------------------------ */
-FOGRT__PRIVATE fogrt_result fogrt__x_check_media(const fogrt_scene *s, fogrt_medium_desc *m) {
+FOGRT__PRIVATE fogrt_result fogrt__media_check(const fogrt_scene *s, fogrt_medium_desc *m) {
     FOGRT__REFUSE_IF((unsigned)m->phase >= (unsigned)FOGRT_PHASE_NUM, INVALID_MEDIUM,
                      "medium.phase: not FOGRT_PHASE_HG, FOGRT_PHASE_HG2 or FOGRT_PHASE_RAYLEIGH");
     FOGRT__REFUSE_IF(!(m->g2 >= -1.0f && m->g2 <= 1.0f), INVALID_MEDIUM, "medium.g2: outside [-1, 1] or not finite");
@@ -7574,7 +7574,7 @@ FOGRT__PRIVATE void fogrt__media_emission(const fogrt_scene *s, const fogrt__set
    collision at t: sigma_t,c T_c(t); crossing a length d: T_c(d)) has density m = sum r_c p_c /
    sum r_c under the mixture, relative to the path so far: beta takes f / m and r takes p
    (fogrt__chroma_mix). With equal components every m is the grey p and beta the grey albedo,
-   but such a medium is stored as grey fog (fogrt__x_check_media) and never comes here.
+   but such a medium is stored as grey fog (fogrt__media_check) and never comes here.
    What reads sigma_t reads it per channel:
      - shadow rays (light sampling at fog and surface vertices, and at the points equiangular
        sampling draws): T_c, folded into f (fogrt__chroma_shadow);
@@ -7632,7 +7632,7 @@ FOGRT__PRIVATE float fogrt__chroma_shadow(const fogrt_scene *s, const fogrt__ver
     float a, b;
     clear.in_medium = false;
     if (fogrt__shadow(s, &clear, ls, rays) == 0.0f) return 0.0f;
-    if (fogrt__x_fog_span(s, v->p, ls->wi, ls->dist, &a, &b)) *f = fogrt__mul(*f, fogrt__chroma_tr(&s->x->world, b - a));
+    if (fogrt__fog_box_span(s, v->p, ls->wi, ls->dist, &a, &b)) *f = fogrt__mul(*f, fogrt__chroma_tr(&s->x->world, b - a));
     return 1.0f;
 }
 /* A light sample's f (G's phase function at a fog vertex) and visibility times T (T_c in f
@@ -8044,7 +8044,7 @@ FOGRT__PRIVATE void fogrt__resolve_media(struct fogrt__hbuilt *h) {
             b->inside = b->declared >= 0 ? (uint32_t)b->declared : (b->interface ? b->outside : 1u);
         }
 }
-FOGRT__PRIVATE void fogrt__x_shapes_release(fogrt_scene *s) {
+FOGRT__PRIVATE void fogrt__shapes_release(fogrt_scene *s) {
     struct fogrt__hbuilt *h = s->x->h;
     if (!h) return;
     fogrt__free(&s->allocator, h->media);
@@ -8195,7 +8195,7 @@ FOGRT__PRIVATE bool fogrt__h_next_event(const fogrt_scene *s, const fogrt__setti
 #endif /* FOGRT_NO_SHAPES */
 
 /* SEAM 4: what Part II's calls set on the scene, freed with it (C's map, H's media). */
-FOGRT__PRIVATE void fogrt__x_scene_free(fogrt_scene *s) {
+FOGRT__PRIVATE void fogrt__appendix_scene_free(fogrt_scene *s) {
 #ifndef FOGRT_NO_ESTIMATION
     fogrt__env_map_free(s);
 #endif
@@ -8424,8 +8424,8 @@ FOGRT__PUBLIC const char *fogrt_render_samplers(const fogrt_scene *s, const fogr
     const fogrt_render_desc *d = &st.desc;
     fogrt__say(buf, size, st.integrator == FOGRT_INTEGRATOR_DIRECT, "one bounce");
 #ifndef FOGRT_MINIMAL
-    if (fogrt__x_wanted(s, &st)) {
-        fogrt__x_samplers(s, &st, buf, size);
+    if (fogrt__full_wanted(s, &st)) {
+        fogrt__full_samplers(s, &st, buf, size);
         return buf;
     }
 #endif

@@ -294,14 +294,14 @@ fi
 appendix_nm() { gone_nm "-std=c99 -O0 -fno-inline -fkeep-static-functions" tT "$@"; }
 if have "$GCC" && have nm; then
     run "nm: FOGRT_NO_WIDE_BVH removes appendix A" appendix_nm FOGRT_NO_WIDE_BVH \
-        fogrt__wbvh_build fogrt__wbvh_pack_leaf fogrt__x_leaf_keep fogrt__alloc_big
+        fogrt__wbvh_build fogrt__wbvh_pack_leaf fogrt__wide_leaf_keep fogrt__alloc_big
     run "nm: FOGRT_NO_LAMPS_IN_FOG removes appendix B" appendix_nm FOGRT_NO_LAMPS_IN_FOG \
         fogrt_sample_equiangular fogrt_sample_glow fogrt__hg_table_build fogrt__find_footprints fogrt__scatter_glow
     run "nm: FOGRT_NO_ESTIMATION removes appendix C" appendix_nm FOGRT_NO_ESTIMATION \
         fogrt_image_sample_rates fogrt_scene_set_environment_map fogrt_fresnel_dielectric fogrt__roulette_pilot \
-        fogrt__x_pixel_position fogrt__build_light_pick
+        fogrt__stratified_position fogrt__build_light_pick
     run "nm: FOGRT_NO_MEDIA removes appendix G" appendix_nm FOGRT_NO_MEDIA \
-        fogrt_sample_hg2 fogrt_sample_rayleigh fogrt_sample_phase fogrt__x_check_media fogrt__media_emission \
+        fogrt_sample_hg2 fogrt_sample_rayleigh fogrt_sample_phase fogrt__media_check fogrt__media_emission \
         fogrt__media_next_event fogrt__chroma_next_event fogrt__chroma_mix fogrt__chroma_shadow
     run "nm: FOGRT_NO_SHAPES removes appendix H" appendix_nm FOGRT_NO_SHAPES \
         fogrt_scene_set_interior fogrt_scene_set_shape_material fogrt__h_radiance fogrt__shapes_build fogrt__find_boundaries fogrt__h_shadow

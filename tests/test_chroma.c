@@ -164,11 +164,11 @@ static fogrt_vec3 sample(const fogrt_scene *s, const fogrt_render_desc *rd, fogr
     fogrt__xs xs;
     uint64_t rays = 0;
     CHECK_OK(fogrt__resolve_render(s, rd, &st, NULL));
-    fogrt__x_settings(s, &st, &xs);
+    fogrt__full_settings(s, &st, &xs);
     xs.hero_pdf = hero_pdf;
     fogrt__walk w;
     fogrt__walk_start(&w, s, o, fogrt__normalize(d), rng, &rays);
-    return fogrt__full_radiance(s, &st, &xs, &w);
+    return fogrt__full_radiance_xs(s, &st, &xs, &w);
 }
 /* A direction of the camera's view cone (rows of a 16 x 12 image), for sample i. */
 static void camera_ray(const fogrt_scene *s, long i, fogrt_vec3 *o, fogrt_vec3 *d)

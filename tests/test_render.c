@@ -361,7 +361,7 @@ static int count_net_failures(uint64_t base, uint64_t pix, int stream, int first
         for (i = 0; i < n; ++i) {
             float jx, jy;
             int cx, cy;
-            fogrt__x_pixel_position(base, pix, (uint32_t)(FOGRT_IMAGE_STREAMS * (first + i) + stream), &jx, &jy);
+            fogrt__stratified_position(base, pix, (uint32_t)(FOGRT_IMAGE_STREAMS * (first + i) + stream), &jx, &jy);
             TEST_ASSERT_TRUE(jx >= 0.0f && jx < 1.0f && jy >= 0.0f && jy < 1.0f);
             cx = (int)(jx * (float)(1 << a)); cy = (int)(jy * (float)(1 << b));
             cells[(cy << a) + cx]++;
@@ -376,7 +376,7 @@ static double chi2_8x8(uint64_t base, int point)
     int i;
     for (i = 0; i < 4096; ++i) {
         float jx, jy;
-        fogrt__x_pixel_position(base, (uint64_t)(i / 4), (uint32_t)(FOGRT_IMAGE_STREAMS * point + i % 4), &jx, &jy);
+        fogrt__stratified_position(base, (uint64_t)(i / 4), (uint32_t)(FOGRT_IMAGE_STREAMS * point + i % 4), &jx, &jy);
         cells[(int)(jy * 8.0f) * 8 + (int)(jx * 8.0f)] += 1.0;
     }
     for (i = 0; i < 64; ++i) chi2 += (cells[i] - expected) * (cells[i] - expected) / expected;
@@ -409,7 +409,7 @@ static void test_pixel_positions_stratified(void)
     for (p = 0; p < 4096; ++p) {
         for (r = 0; r < FOGRT_IMAGE_STREAMS; ++r) {
             float jx, jy;
-            fogrt__x_pixel_position(base, (uint64_t)p, (uint32_t)r, &jx, &jy);
+            fogrt__stratified_position(base, (uint64_t)p, (uint32_t)r, &jx, &jy);
             sxy[r][0] = jx - 0.5; sxy[r][1] = jy - 0.5;
         }
         for (r = 1; r < FOGRT_IMAGE_STREAMS; ++r) {
