@@ -7914,44 +7914,50 @@ FOGRT__PRIVATE float fogrt__mf_alpha(const fogrt_material_desc *m) {
     float a = m->alpha;   /* NaN, from a desc that never went through the checks: the smallest */
     return a >= FOGRT__MF_ALPHA_MIN ? (a <= FOGRT__MF_ALPHA_MAX ? a : FOGRT__MF_ALPHA_MAX) : FOGRT__MF_ALPHA_MIN;
 }
-/* Beckmann's D at a normal with cos^2 theta_h = c2. Where exp underflows D is 0, which
-   also keeps c2^2 away from underflow (c2 > 1e-8 there for every alpha allowed). */
-FOGRT__PRIVATE float fogrt__mf_d(float alpha, float c2) {
-    float a2 = alpha * alpha, e;
+/* Beckmann's D at the unit normal h (h.z > 0). tan^2 theta_h comes from h.x and h.y, not
+   from 1 - h.z^2, which loses the digits that a small alpha magnifies. Where exp underflows
+   D is 0, which also keeps h.z^4 away from underflow (h.z^2 > 1e-8 there for every alpha
+   allowed). */
+FOGRT__PRIVATE float fogrt__mf_d(float alpha, fogrt__v3 h) {
+    float a2 = alpha * alpha, c2 = h.z * h.z, e;
     if (!(c2 > 0.0f)) return 0.0f;
-    e = expf(-(1.0f - c2) / (c2 * a2));
+    e = expf(-(h.x * h.x + h.y * h.y) / (c2 * a2));
     return e > 0.0f ? e / (FOGRT__PI * a2 * c2 * c2) : 0.0f;
 }
-/* Smith's Lambda for Beckmann at a direction with cos theta = c > 0. Beyond a = 6 it is
-   below 1e-17 (nothing hides a direction that steep); a grazing direction is all hidden. */
-FOGRT__PRIVATE float fogrt__mf_lambda(float alpha, float c) {
-    float s2 = (1.0f - c) * (1.0f + c), a;
+/* Smith's Lambda for Beckmann at the unit direction w (w.z > 0). Beyond a = 6 it is below
+   1e-17 (nothing hides a direction that steep); a grazing direction is all hidden. */
+FOGRT__PRIVATE float fogrt__mf_lambda(float alpha, fogrt__v3 w) {
+    float s2 = w.x * w.x + w.y * w.y, a;
     if (!(s2 > 0.0f)) return 0.0f;
-    a = c / (alpha * sqrtf(s2));
+    a = w.z / (alpha * sqrtf(s2));
     if (a > 6.0f) return 0.0f;
     if (!(a > 1e-30f)) return 1e30f;
     return 0.5f * (expf(-a * a) * FOGRT__INV_SQRT_PI / a - erfcf(a));
 }
 /* Smith's shadowing-masking G of the pair, height-correlated (one Lambda each). */
-FOGRT__PRIVATE float fogrt__mf_g(float alpha, float co, float ci) {
-    return 1.0f / (1.0f + fogrt__mf_lambda(alpha, co) + fogrt__mf_lambda(alpha, ci));
+FOGRT__PRIVATE float fogrt__mf_g(float alpha, fogrt__v3 wo, fogrt__v3 wi) {
+    return 1.0f / (1.0f + fogrt__mf_lambda(alpha, wo) + fogrt__mf_lambda(alpha, wi));
 }
 /* The unpolarised Fresnel reflectance of a conductor eta + i k at cos theta = c in [0, 1]:
-   the mean of the s and p reflectances, with a^2 + b^2 = |(eta + i k)^2 - sin^2 theta| and
-   a its real part's share. At normal incidence the p term equals the s term (0/0 if both
-   eta and k are 0, where F = 1). */
+   the mean of the s and p reflectances. With a + i b = sqrt((eta + i k)^2 - sin^2 theta),
+       Rs = ((a - c)^2 + b^2) / ((a + c)^2 + b^2),
+       Rp = Rs ((a c - s^2)^2 + b^2 c^2) / ((a c + s^2)^2 + b^2 c^2),
+   written as sums of squares so that a nearly index-matched metal (eta near 1, k = 0),
+   whose F is tiny, keeps its digits and its reciprocity. At normal incidence Rp = Rs (0/0
+   when eta = k = 0, where F = 1). */
 FOGRT__PRIVATE float fogrt__mf_fresnel1(float eta, float k, float c) {
-    float c2, s2, t0, ab2, a, rs, rp_n, rp_d;
+    float s2, t0, ab2, a, b2, rs, rp_n, rp_d;
     eta = eta <= FOGRT__MF_INDEX_MAX ? eta : FOGRT__MF_INDEX_MAX;
     k = k <= FOGRT__MF_INDEX_MAX ? k : FOGRT__MF_INDEX_MAX;
     c = FOGRT__CLAMP(c, 0.0f, 1.0f);
-    c2 = c * c; s2 = 1.0f - c2;
-    t0 = eta * eta - k * k - s2;
-    ab2 = sqrtf(t0 * t0 + 4.0f * eta * eta * k * k);
+    s2 = (1.0f - c) * (1.0f + c);
+    t0 = eta * eta - k * k - s2;                         /* a^2 - b^2 */
+    ab2 = sqrtf(t0 * t0 + 4.0f * eta * eta * k * k);     /* a^2 + b^2 */
     a = sqrtf(FOGRT__MAX(0.0f, 0.5f * (ab2 + t0)));
-    rs = (ab2 + c2 - 2.0f * a * c) / (ab2 + c2 + 2.0f * a * c);   /* > 0: ab2 >= s2 */
-    rp_n = c2 * ab2 + s2 * s2 - 2.0f * a * c * s2;
-    rp_d = c2 * ab2 + s2 * s2 + 2.0f * a * c * s2;
+    b2 = FOGRT__MAX(0.0f, 0.5f * (ab2 - t0));
+    rs = ((a - c) * (a - c) + b2) / ((a + c) * (a + c) + b2);   /* > 0: a + c > 0 or b2 >= s2 > 0 */
+    rp_n = (a * c - s2) * (a * c - s2) + b2 * c * c;
+    rp_d = (a * c + s2) * (a * c + s2) + b2 * c * c;
     return FOGRT__CLAMP(0.5f * (rs + (rp_d > 0.0f ? rs * rp_n / rp_d : rs)), 0.0f, 1.0f);
 }
 FOGRT__PRIVATE fogrt__v3 fogrt__mf_fresnel(const fogrt_material_desc *m, float c) {
@@ -7974,8 +7980,8 @@ FOGRT__PRIVATE fogrt_vec3 fogrt__x_mf_eval(const fogrt_material_desc *m, fogrt_v
     float alpha = fogrt__mf_alpha(m), d, g, s;
     fogrt__v3 h;
     if (!fogrt__mf_half(&wo, &wi, &h)) return fogrt__v(0.0f, 0.0f, 0.0f);
-    d = fogrt__mf_d(alpha, h.z * h.z);
-    g = fogrt__mf_g(alpha, wo.z, wi.z);
+    d = fogrt__mf_d(alpha, h);
+    g = fogrt__mf_g(alpha, wo, wi);
     if (!(d > 0.0f) || !(g > 0.0f)) return fogrt__v(0.0f, 0.0f, 0.0f);
     s = d * g / (4.0f * wo.z * wi.z);
     return fogrt__scale(fogrt__mf_fresnel(m, fogrt__dot(wo, h)), s < 1e30f ? s : 1e30f);   /* grazing both ways */
@@ -7986,7 +7992,7 @@ FOGRT__PRIVATE float fogrt__x_mf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo
     if (!fogrt__mf_half(&wo, &wi, &h)) return 0.0f;
     oh = fogrt__dot(wo, h);                              /* > 0: wo and wi on one side */
     if (!(oh > 0.0f)) return 0.0f;
-    p = fogrt__mf_d(fogrt__mf_alpha(m), h.z * h.z) * h.z / (4.0f * oh);
+    p = fogrt__mf_d(fogrt__mf_alpha(m), h) * h.z / (4.0f * oh);
     return p < 1e30f ? p : 1e30f;
 }
 FOGRT__PRIVATE bool fogrt__x_mf_sample(const fogrt_material_desc *m, fogrt_vec3 wo, float u1, float u2,
@@ -8000,7 +8006,7 @@ FOGRT__PRIVATE bool fogrt__x_mf_sample(const fogrt_material_desc *m, fogrt_vec3 
     if (!(oh > 0.0f)) return false;                      /* a facet that wo sees from behind */
     wi = fogrt__sub(fogrt__scale(h, 2.0f * oh), wo);
     if (!(wi.z > 0.0f)) return false;                    /* reflected into the surface */
-    g = fogrt__mf_g(alpha, wo.z, wi.z);
+    g = fogrt__mf_g(alpha, wo, wi);
     out->weight = fogrt__scale(fogrt__mf_fresnel(m, oh), g / wo.z * (oh / c));   /* F G wo.h / (cos_o cos_h) */
     wo.z *= side; wi.z *= side;
     out->wi = wi;
