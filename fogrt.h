@@ -56,6 +56,7 @@
     FOGRT_NO_SHAPES        leave out appendix H, media inside shapes (fogrt_scene_set_interior,
                            fogrt_scene_set_shape_material; the interface material fails;
                            implied by FOGRT_NO_MEDIA)
+    FOGRT_NO_MICROFACET    leave out appendix I, rough metals (the microfacet material fails)
     FOGRT_NO_MEDIUM        strip the fog: no free-flight, transmittance, phase or equiangular
                            code (fogrt_scene_set_medium with sigma_t > 0 fails; implies
                            FOGRT_NO_MEDIA)
@@ -119,7 +120,7 @@
 
     WHAT FOGRT DOES NOT DO
     ======================
-    Heterogeneous media (sigma_t is the same everywhere), textures, microfacet BSDFs,
+    Heterogeneous media (sigma_t is the same everywhere), textures, rough dielectrics,
     spectral rendering, instancing, motion blur, GPU. Nested refractive objects are tracked
     only in a scene with media inside shapes (Part II, H); elsewhere leaving any refractive
     object puts the ray back into the fog.
@@ -141,6 +142,9 @@
 #endif
 #ifndef FOGRT_NO_MEDIA
 #define FOGRT_NO_MEDIA
+#endif
+#ifndef FOGRT_NO_MICROFACET
+#define FOGRT_NO_MICROFACET
 #endif
 #endif
 #if defined(FOGRT_NO_MEDIUM) && !defined(FOGRT_NO_MEDIA)
@@ -178,7 +182,7 @@ extern "C" {
     X(OK,                "ok") \
     X(OUT_OF_MEMORY,     "out of memory") \
     X(INVALID_ARGUMENT,  "invalid argument") \
-    X(INVALID_MATERIAL,  "invalid material (index out of range, or a non-finite or negative colour, or ior <= 0)") \
+    X(INVALID_MATERIAL,  "invalid material (index out of range, or a non-finite or negative colour, or ior <= 0, or a microfacet alpha <= 0)") \
     X(INVALID_GEOMETRY,  "invalid geometry (non-finite position, index out of range, or radius <= 0)") \
     X(INVALID_LIGHT,     "invalid light (non-finite or negative intensity, or bad angles)") \
     X(INVALID_CAMERA,    "invalid camera (fov outside (0,180), eye equals target, or negative lens)") \
@@ -239,11 +243,14 @@ typedef struct fogrt_scene_desc {
 FOGRT_API fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogrt_scene **out_scene);
 FOGRT_API void fogrt_scene_destroy(fogrt_scene *scene);   /* NULL is a no-op */
 
-/* The four BSDFs of the paper. */
+/* The four BSDFs of the paper, and a rough metal (Part II, I). The ones that only reflect
+   come before FOGRT_BSDF_REFRACTION: the renderer tells the two kinds apart by that order. */
 typedef enum fogrt_bsdf_type {
     FOGRT_BSDF_DEFAULT = 0,   /* = diffuse */
     FOGRT_BSDF_DIFFUSE,       /* Lambertian, f = reflectance / pi */
     FOGRT_BSDF_MIRROR,        /* perfect specular reflection, tinted by reflectance */
+    FOGRT_BSDF_MICROFACET,    /* rough conductor: Beckmann microfacets of width alpha, the
+                                 complex index eta + i k per channel (CS184's; Part II, I) */
     FOGRT_BSDF_REFRACTION,    /* specular transmission only; total internal reflection reflects */
     FOGRT_BSDF_GLASS,         /* reflect with probability F (Fresnel), else refract */
     FOGRT_BSDF_INTERFACE,     /* index-matched: light passes straight through (the surface of a
@@ -258,13 +265,21 @@ typedef enum fogrt_bsdf_type {
      transmittance  refraction and glass transmission tint
      emission       radiance emitted from the front side; non-zero makes every primitive
                     with this material an area light
-     ior            index of refraction inside the object relative to outside; 0 = 1.5     */
+     ior            index of refraction inside the object relative to outside; 0 = 1.5
+     alpha          microfacet: Beckmann width, the rms slope of the microfacets (> 0; used
+                    clamped to [1e-4, 1e3]): 0.05 nearly polished, 0.5 rough
+     eta, k         microfacet: the metal's complex index of refraction eta + i k per colour
+                    channel (>= 0), whose Fresnel reflectance colours it (reflectance is not
+                    read); eta = k = 0 reflects everything at every angle                   */
 typedef struct fogrt_material_desc {
     fogrt_bsdf_type type;
     fogrt_vec3 reflectance;
     fogrt_vec3 transmittance;
     fogrt_vec3 emission;
     float ior;
+    float alpha;
+    fogrt_vec3 eta;
+    fogrt_vec3 k;
 } fogrt_material_desc;
 
 FOGRT_API fogrt_result fogrt_scene_add_material(fogrt_scene *scene, const fogrt_material_desc *desc,
@@ -993,7 +1008,9 @@ typedef enum fogrt_trace_kind {
     FOGRT_TRACE_FORCE_U32 = 0x7FFFFFFF
 } fogrt_trace_kind;
 
-typedef enum fogrt_trace_lobe { FOGRT_LOBE_DIFFUSE, FOGRT_LOBE_REFLECT, FOGRT_LOBE_REFRACT } fogrt_trace_lobe;
+typedef enum fogrt_trace_lobe {
+    FOGRT_LOBE_DIFFUSE, FOGRT_LOBE_REFLECT, FOGRT_LOBE_REFRACT, FOGRT_LOBE_GLOSSY   /* glossy: the rough metal */
+} fogrt_trace_lobe;
 
 typedef struct fogrt_trace_event {
     fogrt_trace_kind kind;
@@ -1094,9 +1111,11 @@ FOGRT_API fogrt_result fogrt_write_ppm(const char *path, int width, int height, 
 #if defined(__GNUC__) || defined(__clang__)
 #define FOGRT__UNUSED __attribute__((unused))
 #define FOGRT__INLINE __attribute__((always_inline, unused))
+#define FOGRT__NOINLINE __attribute__((noinline, unused))
 #else
 #define FOGRT__UNUSED
 #define FOGRT__INLINE
+#define FOGRT__NOINLINE
 #endif
 #define FOGRT__PRIVATE static FOGRT__UNUSED
 #define FOGRT__HOT static inline FOGRT__INLINE
@@ -1168,6 +1187,17 @@ FOGRT__PRIVATE float fogrt__full_roulette_q(const struct fogrt__settings *st, st
 FOGRT__PRIVATE void fogrt__full_samplers(const fogrt_scene *s, const struct fogrt__settings *st, char *buf, size_t size);
 FOGRT__PRIVATE void fogrt__say(char *buf, size_t size, bool yes, const char *name);
 #endif
+#ifndef FOGRT_NO_MICROFACET
+/* Out of line: inlined into 2.2's BSDF calls they made those too large for gcc to inline
+   into the integrator, and a scene without rough metals paid 0.3% (make callgrind). */
+static FOGRT__NOINLINE bool fogrt__mf_sample(const fogrt_material_desc *m, fogrt_vec3 wo, float u1, float u2,
+                                               fogrt_bsdf_sample *out);                           /* 5 (I) */
+static FOGRT__NOINLINE fogrt_vec3 fogrt__mf_eval(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi);
+static FOGRT__NOINLINE float fogrt__mf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi);
+#define FOGRT__MF_SEAM(type, call) if ((type) == FOGRT_BSDF_MICROFACET) return call
+#else   /* no rough metal can be added (fogrt__beyond_material): its seams compile to nothing */
+#define FOGRT__MF_SEAM(type, call)
+#endif
 #ifndef FOGRT_NO_ESTIMATION
 FOGRT__PRIVATE void fogrt__stratified_position(uint64_t base, uint64_t pix, uint32_t index, float *jx, float *jy);   /* 8 (C) */
 FOGRT__PRIVATE uint32_t fogrt__rated_spp(const struct fogrt__job *job, size_t pix);
@@ -1194,12 +1224,13 @@ FOGRT__PRIVATE uint32_t fogrt__rated_spp(const struct fogrt__job *job, size_t pi
 
    Part II, after it, is an appendix, one idea a chapter (A the wide BVH, B lamps in fog, C
    sampling and estimation, D the path trace, E the full integrator, F inspection, G media
-   beyond the paper, H media inside shapes), which fogrt_render_defaults() uses. After Part II
-   come the API around the method (getters, the public building blocks, the image's storage,
-   8-bit output) and the checks of what a build left out, which every build keeps.
+   beyond the paper, H media inside shapes, I rough metals), which fogrt_render_defaults()
+   uses. After Part II come the API around the method (getters, the public building blocks,
+   the image's storage, 8-bit output) and the checks of what a build left out, which every
+   build keeps.
    FOGRT_MINIMAL compiles Part I and those two, without Part II.
 
-   Part I reaches Part II only at these eight seams: nineteen one-line calls, each marked
+   Part I reaches Part II only at these eight seams: twenty-two one-line calls, each marked
    "SEAM n" where it stands (their declarations are in the set-up above):
      1. fogrt__traverse            the wide tree, when the build made one (A)
      2. fogrt_scene_build          how small a binary node may stay, for the wide tree (A);
@@ -1209,17 +1240,12 @@ FOGRT__PRIVATE uint32_t fogrt__rated_spp(const struct fogrt__job *job, size_t pi
      3. fogrt_scene_build          Part II's tables: wide tree, HG table, footprints, pilot
      4. fogrt__free_built          their release; fogrt_scene_destroy: what Part II's calls set
                                    on the scene (C's environment map, H's media)
-     5. fogrt__fresnel             the exact dielectric Fresnel (C)
+     5. fogrt__fresnel             the exact dielectric Fresnel (C);
+        fogrt_sample_bsdf, fogrt_bsdf_eval, fogrt_bsdf_pdf: the rough metal (I)
      6. fogrt__fog_transmittance   fog bounded by a box (C); fogrt__check_medium: G's medium fields
-     7. fogrt__radiance            Part II's state of the path, for every setting beyond the
-                                   paper (E); Algorithm 1's four steps then hand it on:
-        fogrt__next_vertex         7a. the next event: free flight in fog in a box, G's media,
-                                       H's media inside shapes, equiangular sampling (B, G, H)
-        fogrt__light_at_vertex     7b. light at a vertex: lights by power, the glow, the light
-                                       behind a fog collision, shadows through media (B, C, H)
-        fogrt__new_direction       7c. the new direction: the glow and footprint, G's phase
-                                       functions, H's media (B, G, H)
-        fogrt__roulette            7d. roulette's q: the pilot's (C)
+     7. fogrt__radiance            Part II's path state (E), for every setting beyond the paper;
+        7a-7d: Algorithm 1's steps then hand the path to E's: the next event (B, C, G, H), light
+        at a vertex (B, C, H), the new direction (B, G, H), roulette's q (C's pilot)
      8. fogrt__pixel_ray           stratified pixel positions (C); fogrt__render_row: rates
    ========================================================================================== */
 /* ------------------------------------------------------------------------------------------
@@ -2188,7 +2214,8 @@ FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3
    2.2 The Bidirectional Scattering Distribution Function: diffuse, mirror, refraction, glass
    All four BSDFs work in the local shading frame (normal +z). Diffuse and mirror reflect on
    both sides (they answer on the side wo is on); refraction and glass use the sign of wo.z
-   to tell entering (wo.z > 0) from leaving (wo.z < 0).
+   to tell entering (wo.z > 0) from leaving (wo.z < 0). A rough metal (Part II, I) reflects
+   on both sides too, and like diffuse has a density that light sampling and MIS use.
    ------------------------------------------------------------------------------------------ */
 FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *y) {
     float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
@@ -2281,7 +2308,9 @@ FOGRT__PRIVATE void fogrt__sample_dielectric(const fogrt_material_desc *m, fogrt
 FOGRT__PRIVATE fogrt_bsdf_type fogrt__bsdf_type(const fogrt_material_desc *m) {
     return m->type == FOGRT_BSDF_DEFAULT ? FOGRT_BSDF_DIFFUSE : m->type;
 }
-FOGRT__PRIVATE bool fogrt__bsdf_is_delta(fogrt_bsdf_type t) { return t != FOGRT_BSDF_DIFFUSE; }
+FOGRT__PRIVATE bool fogrt__bsdf_is_delta(fogrt_bsdf_type t) {
+    return t != FOGRT_BSDF_DIFFUSE && t != FOGRT_BSDF_MICROFACET;
+}
 FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel fresnel,
                                      fogrt_vec3 wo, float u_lobe, float u1, float u2,
                                      fogrt_bsdf_sample *out) {
@@ -2310,6 +2339,7 @@ FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel
         out->is_delta = out->is_transmission = true;
         return true;
     }
+    FOGRT__MF_SEAM(type, fogrt__mf_sample(m, wo, u1, u2, out));   /* SEAM 5 (I) */
     (void)u_lobe;                                        /* diffuse: cosine-weighted */
     (void)fresnel;
     fogrt__v3 wi = fogrt_sample_cosine_hemisphere(u1, u2);
@@ -2320,14 +2350,24 @@ FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel
     out->pdf = fabsf(wi.z) * FOGRT__INV_PI;
     return true;
 }
-FOGRT__PUBLIC fogrt_vec3 fogrt_bsdf_eval(const fogrt_material_desc *m, fogrt_vec3 wo,
-                                         fogrt_vec3 wi) {
-    if (fogrt__bsdf_is_delta(fogrt__bsdf_type(m)) || !(wo.z * wi.z > 0.0f))
+/* Diffuse, or zero (the delta BSDFs, or wo and wi on opposite sides). Forced inline: light
+   sampling evaluates it once per sample. */
+FOGRT__HOT fogrt__v3 fogrt__bsdf_f(const fogrt_material_desc *m, fogrt__v3 wo, fogrt__v3 wi) {
+    if (fogrt__bsdf_type(m) != FOGRT_BSDF_DIFFUSE || !(wo.z * wi.z > 0.0f)) {
+        FOGRT__MF_SEAM(m->type, fogrt__mf_eval(m, wo, wi));   /* SEAM 5 (I) */
         return fogrt__v(0.0f, 0.0f, 0.0f);
+    }
     return fogrt__scale(m->reflectance, FOGRT__INV_PI);
 }
+FOGRT__PUBLIC fogrt_vec3 fogrt_bsdf_eval(const fogrt_material_desc *m, fogrt_vec3 wo,
+                                         fogrt_vec3 wi) {
+    return fogrt__bsdf_f(m, wo, wi);
+}
 FOGRT__PUBLIC float fogrt_bsdf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi) {
-    if (fogrt__bsdf_is_delta(fogrt__bsdf_type(m)) || !(wo.z * wi.z > 0.0f)) return 0.0f;
+    if (fogrt__bsdf_type(m) != FOGRT_BSDF_DIFFUSE || !(wo.z * wi.z > 0.0f)) {
+        FOGRT__MF_SEAM(m->type, fogrt__mf_pdf(m, wo, wi));   /* SEAM 5 (I) */
+        return 0.0f;
+    }
     return fabsf(wi.z) * FOGRT__INV_PI;
 }
 
@@ -2460,7 +2500,7 @@ FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *
     if (fogrt__dot(wi, v->ng) <= 0.0f) return fogrt__v(0.0f, 0.0f, 0.0f);
     fogrt__v3 wo_l = fogrt__to_local(&v->frame, v->wo), wi_l = fogrt__to_local(&v->frame, wi);
     *pdf = fogrt_bsdf_pdf(v->m, wo_l, wi_l);
-    return fogrt__scale(fogrt_bsdf_eval(v->m, wo_l, wi_l), fabsf(wi_l.z));
+    return fogrt__scale(fogrt__bsdf_f(v->m, wo_l, wi_l), fabsf(wi_l.z));
 }
 
 /* Point or spot light l seen from x: for a point light simply I(theta) / r^2 along the
@@ -2752,13 +2792,11 @@ FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi) {
    3.4 The global illumination pipeline: Algorithm 1 (eq. 13) and the one-bounce baseline
    Algorithm 1 is written as a recursion; fogrt__algorithm1 below runs it as a loop (the
    recursion's tail call), keeping the product of the weights of eq. 13 as the throughput
-   beta = prod f cos / pdf, so that the light found at depth k counts beta_k Le. It is the
-   one loop of every render: Part II's settings (fogrt_render_defaults) run it too, each of
-   its steps handing on to Part II at its seam (7a-7d) when the walk carries Part II's
-   state. Its steps carry the numbers of the algorithm's lines:
+   beta = prod f cos / pdf, so that the light found at depth k counts beta_k Le. Every render
+   runs it; with Part II's state on the walk each step hands on at its seam (7a-7d). Its
+   steps carry the numbers of the algorithm's lines:
      2     "ray depth > 0 and coin flip(p)": the depth limit, and Russian roulette after
-           rr_depth bounces: continue with probability q = min(0.95, max(beta)), weight 1/q
-           (unbiased: the path's expected value is unchanged);
+           rr_depth bounces: go on with probability q = min(0.95, max(beta)), weight 1/q;
      3-4   intersect the BVH (t_i), sample a fog collision t_fog (3.1), keep the nearer;
      5-10  light sampling at the vertex: in fog over the sphere of directions (6), at a
            surface over the hemisphere (9), each light's sample weighted by MIS (2.3);
@@ -2767,10 +2805,9 @@ FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi) {
            sigma_t at a collision, since transmittance and free-flight pdf cancel);
      12,23 one bounce more.
    Light reached by the ray itself (an emitter hit, or the sky) is added with the MIS weight
-   of BSDF sampling, so that the two estimates of an area light add up to one. The medium
-   fills all space outside refractive objects: a ray that refracts into one leaves the fog
-   until it refracts out again. Light that bounced fewer than min_depth times is not counted
-   (CS184's -o 0).
+   of BSDF sampling, so that the two estimates of an area light add up to one. The fog fills
+   all space outside refractive objects (a ray that refracts into one leaves it until it
+   refracts out). Light that bounced fewer than min_depth times is not counted (CS184's -o 0).
    ------------------------------------------------------------------------------------------ */
 /* A ray's hit as a surface point: the point, its geometric normal and its shading normal. */
 FOGRT__HOT void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d,
@@ -2937,8 +2974,7 @@ FOGRT__PRIVATE bool fogrt__next_vertex(const fogrt_scene *s, const fogrt__settin
     (void)fogrt__surface_vertex_set(v, m, fogrt__neg(w->d), p, ng, ns, w->in_fog);
     return true;
 }
-/* Whether the vertex scatters: fog, or a surface whose BSDF is not a mirror or glass (light
-   sampling cannot reach those, line 9's "if not specular"). */
+/* Fog, or a surface whose BSDF light sampling can reach (line 9: "if not specular"). */
 FOGRT__PRIVATE bool fogrt__scatters(const fogrt__vertex *v) {
     return v->is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v->m));
 }
@@ -3787,6 +3823,8 @@ FOGRT__PRIVATE fogrt_result fogrt__add_default(fogrt_scene *s) {
      F. Inspecting a scene: its tree, the tree's cost, a brute-force query, its memory
      G. Media beyond the paper: the two-lobe HG and Rayleigh phase functions, emitting fog,
         sigma_t per colour channel                   (table "Strip cost")
+     I. Rough metals: CS184's microfacet conductor, Beckmann with Smith's shadowing and the
+        conductor's Fresnel, sampled by its normals  (table "Strip cost")
    ========================================================================================== */
 #if !defined(FOGRT_NO_MEDIUM) && !defined(FOGRT_NO_LAMPS_IN_FOG)
 #define FOGRT__LAMPS 1             /* appendix B is compiled */
@@ -6230,7 +6268,8 @@ FOGRT__PRIVATE void fogrt__trace_bsdf(const fogrt__settings *st, const fogrt__pa
     fogrt_trace_event e = fogrt__event(FOGRT_TRACE_BSDF_SAMPLE, P);
     memcpy(e.u, u, sizeof e.u);
     e.p = P->w.v.p; e.bsdf = P->type; e.pdf = bs->pdf; e.value = bs->weight;
-    e.lobe = bs->is_transmission ? FOGRT_LOBE_REFRACT : (bs->is_delta ? FOGRT_LOBE_REFLECT : FOGRT_LOBE_DIFFUSE);
+    e.lobe = bs->is_transmission ? FOGRT_LOBE_REFRACT : bs->is_delta ? FOGRT_LOBE_REFLECT
+           : P->type == FOGRT_BSDF_MICROFACET ? FOGRT_LOBE_GLOSSY : FOGRT_LOBE_DIFFUSE;
 #ifndef FOGRT_NO_GLASS
     if (P->type == FOGRT_BSDF_GLASS) e.fresnel = fogrt__fresnel(st->desc.fresnel, FOGRT__DEF(P->w.v.m->ior, 1.5f), cos_o);
 #else
@@ -7244,13 +7283,13 @@ FOGRT__PUBLIC fogrt_vec3 fogrt_trace_path(const fogrt_scene *s, const fogrt_rend
 }
 #ifndef FOGRT_NO_STDIO
 FOGRT__PRIVATE const char *fogrt__bsdf_name(fogrt_bsdf_type t) {
-    static const char *names[FOGRT_BSDF_NUM] = { "diffuse", "diffuse", "mirror", "refraction", "glass", "interface" };
+    static const char *names[FOGRT_BSDF_NUM] = { "diffuse", "diffuse", "mirror", "microfacet", "refraction", "glass", "interface" };
     return (unsigned)t < (unsigned)FOGRT_BSDF_NUM ? names[t] : "?";
 }
 #define FOGRT__V3F(v) (double)(v).x, (double)(v).y, (double)(v).z
 /* The events that draw a sample: what was drawn, its pdf and its weight. */
 FOGRT__PRIVATE void fogrt__describe_sample(const fogrt_trace_event *e, char *buf, size_t size) {
-    static const char *lobes[3] = { "diffuse", "reflect", "refract" };
+    static const char *lobes[4] = { "diffuse", "reflect", "refract", "glossy" };
     switch (e->kind) {
     case FOGRT_TRACE_LIGHT_SAMPLE:
         snprintf(buf, size, "light sample (eq. 3) toward light %u: wi = (%.4f, %.4f, %.4f), r = %.4g, Le = (%.4g, %.4g, %.4g), "
@@ -8194,6 +8233,152 @@ FOGRT__PRIVATE bool fogrt__h_next_event(const fogrt_scene *s, const fogrt__setti
 }
 #endif /* FOGRT_NO_SHAPES */
 
+#ifndef FOGRT_NO_MICROFACET
+/* ------------------------------------------------------------------------------------------
+   I. Rough metals
+   What it adds: FOGRT_BSDF_MICROFACET, the rough conductor of CS184's assignment 3-2. The
+   surface is made of tiny mirrors whose normals h follow Beckmann's distribution of width
+   alpha (the rms slope of the surface),
+       D(h) = exp(-tan^2 theta_h / alpha^2) / (pi alpha^2 cos^4 theta_h),
+   which hide one another as Smith's model of that distribution says (height-correlated),
+       G(wo, wi) = 1 / (1 + Lambda(wo) + Lambda(wi)),
+       Lambda(w) = (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2,   a = 1 / (alpha tan theta),
+   and reflect as a metal of complex index eta + i k per colour channel (F, the conductor's
+   Fresnel reflectance at the angle between wo and h):
+       f(wo, wi) = F G D / (4 |cos theta_o| |cos theta_i|),   h = normalize(wo + wi).
+   It is sampled by importance: a normal h drawn from D(h) cos theta_h (tan^2 theta_h =
+   -alpha^2 ln(1 - u1), phi = 2 pi u2), and wi = wo mirrored about h. The mirroring's
+   Jacobian makes the density over wi D cos theta_h / (4 wo.h); the weight f cos / pdf =
+   F G wo.h / (cos theta_o cos theta_h) has no D, so it stays near F as alpha -> 0, where
+   the lobe closes on the mirror direction. A normal facing away from wo, or a wi below the
+   surface, gives no sample: the density over the directions that remain integrates to
+   less than 1 by just that share, so the estimate stays unbiased. Light sampling and MIS
+   take eval and pdf as they take diffuse's. Like diffuse and mirror it reflects on both
+   sides (wo.z < 0 mirrors the lobe), which the enum's order tells Part I.
+   The formulas are evaluated in float with the cases where a term would overflow or divide
+   by zero (grazing directions, alpha -> 0, eta = k = 0) taken first; alpha is used clamped
+   to [1e-4, 1e3], eta and k to at most 1e4.
+   What it costs: a scene without a rough metal pays one compare in each of Part I's three
+   BSDF calls (seam 5), which FOGRT_NO_MICROFACET removes (make callgrind, "Strip cost").
+   ------------------------------------------------------------------------------------------ */
+#define FOGRT__MF_ALPHA_MIN 1e-4f
+#define FOGRT__MF_ALPHA_MAX 1e3f
+#define FOGRT__MF_INDEX_MAX 1e4f
+#define FOGRT__INV_SQRT_PI 0.56418958354775628695f
+
+/* Refuses what the formulas cannot take: alpha not above 0, a negative or infinite index. */
+FOGRT__PRIVATE fogrt_result fogrt__mf_check(const fogrt_scene *s, const fogrt_material_desc *m) {
+    FOGRT__REFUSE_IF(!(m->alpha > 0.0f) || !fogrt__finite(m->alpha), INVALID_MATERIAL,
+                     "material.alpha: a microfacet material needs a finite Beckmann width > 0");
+    FOGRT__REFUSE_IF(!fogrt__colour_ok(m->eta) || !fogrt__colour_ok(m->k), INVALID_MATERIAL,
+                     "material.eta/k: negative or not finite");
+    return FOGRT_RESULT_OK;
+}
+FOGRT__PRIVATE float fogrt__mf_alpha(const fogrt_material_desc *m) {
+    float a = m->alpha;   /* NaN, from a desc that never went through the checks: the smallest */
+    return a >= FOGRT__MF_ALPHA_MIN ? (a <= FOGRT__MF_ALPHA_MAX ? a : FOGRT__MF_ALPHA_MAX) : FOGRT__MF_ALPHA_MIN;
+}
+/* Beckmann's D at the unit normal h (h.z > 0). tan^2 theta_h comes from h.x and h.y, not
+   from 1 - h.z^2, which loses the digits that a small alpha magnifies. Where exp underflows
+   D is 0, which also keeps h.z^4 away from underflow (h.z^2 > 1e-8 there for every alpha
+   allowed). */
+FOGRT__PRIVATE float fogrt__mf_d(float alpha, fogrt__v3 h) {
+    float a2 = alpha * alpha, c2 = h.z * h.z, e;
+    if (!(c2 > 0.0f)) return 0.0f;
+    e = expf(-(h.x * h.x + h.y * h.y) / (c2 * a2));
+    return e > 0.0f ? e / (FOGRT__PI * a2 * c2 * c2) : 0.0f;
+}
+/* Smith's Lambda for Beckmann at the unit direction w (w.z > 0). Beyond a = 6 it is below
+   1e-17 (nothing hides a direction that steep); a grazing direction is all hidden. */
+FOGRT__PRIVATE float fogrt__mf_lambda(float alpha, fogrt__v3 w) {
+    float s2 = w.x * w.x + w.y * w.y, a;
+    if (!(s2 > 0.0f)) return 0.0f;
+    a = w.z / (alpha * sqrtf(s2));
+    if (a > 6.0f) return 0.0f;
+    if (!(a > 1e-30f)) return 1e30f;
+    return 0.5f * (expf(-a * a) * FOGRT__INV_SQRT_PI / a - erfcf(a));
+}
+/* Smith's shadowing-masking G of the pair, height-correlated (one Lambda each). */
+FOGRT__PRIVATE float fogrt__mf_g(float alpha, fogrt__v3 wo, fogrt__v3 wi) {
+    return 1.0f / (1.0f + fogrt__mf_lambda(alpha, wo) + fogrt__mf_lambda(alpha, wi));
+}
+/* The unpolarised Fresnel reflectance of a conductor eta + i k at cos theta = c in [0, 1]:
+   the mean of the s and p reflectances. With a + i b = sqrt((eta + i k)^2 - sin^2 theta),
+       Rs = ((a - c)^2 + b^2) / ((a + c)^2 + b^2),
+       Rp = Rs ((a c - s^2)^2 + b^2 c^2) / ((a c + s^2)^2 + b^2 c^2),
+   written as sums of squares so that a nearly index-matched metal (eta near 1, k = 0),
+   whose F is tiny, keeps its digits and its reciprocity. At normal incidence Rp = Rs (0/0
+   when eta = k = 0, where F = 1). */
+FOGRT__PRIVATE float fogrt__mf_fresnel1(float eta, float k, float c) {
+    float s2, t0, ab2, a, b2, rs, rp_n, rp_d;
+    eta = eta <= FOGRT__MF_INDEX_MAX ? eta : FOGRT__MF_INDEX_MAX;
+    k = k <= FOGRT__MF_INDEX_MAX ? k : FOGRT__MF_INDEX_MAX;
+    c = FOGRT__CLAMP(c, 0.0f, 1.0f);
+    s2 = (1.0f - c) * (1.0f + c);
+    t0 = eta * eta - k * k - s2;                         /* a^2 - b^2 */
+    ab2 = sqrtf(t0 * t0 + 4.0f * eta * eta * k * k);     /* a^2 + b^2 */
+    a = sqrtf(FOGRT__MAX(0.0f, 0.5f * (ab2 + t0)));
+    b2 = FOGRT__MAX(0.0f, 0.5f * (ab2 - t0));
+    rs = ((a - c) * (a - c) + b2) / ((a + c) * (a + c) + b2);   /* > 0: a + c > 0 or b2 >= s2 > 0 */
+    rp_n = (a * c - s2) * (a * c - s2) + b2 * c * c;
+    rp_d = (a * c + s2) * (a * c + s2) + b2 * c * c;
+    return FOGRT__CLAMP(0.5f * (rs + (rp_d > 0.0f ? rs * rp_n / rp_d : rs)), 0.0f, 1.0f);
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__mf_fresnel(const fogrt_material_desc *m, float c) {
+    return fogrt__v(fogrt__mf_fresnel1(m->eta.x, m->k.x, c), fogrt__mf_fresnel1(m->eta.y, m->k.y, c),
+                    fogrt__mf_fresnel1(m->eta.z, m->k.z, c));
+}
+/* The half vector of wo and wi turned to +z (both on one side: wo.z wi.z > 0), with both
+   directions turned alike. False if there is none. */
+FOGRT__PRIVATE bool fogrt__mf_half(fogrt__v3 *wo, fogrt__v3 *wi, fogrt__v3 *h) {
+    float len2;
+    if (!(wo->z * wi->z > 0.0f)) return false;
+    if (wo->z < 0.0f) { wo->z = -wo->z; wi->z = -wi->z; }
+    *h = fogrt__add(*wo, *wi);
+    len2 = fogrt__dot(*h, *h);
+    if (!(len2 > 0.0f)) return false;
+    *h = fogrt__scale(*h, 1.0f / sqrtf(len2));
+    return true;
+}
+FOGRT__PRIVATE fogrt_vec3 fogrt__mf_eval(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi) {
+    float alpha = fogrt__mf_alpha(m), d, g, s;
+    fogrt__v3 h;
+    if (!fogrt__mf_half(&wo, &wi, &h)) return fogrt__v(0.0f, 0.0f, 0.0f);
+    d = fogrt__mf_d(alpha, h);
+    g = fogrt__mf_g(alpha, wo, wi);
+    if (!(d > 0.0f) || !(g > 0.0f)) return fogrt__v(0.0f, 0.0f, 0.0f);
+    s = d * g / (4.0f * wo.z * wi.z);
+    return fogrt__scale(fogrt__mf_fresnel(m, fogrt__dot(wo, h)), s < 1e30f ? s : 1e30f);   /* grazing both ways */
+}
+FOGRT__PRIVATE float fogrt__mf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi) {
+    fogrt__v3 h;
+    float oh, p;
+    if (!fogrt__mf_half(&wo, &wi, &h)) return 0.0f;
+    oh = fogrt__dot(wo, h);                              /* > 0: wo and wi on one side */
+    if (!(oh > 0.0f)) return 0.0f;
+    p = fogrt__mf_d(fogrt__mf_alpha(m), h) * h.z / (4.0f * oh);
+    return p < 1e30f ? p : 1e30f;
+}
+FOGRT__PRIVATE bool fogrt__mf_sample(const fogrt_material_desc *m, fogrt_vec3 wo, float u1, float u2,
+                                       fogrt_bsdf_sample *out) {
+    float alpha = fogrt__mf_alpha(m), side = wo.z < 0.0f ? -1.0f : 1.0f;
+    float t2 = -alpha * alpha * log1pf(-u1), c = 1.0f / sqrtf(1.0f + t2), s = sqrtf(t2 / (1.0f + t2));
+    float phi = 2.0f * FOGRT__PI * u2, oh, g;
+    fogrt__v3 h = fogrt__v(s * cosf(phi), s * sinf(phi), c), wi;
+    wo.z *= side;
+    oh = fogrt__dot(wo, h);
+    if (!(oh > 0.0f)) return false;                      /* a facet that wo sees from behind */
+    wi = fogrt__sub(fogrt__scale(h, 2.0f * oh), wo);
+    if (!(wi.z > 0.0f)) return false;                    /* reflected into the surface */
+    g = fogrt__mf_g(alpha, wo, wi);
+    out->weight = fogrt__scale(fogrt__mf_fresnel(m, oh), g / wo.z * (oh / c));   /* F G wo.h / (cos_o cos_h) */
+    wo.z *= side; wi.z *= side;
+    out->wi = wi;
+    out->pdf = fogrt__mf_pdf(m, wo, wi);               /* as MIS will evaluate it */
+    return out->pdf > 0.0f;
+}
+#endif /* FOGRT_NO_MICROFACET */
+
 /* SEAM 4: what Part II's calls set on the scene, freed with it (C's map, H's media). */
 FOGRT__PRIVATE void fogrt__appendix_scene_free(fogrt_scene *s) {
 #ifndef FOGRT_NO_ESTIMATION
@@ -8479,6 +8664,12 @@ FOGRT__PRIVATE fogrt_result fogrt__beyond_material(const fogrt_scene *s, const f
 #ifdef FOGRT_NO_SHAPES
     FOGRT__REFUSE_IF(m->type == FOGRT_BSDF_INTERFACE, UNSUPPORTED,
                      "material.type: interface needs a build without FOGRT_NO_SHAPES, FOGRT_NO_MEDIA and FOGRT_MINIMAL");
+#endif
+#ifdef FOGRT_NO_MICROFACET
+    FOGRT__REFUSE_IF(m->type == FOGRT_BSDF_MICROFACET, UNSUPPORTED,
+                     "material.type: microfacet needs a build without FOGRT_NO_MICROFACET and FOGRT_MINIMAL");
+#else
+    if (m->type == FOGRT_BSDF_MICROFACET) return fogrt__mf_check(s, m);   /* I */
 #endif
     (void)s; (void)m;
     return FOGRT_RESULT_OK;

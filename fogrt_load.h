@@ -59,7 +59,7 @@
     fails leaves the scene exactly as it was (barring out-of-memory inside fogrt itself).
     A glass or refraction material in a fogrt built with FOGRT_NO_GLASS is refused with
     FOGRT_RESULT_UNSUPPORTED, naming the material, before anything is added. Warnings (a
-    microfacet material replaced, an unsupported light type skipped, ...) are counted in
+    microfacet alpha clamped, an unsupported light type skipped, ...) are counted in
     report.warnings and go to options.logger once the load has succeeded: a refusal is its
     one message.
 
@@ -77,6 +77,8 @@
     - Materials: the CGL technique of the effect wins, and among its children the last one
       of emission / mirror / microfacet / refraction / glass wins; else the phong (then
       lambert) diffuse colour; else diffuse grey 0.5. A textured diffuse is grey 0.5.
+      <microfacet> is fogrt's rough metal with the file's alpha, eta and k (its unused
+      <reflectance> ignored, as CS184 does).
     - Shading normals are recomputed from connectivity: the normalised area-weighted sum of
       the incident triangles' winding normals. A connected part with open (boundary) edges,
       such as the Cornell walls, gets the negated normal, which is what CS184 computes for
@@ -1444,26 +1446,43 @@ FOGRT__LD fogrt_result fogrt__ld_ior(fogrt__ld *L, int32_t e, float *ior) {
     return FOGRT_RESULT_OK;
 }
 
-/* A CGL <microfacet>: a conductor (eta + i k per channel) with Beckmann roughness alpha.
-   fogrt has no microfacet BSDF: the normal-incidence conductor Fresnel
-   F0 = ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2) becomes the colour of a mirror (alpha <= 0.25,
-   nearly smooth) or of a diffuse surface (rougher), with a warning. */
+/* A CGL <microfacet>: a conductor (eta + i k per channel) with Beckmann roughness alpha,
+   loaded as fogrt's microfacet material (fogrt.h, Part II, I). CS184 also looks up a
+   <reflectance> child and never uses it; fogrt ignores it too. Warned: an alpha fogrt cannot
+   render as written (not above 0, where CS184's Beckmann divides by zero, or beyond 1000)
+   is clamped to [1e-4, 1000]. A fogrt built without the material (FOGRT_NO_MICROFACET,
+   FOGRT_MINIMAL) gets the nearest of its own BSDFs instead, with a warning: the
+   normal-incidence conductor Fresnel F0 = ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2) as the
+   colour of a mirror (alpha <= 0.25, nearly smooth) or of a diffuse surface (rougher). */
 FOGRT__LD fogrt_result fogrt__ld_microfacet(fogrt__ld *L, int32_t c, fogrt_material_desc *m) {
-    float alpha, f0[3], eta[3], k[3];
+    float alpha;
     fogrt_vec3 e3, k3;
-    int i;
     FOGRT__LD_TRY(fogrt__ld_child_float(L, c, "alpha", true, &alpha, NULL));
     FOGRT__LD_TRY(fogrt__ld_child_vec3(L, c, "eta", true, true, &e3, NULL));
     FOGRT__LD_TRY(fogrt__ld_child_vec3(L, c, "k", true, true, &k3, NULL));
-    eta[0] = e3.x; eta[1] = e3.y; eta[2] = e3.z; k[0] = k3.x; k[1] = k3.y; k[2] = k3.z;
-    for (i = 0; i < 3; ++i) {
-        double e = (double)eta[i], kk = (double)k[i];
-        f0[i] = (float)(((e - 1) * (e - 1) + kk * kk) / ((e + 1) * (e + 1) + kk * kk));
+#ifndef FOGRT_NO_MICROFACET
+    m->type = FOGRT_BSDF_MICROFACET;
+    m->alpha = alpha > 1e-4f ? (alpha < 1e3f ? alpha : 1e3f) : 1e-4f;
+    m->eta = e3; m->k = k3;
+    if (!(alpha >= 1e-4f && alpha <= 1e3f))
+        fogrt__ld_warn(L, L->el[fogrt__ld_child(L, c, "alpha")].line, "<microfacet> alpha %g is outside [1e-4, 1000], where fogrt "
+                       "renders Beckmann's roughness: rendered with alpha %g", (double)alpha, (double)m->alpha);
+#else
+    {
+        float f0[3], eta[3], k[3];
+        int i;
+        eta[0] = e3.x; eta[1] = e3.y; eta[2] = e3.z; k[0] = k3.x; k[1] = k3.y; k[2] = k3.z;
+        for (i = 0; i < 3; ++i) {
+            double e = (double)eta[i], kk = (double)k[i];
+            f0[i] = (float)(((e - 1) * (e - 1) + kk * kk) / ((e + 1) * (e + 1) + kk * kk));
+        }
+        m->type = alpha <= 0.25f ? FOGRT_BSDF_MIRROR : FOGRT_BSDF_DIFFUSE;
+        m->reflectance = fogrt__ld_v3(f0[0], f0[1], f0[2]);
+        fogrt__ld_warn(L, L->el[c].line, "<microfacet> (alpha %g): this fogrt was built without rough metals "
+                       "(FOGRT_NO_MICROFACET): loaded as a %s of reflectance %.3g %.3g %.3g", (double)alpha,
+                       alpha <= 0.25f ? "mirror" : "diffuse", (double)f0[0], (double)f0[1], (double)f0[2]);
     }
-    m->type = alpha <= 0.25f ? FOGRT_BSDF_MIRROR : FOGRT_BSDF_DIFFUSE;
-    m->reflectance = fogrt__ld_v3(f0[0], f0[1], f0[2]);
-    fogrt__ld_warn(L, L->el[c].line, "<microfacet> (alpha %g) is not supported by fogrt: loaded as a %s of reflectance %.3g %.3g %.3g",
-                   (double)alpha, alpha <= 0.25f ? "mirror" : "diffuse", (double)f0[0], (double)f0[1], (double)f0[2]);
+#endif
     return FOGRT_RESULT_OK;
 }
 

@@ -10,6 +10,7 @@
 #   FOGRT_NO_GLASS           a scene without glass or refraction   (strip_cost glass)
 #   FOGRT_NO_EXACT_FRESNEL   a render with Schlick's Fresnel       (strip_cost exact)
 #   FOGRT_NO_MEDIA           grey HG fog, no emission (appendix G)  (strip_cost media)
+#   FOGRT_NO_MICROFACET      a scene without rough metals (appendix I) (strip_cost microfacet)
 # Exits non-zero if any normal build executes more than LIMIT_PERCENT (1) percent more
 # instructions than its stripped build. Last, the path trace hooks: a normal build must
 # execute exactly as many instructions as one whose header has the hook lines deleted.
@@ -106,5 +107,6 @@ pair FOGRT_NO_MEDIUM medium "fog-free default scene (sigma_t = 0)"
 pair FOGRT_NO_GLASS glass "a fog-filled box without glass (a mirror and a diffuse sphere)"
 pair FOGRT_NO_EXACT_FRESNEL exact "the default scene rendered with Schlick's Fresnel"
 pair FOGRT_NO_MEDIA media "the default scene: grey HG fog without emission (appendix G unused)"
+pair FOGRT_NO_MICROFACET microfacet "a fog-filled box with a diffuse and a mirror sphere (appendix I unused)"
 hooks
 exit $status

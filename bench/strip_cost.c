@@ -4,7 +4,8 @@
    fogrt promises that a scene pays only for what it uses: a scene without fog costs what a
    FOGRT_NO_MEDIUM build costs, a scene without glass what a FOGRT_NO_GLASS build costs, a
    render with Schlick's Fresnel what a FOGRT_NO_EXACT_FRESNEL build costs, fog with the
-   paper's phase function and no emission what a FOGRT_NO_MEDIA build costs. callgrind.sh
+   paper's phase function and no emission what a FOGRT_NO_MEDIA build costs, a scene without
+   rough metals what a FOGRT_NO_MICROFACET build costs. callgrind.sh
    builds this program normally and with the strip macro, runs both under callgrind counting
    only the instructions executed inside fogrt_render, and compares the totals.
 
@@ -12,6 +13,7 @@
      strip_cost glass    a fog-filled box with a diffuse and a mirror sphere (no glass)
      strip_cost exact    the default scene (glass sphere, fog), rendered with Schlick
      strip_cost media    the default scene: grey HG fog, no emission (FOGRT_NO_MEDIA: appendix G)
+     strip_cost microfacet  the glass-free box (diffuse and mirror, no rough metal: appendix I)
 
    Small renders with a fixed seed and sample count on one thread (build without -fopenmp),
    so the count is the same on every run. Prints the mean radiance and a checksum of the
@@ -96,7 +98,7 @@ int main(int argc, char **argv)
     size_t i;
 
     check(fogrt_scene_create(NULL, &scene), "fogrt_scene_create");
-    if (strcmp(mode, "glass") == 0) {
+    if (strcmp(mode, "glass") == 0 || strcmp(mode, "microfacet") == 0) {
         glass_free_scene(scene);
     } else {
         check(fogrt_scene_add_default(scene), "fogrt_scene_add_default");
@@ -106,7 +108,7 @@ int main(int argc, char **argv)
             medium.sigma_t = 0.0f;                              /* no fog */
             check(fogrt_scene_set_medium(scene, &medium), "fogrt_scene_set_medium");
         } else if (strcmp(mode, "exact") != 0 && strcmp(mode, "media") != 0) {
-            fprintf(stderr, "strip_cost: unknown mode '%s' (medium, glass, exact or media)\n", mode);
+            fprintf(stderr, "strip_cost: unknown mode '%s' (medium, glass, exact, media or microfacet)\n", mode);
             return 2;
         }
     }

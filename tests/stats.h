@@ -1,7 +1,7 @@
 /* stats.h - statistics helpers for fogrt's distribution tests.
 
-   Used by tests/test_sampling.c and tests/test_bsdf_stats.c; docs/testing.md explains how
-   to read what they print. Everything here is a static function of plain C99 with no state
+   Used by tests/test_sampling.c, tests/test_bsdf_stats.c, tests/test_media.c and
+   tests/test_microfacet.c; docs/testing.md explains how to read what they print. Everything here is a static function of plain C99 with no state
    shared between programs, so a test file includes it after "fogrt.h" and uses what it needs.
    (The functions are `static inline` only so that a file that uses a few of them gets no
    unused-function warning.)
@@ -62,7 +62,12 @@
 #else
 #define STATS_TESTS_MEDIA      20   /* tests/test_media.c: 19 chi-square + 1 KS */
 #endif
-#define STATS_SUITE_TESTS (STATS_TESTS_SAMPLING + STATS_TESTS_BSDF_STATS + STATS_TESTS_MEDIA)
+#ifdef FOGRT_NO_MICROFACET   /* appendix I left out (also by FOGRT_MINIMAL): its tests skip */
+#define STATS_TESTS_MICROFACET 0
+#else
+#define STATS_TESTS_MICROFACET 16   /* tests/test_microfacet.c: 16 chi-square */
+#endif
+#define STATS_SUITE_TESTS (STATS_TESTS_SAMPLING + STATS_TESTS_BSDF_STATS + STATS_TESTS_MEDIA + STATS_TESTS_MICROFACET)
 
 /* Where failing tests dump their tables (relative to the repository root, where tests run). */
 #ifndef STATS_DUMP_DIR

@@ -1345,15 +1345,15 @@ static void test_invalid_parameters(void)
     };
     /* materials: all INVALID_MATERIAL */
     static const fogrt_material_desc bad_materials[] = {
-        { FOGRT_BSDF_DIFFUSE, { -0.1f, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, 0.0f },  /* negative reflectance */
-        { FOGRT_BSDF_DIFFUSE, { NAN_F, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, 0.0f },  /* NaN reflectance */
-        { FOGRT_BSDF_GLASS, { 1, 1, 1 }, { 1, INF_F, 1 }, { 0, 0, 0 }, 1.5f },   /* infinite transmittance */
-        { FOGRT_BSDF_DIFFUSE, { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, -1 }, 0.0f },     /* negative emission */
-        { FOGRT_BSDF_DIFFUSE, { 0, 0, 0 }, { 0, 0, 0 }, { INF_F, 0, 0 }, 0.0f },  /* infinite emission */
-        { FOGRT_BSDF_GLASS, { 1, 1, 1 }, { 1, 1, 1 }, { 0, 0, 0 }, -1.5f },      /* ior < 0 */
-        { FOGRT_BSDF_GLASS, { 1, 1, 1 }, { 1, 1, 1 }, { 0, 0, 0 }, NAN_F },      /* NaN ior */
-        { FOGRT_BSDF_GLASS, { 1, 1, 1 }, { 1, 1, 1 }, { 0, 0, 0 }, INF_F },      /* infinite ior */
-        { (fogrt_bsdf_type)99, { 1, 1, 1 }, { 0, 0, 0 }, { 0, 0, 0 }, 0.0f },     /* unknown BSDF */
+        { FOGRT_BSDF_DIFFUSE, { -0.1f, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, 0.0f, 0.0f, { 0, 0, 0 }, { 0, 0, 0 } },  /* negative reflectance */
+        { FOGRT_BSDF_DIFFUSE, { NAN_F, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, 0.0f, 0.0f, { 0, 0, 0 }, { 0, 0, 0 } },  /* NaN reflectance */
+        { FOGRT_BSDF_GLASS, { 1, 1, 1 }, { 1, INF_F, 1 }, { 0, 0, 0 }, 1.5f, 0.0f, { 0, 0, 0 }, { 0, 0, 0 } },   /* infinite transmittance */
+        { FOGRT_BSDF_DIFFUSE, { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, -1 }, 0.0f, 0.0f, { 0, 0, 0 }, { 0, 0, 0 } },     /* negative emission */
+        { FOGRT_BSDF_DIFFUSE, { 0, 0, 0 }, { 0, 0, 0 }, { INF_F, 0, 0 }, 0.0f, 0.0f, { 0, 0, 0 }, { 0, 0, 0 } },  /* infinite emission */
+        { FOGRT_BSDF_GLASS, { 1, 1, 1 }, { 1, 1, 1 }, { 0, 0, 0 }, -1.5f, 0.0f, { 0, 0, 0 }, { 0, 0, 0 } },      /* ior < 0 */
+        { FOGRT_BSDF_GLASS, { 1, 1, 1 }, { 1, 1, 1 }, { 0, 0, 0 }, NAN_F, 0.0f, { 0, 0, 0 }, { 0, 0, 0 } },      /* NaN ior */
+        { FOGRT_BSDF_GLASS, { 1, 1, 1 }, { 1, 1, 1 }, { 0, 0, 0 }, INF_F, 0.0f, { 0, 0, 0 }, { 0, 0, 0 } },      /* infinite ior */
+        { (fogrt_bsdf_type)99, { 1, 1, 1 }, { 0, 0, 0 }, { 0, 0, 0 }, 0.0f, 0.0f, { 0, 0, 0 }, { 0, 0, 0 } },     /* unknown BSDF */
     };
     /* lights: all INVALID_LIGHT */
     static const fogrt_light_desc bad_lights[] = {

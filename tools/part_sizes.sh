@@ -3,7 +3,7 @@
 # (`make part-sizes`; `make check-compile` runs it with --check).
 #
 # Regions: Part I (from the comment that opens its banner "PART I: THE PAPER" to the line
-# before Part II's), Part II's shared set-up, its appendices A to H (each from the comment
+# before Part II's), Part II's shared set-up, its appendices A to I (each from the comment
 # that opens its heading "   X. Title"), and what stands after both parts (the API around the
 # method, then the checks of what a build left out). Lines: every line of the region; code:
 # the non-blank lines left once the preprocessor has dropped the comments
@@ -34,7 +34,7 @@ for v in "$p1" "$p2" "$after" "$checks" "$end"; do
     [ "$v" -gt 0 ] || { echo "part_sizes.sh: a banner of $f was not found" >&2; exit 2; }
 done
 starts="$(opener "$p1") Part_I $(opener "$p2") Part_II_shared"
-for x in A B C D E F G H; do
+for x in A B C D E F G H I; do
     l=$(at "^   $x\. [A-Z]")
     [ "$l" -gt "$p2" ] && [ "$l" -lt "$after" ] || { echo "part_sizes.sh: appendix $x's heading not found" >&2; exit 2; }
     starts="$starts $(opener "$l") $x"
