@@ -652,7 +652,7 @@ FOGRT_API bool fogrt_intersect_sphere(fogrt_vec3 center, float radius, fogrt_vec
 FOGRT_API float fogrt_sample_exponential(float sigma_t, float u);
 FOGRT_API float fogrt_exponential_pdf(float sigma_t, float t);        /* sigma_t exp(-sigma_t t) */
 FOGRT_API float fogrt_exponential_cdf(float sigma_t, float t);        /* 1 - exp(-sigma_t t) */
-/* The same CDF under the name older code calls it by (the sampler inverts it). */
+/* The same CDF under a second name, so that code calling it by that name compiles. */
 FOGRT_API float fogrt_invert_exponential(float sigma_t, float t);
 /* Beer-Lambert transmittance (paper eq. 7-8): T = exp(-sigma_t d). */
 FOGRT_API float fogrt_transmittance(float sigma_t, float distance);
@@ -8240,7 +8240,7 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void) {
     return d;
 }
 #ifndef FOGRT_NO_MEDIUM
-/* fogrt_exponential_cdf (3.1) under the name older code calls it by. */
+/* fogrt_exponential_cdf (3.1) under a second name, so that code calling that name compiles. */
 FOGRT__PUBLIC float fogrt_invert_exponential(float sigma_t, float t) {
     return fogrt_exponential_cdf(sigma_t, t);
 }
