@@ -667,7 +667,7 @@ FOGRT_API bool fogrt_intersect_sphere(fogrt_vec3 center, float radius, fogrt_vec
 FOGRT_API float fogrt_sample_exponential(float sigma_t, float u);
 FOGRT_API float fogrt_exponential_pdf(float sigma_t, float t);        /* sigma_t exp(-sigma_t t) */
 FOGRT_API float fogrt_exponential_cdf(float sigma_t, float t);        /* 1 - exp(-sigma_t t) */
-/* The same CDF under the name older code calls it by (the sampler inverts it). */
+/* The same CDF under a second name, so that code calling it by that name compiles. */
 FOGRT_API float fogrt_invert_exponential(float sigma_t, float t);
 /* Beer-Lambert transmittance (paper eq. 7-8): T = exp(-sigma_t d). */
 FOGRT_API float fogrt_transmittance(float sigma_t, float distance);
@@ -3016,7 +3016,12 @@ FOGRT__PRIVATE bool fogrt__new_direction(const fogrt_scene *s, const fogrt__sett
     fogrt__v3 wi;
     float cos_o;
     if (!fogrt__sample_surface(st, v, u, &bs, &wi, &cos_o)) return false;
-    w->beta = fogrt__mul(w->beta, bs.weight);
+    /* Eq. 13, f |cos theta| / pdf, theta between the sampled w_i (bs.wi, shading frame) and the
+       normal: the paper's "hitting ray" is w_i, the ray that hits what sends back L_i. Mirror and
+       glass: f and pdf hold the same Dirac delta, so their sampler reports the ratio, as usual. */
+    fogrt__v3 f = fogrt_bsdf_eval(v->m, fogrt__to_local(&v->frame, v->wo), bs.wi);
+    fogrt__v3 weight = bs.is_delta ? bs.weight : fogrt__scale(f, fabsf(bs.wi.z) / bs.pdf);
+    w->beta = fogrt__mul(w->beta, weight);
     w->prev_pdf = bs.pdf;
     w->prev_delta = bs.is_delta;
     if (bs.is_transmission)                             /* into or out of a refractive object */
@@ -3052,7 +3057,7 @@ FOGRT__PRIVATE void fogrt__walk_start(fogrt__walk *w, const fogrt_scene *s, fogr
     w->beta = fogrt__v(1.0f, 1.0f, 1.0f);
     w->prev_pdf = 1.0f;
     w->prev_delta = true;
-    w->in_fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0; /* the camera is in the fog */
+    w->in_fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0;   /* the camera is in the fog */
     w->rng = rng;
     w->rays = rays;
 }
@@ -3067,10 +3072,10 @@ FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__se
         if (!fogrt__next_vertex(s, st, w, limit)) break;                 /* 3-5, 8, 14, 18 */
         if (w->depth >= limit || fogrt__is_black(w->beta)) break;        /* 2: ray depth > 0 */
         fogrt__light_at_vertex(s, st, w);                                /* 5-10 */
-        if (one_bounce && fogrt__scatters(&w->v))
-            limit = w->depth + 1; /* the baseline: one step more */
+        if (one_bounce && fogrt__scatters(&w->v))                        /* the baseline: */
+            limit = w->depth + 1;                                        /* one step more */
         if (!fogrt__new_direction(s, st, w)) break;                      /* 11-22 */
-        if (!fogrt__roulette(st, w)) break; /* 2: coin flip(p); 12, 23 */
+        if (!fogrt__roulette(st, w)) break;                    /* 2: coin flip(p); 12, 23 */
     }
     return w->L;
 }
@@ -8411,7 +8416,7 @@ FOGRT__PUBLIC fogrt_render_desc fogrt_render_defaults(void) {
     return d;
 }
 #ifndef FOGRT_NO_MEDIUM
-/* fogrt_exponential_cdf (3.1) under the name older code calls it by. */
+/* fogrt_exponential_cdf (3.1) under a second name, so that code calling that name compiles. */
 FOGRT__PUBLIC float fogrt_invert_exponential(float sigma_t, float t) {
     return fogrt_exponential_cdf(sigma_t, t);
 }
