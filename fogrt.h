@@ -243,8 +243,9 @@ typedef struct fogrt_scene_desc {
 FOGRT_API fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogrt_scene **out_scene);
 FOGRT_API void fogrt_scene_destroy(fogrt_scene *scene);   /* NULL is a no-op */
 
-/* The four BSDFs of the paper, and a rough metal (Part II, I). The ones that only reflect
-   come before FOGRT_BSDF_REFRACTION: the renderer tells the two kinds apart by that order. */
+/* The paper's four BSDFs (diffuse, mirror, refraction, glass), a rough metal (Part II, I) and
+   an interface (Part II, H). The ones that only reflect come before FOGRT_BSDF_REFRACTION:
+   the renderer tells the two kinds apart by that order. */
 typedef enum fogrt_bsdf_type {
     FOGRT_BSDF_DEFAULT = 0,   /* = diffuse */
     FOGRT_BSDF_DIFFUSE,       /* Lambertian, f = reflectance / pi */
@@ -1211,7 +1212,7 @@ FOGRT__PRIVATE uint32_t fogrt__rated_spp(const struct fogrt__job *job, size_t pi
    order and with its numbering (docs/paper-map.md maps every equation and every line of
    Algorithm 1 to a function here and to the test that checks it):
      I.1  Configuration, vectors, random numbers      (what everything else needs)
-     I.2  The scene: storage and validation
+     I.2  The scene's storage                         (what the chapters read)
      2.1  The BVH: binned build with the SAH or the paper's volume heuristic (eq. 1-2), traversal
      2.2  The four BSDFs, with Schlick's Fresnel
      2.3  The Monte Carlo estimator (eq. 3): lights, light sampling, MIS
@@ -1219,15 +1220,15 @@ FOGRT__PRIVATE uint32_t fogrt__rated_spp(const struct fogrt__job *job, size_t pi
      3.2  Light attenuation through fog (eq. 7-8)
      3.3  Fog scattering: Henyey-Greenstein (eq. 9-12)
      3.4  The global illumination pipeline: Algorithm 1 (eq. 13) and the one-bounce baseline
-     I.3  The camera, the scene build, rendering with its error estimate, output, the default scene
+     I.3  Running it: the scene's validation, the camera, the build, rendering with its error
+          estimate, output, the default scene
    Read Part I alone and you have the whole method; fogrt_render_paper_defaults() runs it.
 
    Part II, after it, is an appendix, one idea a chapter (A the wide BVH, B lamps in fog, C
    sampling and estimation, D the path trace, E the full integrator, F inspection, G media
    beyond the paper, H media inside shapes, I rough metals), which fogrt_render_defaults()
-   uses. After Part II come the API around the method (getters, the public building blocks,
-   the image's storage, 8-bit output) and the checks of what a build left out, which every
-   build keeps.
+   uses. After it come the API around the method (getters, building blocks, image storage,
+   8-bit output) and the checks of what a build left out, which every build keeps;
    FOGRT_MINIMAL compiles Part I and those two, without Part II.
 
    Part I reaches Part II only at these eight seams: twenty-two one-line calls, each marked
@@ -1380,11 +1381,8 @@ FOGRT__PRIVATE uint64_t fogrt__hash64(uint64_t x) {
     x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
     return x ^ (x >> 31);
 }
-
 /* ------------------------------------------------------------------------------------------
-   I.2 The scene: storage and validation
-   Every add_* call validates all of its input before it changes anything, so an error
-   leaves the scene exactly as it was.
+   I.2 The scene's storage: what the paper's chapters read (its validation: I.3)
    ------------------------------------------------------------------------------------------ */
 /* A primitive as the traversal sees it, in BVH order: a triangle stores v0 and its two edges
    (Moller-Trumbore needs nothing else); a sphere stores its centre in a and radius in b.x. */
@@ -1445,6 +1443,1313 @@ struct fogrt_scene {
     char *error;               /* the last failure's message: points at error_text (writable */
     char error_text[256];      /*   through a const scene, as a log line is) */
 };
+/* ------------------------------------------------------------------------------------------
+   2.1 Bounding Volume Hierarchy (paper eq. 1-2)
+   The tree is built top down. Each node splits its primitives by a plane through one of
+   `bins` equal slices of their centroids' bounds, on the axis and at the plane whose
+   heuristic is least. The paper's heuristic (eq. 1) weighs both sides by their volumes,
+     H_i = N_l V_l + N_r V_r,  i in {x, y, z}  (eq. 2: the axis split along),
+   and splits until a node holds at most max_leaf_size primitives; the default, the surface
+   area heuristic, weighs them by their surface areas and also stops where splitting costs
+   more than a leaf:  c_trav + c_int (A_l N_l + A_r N_r) / A  against  c_int N.
+   Each node is binned in one pass over its primitives for all three axes (a bin keeps the
+   box and the count of the primitives whose centroid falls in it); the planes are priced
+   by sweeping the bins from both ends, and one more pass moves the primitives of the left
+   side to the front. Past FOGRT__BVH_SAH_DEPTH levels (only reached by adversarial inputs)
+   nodes are halved without the heuristic, so the depth stays below FOGRT__BVH_MAX_DEPTH,
+   the size of the traversal stack. Node 0 is the root, node 1 is unused (so that the two
+   children of a node are neighbours), and a split appends its two children.
+   ------------------------------------------------------------------------------------------ */
+typedef struct fogrt__aabb { fogrt__v3 lo, hi; } fogrt__aabb;
+FOGRT__PRIVATE fogrt__aabb fogrt__aabb_empty(void) {
+    fogrt__aabb b = { { FLT_MAX, FLT_MAX, FLT_MAX }, { -FLT_MAX, -FLT_MAX, -FLT_MAX } };
+    return b;
+}
+FOGRT__HOT void fogrt__aabb_union(fogrt__aabb *b, const fogrt__aabb *o) {   /* o may be empty */
+    b->lo.x = FOGRT__MIN(b->lo.x, o->lo.x);
+    b->lo.y = FOGRT__MIN(b->lo.y, o->lo.y);
+    b->lo.z = FOGRT__MIN(b->lo.z, o->lo.z);
+    b->hi.x = FOGRT__MAX(b->hi.x, o->hi.x);
+    b->hi.y = FOGRT__MAX(b->hi.y, o->hi.y);
+    b->hi.z = FOGRT__MAX(b->hi.z, o->hi.z);
+}
+FOGRT__HOT void fogrt__aabb_grow(fogrt__aabb *b, fogrt__v3 p) {   /* the union with the point */
+    fogrt__aabb point = { p, p };
+    fogrt__aabb_union(b, &point);
+}
+FOGRT__PRIVATE float fogrt__aabb_area(const fogrt__aabb *b) {     /* 0 for the empty box */
+    fogrt__v3 e = fogrt__sub(b->hi, b->lo);
+    return e.x < 0.0f ? 0.0f : 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
+}
+FOGRT__PRIVATE float fogrt__aabb_volume(const fogrt__aabb *b) {
+    fogrt__v3 e = fogrt__sub(b->hi, b->lo);
+    return e.x < 0.0f ? 0.0f : e.x * e.y * e.z;
+}
+FOGRT__HOT fogrt__v3 fogrt__aabb_centre(const fogrt__aabb *b) {
+    return fogrt__scale(fogrt__add(b->lo, b->hi), 0.5f);
+}
+
+#define FOGRT__BVH_SAH_DEPTH 56
+#define FOGRT__BVH_MAX_DEPTH 96   /* 56 + 32 halvings of at most 2^32 primitives, and margin */
+#define FOGRT__BVH_MAX_BINS 64    /* fogrt_build_desc.bins is at most this */
+
+typedef struct fogrt__build {
+    fogrt_build_desc desc;
+    fogrt__aabb *box;      /* per primitive, in the order of idx (reordered with it) */
+    fogrt_bvh_node *nodes;
+    uint32_t *idx;
+    uint32_t node_count;
+    uint32_t leaf_keep;    /* nodes of at most this many primitives stay leaves, unpriced */
+} fogrt__build;
+/* A node waiting on the build's stack, with the bounds of its primitives' centroids. */
+typedef struct fogrt__bjob {
+    uint32_t node, depth;
+    fogrt__aabb cb;
+} fogrt__bjob;
+
+/* The heuristic's measure of one side: N A (SAH) or N V (the paper's eq. 1). */
+FOGRT__PRIVATE float fogrt__side_cost(const fogrt_build_desc *d, uint32_t n,
+                                      const fogrt__aabb *box) {
+    return (float)n *
+           (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(box) : fogrt__aabb_area(box));
+}
+FOGRT__PRIVATE void fogrt__node_set_box(fogrt_bvh_node *node, const fogrt__aabb *b) {
+    for (int k = 0; k < 3; ++k) node->bmin[k] = fogrt__comp(b->lo, k);
+    for (int k = 0; k < 3; ++k) node->bmax[k] = fogrt__comp(b->hi, k);
+}
+/* Box and centroid bounds of count primitives (the root, and the halved nodes). */
+FOGRT__PRIVATE void fogrt__boxes_bounds(const fogrt__aabb *box, uint32_t count,
+                                        fogrt_bvh_node *node, fogrt__aabb *cb) {
+    fogrt__aabb b = fogrt__aabb_empty();
+    *cb = fogrt__aabb_empty();
+    for (uint32_t i = 0; i < count; ++i) {
+        fogrt__aabb_union(&b, &box[i]);
+        fogrt__aabb_grow(cb, fogrt__aabb_centre(&box[i]));
+    }
+    fogrt__node_set_box(node, &b);
+}
+
+/* The bins of one node: on axis a, bin k holds the primitives whose centroid falls in the
+   k-th of nb equal slices of the centroid bounds; box is the box of those primitives. */
+typedef struct fogrt__bins {
+    fogrt__aabb box[3][FOGRT__BVH_MAX_BINS];
+    uint32_t n[3][FOGRT__BVH_MAX_BINS];
+    fogrt__v3 origin, scale;
+    int nb;
+} fogrt__bins;
+/* The bin of a centroid on axis ax: (c - origin) scale, clamped to [0, nb - 1] and
+   truncated; a NaN (a flat axis: 0 x infinity) lands in bin 0. */
+FOGRT__HOT int fogrt__bin_of(const fogrt__bins *bins, fogrt__v3 c, int ax) {
+    float f = (fogrt__comp(c, ax) - fogrt__comp(bins->origin, ax)) * fogrt__comp(bins->scale, ax);
+    f = f > 0.0f ? f : 0.0f;
+    f = f < (float)(bins->nb - 1) ? f : (float)(bins->nb - 1);
+    return (int)f;
+}
+/* Empty bins over the centroid bounds cb: no more bins than primitives (at least 2, so
+   bins = 1 prices the single plane through the middle). An axis on which every centroid
+   has the same coordinate gets scale 0 (no plane to try there). Then every primitive goes
+   into its bin on each axis. */
+FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt_build_desc *d,
+                                     const fogrt__aabb *cb, const fogrt__aabb *box,
+                                     uint32_t count) {
+    float sc[3];
+    int nb = count < (uint32_t)d->bins ? (int)count : d->bins;
+    if (nb == 1) nb = 2;
+    for (int ax = 0; ax < 3; ++ax) {
+        float lo = fogrt__comp(cb->lo, ax), hi = fogrt__comp(cb->hi, ax);
+        sc[ax] = (float)nb / (hi - lo);
+        if (!(hi > lo && sc[ax] > 0.0f && sc[ax] < FLT_MAX)) sc[ax] = 0.0f;
+        for (int k = 0; k < nb; ++k) bins->box[ax][k] = fogrt__aabb_empty();
+    }
+    memset(bins->n, 0, sizeof bins->n);
+    bins->nb = nb;
+    bins->origin = cb->lo;
+    bins->scale = fogrt__v(sc[0], sc[1], sc[2]);
+    for (uint32_t i = 0; i < count; ++i) {
+        fogrt__v3 c = fogrt__aabb_centre(&box[i]);
+        for (int ax = 0; ax < 3; ++ax) {
+            int k = fogrt__bin_of(bins, c, ax);
+            fogrt__aabb_union(&bins->box[ax][k], &box[i]);
+            bins->n[ax][k]++;
+        }
+    }
+}
+/* The cheapest plane of one axis: sweep from the left and from the right to price the
+   nb - 1 planes between the bins (plane k: bins 0..k-1 on the left). Improves *best, and
+   *best_k, where a plane with primitives on both sides is cheaper. */
+FOGRT__PRIVATE bool fogrt__bins_sweep(const fogrt_build_desc *d, const fogrt__bins *bins, int ax,
+                                      uint32_t count, float *best, int *best_k) {
+    fogrt__aabb b = fogrt__aabb_empty();
+    uint32_t left_n = 0, right_n = 0;
+    float left_cost[FOGRT__BVH_MAX_BINS];
+    bool improved = false;
+    for (int k = 0; k < bins->nb - 1; ++k) {
+        left_n += bins->n[ax][k];
+        fogrt__aabb_union(&b, &bins->box[ax][k]);
+        left_cost[k] = fogrt__side_cost(d, left_n, &b);
+    }
+    b = fogrt__aabb_empty();
+    for (int k = bins->nb - 1; k > 0; --k) {
+        right_n += bins->n[ax][k];
+        fogrt__aabb_union(&b, &bins->box[ax][k]);
+        if (right_n == 0 || right_n == count) continue;
+        float cost = left_cost[k - 1] + fogrt__side_cost(d, right_n, &b);
+        if (cost < *best) {
+            *best = cost;
+            *best_k = k;
+            improved = true;
+        }
+    }
+    return improved;
+}
+/* The leaf rule: with the SAH, split when it is cheaper than a leaf, and always above the
+   largest leaf size; with the volume heuristic, split down to the largest leaf size. */
+FOGRT__PRIVATE bool fogrt__split_pays(const fogrt_build_desc *d, const fogrt_bvh_node *node,
+                                      uint32_t count, float best) {
+    if (count > (uint32_t)d->max_leaf_size) return true;
+    if (d->heuristic == FOGRT_BVH_VOLUME) return false;
+    fogrt__aabb box = { { node->bmin[0], node->bmin[1], node->bmin[2] },
+                        { node->bmax[0], node->bmax[1], node->bmax[2] } };
+    return d->c_trav + d->c_int * best / FOGRT__MAX(fogrt__aabb_area(&box), FLT_MIN) <
+           d->c_int * (float)count;
+}
+/* The primitives whose bin on axis ax is below k to the front (with their indices), growing
+   both sides' centroid bounds; the children's boxes are the unions of their bins. Returns
+   the number on the left. */
+FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__aabb *box,
+                                              uint32_t *id, uint32_t count, int ax, int k,
+                                              fogrt_bvh_node *child, fogrt__bjob *left,
+                                              fogrt__bjob *right) {
+    fogrt__aabb side[2];
+    uint32_t lo = 0, hi = count;
+    side[0] = side[1] = left->cb = right->cb = fogrt__aabb_empty();
+    for (int j = 0; j < bins->nb; ++j) fogrt__aabb_union(&side[j >= k], &bins->box[ax][j]);
+    fogrt__node_set_box(&child[0], &side[0]);
+    fogrt__node_set_box(&child[1], &side[1]);
+    while (lo < hi) {
+        fogrt__v3 c = fogrt__aabb_centre(&box[lo]);
+        if (fogrt__bin_of(bins, c, ax) < k) {
+            fogrt__aabb_grow(&left->cb, c);
+            ++lo;
+        } else {
+            fogrt__aabb t = box[lo];
+            uint32_t tid = id[lo];
+            fogrt__aabb_grow(&right->cb, c);
+            --hi;
+            box[lo] = box[hi];
+            box[hi] = t;
+            id[lo] = id[hi];
+            id[hi] = tid;
+        }
+    }
+    return lo;
+}
+/* The binned split of job's node into child[0] and child[1]. Returns the number of
+   primitives on the left, or 0 when the node stays a leaf, or must be halved instead
+   (*halve: its centroids coincide but it is too big). */
+FOGRT__PRIVATE uint32_t fogrt__bvh_split_binned(fogrt__build *b, const fogrt__bjob *job,
+                                                fogrt_bvh_node *child, fogrt__bjob *left,
+                                                fogrt__bjob *right, bool *halve) {
+    const fogrt_bvh_node *node = &b->nodes[job->node];
+    uint32_t first = node->left_first, count = node->prim_count;
+    fogrt__bins bins;
+    float best = FLT_MAX;
+    int best_ax = -1, best_k = 0;
+#ifndef FOGRT_NO_WIDE_BVH
+    uint32_t wide_left_count;
+    if (fogrt__split_binned_lanes(b, job, child, left, right, halve, &wide_left_count)) /* SEAM 2 */
+        return wide_left_count;
+#endif
+    fogrt__bins_fill(&bins, &b->desc, &job->cb, b->box + first, count);
+    for (int ax = 0; ax < 3; ++ax)
+        if (fogrt__comp(bins.scale, ax) > 0.0f &&
+            fogrt__bins_sweep(&b->desc, &bins, ax, count, &best, &best_k))
+            best_ax = ax;
+    if (best_ax < 0) {                                   /* all centroids coincide */
+        *halve = count > (uint32_t)b->desc.max_leaf_size;
+        return 0;
+    }
+    if (!fogrt__split_pays(&b->desc, node, count, best)) return 0;
+    return fogrt__bins_partition(&bins, b->box + first, b->idx + first, count, best_ax, best_k,
+                                 child, left, right);
+}
+/* Split job's node into the next two nodes, or leave it a leaf (returns false). */
+FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fogrt__bjob *left,
+                                     fogrt__bjob *right) {
+    fogrt_bvh_node *node = &b->nodes[job->node], *child = &b->nodes[b->node_count];
+    uint32_t first = node->left_first, count = node->prim_count, left_count = 0;
+    bool halve = job->depth >= FOGRT__BVH_SAH_DEPTH;
+    if (count <= 1 || count <= b->leaf_keep) return false;
+    if (!halve) left_count = fogrt__bvh_split_binned(b, job, child, left, right, &halve);
+    if (halve) {                                         /* balanced, the bounds by a pass */
+        left_count = count / 2;
+        fogrt__boxes_bounds(b->box + first, left_count, &child[0], &left->cb);
+        fogrt__boxes_bounds(b->box + first + left_count, count - left_count, &child[1], &right->cb);
+    }
+    if (left_count == 0) return false;
+    FOGRT_ASSERT(left_count < count);
+    child[0].left_first = first;
+    child[0].prim_count = left_count;
+    child[1].left_first = first + left_count;
+    child[1].prim_count = count - left_count;
+    left->node = b->node_count;
+    right->node = b->node_count + 1;
+    left->depth = right->depth = job->depth + 1;
+    node->left_first = b->node_count;
+    node->prim_count = 0;
+    b->node_count += 2;
+    return true;
+}
+/* The tree over b->box[0 .. prim_count) (b->idx their primitive ids), depth first with an
+   explicit stack. */
+FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count) {
+    fogrt__bjob stack[FOGRT__BVH_MAX_DEPTH + 2];
+    uint32_t sp = 1;
+    fogrt_bvh_node *root = &b->nodes[0];
+    memset(&b->nodes[1], 0, sizeof b->nodes[1]);
+    root->left_first = 0;
+    root->prim_count = prim_count;
+    stack[0].node = stack[0].depth = 0;
+    fogrt__boxes_bounds(b->box, prim_count, root, &stack[0].cb);
+    b->node_count = 2;
+    while (sp > 0) {
+        fogrt__bjob job = stack[--sp];
+        FOGRT_ASSERT(sp + 2 <= FOGRT__BVH_MAX_DEPTH + 2);
+        if (fogrt__bvh_split(b, &job, &stack[sp + 1], &stack[sp]))
+            sp += 2; /* the left child on top */
+    }
+}
+/* ------------------------------------------------------------------------------------------
+   2.1 (continued) Ray queries: primitives and BVH traversal
+   ------------------------------------------------------------------------------------------ */
+/* Moller-Trumbore with the edges precomputed. Every test is written so that a NaN (from a
+   degenerate, zero-area triangle) fails it: degenerate triangles are never hit. A ray
+   parallel to the triangle's plane (|cos| below 1e-6, where the distance is numerically
+   meaningless) misses it too. */
+FOGRT__HOT bool fogrt__hit_triangle(fogrt__v3 o, fogrt__v3 d, fogrt__v3 v0, fogrt__v3 e1,
+                                    fogrt__v3 e2, float tmin, float tmax, float *t, float *u,
+                                    float *v) {
+    fogrt__v3 pvec = fogrt__cross(d, e2);
+    float det = fogrt__dot(e1, pvec);
+    if (!(det * det > 1e-12f * fogrt__dot(e1, e1) * fogrt__dot(e2, e2))) return false;
+    float inv_det = 1.0f / det;
+    fogrt__v3 tvec = fogrt__sub(o, v0);
+    float uu = fogrt__dot(tvec, pvec) * inv_det;
+    if (!(uu >= 0.0f && uu <= 1.0f)) return false;
+    fogrt__v3 qvec = fogrt__cross(tvec, e1);
+    float vv = fogrt__dot(d, qvec) * inv_det;
+    if (!(vv >= 0.0f && uu + vv <= 1.0f)) return false;
+    float tt = fogrt__dot(e2, qvec) * inv_det;
+    if (!(tt > tmin && tt < tmax)) return false;
+    *t = tt;
+    *u = uu;
+    *v = vv;
+    return true;
+}
+/* Ray-sphere for a unit direction. The discriminant is formed as r^2 - |oc - b d|^2 (the
+   squared distance of the centre from the line), which does not cancel for distant spheres,
+   and the nearer root comes from q = -b - sign(b) sqrt(disc) (no cancellation either). */
+FOGRT__HOT bool fogrt__hit_sphere(fogrt__v3 o, fogrt__v3 d, fogrt__v3 c, float r, float tmin,
+                                  float tmax, float *t) {
+    fogrt__v3 oc = fogrt__sub(o, c);
+    float b = fogrt__dot(oc, d);
+    fogrt__v3 f = fogrt__madd(oc, d, -b);
+    float disc = r * r - fogrt__dot(f, f);
+    if (!(disc >= 0.0f)) return false;
+    float sq = sqrtf(disc), cc = fogrt__dot(oc, oc) - r * r;
+    float q = b > 0.0f ? -(b + sq) : (sq - b), t0 = q, t1 = q != 0.0f ? cc / q : q;
+    if (t0 > t1) {
+        float tmp = t0;
+        t0 = t1;
+        t1 = tmp;
+    }
+    float nearest = t0 > tmin && t0 < tmax ? t0 : t1;   /* the nearer root in range, if any */
+    if (!(nearest > tmin && nearest < tmax)) return false;
+    *t = nearest;
+    return true;
+}
+
+/* The reciprocal of a direction component, never a division by zero: +-0 (and anything
+   too small to invert) becomes +-infinity with the sign of the zero. */
+FOGRT__PRIVATE float fogrt__safe_rcp(float x) {
+    return fabsf(x) > 1e-30f ? 1.0f / x : copysignf(INFINITY, x);
+}
+
+/* A ray prepared for the box tests: its origin and reciprocal direction. */
+typedef struct fogrt__ray { fogrt__v3 o, inv; } fogrt__ray;
+
+/* Slab test: entry distance of the ray into the node's box, or FLT_MAX on a miss. On each
+   axis the near face is bmin where the direction is positive, bmax where it is negative.
+   An axis-parallel ray whose origin lies exactly on a slab's face forms 0 * infinity = NaN
+   for that face; every comparison below is written so that a NaN bound is ignored (the
+   ray is inside that slab), as in pbrt. The exit distance is widened by 2 ulps so a ray
+   grazing a face is not lost to rounding. */
+FOGRT__HOT float fogrt__slab(const fogrt_bvh_node *n, const fogrt__ray *r, float tmin, float tmax) {
+    float t0 = tmin, t1 = tmax;
+    for (int a = 0; a < 3; ++a) {
+        float inv = fogrt__comp(r->inv, a), o = fogrt__comp(r->o, a);
+        float tn = ((inv < 0.0f ? n->bmax[a] : n->bmin[a]) - o) * inv;
+        float tf = ((inv < 0.0f ? n->bmin[a] : n->bmax[a]) - o) * inv;
+        t0 = tn > t0 ? tn : t0;
+        t1 = tf < t1 ? tf : t1;
+    }
+    return t0 <= t1 * 1.00000024f ? t0 : FLT_MAX;
+}
+
+/* Culling slack: a box is skipped only when its entry lies beyond the closest hit by more
+   than 1e-5 (relative, about 100 ulps). The box's entry distance and the triangle's hit
+   distance are rounded separately, so near a shared edge the box that holds the truly
+   closest triangle can appear to start a few ulps after a neighbour's hit; a strict test
+   then skips it and returns the neighbour (about 1 ray in 2000 on the CS184 bunny, found
+   by bench/wide_dev.c). The slack gives the brute-force answer there and costs nothing
+   measurable; a hit itself still needs t < tmax exactly. */
+#define FOGRT__CULL_SLACK 1e-5f
+FOGRT__HOT float fogrt__cull(float tmax) {   /* tmax, widened; +-inf and NaN unchanged */
+    return tmax * (tmax > 0.0f ? 1.0f + FOGRT__CULL_SLACK : 1.0f - FOGRT__CULL_SLACK);
+}
+/* Iterative traversal of the binary tree with a fixed stack: visit the nearer child first,
+   push the farther, and skip a popped node whose entry lies beyond the closest hit found so
+   far. any_hit: return at the first hit (shadow rays). */
+FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin,
+                                         float tmax, fogrt_hit *hit, bool any_hit) {
+    uint32_t stack[FOGRT__BVH_MAX_DEPTH + 2], sp = 0, tri_count = s->tri_count;
+    float stack_t[FOGRT__BVH_MAX_DEPTH + 2];
+    const fogrt_bvh_node *nodes = s->nodes, *node = &nodes[0];
+    bool found = false;
+    float cull = fogrt__cull(tmax);                      /* tmax with the slack, kept with it */
+    if (!s->built || s->tri_count + s->sph_count == 0) return false;
+    fogrt__ray r = { o, { fogrt__safe_rcp(d.x), fogrt__safe_rcp(d.y), fogrt__safe_rcp(d.z) } };
+    if (fogrt__slab(node, &r, tmin, tmax) == FLT_MAX) return false;
+    for (;;) {
+        if (node->prim_count > 0) {                      /* leaf: test its primitives */
+            uint32_t end = node->left_first + node->prim_count;
+            for (uint32_t i = node->left_first; i < end; ++i) {
+                const fogrt__prim *p = &s->prims[i];
+                float t, u = 0.0f, v = 0.0f;
+                bool h = p->id < tri_count ? fogrt__hit_triangle(o, d, p->a, p->b, p->c, tmin, tmax,
+                                                                 &t, &u, &v)
+                                           : fogrt__hit_sphere(o, d, p->a, p->b.x, tmin, tmax, &t);
+                if (h) {
+                    found = true;
+                    tmax = t;
+                    cull = fogrt__cull(t);
+                    if (any_hit) return true;
+                    hit->t = t;
+                    hit->prim = p->id;
+                    hit->u = u;
+                    hit->v = v;
+                }
+            }
+        } else {                                         /* inner: order the two children */
+            const fogrt_bvh_node *c1 = &nodes[node->left_first], *c2 = c1 + 1;
+            float d1 = fogrt__slab(c1, &r, tmin, cull), d2 = fogrt__slab(c2, &r, tmin, cull);
+            if (d1 > d2) {
+                float td = d1;
+                const fogrt_bvh_node *tn = c1;
+                d1 = d2;
+                d2 = td;
+                c1 = c2;
+                c2 = tn;
+            }
+            if (d1 != FLT_MAX) {
+                if (d2 != FLT_MAX) {
+                    stack_t[sp] = d2;
+                    stack[sp++] = (uint32_t)(c2 - nodes);
+                }
+                node = c1;
+                continue;
+            }
+        }
+        /* pop the next node that can still hold a closer hit */
+        for (;;) {
+            if (sp == 0) return found;
+            --sp;
+            if (stack_t[sp] <= cull) break;
+        }
+        node = &nodes[stack[sp]];
+    }
+}
+
+/* The scene's ray query: the binary tree above, or the wide tree of Part II (A) when the
+   build made one. */
+FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin,
+                                    float tmax, fogrt_hit *hit, bool any_hit) {
+#ifndef FOGRT_NO_WIDE_BVH
+    bool done, found = fogrt__wide_traverse(s, o, d, tmin, tmax, hit, any_hit, &done);  /* SEAM 1 */
+    if (done) return found;
+#endif
+    return fogrt__bvh2_traverse(s, o, d, tmin, tmax, hit, any_hit);
+}
+/* ------------------------------------------------------------------------------------------
+   2.2 The Bidirectional Scattering Distribution Function: diffuse, mirror, refraction, glass
+   All four BSDFs work in the local shading frame (normal +z). Diffuse and mirror reflect on
+   both sides (they answer on the side wo is on); refraction and glass use the sign of wo.z
+   to tell entering (wo.z > 0) from leaving (wo.z < 0). A rough metal (Part II, I) reflects
+   on both sides too, and like diffuse has a density that light sampling and MIS use.
+   ------------------------------------------------------------------------------------------ */
+FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *y) {
+    float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
+    *x = *y = 0.0f;
+    if (a == 0.0f && b == 0.0f) return;
+    bool wide = fabsf(a) > fabsf(b);
+    float r = wide ? a : b, phi = wide ? (FOGRT__PI / 4.0f) * (b / a)
+                                       : FOGRT__PI / 2.0f - (FOGRT__PI / 4.0f) * (a / b);
+    *x = r * cosf(phi);
+    *y = r * sinf(phi);
+}
+/* Cosine-weighted hemisphere: the disk lifted to the hemisphere (Malley). pdf = cos / pi. */
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_cosine_hemisphere(float u1, float u2) {
+    float x, y;   /* a point of the unit disk */
+    fogrt__concentric_disk(u1, u2, &x, &y);
+    return fogrt__v(x, y, sqrtf(FOGRT__MAX(0.0f, 1.0f - x * x - y * y)));
+}
+FOGRT__PUBLIC float fogrt_cosine_hemisphere_pdf(float cos_theta) {
+    return cos_theta > 0.0f ? cos_theta * FOGRT__INV_PI : 0.0f;
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_reflect(fogrt_vec3 n, fogrt_vec3 wo) {
+    return fogrt__sub(fogrt__scale(n, 2.0f * fogrt__dot(wo, n)), wo);
+}
+#ifndef FOGRT_NO_GLASS
+/* Schlick: F = R0 + (1 - R0)(1 - c)^5 with R0 = ((eta-1)/(eta+1))^2, and c the cosine on the
+   optically thinner side: the incident cosine when entering, the transmitted one when
+   leaving (using cos_i there would be wrong). Total internal reflection is tested first. */
+FOGRT__PUBLIC float fogrt_fresnel_schlick(float eta, float cos_i) {
+    float r0 = (eta - 1.0f) / (eta + 1.0f), c;
+    r0 *= r0;
+    cos_i = FOGRT__CLAMP(cos_i, -1.0f, 1.0f);
+    if (eta < 1.0f) {                                   /* make the inside the denser side */
+        cos_i = -cos_i;
+        eta = 1.0f / eta;
+    }
+    if (cos_i >= 0.0f) {
+        c = cos_i;
+    } else {                                            /* leaving: n = eta -> n = 1 */
+        float sin2_t = (1.0f - cos_i * cos_i) * eta * eta;
+        if (sin2_t >= 1.0f) return 1.0f;                /* total internal reflection */
+        c = sqrtf(1.0f - sin2_t);
+    }
+    float m = 1.0f - c;
+    return r0 + (1.0f - r0) * m * m * m * m * m;
+}
+/* Snell's law: wi = -wo/eta + (cos_i/eta - cos_t) n, after flipping n (and eta) to wo's side. */
+FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 n, float eta, fogrt_vec3 wo, fogrt_vec3 *wi) {
+    float cos_i = fogrt__dot(n, wo);
+    if (cos_i < 0.0f) {
+        eta = 1.0f / eta;
+        cos_i = -cos_i;
+        n = fogrt__neg(n);
+    }
+    float sin2_i = FOGRT__MAX(0.0f, 1.0f - cos_i * cos_i), sin2_t = sin2_i / (eta * eta);
+    if (sin2_t >= 1.0f) return false;
+    float cos_t = sqrtf(1.0f - sin2_t);
+    *wi = fogrt__normalize(
+            fogrt__add(fogrt__scale(wo, -1.0f / eta), fogrt__scale(n, cos_i / eta - cos_t)));
+    return true;
+}
+FOGRT__PRIVATE float fogrt__fresnel(fogrt_fresnel mode, float eta, float cos_i) {
+    (void)mode;   /* unread without exact Fresnel, which fogrt_render then refuses */
+#ifndef FOGRT_NO_EXACT_FRESNEL
+    if (mode == FOGRT_FRESNEL_EXACT) return fogrt_fresnel_dielectric(eta, cos_i);   /* SEAM 5 (C) */
+#endif
+    return fogrt_fresnel_schlick(eta, cos_i);
+}
+/* Refraction and glass: reflect with probability F (glass) or only on total internal
+   reflection (refraction), else refract. The probability is the lobe's discrete pdf. */
+FOGRT__PRIVATE void fogrt__sample_dielectric(const fogrt_material_desc *m, fogrt_fresnel fresnel,
+                                             fogrt__v3 wo, float u_lobe, fogrt_bsdf_sample *out) {
+    fogrt__v3 wt;
+    float eta = FOGRT__DEF(m->ior, 1.5f);
+    bool can_refract = fogrt_refract(fogrt__v(0.0f, 0.0f, 1.0f), eta, wo, &wt);
+    float F = m->type == FOGRT_BSDF_GLASS ? fogrt__fresnel(fresnel, eta, wo.z) : 0.0f;
+    if (!can_refract) F = 1.0f;
+    out->is_delta = true;
+    if (u_lobe < F) {                                    /* reflect with probability F */
+        out->wi = fogrt__v(-wo.x, -wo.y, wo.z);
+        out->weight = m->type == FOGRT_BSDF_GLASS ? m->reflectance : m->transmittance;
+        out->pdf = F;
+    } else {                                             /* refract with probability 1 - F */
+        out->wi = wt;
+        out->weight = m->transmittance;
+        out->pdf = 1.0f - F;
+        out->is_transmission = true;
+    }
+}
+#endif /* FOGRT_NO_GLASS */
+FOGRT__PRIVATE fogrt_bsdf_type fogrt__bsdf_type(const fogrt_material_desc *m) {
+    return m->type == FOGRT_BSDF_DEFAULT ? FOGRT_BSDF_DIFFUSE : m->type;
+}
+FOGRT__PRIVATE bool fogrt__bsdf_is_delta(fogrt_bsdf_type t) {
+    return t != FOGRT_BSDF_DIFFUSE && t != FOGRT_BSDF_MICROFACET;
+}
+FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel fresnel,
+                                     fogrt_vec3 wo, float u_lobe, float u1, float u2,
+                                     fogrt_bsdf_sample *out) {
+    fogrt_bsdf_type type = fogrt__bsdf_type(m);
+    memset(out, 0, sizeof *out);
+    if (wo.z == 0.0f) return false;                      /* exactly on the horizon */
+    if (type == FOGRT_BSDF_MIRROR) {
+        out->wi = fogrt__v(-wo.x, -wo.y, wo.z);
+        out->weight = m->reflectance;
+        out->pdf = 1.0f;
+        out->is_delta = true;
+        return true;
+    }
+#ifndef FOGRT_NO_GLASS
+    if (type == FOGRT_BSDF_REFRACTION || type == FOGRT_BSDF_GLASS) {
+        fogrt__sample_dielectric(m, fresnel, wo, u_lobe, out);
+        return true;
+    }
+#else
+    if (type == FOGRT_BSDF_REFRACTION || type == FOGRT_BSDF_GLASS) return false;   /* stripped */
+#endif
+    if (type == FOGRT_BSDF_INTERFACE) {              /* H's interface: index-matched, straight on */
+        out->wi = fogrt__neg(wo);
+        out->weight = fogrt__v(1.0f, 1.0f, 1.0f);
+        out->pdf = 1.0f;
+        out->is_delta = out->is_transmission = true;
+        return true;
+    }
+    FOGRT__MF_SEAM(type, fogrt__mf_sample(m, wo, u1, u2, out));   /* SEAM 5 (I) */
+    (void)u_lobe;                                        /* diffuse: cosine-weighted */
+    (void)fresnel;
+    fogrt__v3 wi = fogrt_sample_cosine_hemisphere(u1, u2);
+    if (wi.z <= 0.0f) return false;
+    if (wo.z < 0.0f) wi.z = -wi.z;                       /* on wo's side */
+    out->wi = wi;
+    out->weight = m->reflectance;                        /* (rho/pi) cos / (cos/pi) = rho */
+    out->pdf = fabsf(wi.z) * FOGRT__INV_PI;
+    return true;
+}
+/* Diffuse, or zero (the delta BSDFs, or wo and wi on opposite sides). Forced inline: light
+   sampling evaluates it once per sample. */
+FOGRT__HOT fogrt__v3 fogrt__bsdf_f(const fogrt_material_desc *m, fogrt__v3 wo, fogrt__v3 wi) {
+    if (fogrt__bsdf_type(m) != FOGRT_BSDF_DIFFUSE || !(wo.z * wi.z > 0.0f)) {
+        FOGRT__MF_SEAM(m->type, fogrt__mf_eval(m, wo, wi));   /* SEAM 5 (I) */
+        return fogrt__v(0.0f, 0.0f, 0.0f);
+    }
+    return fogrt__scale(m->reflectance, FOGRT__INV_PI);
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_bsdf_eval(const fogrt_material_desc *m, fogrt_vec3 wo,
+                                         fogrt_vec3 wi) {
+    return fogrt__bsdf_f(m, wo, wi);
+}
+FOGRT__PUBLIC float fogrt_bsdf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi) {
+    if (fogrt__bsdf_type(m) != FOGRT_BSDF_DIFFUSE || !(wo.z * wi.z > 0.0f)) {
+        FOGRT__MF_SEAM(m->type, fogrt__mf_pdf(m, wo, wi));   /* SEAM 5 (I) */
+        return 0.0f;
+    }
+    return fabsf(wi.z) * FOGRT__INV_PI;
+}
+/* ------------------------------------------------------------------------------------------
+   2.3 Monte Carlo sampling (paper eq. 3): lights, light sampling, MIS
+   The light a vertex reflects, eq. 3, is estimated from sampled directions: f L cos / p.
+   Directions come two ways: from the BSDF (or the phase function in fog), and toward the
+   lights ("importance sampling" in the paper's section 4.2; next-event estimation). At every
+   scattering vertex (a surface or a point in the fog) each light is sampled and a shadow
+   ray decides visibility (in fog it also carries the transmittance of 3.2). An area light
+   can be found both ways, so the two are combined by multiple importance sampling (power
+   heuristic, Veach 1997), counting the light_samples samples per light:
+   w_light = (n p_light)^2 / ((n p_light)^2 + p_bsdf^2).
+   The lights are numbered as one list: the point and spot lights first, then the area
+   lights (emissive meshes and spheres), so one function samples any of them.
+   Point lights: irradiance I / r^2 is unbounded as r -> 0, so r^2 is clamped from below at
+   (1e-4 x scene diagonal)^2 (a documented bias that only touches points that close), and a
+   point exactly at the light receives nothing from it (its direction is undefined). A light
+   with a radius is a spherical emitter instead and has no such spike.
+   ------------------------------------------------------------------------------------------ */
+/* What the integrators read from a render desc. */
+typedef struct fogrt__settings {
+    fogrt_render_desc desc;    /* checked: nee, mis, min_depth, rr_depth, light_samples, ... */
+    int max_depth;             /* -1 (no limit) as the largest int */
+    fogrt_integrator integrator;
+} fogrt__settings;
+
+/* A scattering vertex: a point in the medium, or a surface point with its shading frame. */
+typedef struct fogrt__vertex {
+    fogrt__v3 p, wo;
+    bool in_medium;            /* the vertex lies in the fog (shadow rays are attenuated) */
+    bool is_medium;            /* a fog scattering event (else a surface) */
+    fogrt__frame frame;        /* surface: shading frame */
+    fogrt__v3 ng;              /* surface: geometric normal on the side of wo */
+    const fogrt_material_desc *m;
+} fogrt__vertex;
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_uniform_sphere(float u1, float u2) {
+    float z = 1.0f - 2.0f * u1;
+    float r = sqrtf(FOGRT__MAX(0.0f, (1.0f - z) * (1.0f + z)));
+    float phi = 2.0f * FOGRT__PI * u2;
+    return fogrt__v(r * cosf(phi), r * sinf(phi), z);
+}
+FOGRT__PUBLIC float fogrt_uniform_sphere_pdf(void) { return FOGRT__INV_4PI; }
+/* Uniform on a triangle: b0 = 1 - sqrt(u1), b1 = sqrt(u1)(1 - u2), b2 = sqrt(u1) u2. */
+FOGRT__PUBLIC void fogrt_sample_triangle(float u1, float u2, float *b1, float *b2) {
+    float su = sqrtf(FOGRT__MAX(0.0f, u1));
+    *b1 = su * (1.0f - u2);
+    *b2 = su * u2;
+}
+/* Cone of directions subtended by a sphere: cos(theta_max) = sqrt(1 - r^2/d^2). 1 - cos is
+   formed as sin^2 / (1 + cos), which stays accurate for a small or distant sphere. */
+FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 c, float r, fogrt__v3 p,
+                                                     float *dist) {
+    fogrt__v3 pc = fogrt__sub(c, p);
+    float d2 = fogrt__dot(pc, pc);
+    *dist = sqrtf(d2);
+    if (d2 <= r * r) return -1.0f;                       /* inside (or on) the sphere */
+    float sin2_max = r * r / d2, cos_max = sqrtf(FOGRT__MAX(0.0f, 1.0f - sin2_max));
+    return sin2_max / (1.0f + cos_max);
+}
+/* The direction whose angle theta from the frame's axis has 1 - cos theta = omc, at azimuth
+   2 pi u: sin theta from omc (2 - omc), which stays accurate next to the axis. Drawing omc
+   uniformly in [0, 1 - cos theta_max) samples a cone uniformly (spheres here, spot lights'
+   footprints below). */
+FOGRT__HOT fogrt__v3 fogrt__in_cone(const fogrt__frame *f, float omc, float u) {
+    return fogrt__direction_at(f, 1.0f - omc, sqrtf(FOGRT__MAX(0.0f, omc * (2.0f - omc))), u);
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 center, float radius,
+                                                         fogrt_vec3 p, float u1, float u2,
+                                                         float *pdf) {
+    float dist, omc = fogrt__sphere_one_minus_cos_max(center, radius, p, &dist);
+    if (omc <= 0.0f) {   /* inside: every direction sees the sphere */
+        if (pdf) *pdf = FOGRT__INV_4PI;
+        return fogrt_sample_uniform_sphere(u1, u2);
+    }
+    fogrt__frame f = fogrt__frame_from_z(fogrt__scale(fogrt__sub(center, p), 1.0f / dist));
+    if (pdf) *pdf = 1.0f / (2.0f * FOGRT__PI * omc);
+    return fogrt__in_cone(&f, u1 * omc, u2);
+}
+FOGRT__PUBLIC float fogrt_sphere_solid_angle_pdf(fogrt_vec3 center, float radius, fogrt_vec3 p) {
+    float dist, omc = fogrt__sphere_one_minus_cos_max(center, radius, p, &dist);
+    return omc <= 0.0f ? FOGRT__INV_4PI : 1.0f / (2.0f * FOGRT__PI * omc);
+}
+/* Spot profile: full inside the beam, linear in the angle down to zero at the cutoff. */
+FOGRT__PUBLIC float fogrt_spot_falloff(float cutoff_deg, float beam_deg, float cos_theta) {
+    float theta = acosf(FOGRT__CLAMP(cos_theta, -1.0f, 1.0f)) * (180.0f / FOGRT__PI);
+    if (!(cutoff_deg > beam_deg)) return theta <= cutoff_deg ? 1.0f : 0.0f;   /* hard cone */
+    return FOGRT__CLAMP((cutoff_deg - theta) / (cutoff_deg - beam_deg), 0.0f, 1.0f);
+}
+
+/* The same profile for a light of a built scene, from its two cosines (s->spot_cos: the
+   cutoff's, the beam's): outside the band between them, by a margin far above acosf's
+   rounding, it is 0 or 1 without the acos. */
+FOGRT__PRIVATE float fogrt__spot_profile(const fogrt_light_desc *l, const float *cosines,
+                                         float cos_theta) {
+    if (cos_theta < cosines[0] - 1e-4f) return 0.0f;
+    if (cos_theta > cosines[1] + 1e-4f) return 1.0f;
+    return fogrt_spot_falloff(l->cutoff_deg, l->beam_deg, cos_theta);
+}
+FOGRT__PRIVATE float fogrt__power_heuristic(float a, float b) {
+    if (!(a > 0.0f)) return 0.0f;
+    float r = b / a;
+    if (!(r == r)) return 0.0f;
+    return 1.0f / (1.0f + r * r);     /* = a^2 / (a^2 + b^2), without overflow */
+}
+/* Distance to push a new ray's origin off a surface: scale-aware, a few ulps of |p|. */
+FOGRT__PRIVATE float fogrt__offset_size(const fogrt_scene *s, fogrt__v3 p) {
+    return s->eps + 1e-5f * FOGRT__MAX(fabsf(p.x), FOGRT__MAX(fabsf(p.y), fabsf(p.z)));
+}
+FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt__v3 n,
+                                       fogrt__v3 w) {
+    float e = fogrt__offset_size(s, p);
+    return fogrt__madd(p, n, fogrt__dot(w, n) > 0.0f ? e : -e);
+}
+
+/* What the vertex sends toward -wi from light arriving along wi: f |cos| at a surface (in
+   world space, with the geometric-side test against light leaks), the phase function in the
+   fog. *pdf is the density with which BSDF / phase sampling would have chosen wi. */
+FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi,
+                                     float *pdf) {
+    (void)s;                                             /* read by the fog's branch only */
+#ifndef FOGRT_NO_MEDIUM
+    if (v->is_medium) {
+        float p = fogrt_hg_pdf(s->medium.g, v->wo, wi);
+        *pdf = p;
+        return fogrt__v(p, p, p);
+    }
+#endif
+    *pdf = 0.0f;
+    if (fogrt__dot(wi, v->ng) <= 0.0f) return fogrt__v(0.0f, 0.0f, 0.0f);
+    fogrt__v3 wo_l = fogrt__to_local(&v->frame, v->wo), wi_l = fogrt__to_local(&v->frame, wi);
+    *pdf = fogrt_bsdf_pdf(v->m, wo_l, wi_l);
+    return fogrt__scale(fogrt__bsdf_f(v->m, wo_l, wi_l), fabsf(wi_l.z));
+}
+
+/* Point or spot light l seen from x: for a point light simply I(theta) / r^2 along the
+   direction to it. A light with a radius is a sphere of radiance I(theta)/(pi R^2), sampled
+   uniformly in the cone it subtends (inside it: every direction). The spot profile is
+   evaluated from the light's centre. Returns false when x gets nothing. (Forced inline:
+   as calls, with Part II's second caller, they cost a fog-free render time.) */
+FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l,
+                                          fogrt__v3 x, const float *u, fogrt_light_sample *ls) {
+    fogrt__v3 to = fogrt__sub(l->position, x), I = l->intensity;
+    float d2 = fogrt__dot(to, to), pdf, t;
+    if (!(d2 > 0.0f)) return false;                    /* x is the light: no direction */
+    float d = sqrtf(d2);
+    if (l->type == FOGRT_LIGHT_SPOT)
+        I = fogrt__scale(I, fogrt__spot_profile(l, s->spot_cos + 2 * (l - s->lights),
+                                                -fogrt__dot(to, l->direction) / d));
+    if (fogrt__is_black(I)) return false;
+    ls->pdf = 1.0f;
+    ls->is_delta = true;
+    if (!(l->radius > 0.0f)) {
+        ls->wi = fogrt__scale(to, 1.0f / d);
+        ls->dist = d;
+        ls->Le = fogrt__scale(I, 1.0f / FOGRT__MAX(d2, s->r2_min));
+        return true;
+    }
+    ls->wi = fogrt_sample_sphere_solid_angle(l->position, l->radius, x, u[0], u[1], &pdf);
+    if (d <= l->radius) t = 0.0f;                        /* inside the emitter */
+    else if (!fogrt__hit_sphere(x, ls->wi, l->position, l->radius, 0.0f, INFINITY, &t))
+        t = fogrt__dot(to, ls->wi);
+    ls->dist = t;
+    ls->Le = fogrt__scale(I, 1.0f / (FOGRT__PI * l->radius * l->radius * pdf));
+    return true;
+}
+
+/* Discrete sampling from a CDF (a mesh light's triangles by area, the environment map's
+   rows and columns): the index of the first CDF entry above u in cdf[0..n), and the fraction of u
+   inside that entry (for a continuous position within it). */
+FOGRT__PRIVATE int fogrt__cdf_find(const float *cdf, int n, float u, float *frac) {
+    int lo = 0, hi = n - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (cdf[mid] <= u) lo = mid + 1;
+        else hi = mid;
+    }
+    float c0 = lo ? cdf[lo - 1] : 0.0f;
+    *frac = cdf[lo] > c0 ? FOGRT__CLAMP((u - c0) / (cdf[lo] - c0), 0.0f, FOGRT__ONE_MINUS_EPS)
+                         : 0.5f;
+    return lo;
+}
+/* A point y on a mesh light: a triangle chosen by area (fogrt__cdf_find), then a uniform
+   point on it. *ny is its geometric normal. */
+FOGRT__HOT uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__area_light *a,
+                                             const float *u, fogrt__v3 *y, fogrt__v3 *ny) {
+    float b1, b2, frac;
+    uint32_t tri = s->light_prims[a->first + (uint32_t)fogrt__cdf_find(s->light_cdf + a->first,
+                                                                       (int)a->count, u[0], &frac)];
+    const fogrt__v3 *v = &s->tri_v[3 * tri];
+    fogrt_sample_triangle(u[1], u[2], &b1, &b2);
+    *y = fogrt__add(v[0], fogrt__add(fogrt__scale(fogrt__sub(v[1], v[0]), b1),
+                                     fogrt__scale(fogrt__sub(v[2], v[0]), b2)));
+    *ny = fogrt__normalize(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
+    return tri;
+}
+/* Area light a seen from p: an emissive sphere is sampled in the cone it subtends, a mesh
+   by area (pdf 1/A, turned into solid angle). False when the sample is unusable: the back
+   of a one-sided emitter, or p inside an emitting sphere. */
+FOGRT__HOT bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area_light *a,
+                                         fogrt__v3 p, const float *u, fogrt_light_sample *ls) {
+    fogrt__v3 y, ny;
+    ls->is_delta = false;
+    if (a->sphere != UINT32_MAX) {
+        fogrt__v3 c = s->sph_c[a->sphere];
+        float r = s->sph_r[a->sphere], t;
+        if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r)
+            return false; /* emits outward only */
+        ls->wi = fogrt_sample_sphere_solid_angle(c, r, p, u[1], u[2], &ls->pdf);
+        if (!fogrt__hit_sphere(p, ls->wi, c, r, 0.0f, INFINITY, &t))
+            t = fogrt__dot(fogrt__sub(c, p), ls->wi);
+        ls->dist = t;
+        ls->Le = s->materials[s->sph_material[a->sphere]].emission;
+        return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
+    }
+    ls->Le = s->materials[s->tri_material[fogrt__sample_mesh_point(s, a, u, &y, &ny)]].emission;
+    fogrt__v3 to = fogrt__sub(y, p);
+    float d2 = fogrt__dot(to, to);
+    if (!(d2 > 0.0f)) return false;
+    ls->dist = sqrtf(d2);
+    ls->wi = fogrt__scale(to, 1.0f / ls->dist);
+    float cos_l = -fogrt__dot(ls->wi, ny);
+    if (!(cos_l > 0.0f)) return false;                   /* the back of a one-sided emitter */
+    ls->pdf = d2 / (cos_l * a->area);                    /* area pdf 1/A -> solid angle */
+    return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
+}
+/* The solid-angle pdf with which light sampling would have chosen the emitter point y (on
+   primitive prim, geometric normal ny) from p: the MIS partner of BSDF sampling. */
+FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, fogrt__v3 p,
+                                           fogrt__v3 y, fogrt__v3 ny) {
+    uint32_t li = s->prim_light[prim];
+    if (li == UINT32_MAX) return 0.0f;
+    const fogrt__area_light *a = &s->area_lights[li];
+    if (a->sphere != UINT32_MAX) {
+        fogrt__v3 c = s->sph_c[a->sphere];
+        float r = s->sph_r[a->sphere];
+        if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r) return 0.0f;
+        return fogrt_sphere_solid_angle_pdf(c, r, p);
+    }
+    fogrt__v3 to = fogrt__sub(y, p);
+    float d2 = fogrt__dot(to, to), cos_l = fabsf(fogrt__dot(fogrt__normalize(to), ny));
+    return cos_l > 0.0f ? d2 / (cos_l * a->area) : 0.0f;
+}
+/* One numbering of all lights (point and spot, then area), so that one call samples any. */
+FOGRT__PUBLIC uint32_t fogrt_scene_light_total(const fogrt_scene *s) {
+    return s->light_count + s->area_light_count;
+}
+FOGRT__PUBLIC bool fogrt_scene_sample_light(const fogrt_scene *s, uint32_t light, fogrt_vec3 p,
+                                            float u1, float u2, float u3, fogrt_light_sample *ls) {
+    FOGRT_ASSERT(s && s->built && ls && light < fogrt_scene_light_total(s));
+    float u[3] = { u1, u2, u3 };
+    if (light < s->light_count) return fogrt__sample_point_light(s, &s->lights[light], p, u, ls);
+    return fogrt__sample_area_light(s, &s->area_lights[light - s->light_count], p, u, ls);
+}
+/* The environment's radiance in direction d (a constant; Part II, C, adds maps). */
+FOGRT__PRIVATE fogrt__v3 fogrt__env_radiance(const fogrt_scene *s, fogrt__v3 d) {
+    return s->env_upper_only && !(d.y > 0.0f) ? fogrt__v(0.0f, 0.0f, 0.0f) : s->env;
+}
+/* ------------------------------------------------------------------------------------------
+   3.1 Exponential fog particle sampling: free flight (paper eq. 4-6)
+   Fog particles are spread uniformly, so collisions along a ray are a Poisson process with
+   rate lambda = sigma_t: no collision within t has probability exp(-sigma_t t) (eq. 4), a
+   collision has 1 - exp(-sigma_t t) (eq. 5), the CDF of the exponential distribution (eq.
+   6), whose density is sigma_t exp(-sigma_t t). Inverting the CDF at a uniform u gives the
+   paper's t = -ln(1 - u) / sigma_t. u < 1 always (the RNG never returns 1), so t is finite;
+   the tail beyond 16.6 mean free paths is cut (bias ~ 6e-8). Below u = 2^-8, log1p(-u)
+   keeps the digits that ln(1 - u) would lose; above it 1 - u is exact for the renderer's
+   uniforms (multiples of 2^-24), and logf is cheaper.
+   ------------------------------------------------------------------------------------------ */
+#ifndef FOGRT_NO_MEDIUM
+FOGRT__PUBLIC float fogrt_sample_exponential(float sigma_t, float u) {
+    if (!(sigma_t > 0.0f)) return INFINITY;            /* no medium: never collide */
+    u = FOGRT__MIN(u, FOGRT__ONE_MINUS_EPS);
+    return -(u < 0.00390625f ? log1pf(-u) : logf(1.0f - u)) / sigma_t;
+}
+FOGRT__PUBLIC float fogrt_exponential_pdf(float sigma_t, float t) {
+    if (!(sigma_t > 0.0f) || t < 0.0f) return 0.0f;
+    return sigma_t * expf(-sigma_t * t);
+}
+FOGRT__PUBLIC float fogrt_exponential_cdf(float sigma_t, float t) {
+    if (!(sigma_t > 0.0f) || t <= 0.0f) return 0.0f;
+    return -expm1f(-sigma_t * t);
+}
+#endif /* FOGRT_NO_MEDIUM */
+/* ------------------------------------------------------------------------------------------
+   3.2 Light attenuation through fog (paper eq. 7-8)
+   dL = -sigma_t L dt (eq. 7) integrates, in a homogeneous medium, to L = L0 exp(-sigma_t t)
+   (eq. 8): Beer-Lambert. The fraction exp(-sigma_t t) is the transmittance T(t). A shadow
+   ray through fog carries it in closed form; a path's free flight (3.1) needs no T at all,
+   since the collision's pdf sigma_t T cancels it.
+   ------------------------------------------------------------------------------------------ */
+#ifndef FOGRT_NO_MEDIUM
+/* Beer-Lambert: the fraction of light that crosses a distance without colliding. */
+FOGRT__PUBLIC float fogrt_transmittance(float sigma_t, float distance) {
+    if (!(sigma_t > 0.0f) || !(distance > 0.0f)) return 1.0f;
+    return expf(-sigma_t * distance);   /* underflows to 0 for optical depth > ~87: correct */
+}
+/* Eq. 8 along o + t d for t in [0, dist]: exp(-sigma_t x the length in fog). */
+FOGRT__HOT float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d,
+                                          float dist) {
+    (void)o;                                             /* o, d: read by Part II's bounded fog */
+    (void)d;
+#ifndef FOGRT_MINIMAL
+    float a, b;
+    if (s->x && !fogrt__fog_box_span(s, o, d, dist, &a, &b)) return 1.0f; /* SEAM 6: fog in a box */
+    if (s->x) dist = b - a;
+#endif
+    return fogrt_transmittance(s->medium.sigma_t, dist);
+}
+#endif
+
+/* Visibility times transmittance (eq. 8) between the vertex and the light sample's point.
+   The shadow ray starts at the offset origin and aims at the target itself, stopping a ray
+   offset short of it (the target may lie on a surface: the emitter). */
+FOGRT__HOT float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v,
+                               const fogrt_light_sample *ls, uint64_t *rays) {
+    fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, ls->wi);
+    ++*rays;
+    if (!(ls->dist < INFINITY)) {                        /* toward the environment */
+        if (fogrt__traverse(s, o, ls->wi, 0.0f, INFINITY, NULL, true)) return 0.0f;
+    } else {
+        fogrt__v3 y = fogrt__madd(v->p, ls->wi, ls->dist), to = fogrt__sub(y, o);
+        float len = fogrt__length(to), tmax = len - fogrt__offset_size(s, y);
+        if (tmax > 0.0f &&
+            fogrt__traverse(s, o, fogrt__scale(to, 1.0f / len), 0.0f, tmax, NULL, true))
+            return 0.0f;
+    }
+#ifndef FOGRT_NO_MEDIUM
+    if (v->in_medium) return fogrt__fog_transmittance(s, v->p, ls->wi, ls->dist);
+#endif
+    return 1.0f;
+}
+/* ------------------------------------------------------------------------------------------
+   3.3 Fog scattering: the Henyey-Greenstein phase function (paper eq. 9-12)
+   ------------------------------------------------------------------------------------------ */
+#ifndef FOGRT_NO_MEDIUM
+FOGRT__PRIVATE float fogrt__clamp_g(float g) {
+    if (!(g == g)) return 0.0f;
+    return FOGRT__CLAMP(g, -FOGRT_HG_G_MAX, FOGRT_HG_G_MAX);
+}
+/* p(mu) = (1 - g^2) / (4 pi (1 + g^2 - 2 g mu)^(3/2)). The base 1 + g^2 - 2 g mu is written
+   as a sum of non-negative terms, so it does not cancel near the peak when |g| -> 1:
+   g >= 0: (1 - g)^2 + 2g(1 - mu);  g < 0: (1 + g)^2 - 2g(1 + mu).  The arguments are 1 - mu
+   and 1 + mu, so a caller that knows them exactly (the sampler) loses nothing.            */
+FOGRT__PRIVATE float fogrt__hg_phase_pm(float g, float one_minus_mu, float one_plus_mu) {
+    float base = g >= 0.0f ? (1.0f - g) * (1.0f - g) + 2.0f * g * one_minus_mu
+                           : (1.0f + g) * (1.0f + g) - 2.0f * g * one_plus_mu;
+    return FOGRT__INV_4PI * (1.0f - g) * (1.0f + g) / (base * sqrtf(base));
+}
+FOGRT__PUBLIC float fogrt_hg_phase(float g, float mu) {
+    mu = FOGRT__CLAMP(mu, -1.0f, 1.0f);
+    return fogrt__hg_phase_pm(fogrt__clamp_g(g), 1.0f - mu, 1.0f + mu);
+}
+/* D = (1 - g) + 2 g u, as a sum of two non-negative terms: for g < 0 and u -> 1 the direct
+   form would cancel, so it is written (1 + g) - 2 g (1 - u) there. */
+FOGRT__PRIVATE float fogrt__hg_D(float g, float u) {
+    return g >= 0.0f ? (1.0f - g) + 2.0f * g * u : (1.0f + g) - 2.0f * g * (1.0f - u);
+}
+/* Eq. 10-11: the inverse of HG's CDF. As the paper writes it (one_minus_mu NULL),
+     mu = (1 + g^2 - s^2) / (2 g),  s = (1 - g^2) / D,  D = 1 - g + 2 g u,
+   it divides 0 by 0 at g = 0 (the limit is isotropic, 2u - 1), and for small |g| subtracts
+   nearly equal numbers and divides the rounding by 2g: its error grows like 1e-7 / |g|
+   (test_hg_eq11_matches_stable_form). The renderer asks for 1 - mu and 1 + mu, and gets eq. 11
+   rearranged: 2 g (1 - mu) = s^2 - (1 - g)^2 and 2 g (1 + mu) = (1 + g)^2 - s^2, each a
+   difference of squares, with 1 + g - D = 2 g (1 - u) and D - (1 - g) = 2 g u, give
+     1 - mu = (1 - g)^2 (1 - u) (1 + g + D) / D^2,   1 + mu = (1 + g)^2 u (1 - g + D) / D^2:
+   no division by g and nothing that cancels. Near the peak (|g| -> 1) mu itself rounds to
+   +-1 long before the angle is 0 (at g = 0.99 one sample in 2000 would land on the peak
+   direction); sin(theta) = sqrt((1 - mu)(1 + mu)) from these keeps its full precision. */
+FOGRT__PRIVATE float fogrt__sample_hg_mu_eq11(float g, float u, float *one_minus_mu,
+                                              float *one_plus_mu) {
+    if (one_minus_mu) {                       /* the cancellation-free branch: eq. 11 rearranged */
+        float D = fogrt__hg_D(g, u), D2 = D * D;
+        *one_minus_mu = FOGRT__CLAMP((1.0f - g) * (1.0f - g) * (1.0f - u) * (1.0f + g + D) / D2,
+                                     0.0f, 2.0f);
+        *one_plus_mu = FOGRT__CLAMP((1.0f + g) * (1.0f + g) * u * (1.0f - g + D) / D2, 0.0f, 2.0f);
+        /* mu from the nearer end: no rounding */
+        return *one_minus_mu < *one_plus_mu ? 1.0f - *one_minus_mu : *one_plus_mu - 1.0f;
+    }
+    if (g == 0.0f) return 2.0f * u - 1.0f;
+    float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
+    return FOGRT__CLAMP((1.0f + g * g - s * s) / (2.0f * g), -1.0f, 1.0f);
+}
+/* The same inverse as mu, expanded so that nothing divides by g:
+     mu = (2u - (1 - g)) / D + 2 g (1 - g)(1 + g) u (1 - u) / D^2.
+   g = 0 gives mu = 2u - 1 (isotropic) with no special branch; u = 0 gives -1, u -> 1 gives 1. */
+FOGRT__PUBLIC float fogrt_sample_hg_mu(float g, float u) {
+    g = fogrt__clamp_g(g);
+    u = FOGRT__CLAMP(u, 0.0f, 1.0f);
+    float D = fogrt__hg_D(g, u);
+    float mu = (2.0f * u - (1.0f - g)) / D +
+               2.0f * g * (1.0f - g) * (1.0f + g) * u * (1.0f - u) / (D * D);
+    return FOGRT__CLAMP(mu, -1.0f, 1.0f);
+}
+/* The same for a unit wo (the integrator's, which skips the normalisation). */
+FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg_unit(float g, fogrt__v3 wo, float u1, float u2,
+                                               float *pdf) {
+    fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));   /* z: propagation */
+    float one_minus_mu, one_plus_mu, mu;
+    g = fogrt__clamp_g(g);
+    mu = fogrt__sample_hg_mu_eq11(g, FOGRT__CLAMP(u1, 0.0f, 1.0f), &one_minus_mu, &one_plus_mu);
+    if (pdf) *pdf = fogrt__hg_phase_pm(g, one_minus_mu, one_plus_mu);
+    return fogrt__direction_at(&f, mu, sqrtf(one_minus_mu * one_plus_mu), u2);
+}
+FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf) {
+    return fogrt__sample_hg_unit(g, fogrt__normalize(wo), u1, u2, pdf);
+}
+/* mu = cos(d, wi) with d = -wo. Near the peaks 1 - mu and 1 + mu are taken from the chord
+   lengths, |wi + wo|^2 / 2 and |wi - wo|^2 / 2, which keep their precision where a rounded
+   dot product would not (at g = 0.999 the phase function changes 12% per ulp of mu there). */
+FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi) {
+    fogrt__v3 a = fogrt__add(wi, wo), b = fogrt__sub(wi, wo);
+    return fogrt__hg_phase_pm(fogrt__clamp_g(g), FOGRT__CLAMP(0.5f * fogrt__dot(a, a), 0.0f, 2.0f),
+                              FOGRT__CLAMP(0.5f * fogrt__dot(b, b), 0.0f, 2.0f));
+}
+#endif /* FOGRT_NO_MEDIUM */
+/* ------------------------------------------------------------------------------------------
+   3.4 The global illumination pipeline: Algorithm 1 (eq. 13) and the one-bounce baseline
+   Algorithm 1 is written as a recursion; fogrt__algorithm1 below runs it as a loop (the
+   recursion's tail call), keeping the product of the weights of eq. 13 as the throughput
+   beta = prod f cos / pdf, so that the light found at depth k counts beta_k Le. Every render
+   runs it; with Part II's state on the walk each step hands on at its seam (7a-7d). Its
+   steps carry the numbers of the algorithm's lines:
+     2     "ray depth > 0 and coin flip(p)": the depth limit, and Russian roulette after
+           rr_depth bounces: go on with probability q = min(0.95, max(beta)), weight 1/q;
+     3-4   intersect the BVH (t_i), sample a fog collision t_fog (3.1), keep the nearer;
+     5-10  light sampling at the vertex: in fog over the sphere of directions (6), at a
+           surface over the hemisphere (9), each light's sample weighted by MIS (2.3);
+     11-20 the new direction: HG in fog (15, 3.3), the BSDF on a surface (19, 2.2);
+     13,22 the weight of eq. 13: f cos / pdf (HG: p / p = 1; the fog's albedo sigma_s /
+           sigma_t at a collision, since transmittance and free-flight pdf cancel);
+     12,23 one bounce more.
+   Light reached by the ray itself (an emitter hit, or the sky) is added with the MIS weight
+   of BSDF sampling, so that the two estimates of an area light add up to one. The fog fills
+   all space outside refractive objects (a ray that refracts into one leaves it until it
+   refracts out). Light that bounced fewer than min_depth times is not counted (CS184's -o 0).
+   ------------------------------------------------------------------------------------------ */
+/* A ray's hit as a surface point: the point, its geometric normal and its shading normal. */
+FOGRT__HOT void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d,
+                                     const fogrt_hit *h, fogrt__v3 *p, fogrt__v3 *ng,
+                                     fogrt__v3 *ns) {
+    *p = fogrt__madd(o, d, h->t);
+    if (h->prim < s->tri_count) {
+        const fogrt__v3 *v = &s->tri_v[3 * h->prim];
+        *ng = fogrt__normalize(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
+        *ns = *ng;
+        if (s->tri_has_n[h->prim]) {   /* interpolated shading normal, on the side of ng */
+            const fogrt__v3 *n = &s->tri_n[3 * h->prim];
+            fogrt__v3 sn =
+                    fogrt__add(fogrt__scale(n[0], 1.0f - h->u - h->v),
+                               fogrt__add(fogrt__scale(n[1], h->u), fogrt__scale(n[2], h->v)));
+            if (fogrt__dot(sn, sn) > 0.0f) {
+                sn = fogrt__normalize(sn);
+                *ns = fogrt__dot(sn, *ng) < 0.0f ? fogrt__neg(sn) : sn;
+            }
+        }
+    } else {
+        fogrt__v3 c = s->sph_c[h->prim - s->tri_count];
+        float r = s->sph_r[h->prim - s->tri_count];
+        *ng = fogrt__normalize(fogrt__sub(*p, c));
+        *p = fogrt__madd(c, *ng, r);               /* re-project: removes the hit's rounding */
+        *ns = *ng;
+    }
+}
+/* A surface vertex at p (normals ng, ns from fogrt__surface_frame) for the ray arriving
+   along -wo: reflective BSDFs are two-sided (the frame turns to wo's side), refractive ones
+   keep the outward normal, so wo.z < 0 in the frame means "inside". Returns whether wo is
+   on the front side. */
+FOGRT__HOT bool fogrt__surface_vertex_set(fogrt__vertex *v, const fogrt_material_desc *m,
+                                          fogrt__v3 wo, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns,
+                                          bool in_medium) {
+    fogrt_bsdf_type type = fogrt__bsdf_type(m);
+    bool entering = fogrt__dot(wo, ng) > 0.0f;
+    if (type < FOGRT_BSDF_REFRACTION) {                  /* reflects only: two-sided */
+        if (!entering) {
+            ng = fogrt__neg(ng);
+            ns = fogrt__neg(ns);
+        }
+        if (fogrt__dot(wo, ns) <= 0.0f) ns = ng;
+    }
+    v->p = p;
+    v->frame = fogrt__frame_from_z(ns);
+    v->ng = ng;
+    v->wo = wo;
+    v->m = m;
+    v->is_medium = false;
+    v->in_medium = in_medium;
+    return entering;
+}
+/* Lines 19-20: a new direction from the BSDF at surface vertex v, in world space. A shading
+   normal can send a direction through the geometric surface: such a sample is dropped. */
+FOGRT__HOT bool fogrt__sample_surface(const fogrt__settings *st, const fogrt__vertex *v,
+                                      const float *u, fogrt_bsdf_sample *bs, fogrt__v3 *wi,
+                                      float *cos_o) {
+    fogrt__v3 wo_l = fogrt__to_local(&v->frame, v->wo);
+    *cos_o = wo_l.z;
+    if (!fogrt_sample_bsdf(v->m, st->desc.fresnel, wo_l, u[0], u[1], u[2], bs)) return false;
+    *wi = fogrt__normalize(fogrt__to_world(&v->frame, bs->wi));
+    float side = fogrt__dot(*wi, v->ng) * fogrt__dot(v->wo, v->ng);
+    return bs->is_transmission ? side < 0.0f : side > 0.0f;
+}
+/* Lines 5-10: light sampling at a scattering vertex v, every light (area lights
+   light_samples times), each sample f Le T w / (n pdf) with w the MIS weight (1 for a point
+   or spot light, which BSDF sampling can never hit). */
+FOGRT__PRIVATE fogrt__v3 fogrt__nee(const fogrt_scene *s, const fogrt__settings *st,
+                                    const fogrt__vertex *v, fogrt_rng *rng, uint64_t *rays) {
+    fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
+    uint32_t total = s->light_count + s->area_light_count;
+    for (uint32_t i = 0; i < total; ++i) {
+        int n = i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->desc.light_samples;
+        for (int j = 0; j < n; ++j) {
+            fogrt_light_sample ls;
+            float pdf_b, tr, u[3];
+            u[0] = fogrt_rng_float(rng);
+            u[1] = fogrt_rng_float(rng);
+            u[2] = fogrt_rng_float(rng);
+            if (!fogrt_scene_sample_light(s, i, v->p, u[0], u[1], u[2], &ls)) continue;
+            fogrt__v3 f = fogrt__vertex_f(s, v, ls.wi, &pdf_b);
+            if (fogrt__is_black(f) || (tr = fogrt__shadow(s, v, &ls, rays)) == 0.0f) continue;
+            float w = ls.is_delta || !st->desc.mis
+                              ? 1.0f
+                              : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
+            L = fogrt__add(L, fogrt__scale(fogrt__mul(f, ls.Le), tr * w / (ls.pdf * (float)n)));
+        }
+    }
+    return L;
+}
+/* The MIS weight of emission that the ray found by BSDF or phase sampling from prev_p with
+   density prev_pdf (1 after a camera ray or a specular bounce, which light sampling cannot
+   produce; 0 with MIS off, where light sampling alone counts area lights). */
+FOGRT__PRIVATE float fogrt__emission_weight(const fogrt_scene *s, const fogrt__settings *st,
+                                            bool prev_delta, float prev_pdf, fogrt__v3 prev_p,
+                                            const fogrt_hit *hit, fogrt__v3 p, fogrt__v3 ng) {
+    if (prev_delta || !st->desc.nee) return 1.0f;
+    if (!st->desc.mis) return 0.0f;
+    return fogrt__power_heuristic(prev_pdf,
+                                  (float)st->desc.light_samples *
+                                          fogrt__area_light_pdf(s, hit->prim, prev_p, p, ng));
+}
+/* Algorithm 1's state between two vertices: the ray, the throughput beta, the light
+   gathered, the vertex just found, and what MIS needs of the vertex the ray left. */
+struct fogrt__path;
+typedef struct fogrt__walk {
+    fogrt__v3 o, d, beta, L, prev_p;
+    float prev_pdf;            /* the density with which the ray's direction was chosen */
+    bool prev_delta;           /* camera ray or specular bounce: emission counts in full */
+    bool in_fog;               /* the ray travels in fog */
+    int depth;                 /* scattering events so far */
+    fogrt__vertex v;           /* the vertex the ray reached */
+    fogrt_rng *rng;
+    uint64_t *rays;            /* rays traced, for the render's statistics */
+    struct fogrt__path *x;     /* Part II's state of the path (E), or NULL: the paper's steps */
+} fogrt__walk;
+
+/* Lines 3-4, 5 and 14 (a fog particle), 8 and 18 (an object): the next vertex along the
+   ray, with the emission the ray reaches on the way. Returns false when the path ends
+   there (it left the scene, or hit a black diffuse surface). limit: the depth at which the
+   path stops (Part II's steps skip what only a deeper path would use). */
+FOGRT__PRIVATE bool fogrt__next_vertex(const fogrt_scene *s, const fogrt__settings *st,
+                                       fogrt__walk *w, int limit) {
+#ifndef FOGRT_MINIMAL
+    if (w->x) return fogrt__full_next_event(s, st, w->x, limit); /* SEAM 7a: E's next event */
+#endif
+    (void)limit;
+    fogrt_hit hit;
+    float t_fog = INFINITY;
+    ++*w->rays;
+    bool found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, &hit, false);         /* 3: t_i */
+#ifndef FOGRT_NO_MEDIUM
+    if (w->in_fog)
+        t_fog = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(w->rng)); /* 4 */
+#endif
+    fogrt__vertex *v = &w->v;
+    if (t_fog < (found ? hit.t : INFINITY)) {                                          /* 5, 14 */
+        w->beta = fogrt__mul(w->beta, s->medium.albedo);
+        v->p = fogrt__madd(w->o, w->d, t_fog);
+        v->wo = fogrt__neg(w->d);
+        v->is_medium = true;
+        v->in_medium = true;
+        v->m = NULL;
+        v->ng = fogrt__v(0.0f, 0.0f, 0.0f);
+        return true;
+    }
+    if (!found) { /* the sky */
+        if (s->has_env && w->depth >= st->desc.min_depth)
+            w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__env_radiance(s, w->d)));
+        return false;
+    }
+    const fogrt_material_desc *m =
+            &s->materials[fogrt_scene_get_prim_material(s, hit.prim)]; /* 8, 18 */
+    fogrt__v3 p, ng, ns;
+    fogrt__surface_frame(s, w->o, w->d, &hit, &p, &ng, &ns);
+    if (!fogrt__is_black(m->emission) && fogrt__dot(w->d, ng) < 0.0f &&
+        w->depth >= st->desc.min_depth) {
+        float mis =
+                fogrt__emission_weight(s, st, w->prev_delta, w->prev_pdf, w->prev_p, &hit, p, ng);
+        w->L = fogrt__add(w->L, fogrt__scale(fogrt__mul(w->beta, m->emission), mis));
+    }
+    if (fogrt__bsdf_type(m) == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance)) return false;
+    (void)fogrt__surface_vertex_set(v, m, fogrt__neg(w->d), p, ng, ns, w->in_fog);
+    return true;
+}
+/* Fog, or a surface whose BSDF light sampling can reach (line 9: "if not specular"). */
+FOGRT__PRIVATE bool fogrt__scatters(const fogrt__vertex *v) {
+    return v->is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v->m));
+}
+/* Lines 5-10: the light sampled at a scattering vertex (6 in fog, 9 on a surface). */
+FOGRT__PRIVATE void fogrt__light_at_vertex(const fogrt_scene *s, const fogrt__settings *st,
+                                           fogrt__walk *w) {
+#ifndef FOGRT_MINIMAL
+    if (w->x) { /* SEAM 7b: E's light step */
+        fogrt__full_light_step(s, st, w->x);
+        return;
+    }
+#endif
+    if (st->desc.nee && fogrt__scatters(&w->v) && w->depth + 1 >= st->desc.min_depth)
+        w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__nee(s, st, &w->v, w->rng, w->rays)));
+}
+/* Lines 11-22: the new direction, inverse HG in fog (15-17, eq. 11-12), the BSDF on an
+   object (19-21), and the weight of eq. 13 (line 22), f |cos theta| / pdf. In fog that
+   weight is p / pdf = 1: eq. 12 samples the phase function exactly. Returns false when no
+   direction could be drawn. */
+FOGRT__PRIVATE bool fogrt__new_direction(const fogrt_scene *s, const fogrt__settings *st,
+                                         fogrt__walk *w) {
+#ifndef FOGRT_MINIMAL
+    if (w->x) return fogrt__full_scatter(s, st, w->x);                    /* SEAM 7c: E's scatter */
+#endif
+    const fogrt__vertex *v = &w->v;
+    float u[3];
+    u[0] = fogrt_rng_float(w->rng);
+    u[1] = fogrt_rng_float(w->rng);
+    u[2] = fogrt_rng_float(w->rng);
+#ifndef FOGRT_NO_MEDIUM
+    if (v->is_medium) {
+        w->d = fogrt__sample_hg_unit(s->medium.g, v->wo, u[1], u[2], &w->prev_pdf);
+        w->prev_delta = false;
+        w->o = w->prev_p = v->p;
+        return true;
+    }
+#endif
+    fogrt_bsdf_sample bs;
+    fogrt__v3 wi;
+    float cos_o;
+    if (!fogrt__sample_surface(st, v, u, &bs, &wi, &cos_o)) return false;
+    /* Eq. 13, f |cos theta| / pdf, theta between the sampled w_i (bs.wi, shading frame) and the
+       normal: the paper's "hitting ray" is w_i, the ray that hits what sends back L_i. Mirror and
+       glass: f and pdf hold the same Dirac delta, so their sampler reports the ratio, as usual. */
+    fogrt__v3 f = fogrt_bsdf_eval(v->m, fogrt__to_local(&v->frame, v->wo), bs.wi);
+    fogrt__v3 weight = bs.is_delta ? bs.weight : fogrt__scale(f, fabsf(bs.wi.z) / bs.pdf);
+    w->beta = fogrt__mul(w->beta, weight);
+    w->prev_pdf = bs.pdf;
+    w->prev_delta = bs.is_delta;
+    if (bs.is_transmission)                             /* into or out of a refractive object */
+        w->in_fog = !(fogrt__dot(v->wo, v->ng) > 0.0f) && (s->features & FOGRT_FEATURE_MEDIUM);
+    w->d = wi;
+    w->o = fogrt__offset(s, v->p, v->ng, wi);
+    w->prev_p = v->p;
+    return true;
+}
+/* Line 2's coin flip, after lines 12 and 23 (one bounce more): after rr_depth bounces the
+   path goes on with probability q = min(0.95, max(beta)), weighted 1/q (unbiased: the
+   path's expected value is unchanged). */
+FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__walk *w) {
+    ++w->depth;                                                          /* 12, 23 */
+    if (w->depth <= st->desc.rr_depth) return true;
+    float q = FOGRT__MIN(0.95f, fogrt__max3(w->beta));
+    float u = fogrt_rng_float(w->rng);
+#ifndef FOGRT_MINIMAL
+    if (w->x) q = fogrt__full_roulette_q(st, w->x, u); /* SEAM 7d: the pilot's q (C) */
+#endif
+    if (!(u < q)) return false;
+    w->beta = fogrt__scale(w->beta, 1.0f / q);
+    return true;
+}
+
+/* The walk of a camera ray from o along d. */
+FOGRT__PRIVATE void fogrt__walk_start(fogrt__walk *w, const fogrt_scene *s, fogrt__v3 o,
+                                      fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
+    memset(w, 0, sizeof *w);
+    w->o = o;
+    w->d = d;
+    w->prev_p = o;
+    w->beta = fogrt__v(1.0f, 1.0f, 1.0f);
+    w->prev_pdf = 1.0f;
+    w->prev_delta = true;
+    w->in_fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0;   /* the camera is in the fog */
+    w->rng = rng;
+    w->rays = rays;
+}
+/* Algorithm 1, the loop every render runs. one_bounce: the paper's baseline instead
+   (section 4.3): the camera ray is followed through mirrors and glass to the first
+   scattering vertex, which samples the lights and takes one more step that only adds the
+   emission it finds (its MIS half). */
+FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__settings *st,
+                                           fogrt__walk *w, bool one_bounce) {
+    int limit = st->max_depth;                                           /* 2: ray depth > 0 */
+    for (uint32_t vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
+        if (!fogrt__next_vertex(s, st, w, limit)) break;                 /* 3-5, 8, 14, 18 */
+        if (w->depth >= limit || fogrt__is_black(w->beta)) break;        /* 2: ray depth > 0 */
+        fogrt__light_at_vertex(s, st, w);                                /* 5-10 */
+        if (one_bounce && fogrt__scatters(&w->v))                        /* the baseline: */
+            limit = w->depth + 1;                                        /* one step more */
+        if (!fogrt__new_direction(s, st, w)) break;                      /* 11-22 */
+        if (!fogrt__roulette(st, w)) break;                    /* 2: coin flip(p); 12, 23 */
+    }
+    return w->L;
+}
+
+/* ------------------------------------------------------------------------------------------
+   I.3 Running it: the scene and its validation
+   Every add_* call validates all of its input before it changes anything, so an error
+   leaves the scene exactly as it was.
+   ------------------------------------------------------------------------------------------ */
 FOGRT__PRIVATE void fogrt__log(const fogrt_scene *s, fogrt_log_level level, const char *msg) {
     if (s && s->logger.func) s->logger.func(level, msg, s->logger.user_data);
 }
@@ -1770,1316 +3075,6 @@ FOGRT__PUBLIC fogrt_result fogrt_scene_set_medium(fogrt_scene *s, const fogrt_me
     s->built = false;
     return FOGRT_RESULT_OK;
 }
-
-/* ------------------------------------------------------------------------------------------
-   2.1 Bounding Volume Hierarchy (paper eq. 1-2)
-   The tree is built top down. Each node splits its primitives by a plane through one of
-   `bins` equal slices of their centroids' bounds, on the axis and at the plane whose
-   heuristic is least. The paper's heuristic (eq. 1) weighs both sides by their volumes,
-     H_i = N_l V_l + N_r V_r,  i in {x, y, z}  (eq. 2: the axis split along),
-   and splits until a node holds at most max_leaf_size primitives; the default, the surface
-   area heuristic, weighs them by their surface areas and also stops where splitting costs
-   more than a leaf:  c_trav + c_int (A_l N_l + A_r N_r) / A  against  c_int N.
-   Each node is binned in one pass over its primitives for all three axes (a bin keeps the
-   box and the count of the primitives whose centroid falls in it); the planes are priced
-   by sweeping the bins from both ends, and one more pass moves the primitives of the left
-   side to the front. Past FOGRT__BVH_SAH_DEPTH levels (only reached by adversarial inputs)
-   nodes are halved without the heuristic, so the depth stays below FOGRT__BVH_MAX_DEPTH,
-   the size of the traversal stack. Node 0 is the root, node 1 is unused (so that the two
-   children of a node are neighbours), and a split appends its two children.
-   ------------------------------------------------------------------------------------------ */
-typedef struct fogrt__aabb { fogrt__v3 lo, hi; } fogrt__aabb;
-FOGRT__PRIVATE fogrt__aabb fogrt__aabb_empty(void) {
-    fogrt__aabb b = { { FLT_MAX, FLT_MAX, FLT_MAX }, { -FLT_MAX, -FLT_MAX, -FLT_MAX } };
-    return b;
-}
-FOGRT__HOT void fogrt__aabb_union(fogrt__aabb *b, const fogrt__aabb *o) {   /* o may be empty */
-    b->lo.x = FOGRT__MIN(b->lo.x, o->lo.x);
-    b->lo.y = FOGRT__MIN(b->lo.y, o->lo.y);
-    b->lo.z = FOGRT__MIN(b->lo.z, o->lo.z);
-    b->hi.x = FOGRT__MAX(b->hi.x, o->hi.x);
-    b->hi.y = FOGRT__MAX(b->hi.y, o->hi.y);
-    b->hi.z = FOGRT__MAX(b->hi.z, o->hi.z);
-}
-FOGRT__HOT void fogrt__aabb_grow(fogrt__aabb *b, fogrt__v3 p) {   /* the union with the point */
-    fogrt__aabb point = { p, p };
-    fogrt__aabb_union(b, &point);
-}
-FOGRT__PRIVATE float fogrt__aabb_area(const fogrt__aabb *b) {     /* 0 for the empty box */
-    fogrt__v3 e = fogrt__sub(b->hi, b->lo);
-    return e.x < 0.0f ? 0.0f : 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
-}
-FOGRT__PRIVATE float fogrt__aabb_volume(const fogrt__aabb *b) {
-    fogrt__v3 e = fogrt__sub(b->hi, b->lo);
-    return e.x < 0.0f ? 0.0f : e.x * e.y * e.z;
-}
-FOGRT__HOT fogrt__v3 fogrt__aabb_centre(const fogrt__aabb *b) {
-    return fogrt__scale(fogrt__add(b->lo, b->hi), 0.5f);
-}
-
-#define FOGRT__BVH_SAH_DEPTH 56
-#define FOGRT__BVH_MAX_DEPTH 96   /* 56 + 32 halvings of at most 2^32 primitives, and margin */
-#define FOGRT__BVH_MAX_BINS 64    /* fogrt_build_desc.bins is at most this */
-
-typedef struct fogrt__build {
-    fogrt_build_desc desc;
-    fogrt__aabb *box;      /* per primitive, in the order of idx (reordered with it) */
-    fogrt_bvh_node *nodes;
-    uint32_t *idx;
-    uint32_t node_count;
-    uint32_t leaf_keep;    /* nodes of at most this many primitives stay leaves, unpriced */
-} fogrt__build;
-/* A node waiting on the build's stack, with the bounds of its primitives' centroids. */
-typedef struct fogrt__bjob {
-    uint32_t node, depth;
-    fogrt__aabb cb;
-} fogrt__bjob;
-
-/* The heuristic's measure of one side: N A (SAH) or N V (the paper's eq. 1). */
-FOGRT__PRIVATE float fogrt__side_cost(const fogrt_build_desc *d, uint32_t n,
-                                      const fogrt__aabb *box) {
-    return (float)n *
-           (d->heuristic == FOGRT_BVH_VOLUME ? fogrt__aabb_volume(box) : fogrt__aabb_area(box));
-}
-FOGRT__PRIVATE void fogrt__node_set_box(fogrt_bvh_node *node, const fogrt__aabb *b) {
-    for (int k = 0; k < 3; ++k) node->bmin[k] = fogrt__comp(b->lo, k);
-    for (int k = 0; k < 3; ++k) node->bmax[k] = fogrt__comp(b->hi, k);
-}
-/* Box and centroid bounds of count primitives (the root, and the halved nodes). */
-FOGRT__PRIVATE void fogrt__boxes_bounds(const fogrt__aabb *box, uint32_t count,
-                                        fogrt_bvh_node *node, fogrt__aabb *cb) {
-    fogrt__aabb b = fogrt__aabb_empty();
-    *cb = fogrt__aabb_empty();
-    for (uint32_t i = 0; i < count; ++i) {
-        fogrt__aabb_union(&b, &box[i]);
-        fogrt__aabb_grow(cb, fogrt__aabb_centre(&box[i]));
-    }
-    fogrt__node_set_box(node, &b);
-}
-
-/* The bins of one node: on axis a, bin k holds the primitives whose centroid falls in the
-   k-th of nb equal slices of the centroid bounds; box is the box of those primitives. */
-typedef struct fogrt__bins {
-    fogrt__aabb box[3][FOGRT__BVH_MAX_BINS];
-    uint32_t n[3][FOGRT__BVH_MAX_BINS];
-    fogrt__v3 origin, scale;
-    int nb;
-} fogrt__bins;
-/* The bin of a centroid on axis ax: (c - origin) scale, clamped to [0, nb - 1] and
-   truncated; a NaN (a flat axis: 0 x infinity) lands in bin 0. */
-FOGRT__HOT int fogrt__bin_of(const fogrt__bins *bins, fogrt__v3 c, int ax) {
-    float f = (fogrt__comp(c, ax) - fogrt__comp(bins->origin, ax)) * fogrt__comp(bins->scale, ax);
-    f = f > 0.0f ? f : 0.0f;
-    f = f < (float)(bins->nb - 1) ? f : (float)(bins->nb - 1);
-    return (int)f;
-}
-/* Empty bins over the centroid bounds cb: no more bins than primitives (at least 2, so
-   bins = 1 prices the single plane through the middle). An axis on which every centroid
-   has the same coordinate gets scale 0 (no plane to try there). Then every primitive goes
-   into its bin on each axis. */
-FOGRT__PRIVATE void fogrt__bins_fill(fogrt__bins *bins, const fogrt_build_desc *d,
-                                     const fogrt__aabb *cb, const fogrt__aabb *box,
-                                     uint32_t count) {
-    float sc[3];
-    int nb = count < (uint32_t)d->bins ? (int)count : d->bins;
-    if (nb == 1) nb = 2;
-    for (int ax = 0; ax < 3; ++ax) {
-        float lo = fogrt__comp(cb->lo, ax), hi = fogrt__comp(cb->hi, ax);
-        sc[ax] = (float)nb / (hi - lo);
-        if (!(hi > lo && sc[ax] > 0.0f && sc[ax] < FLT_MAX)) sc[ax] = 0.0f;
-        for (int k = 0; k < nb; ++k) bins->box[ax][k] = fogrt__aabb_empty();
-    }
-    memset(bins->n, 0, sizeof bins->n);
-    bins->nb = nb;
-    bins->origin = cb->lo;
-    bins->scale = fogrt__v(sc[0], sc[1], sc[2]);
-    for (uint32_t i = 0; i < count; ++i) {
-        fogrt__v3 c = fogrt__aabb_centre(&box[i]);
-        for (int ax = 0; ax < 3; ++ax) {
-            int k = fogrt__bin_of(bins, c, ax);
-            fogrt__aabb_union(&bins->box[ax][k], &box[i]);
-            bins->n[ax][k]++;
-        }
-    }
-}
-/* The cheapest plane of one axis: sweep from the left and from the right to price the
-   nb - 1 planes between the bins (plane k: bins 0..k-1 on the left). Improves *best, and
-   *best_k, where a plane with primitives on both sides is cheaper. */
-FOGRT__PRIVATE bool fogrt__bins_sweep(const fogrt_build_desc *d, const fogrt__bins *bins, int ax,
-                                      uint32_t count, float *best, int *best_k) {
-    fogrt__aabb b = fogrt__aabb_empty();
-    uint32_t left_n = 0, right_n = 0;
-    float left_cost[FOGRT__BVH_MAX_BINS];
-    bool improved = false;
-    for (int k = 0; k < bins->nb - 1; ++k) {
-        left_n += bins->n[ax][k];
-        fogrt__aabb_union(&b, &bins->box[ax][k]);
-        left_cost[k] = fogrt__side_cost(d, left_n, &b);
-    }
-    b = fogrt__aabb_empty();
-    for (int k = bins->nb - 1; k > 0; --k) {
-        right_n += bins->n[ax][k];
-        fogrt__aabb_union(&b, &bins->box[ax][k]);
-        if (right_n == 0 || right_n == count) continue;
-        float cost = left_cost[k - 1] + fogrt__side_cost(d, right_n, &b);
-        if (cost < *best) {
-            *best = cost;
-            *best_k = k;
-            improved = true;
-        }
-    }
-    return improved;
-}
-/* The leaf rule: with the SAH, split when it is cheaper than a leaf, and always above the
-   largest leaf size; with the volume heuristic, split down to the largest leaf size. */
-FOGRT__PRIVATE bool fogrt__split_pays(const fogrt_build_desc *d, const fogrt_bvh_node *node,
-                                      uint32_t count, float best) {
-    if (count > (uint32_t)d->max_leaf_size) return true;
-    if (d->heuristic == FOGRT_BVH_VOLUME) return false;
-    fogrt__aabb box = { { node->bmin[0], node->bmin[1], node->bmin[2] },
-                        { node->bmax[0], node->bmax[1], node->bmax[2] } };
-    return d->c_trav + d->c_int * best / FOGRT__MAX(fogrt__aabb_area(&box), FLT_MIN) <
-           d->c_int * (float)count;
-}
-/* The primitives whose bin on axis ax is below k to the front (with their indices), growing
-   both sides' centroid bounds; the children's boxes are the unions of their bins. Returns
-   the number on the left. */
-FOGRT__PRIVATE uint32_t fogrt__bins_partition(const fogrt__bins *bins, fogrt__aabb *box,
-                                              uint32_t *id, uint32_t count, int ax, int k,
-                                              fogrt_bvh_node *child, fogrt__bjob *left,
-                                              fogrt__bjob *right) {
-    fogrt__aabb side[2];
-    uint32_t lo = 0, hi = count;
-    side[0] = side[1] = left->cb = right->cb = fogrt__aabb_empty();
-    for (int j = 0; j < bins->nb; ++j) fogrt__aabb_union(&side[j >= k], &bins->box[ax][j]);
-    fogrt__node_set_box(&child[0], &side[0]);
-    fogrt__node_set_box(&child[1], &side[1]);
-    while (lo < hi) {
-        fogrt__v3 c = fogrt__aabb_centre(&box[lo]);
-        if (fogrt__bin_of(bins, c, ax) < k) {
-            fogrt__aabb_grow(&left->cb, c);
-            ++lo;
-        } else {
-            fogrt__aabb t = box[lo];
-            uint32_t tid = id[lo];
-            fogrt__aabb_grow(&right->cb, c);
-            --hi;
-            box[lo] = box[hi];
-            box[hi] = t;
-            id[lo] = id[hi];
-            id[hi] = tid;
-        }
-    }
-    return lo;
-}
-/* The binned split of job's node into child[0] and child[1]. Returns the number of
-   primitives on the left, or 0 when the node stays a leaf, or must be halved instead
-   (*halve: its centroids coincide but it is too big). */
-FOGRT__PRIVATE uint32_t fogrt__bvh_split_binned(fogrt__build *b, const fogrt__bjob *job,
-                                                fogrt_bvh_node *child, fogrt__bjob *left,
-                                                fogrt__bjob *right, bool *halve) {
-    const fogrt_bvh_node *node = &b->nodes[job->node];
-    uint32_t first = node->left_first, count = node->prim_count;
-    fogrt__bins bins;
-    float best = FLT_MAX;
-    int best_ax = -1, best_k = 0;
-#ifndef FOGRT_NO_WIDE_BVH
-    uint32_t wide_left_count;
-    if (fogrt__split_binned_lanes(b, job, child, left, right, halve, &wide_left_count)) /* SEAM 2 */
-        return wide_left_count;
-#endif
-    fogrt__bins_fill(&bins, &b->desc, &job->cb, b->box + first, count);
-    for (int ax = 0; ax < 3; ++ax)
-        if (fogrt__comp(bins.scale, ax) > 0.0f &&
-            fogrt__bins_sweep(&b->desc, &bins, ax, count, &best, &best_k))
-            best_ax = ax;
-    if (best_ax < 0) {                                   /* all centroids coincide */
-        *halve = count > (uint32_t)b->desc.max_leaf_size;
-        return 0;
-    }
-    if (!fogrt__split_pays(&b->desc, node, count, best)) return 0;
-    return fogrt__bins_partition(&bins, b->box + first, b->idx + first, count, best_ax, best_k,
-                                 child, left, right);
-}
-/* Split job's node into the next two nodes, or leave it a leaf (returns false). */
-FOGRT__PRIVATE bool fogrt__bvh_split(fogrt__build *b, const fogrt__bjob *job, fogrt__bjob *left,
-                                     fogrt__bjob *right) {
-    fogrt_bvh_node *node = &b->nodes[job->node], *child = &b->nodes[b->node_count];
-    uint32_t first = node->left_first, count = node->prim_count, left_count = 0;
-    bool halve = job->depth >= FOGRT__BVH_SAH_DEPTH;
-    if (count <= 1 || count <= b->leaf_keep) return false;
-    if (!halve) left_count = fogrt__bvh_split_binned(b, job, child, left, right, &halve);
-    if (halve) {                                         /* balanced, the bounds by a pass */
-        left_count = count / 2;
-        fogrt__boxes_bounds(b->box + first, left_count, &child[0], &left->cb);
-        fogrt__boxes_bounds(b->box + first + left_count, count - left_count, &child[1], &right->cb);
-    }
-    if (left_count == 0) return false;
-    FOGRT_ASSERT(left_count < count);
-    child[0].left_first = first;
-    child[0].prim_count = left_count;
-    child[1].left_first = first + left_count;
-    child[1].prim_count = count - left_count;
-    left->node = b->node_count;
-    right->node = b->node_count + 1;
-    left->depth = right->depth = job->depth + 1;
-    node->left_first = b->node_count;
-    node->prim_count = 0;
-    b->node_count += 2;
-    return true;
-}
-/* The tree over b->box[0 .. prim_count) (b->idx their primitive ids), depth first with an
-   explicit stack. */
-FOGRT__PRIVATE void fogrt__bvh_build(fogrt__build *b, uint32_t prim_count) {
-    fogrt__bjob stack[FOGRT__BVH_MAX_DEPTH + 2];
-    uint32_t sp = 1;
-    fogrt_bvh_node *root = &b->nodes[0];
-    memset(&b->nodes[1], 0, sizeof b->nodes[1]);
-    root->left_first = 0;
-    root->prim_count = prim_count;
-    stack[0].node = stack[0].depth = 0;
-    fogrt__boxes_bounds(b->box, prim_count, root, &stack[0].cb);
-    b->node_count = 2;
-    while (sp > 0) {
-        fogrt__bjob job = stack[--sp];
-        FOGRT_ASSERT(sp + 2 <= FOGRT__BVH_MAX_DEPTH + 2);
-        if (fogrt__bvh_split(b, &job, &stack[sp + 1], &stack[sp]))
-            sp += 2; /* the left child on top */
-    }
-}
-
-/* ------------------------------------------------------------------------------------------
-   2.1 (continued) Ray queries: primitives and BVH traversal
-   ------------------------------------------------------------------------------------------ */
-/* Moller-Trumbore with the edges precomputed. Every test is written so that a NaN (from a
-   degenerate, zero-area triangle) fails it: degenerate triangles are never hit. A ray
-   parallel to the triangle's plane (|cos| below 1e-6, where the distance is numerically
-   meaningless) misses it too. */
-FOGRT__HOT bool fogrt__hit_triangle(fogrt__v3 o, fogrt__v3 d, fogrt__v3 v0, fogrt__v3 e1,
-                                    fogrt__v3 e2, float tmin, float tmax, float *t, float *u,
-                                    float *v) {
-    fogrt__v3 pvec = fogrt__cross(d, e2);
-    float det = fogrt__dot(e1, pvec);
-    if (!(det * det > 1e-12f * fogrt__dot(e1, e1) * fogrt__dot(e2, e2))) return false;
-    float inv_det = 1.0f / det;
-    fogrt__v3 tvec = fogrt__sub(o, v0);
-    float uu = fogrt__dot(tvec, pvec) * inv_det;
-    if (!(uu >= 0.0f && uu <= 1.0f)) return false;
-    fogrt__v3 qvec = fogrt__cross(tvec, e1);
-    float vv = fogrt__dot(d, qvec) * inv_det;
-    if (!(vv >= 0.0f && uu + vv <= 1.0f)) return false;
-    float tt = fogrt__dot(e2, qvec) * inv_det;
-    if (!(tt > tmin && tt < tmax)) return false;
-    *t = tt;
-    *u = uu;
-    *v = vv;
-    return true;
-}
-/* Ray-sphere for a unit direction. The discriminant is formed as r^2 - |oc - b d|^2 (the
-   squared distance of the centre from the line), which does not cancel for distant spheres,
-   and the nearer root comes from q = -b - sign(b) sqrt(disc) (no cancellation either). */
-FOGRT__HOT bool fogrt__hit_sphere(fogrt__v3 o, fogrt__v3 d, fogrt__v3 c, float r, float tmin,
-                                  float tmax, float *t) {
-    fogrt__v3 oc = fogrt__sub(o, c);
-    float b = fogrt__dot(oc, d);
-    fogrt__v3 f = fogrt__madd(oc, d, -b);
-    float disc = r * r - fogrt__dot(f, f);
-    if (!(disc >= 0.0f)) return false;
-    float sq = sqrtf(disc), cc = fogrt__dot(oc, oc) - r * r;
-    float q = b > 0.0f ? -(b + sq) : (sq - b), t0 = q, t1 = q != 0.0f ? cc / q : q;
-    if (t0 > t1) {
-        float tmp = t0;
-        t0 = t1;
-        t1 = tmp;
-    }
-    float nearest = t0 > tmin && t0 < tmax ? t0 : t1;   /* the nearer root in range, if any */
-    if (!(nearest > tmin && nearest < tmax)) return false;
-    *t = nearest;
-    return true;
-}
-
-/* The reciprocal of a direction component, never a division by zero: +-0 (and anything
-   too small to invert) becomes +-infinity with the sign of the zero. */
-FOGRT__PRIVATE float fogrt__safe_rcp(float x) {
-    return fabsf(x) > 1e-30f ? 1.0f / x : copysignf(INFINITY, x);
-}
-
-/* A ray prepared for the box tests: its origin and reciprocal direction. */
-typedef struct fogrt__ray { fogrt__v3 o, inv; } fogrt__ray;
-
-/* Slab test: entry distance of the ray into the node's box, or FLT_MAX on a miss. On each
-   axis the near face is bmin where the direction is positive, bmax where it is negative.
-   An axis-parallel ray whose origin lies exactly on a slab's face forms 0 * infinity = NaN
-   for that face; every comparison below is written so that a NaN bound is ignored (the
-   ray is inside that slab), as in pbrt. The exit distance is widened by 2 ulps so a ray
-   grazing a face is not lost to rounding. */
-FOGRT__HOT float fogrt__slab(const fogrt_bvh_node *n, const fogrt__ray *r, float tmin, float tmax) {
-    float t0 = tmin, t1 = tmax;
-    for (int a = 0; a < 3; ++a) {
-        float inv = fogrt__comp(r->inv, a), o = fogrt__comp(r->o, a);
-        float tn = ((inv < 0.0f ? n->bmax[a] : n->bmin[a]) - o) * inv;
-        float tf = ((inv < 0.0f ? n->bmin[a] : n->bmax[a]) - o) * inv;
-        t0 = tn > t0 ? tn : t0;
-        t1 = tf < t1 ? tf : t1;
-    }
-    return t0 <= t1 * 1.00000024f ? t0 : FLT_MAX;
-}
-
-/* Culling slack: a box is skipped only when its entry lies beyond the closest hit by more
-   than 1e-5 (relative, about 100 ulps). The box's entry distance and the triangle's hit
-   distance are rounded separately, so near a shared edge the box that holds the truly
-   closest triangle can appear to start a few ulps after a neighbour's hit; a strict test
-   then skips it and returns the neighbour (about 1 ray in 2000 on the CS184 bunny, found
-   by bench/wide_dev.c). The slack gives the brute-force answer there and costs nothing
-   measurable; a hit itself still needs t < tmax exactly. */
-#define FOGRT__CULL_SLACK 1e-5f
-FOGRT__HOT float fogrt__cull(float tmax) {   /* tmax, widened; +-inf and NaN unchanged */
-    return tmax * (tmax > 0.0f ? 1.0f + FOGRT__CULL_SLACK : 1.0f - FOGRT__CULL_SLACK);
-}
-/* Iterative traversal of the binary tree with a fixed stack: visit the nearer child first,
-   push the farther, and skip a popped node whose entry lies beyond the closest hit found so
-   far. any_hit: return at the first hit (shadow rays). */
-FOGRT__PRIVATE bool fogrt__bvh2_traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin,
-                                         float tmax, fogrt_hit *hit, bool any_hit) {
-    uint32_t stack[FOGRT__BVH_MAX_DEPTH + 2], sp = 0, tri_count = s->tri_count;
-    float stack_t[FOGRT__BVH_MAX_DEPTH + 2];
-    const fogrt_bvh_node *nodes = s->nodes, *node = &nodes[0];
-    bool found = false;
-    float cull = fogrt__cull(tmax);                      /* tmax with the slack, kept with it */
-    if (!s->built || s->tri_count + s->sph_count == 0) return false;
-    fogrt__ray r = { o, { fogrt__safe_rcp(d.x), fogrt__safe_rcp(d.y), fogrt__safe_rcp(d.z) } };
-    if (fogrt__slab(node, &r, tmin, tmax) == FLT_MAX) return false;
-    for (;;) {
-        if (node->prim_count > 0) {                      /* leaf: test its primitives */
-            uint32_t end = node->left_first + node->prim_count;
-            for (uint32_t i = node->left_first; i < end; ++i) {
-                const fogrt__prim *p = &s->prims[i];
-                float t, u = 0.0f, v = 0.0f;
-                bool h = p->id < tri_count ? fogrt__hit_triangle(o, d, p->a, p->b, p->c, tmin, tmax,
-                                                                 &t, &u, &v)
-                                           : fogrt__hit_sphere(o, d, p->a, p->b.x, tmin, tmax, &t);
-                if (h) {
-                    found = true;
-                    tmax = t;
-                    cull = fogrt__cull(t);
-                    if (any_hit) return true;
-                    hit->t = t;
-                    hit->prim = p->id;
-                    hit->u = u;
-                    hit->v = v;
-                }
-            }
-        } else {                                         /* inner: order the two children */
-            const fogrt_bvh_node *c1 = &nodes[node->left_first], *c2 = c1 + 1;
-            float d1 = fogrt__slab(c1, &r, tmin, cull), d2 = fogrt__slab(c2, &r, tmin, cull);
-            if (d1 > d2) {
-                float td = d1;
-                const fogrt_bvh_node *tn = c1;
-                d1 = d2;
-                d2 = td;
-                c1 = c2;
-                c2 = tn;
-            }
-            if (d1 != FLT_MAX) {
-                if (d2 != FLT_MAX) {
-                    stack_t[sp] = d2;
-                    stack[sp++] = (uint32_t)(c2 - nodes);
-                }
-                node = c1;
-                continue;
-            }
-        }
-        /* pop the next node that can still hold a closer hit */
-        for (;;) {
-            if (sp == 0) return found;
-            --sp;
-            if (stack_t[sp] <= cull) break;
-        }
-        node = &nodes[stack[sp]];
-    }
-}
-
-/* The scene's ray query: the binary tree above, or the wide tree of Part II (A) when the
-   build made one. */
-FOGRT__PRIVATE bool fogrt__traverse(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d, float tmin,
-                                    float tmax, fogrt_hit *hit, bool any_hit) {
-#ifndef FOGRT_NO_WIDE_BVH
-    bool done, found = fogrt__wide_traverse(s, o, d, tmin, tmax, hit, any_hit, &done);  /* SEAM 1 */
-    if (done) return found;
-#endif
-    return fogrt__bvh2_traverse(s, o, d, tmin, tmax, hit, any_hit);
-}
-
-/* ------------------------------------------------------------------------------------------
-   2.2 The Bidirectional Scattering Distribution Function: diffuse, mirror, refraction, glass
-   All four BSDFs work in the local shading frame (normal +z). Diffuse and mirror reflect on
-   both sides (they answer on the side wo is on); refraction and glass use the sign of wo.z
-   to tell entering (wo.z > 0) from leaving (wo.z < 0). A rough metal (Part II, I) reflects
-   on both sides too, and like diffuse has a density that light sampling and MIS use.
-   ------------------------------------------------------------------------------------------ */
-FOGRT__PRIVATE void fogrt__concentric_disk(float u1, float u2, float *x, float *y) {
-    float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
-    *x = *y = 0.0f;
-    if (a == 0.0f && b == 0.0f) return;
-    bool wide = fabsf(a) > fabsf(b);
-    float r = wide ? a : b, phi = wide ? (FOGRT__PI / 4.0f) * (b / a)
-                                       : FOGRT__PI / 2.0f - (FOGRT__PI / 4.0f) * (a / b);
-    *x = r * cosf(phi);
-    *y = r * sinf(phi);
-}
-/* Cosine-weighted hemisphere: the disk lifted to the hemisphere (Malley). pdf = cos / pi. */
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_cosine_hemisphere(float u1, float u2) {
-    float x, y;   /* a point of the unit disk */
-    fogrt__concentric_disk(u1, u2, &x, &y);
-    return fogrt__v(x, y, sqrtf(FOGRT__MAX(0.0f, 1.0f - x * x - y * y)));
-}
-FOGRT__PUBLIC float fogrt_cosine_hemisphere_pdf(float cos_theta) {
-    return cos_theta > 0.0f ? cos_theta * FOGRT__INV_PI : 0.0f;
-}
-FOGRT__PUBLIC fogrt_vec3 fogrt_reflect(fogrt_vec3 n, fogrt_vec3 wo) {
-    return fogrt__sub(fogrt__scale(n, 2.0f * fogrt__dot(wo, n)), wo);
-}
-#ifndef FOGRT_NO_GLASS
-/* Schlick: F = R0 + (1 - R0)(1 - c)^5 with R0 = ((eta-1)/(eta+1))^2, and c the cosine on the
-   optically thinner side: the incident cosine when entering, the transmitted one when
-   leaving (using cos_i there would be wrong). Total internal reflection is tested first. */
-FOGRT__PUBLIC float fogrt_fresnel_schlick(float eta, float cos_i) {
-    float r0 = (eta - 1.0f) / (eta + 1.0f), c;
-    r0 *= r0;
-    cos_i = FOGRT__CLAMP(cos_i, -1.0f, 1.0f);
-    if (eta < 1.0f) {                                   /* make the inside the denser side */
-        cos_i = -cos_i;
-        eta = 1.0f / eta;
-    }
-    if (cos_i >= 0.0f) {
-        c = cos_i;
-    } else {                                            /* leaving: n = eta -> n = 1 */
-        float sin2_t = (1.0f - cos_i * cos_i) * eta * eta;
-        if (sin2_t >= 1.0f) return 1.0f;                /* total internal reflection */
-        c = sqrtf(1.0f - sin2_t);
-    }
-    float m = 1.0f - c;
-    return r0 + (1.0f - r0) * m * m * m * m * m;
-}
-/* Snell's law: wi = -wo/eta + (cos_i/eta - cos_t) n, after flipping n (and eta) to wo's side. */
-FOGRT__PUBLIC bool fogrt_refract(fogrt_vec3 n, float eta, fogrt_vec3 wo, fogrt_vec3 *wi) {
-    float cos_i = fogrt__dot(n, wo);
-    if (cos_i < 0.0f) {
-        eta = 1.0f / eta;
-        cos_i = -cos_i;
-        n = fogrt__neg(n);
-    }
-    float sin2_i = FOGRT__MAX(0.0f, 1.0f - cos_i * cos_i), sin2_t = sin2_i / (eta * eta);
-    if (sin2_t >= 1.0f) return false;
-    float cos_t = sqrtf(1.0f - sin2_t);
-    *wi = fogrt__normalize(
-            fogrt__add(fogrt__scale(wo, -1.0f / eta), fogrt__scale(n, cos_i / eta - cos_t)));
-    return true;
-}
-FOGRT__PRIVATE float fogrt__fresnel(fogrt_fresnel mode, float eta, float cos_i) {
-    (void)mode;   /* unread without exact Fresnel, which fogrt_render then refuses */
-#ifndef FOGRT_NO_EXACT_FRESNEL
-    if (mode == FOGRT_FRESNEL_EXACT) return fogrt_fresnel_dielectric(eta, cos_i);   /* SEAM 5 (C) */
-#endif
-    return fogrt_fresnel_schlick(eta, cos_i);
-}
-/* Refraction and glass: reflect with probability F (glass) or only on total internal
-   reflection (refraction), else refract. The probability is the lobe's discrete pdf. */
-FOGRT__PRIVATE void fogrt__sample_dielectric(const fogrt_material_desc *m, fogrt_fresnel fresnel,
-                                             fogrt__v3 wo, float u_lobe, fogrt_bsdf_sample *out) {
-    fogrt__v3 wt;
-    float eta = FOGRT__DEF(m->ior, 1.5f);
-    bool can_refract = fogrt_refract(fogrt__v(0.0f, 0.0f, 1.0f), eta, wo, &wt);
-    float F = m->type == FOGRT_BSDF_GLASS ? fogrt__fresnel(fresnel, eta, wo.z) : 0.0f;
-    if (!can_refract) F = 1.0f;
-    out->is_delta = true;
-    if (u_lobe < F) {                                    /* reflect with probability F */
-        out->wi = fogrt__v(-wo.x, -wo.y, wo.z);
-        out->weight = m->type == FOGRT_BSDF_GLASS ? m->reflectance : m->transmittance;
-        out->pdf = F;
-    } else {                                             /* refract with probability 1 - F */
-        out->wi = wt;
-        out->weight = m->transmittance;
-        out->pdf = 1.0f - F;
-        out->is_transmission = true;
-    }
-}
-#endif /* FOGRT_NO_GLASS */
-FOGRT__PRIVATE fogrt_bsdf_type fogrt__bsdf_type(const fogrt_material_desc *m) {
-    return m->type == FOGRT_BSDF_DEFAULT ? FOGRT_BSDF_DIFFUSE : m->type;
-}
-FOGRT__PRIVATE bool fogrt__bsdf_is_delta(fogrt_bsdf_type t) {
-    return t != FOGRT_BSDF_DIFFUSE && t != FOGRT_BSDF_MICROFACET;
-}
-FOGRT__PUBLIC bool fogrt_sample_bsdf(const fogrt_material_desc *m, fogrt_fresnel fresnel,
-                                     fogrt_vec3 wo, float u_lobe, float u1, float u2,
-                                     fogrt_bsdf_sample *out) {
-    fogrt_bsdf_type type = fogrt__bsdf_type(m);
-    memset(out, 0, sizeof *out);
-    if (wo.z == 0.0f) return false;                      /* exactly on the horizon */
-    if (type == FOGRT_BSDF_MIRROR) {
-        out->wi = fogrt__v(-wo.x, -wo.y, wo.z);
-        out->weight = m->reflectance;
-        out->pdf = 1.0f;
-        out->is_delta = true;
-        return true;
-    }
-#ifndef FOGRT_NO_GLASS
-    if (type == FOGRT_BSDF_REFRACTION || type == FOGRT_BSDF_GLASS) {
-        fogrt__sample_dielectric(m, fresnel, wo, u_lobe, out);
-        return true;
-    }
-#else
-    if (type == FOGRT_BSDF_REFRACTION || type == FOGRT_BSDF_GLASS) return false;   /* stripped */
-#endif
-    if (type == FOGRT_BSDF_INTERFACE) {                  /* index-matched: straight through */
-        out->wi = fogrt__neg(wo);
-        out->weight = fogrt__v(1.0f, 1.0f, 1.0f);
-        out->pdf = 1.0f;
-        out->is_delta = out->is_transmission = true;
-        return true;
-    }
-    FOGRT__MF_SEAM(type, fogrt__mf_sample(m, wo, u1, u2, out));   /* SEAM 5 (I) */
-    (void)u_lobe;                                        /* diffuse: cosine-weighted */
-    (void)fresnel;
-    fogrt__v3 wi = fogrt_sample_cosine_hemisphere(u1, u2);
-    if (wi.z <= 0.0f) return false;
-    if (wo.z < 0.0f) wi.z = -wi.z;                       /* on wo's side */
-    out->wi = wi;
-    out->weight = m->reflectance;                        /* (rho/pi) cos / (cos/pi) = rho */
-    out->pdf = fabsf(wi.z) * FOGRT__INV_PI;
-    return true;
-}
-/* Diffuse, or zero (the delta BSDFs, or wo and wi on opposite sides). Forced inline: light
-   sampling evaluates it once per sample. */
-FOGRT__HOT fogrt__v3 fogrt__bsdf_f(const fogrt_material_desc *m, fogrt__v3 wo, fogrt__v3 wi) {
-    if (fogrt__bsdf_type(m) != FOGRT_BSDF_DIFFUSE || !(wo.z * wi.z > 0.0f)) {
-        FOGRT__MF_SEAM(m->type, fogrt__mf_eval(m, wo, wi));   /* SEAM 5 (I) */
-        return fogrt__v(0.0f, 0.0f, 0.0f);
-    }
-    return fogrt__scale(m->reflectance, FOGRT__INV_PI);
-}
-FOGRT__PUBLIC fogrt_vec3 fogrt_bsdf_eval(const fogrt_material_desc *m, fogrt_vec3 wo,
-                                         fogrt_vec3 wi) {
-    return fogrt__bsdf_f(m, wo, wi);
-}
-FOGRT__PUBLIC float fogrt_bsdf_pdf(const fogrt_material_desc *m, fogrt_vec3 wo, fogrt_vec3 wi) {
-    if (fogrt__bsdf_type(m) != FOGRT_BSDF_DIFFUSE || !(wo.z * wi.z > 0.0f)) {
-        FOGRT__MF_SEAM(m->type, fogrt__mf_pdf(m, wo, wi));   /* SEAM 5 (I) */
-        return 0.0f;
-    }
-    return fabsf(wi.z) * FOGRT__INV_PI;
-}
-
-/* ------------------------------------------------------------------------------------------
-   2.3 Monte Carlo sampling (paper eq. 3): lights, light sampling, MIS
-   The light a vertex reflects, eq. 3, is estimated from sampled directions: f L cos / p.
-   Directions come two ways: from the BSDF (or the phase function in fog), and toward the
-   lights ("importance sampling" in the paper's section 4.2; next-event estimation). At every
-   scattering vertex (a surface or a point in the fog) each light is sampled and a shadow
-   ray decides visibility (in fog it also carries the transmittance of 3.2). An area light
-   can be found both ways, so the two are combined by multiple importance sampling (power
-   heuristic, Veach 1997), counting the light_samples samples per light:
-   w_light = (n p_light)^2 / ((n p_light)^2 + p_bsdf^2).
-   The lights are numbered as one list: the point and spot lights first, then the area
-   lights (emissive meshes and spheres), so one function samples any of them.
-   Point lights: irradiance I / r^2 is unbounded as r -> 0, so r^2 is clamped from below at
-   (1e-4 x scene diagonal)^2 (a documented bias that only touches points that close), and a
-   point exactly at the light receives nothing from it (its direction is undefined). A light
-   with a radius is a spherical emitter instead and has no such spike.
-   ------------------------------------------------------------------------------------------ */
-/* What the integrators read from a render desc. */
-typedef struct fogrt__settings {
-    fogrt_render_desc desc;    /* checked: nee, mis, min_depth, rr_depth, light_samples, ... */
-    int max_depth;             /* -1 (no limit) as the largest int */
-    fogrt_integrator integrator;
-} fogrt__settings;
-
-/* A scattering vertex: a point in the medium, or a surface point with its shading frame. */
-typedef struct fogrt__vertex {
-    fogrt__v3 p, wo;
-    bool in_medium;            /* the vertex lies in the fog (shadow rays are attenuated) */
-    bool is_medium;            /* a fog scattering event (else a surface) */
-    fogrt__frame frame;        /* surface: shading frame */
-    fogrt__v3 ng;              /* surface: geometric normal on the side of wo */
-    const fogrt_material_desc *m;
-} fogrt__vertex;
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_uniform_sphere(float u1, float u2) {
-    float z = 1.0f - 2.0f * u1;
-    float r = sqrtf(FOGRT__MAX(0.0f, (1.0f - z) * (1.0f + z)));
-    float phi = 2.0f * FOGRT__PI * u2;
-    return fogrt__v(r * cosf(phi), r * sinf(phi), z);
-}
-FOGRT__PUBLIC float fogrt_uniform_sphere_pdf(void) { return FOGRT__INV_4PI; }
-/* Uniform on a triangle: b0 = 1 - sqrt(u1), b1 = sqrt(u1)(1 - u2), b2 = sqrt(u1) u2. */
-FOGRT__PUBLIC void fogrt_sample_triangle(float u1, float u2, float *b1, float *b2) {
-    float su = sqrtf(FOGRT__MAX(0.0f, u1));
-    *b1 = su * (1.0f - u2);
-    *b2 = su * u2;
-}
-/* Cone of directions subtended by a sphere: cos(theta_max) = sqrt(1 - r^2/d^2). 1 - cos is
-   formed as sin^2 / (1 + cos), which stays accurate for a small or distant sphere. */
-FOGRT__PRIVATE float fogrt__sphere_one_minus_cos_max(fogrt__v3 c, float r, fogrt__v3 p,
-                                                     float *dist) {
-    fogrt__v3 pc = fogrt__sub(c, p);
-    float d2 = fogrt__dot(pc, pc);
-    *dist = sqrtf(d2);
-    if (d2 <= r * r) return -1.0f;                       /* inside (or on) the sphere */
-    float sin2_max = r * r / d2, cos_max = sqrtf(FOGRT__MAX(0.0f, 1.0f - sin2_max));
-    return sin2_max / (1.0f + cos_max);
-}
-/* The direction whose angle theta from the frame's axis has 1 - cos theta = omc, at azimuth
-   2 pi u: sin theta from omc (2 - omc), which stays accurate next to the axis. Drawing omc
-   uniformly in [0, 1 - cos theta_max) samples a cone uniformly (spheres here, spot lights'
-   footprints below). */
-FOGRT__HOT fogrt__v3 fogrt__in_cone(const fogrt__frame *f, float omc, float u) {
-    return fogrt__direction_at(f, 1.0f - omc, sqrtf(FOGRT__MAX(0.0f, omc * (2.0f - omc))), u);
-}
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_sphere_solid_angle(fogrt_vec3 center, float radius,
-                                                         fogrt_vec3 p, float u1, float u2,
-                                                         float *pdf) {
-    float dist, omc = fogrt__sphere_one_minus_cos_max(center, radius, p, &dist);
-    if (omc <= 0.0f) {   /* inside: every direction sees the sphere */
-        if (pdf) *pdf = FOGRT__INV_4PI;
-        return fogrt_sample_uniform_sphere(u1, u2);
-    }
-    fogrt__frame f = fogrt__frame_from_z(fogrt__scale(fogrt__sub(center, p), 1.0f / dist));
-    if (pdf) *pdf = 1.0f / (2.0f * FOGRT__PI * omc);
-    return fogrt__in_cone(&f, u1 * omc, u2);
-}
-FOGRT__PUBLIC float fogrt_sphere_solid_angle_pdf(fogrt_vec3 center, float radius, fogrt_vec3 p) {
-    float dist, omc = fogrt__sphere_one_minus_cos_max(center, radius, p, &dist);
-    return omc <= 0.0f ? FOGRT__INV_4PI : 1.0f / (2.0f * FOGRT__PI * omc);
-}
-/* Spot profile: full inside the beam, linear in the angle down to zero at the cutoff. */
-FOGRT__PUBLIC float fogrt_spot_falloff(float cutoff_deg, float beam_deg, float cos_theta) {
-    float theta = acosf(FOGRT__CLAMP(cos_theta, -1.0f, 1.0f)) * (180.0f / FOGRT__PI);
-    if (!(cutoff_deg > beam_deg)) return theta <= cutoff_deg ? 1.0f : 0.0f;   /* hard cone */
-    return FOGRT__CLAMP((cutoff_deg - theta) / (cutoff_deg - beam_deg), 0.0f, 1.0f);
-}
-
-/* The same profile for a light of a built scene, from its two cosines (s->spot_cos: the
-   cutoff's, the beam's): outside the band between them, by a margin far above acosf's
-   rounding, it is 0 or 1 without the acos. */
-FOGRT__PRIVATE float fogrt__spot_profile(const fogrt_light_desc *l, const float *cosines,
-                                         float cos_theta) {
-    if (cos_theta < cosines[0] - 1e-4f) return 0.0f;
-    if (cos_theta > cosines[1] + 1e-4f) return 1.0f;
-    return fogrt_spot_falloff(l->cutoff_deg, l->beam_deg, cos_theta);
-}
-FOGRT__PRIVATE float fogrt__power_heuristic(float a, float b) {
-    if (!(a > 0.0f)) return 0.0f;
-    float r = b / a;
-    if (!(r == r)) return 0.0f;
-    return 1.0f / (1.0f + r * r);     /* = a^2 / (a^2 + b^2), without overflow */
-}
-/* Distance to push a new ray's origin off a surface: scale-aware, a few ulps of |p|. */
-FOGRT__PRIVATE float fogrt__offset_size(const fogrt_scene *s, fogrt__v3 p) {
-    return s->eps + 1e-5f * FOGRT__MAX(fabsf(p.x), FOGRT__MAX(fabsf(p.y), fabsf(p.z)));
-}
-FOGRT__PRIVATE fogrt__v3 fogrt__offset(const fogrt_scene *s, fogrt__v3 p, fogrt__v3 n,
-                                       fogrt__v3 w) {
-    float e = fogrt__offset_size(s, p);
-    return fogrt__madd(p, n, fogrt__dot(w, n) > 0.0f ? e : -e);
-}
-
-/* What the vertex sends toward -wi from light arriving along wi: f |cos| at a surface (in
-   world space, with the geometric-side test against light leaks), the phase function in the
-   fog. *pdf is the density with which BSDF / phase sampling would have chosen wi. */
-FOGRT__HOT fogrt__v3 fogrt__vertex_f(const fogrt_scene *s, const fogrt__vertex *v, fogrt__v3 wi,
-                                     float *pdf) {
-    (void)s;                                             /* read by the fog's branch only */
-#ifndef FOGRT_NO_MEDIUM
-    if (v->is_medium) {
-        float p = fogrt_hg_pdf(s->medium.g, v->wo, wi);
-        *pdf = p;
-        return fogrt__v(p, p, p);
-    }
-#endif
-    *pdf = 0.0f;
-    if (fogrt__dot(wi, v->ng) <= 0.0f) return fogrt__v(0.0f, 0.0f, 0.0f);
-    fogrt__v3 wo_l = fogrt__to_local(&v->frame, v->wo), wi_l = fogrt__to_local(&v->frame, wi);
-    *pdf = fogrt_bsdf_pdf(v->m, wo_l, wi_l);
-    return fogrt__scale(fogrt__bsdf_f(v->m, wo_l, wi_l), fabsf(wi_l.z));
-}
-
-/* Point or spot light l seen from x: for a point light simply I(theta) / r^2 along the
-   direction to it. A light with a radius is a sphere of radiance I(theta)/(pi R^2), sampled
-   uniformly in the cone it subtends (inside it: every direction). The spot profile is
-   evaluated from the light's centre. Returns false when x gets nothing. (Forced inline:
-   as calls, with Part II's second caller, they cost a fog-free render time.) */
-FOGRT__HOT bool fogrt__sample_point_light(const fogrt_scene *s, const fogrt_light_desc *l,
-                                          fogrt__v3 x, const float *u, fogrt_light_sample *ls) {
-    fogrt__v3 to = fogrt__sub(l->position, x), I = l->intensity;
-    float d2 = fogrt__dot(to, to), pdf, t;
-    if (!(d2 > 0.0f)) return false;                    /* x is the light: no direction */
-    float d = sqrtf(d2);
-    if (l->type == FOGRT_LIGHT_SPOT)
-        I = fogrt__scale(I, fogrt__spot_profile(l, s->spot_cos + 2 * (l - s->lights),
-                                                -fogrt__dot(to, l->direction) / d));
-    if (fogrt__is_black(I)) return false;
-    ls->pdf = 1.0f;
-    ls->is_delta = true;
-    if (!(l->radius > 0.0f)) {
-        ls->wi = fogrt__scale(to, 1.0f / d);
-        ls->dist = d;
-        ls->Le = fogrt__scale(I, 1.0f / FOGRT__MAX(d2, s->r2_min));
-        return true;
-    }
-    ls->wi = fogrt_sample_sphere_solid_angle(l->position, l->radius, x, u[0], u[1], &pdf);
-    if (d <= l->radius) t = 0.0f;                        /* inside the emitter */
-    else if (!fogrt__hit_sphere(x, ls->wi, l->position, l->radius, 0.0f, INFINITY, &t))
-        t = fogrt__dot(to, ls->wi);
-    ls->dist = t;
-    ls->Le = fogrt__scale(I, 1.0f / (FOGRT__PI * l->radius * l->radius * pdf));
-    return true;
-}
-
-/* Discrete sampling from a CDF (a mesh light's triangles by area, the environment map's
-   rows and columns): the index of the first CDF entry above u in cdf[0..n), and the fraction of u
-   inside that entry (for a continuous position within it). */
-FOGRT__PRIVATE int fogrt__cdf_find(const float *cdf, int n, float u, float *frac) {
-    int lo = 0, hi = n - 1;
-    while (lo < hi) {
-        int mid = (lo + hi) / 2;
-        if (cdf[mid] <= u) lo = mid + 1;
-        else hi = mid;
-    }
-    float c0 = lo ? cdf[lo - 1] : 0.0f;
-    *frac = cdf[lo] > c0 ? FOGRT__CLAMP((u - c0) / (cdf[lo] - c0), 0.0f, FOGRT__ONE_MINUS_EPS)
-                         : 0.5f;
-    return lo;
-}
-/* A point y on a mesh light: a triangle chosen by area (fogrt__cdf_find), then a uniform
-   point on it. *ny is its geometric normal. */
-FOGRT__HOT uint32_t fogrt__sample_mesh_point(const fogrt_scene *s, const fogrt__area_light *a,
-                                             const float *u, fogrt__v3 *y, fogrt__v3 *ny) {
-    float b1, b2, frac;
-    uint32_t tri = s->light_prims[a->first + (uint32_t)fogrt__cdf_find(s->light_cdf + a->first,
-                                                                       (int)a->count, u[0], &frac)];
-    const fogrt__v3 *v = &s->tri_v[3 * tri];
-    fogrt_sample_triangle(u[1], u[2], &b1, &b2);
-    *y = fogrt__add(v[0], fogrt__add(fogrt__scale(fogrt__sub(v[1], v[0]), b1),
-                                     fogrt__scale(fogrt__sub(v[2], v[0]), b2)));
-    *ny = fogrt__normalize(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
-    return tri;
-}
-/* Area light a seen from p: an emissive sphere is sampled in the cone it subtends, a mesh
-   by area (pdf 1/A, turned into solid angle). False when the sample is unusable: the back
-   of a one-sided emitter, or p inside an emitting sphere. */
-FOGRT__HOT bool fogrt__sample_area_light(const fogrt_scene *s, const fogrt__area_light *a,
-                                         fogrt__v3 p, const float *u, fogrt_light_sample *ls) {
-    fogrt__v3 y, ny;
-    ls->is_delta = false;
-    if (a->sphere != UINT32_MAX) {
-        fogrt__v3 c = s->sph_c[a->sphere];
-        float r = s->sph_r[a->sphere], t;
-        if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r)
-            return false; /* emits outward only */
-        ls->wi = fogrt_sample_sphere_solid_angle(c, r, p, u[1], u[2], &ls->pdf);
-        if (!fogrt__hit_sphere(p, ls->wi, c, r, 0.0f, INFINITY, &t))
-            t = fogrt__dot(fogrt__sub(c, p), ls->wi);
-        ls->dist = t;
-        ls->Le = s->materials[s->sph_material[a->sphere]].emission;
-        return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
-    }
-    ls->Le = s->materials[s->tri_material[fogrt__sample_mesh_point(s, a, u, &y, &ny)]].emission;
-    fogrt__v3 to = fogrt__sub(y, p);
-    float d2 = fogrt__dot(to, to);
-    if (!(d2 > 0.0f)) return false;
-    ls->dist = sqrtf(d2);
-    ls->wi = fogrt__scale(to, 1.0f / ls->dist);
-    float cos_l = -fogrt__dot(ls->wi, ny);
-    if (!(cos_l > 0.0f)) return false;                   /* the back of a one-sided emitter */
-    ls->pdf = d2 / (cos_l * a->area);                    /* area pdf 1/A -> solid angle */
-    return ls->pdf > 0.0f && !fogrt__is_black(ls->Le);
-}
-/* The solid-angle pdf with which light sampling would have chosen the emitter point y (on
-   primitive prim, geometric normal ny) from p: the MIS partner of BSDF sampling. */
-FOGRT__PRIVATE float fogrt__area_light_pdf(const fogrt_scene *s, uint32_t prim, fogrt__v3 p,
-                                           fogrt__v3 y, fogrt__v3 ny) {
-    uint32_t li = s->prim_light[prim];
-    if (li == UINT32_MAX) return 0.0f;
-    const fogrt__area_light *a = &s->area_lights[li];
-    if (a->sphere != UINT32_MAX) {
-        fogrt__v3 c = s->sph_c[a->sphere];
-        float r = s->sph_r[a->sphere];
-        if (fogrt__dot(fogrt__sub(p, c), fogrt__sub(p, c)) <= r * r) return 0.0f;
-        return fogrt_sphere_solid_angle_pdf(c, r, p);
-    }
-    fogrt__v3 to = fogrt__sub(y, p);
-    float d2 = fogrt__dot(to, to), cos_l = fabsf(fogrt__dot(fogrt__normalize(to), ny));
-    return cos_l > 0.0f ? d2 / (cos_l * a->area) : 0.0f;
-}
-/* One numbering of all lights (point and spot, then area), so that one call samples any. */
-FOGRT__PUBLIC uint32_t fogrt_scene_light_total(const fogrt_scene *s) {
-    return s->light_count + s->area_light_count;
-}
-FOGRT__PUBLIC bool fogrt_scene_sample_light(const fogrt_scene *s, uint32_t light, fogrt_vec3 p,
-                                            float u1, float u2, float u3, fogrt_light_sample *ls) {
-    FOGRT_ASSERT(s && s->built && ls && light < fogrt_scene_light_total(s));
-    float u[3] = { u1, u2, u3 };
-    if (light < s->light_count) return fogrt__sample_point_light(s, &s->lights[light], p, u, ls);
-    return fogrt__sample_area_light(s, &s->area_lights[light - s->light_count], p, u, ls);
-}
-/* The environment's radiance in direction d (a constant; Part II, C, adds maps). */
-FOGRT__PRIVATE fogrt__v3 fogrt__env_radiance(const fogrt_scene *s, fogrt__v3 d) {
-    return s->env_upper_only && !(d.y > 0.0f) ? fogrt__v(0.0f, 0.0f, 0.0f) : s->env;
-}
-
-/* ------------------------------------------------------------------------------------------
-   3.1 Exponential fog particle sampling: free flight (paper eq. 4-6)
-   Fog particles are spread uniformly, so collisions along a ray are a Poisson process with
-   rate lambda = sigma_t: no collision within t has probability exp(-sigma_t t) (eq. 4), a
-   collision has 1 - exp(-sigma_t t) (eq. 5), the CDF of the exponential distribution (eq.
-   6), whose density is sigma_t exp(-sigma_t t). Inverting the CDF at a uniform u gives the
-   paper's t = -ln(1 - u) / sigma_t. u < 1 always (the RNG never returns 1), so t is finite;
-   the tail beyond 16.6 mean free paths is cut (bias ~ 6e-8). Below u = 2^-8, log1p(-u)
-   keeps the digits that ln(1 - u) would lose; above it 1 - u is exact for the renderer's
-   uniforms (multiples of 2^-24), and logf is cheaper.
-   ------------------------------------------------------------------------------------------ */
-#ifndef FOGRT_NO_MEDIUM
-FOGRT__PUBLIC float fogrt_sample_exponential(float sigma_t, float u) {
-    if (!(sigma_t > 0.0f)) return INFINITY;            /* no medium: never collide */
-    u = FOGRT__MIN(u, FOGRT__ONE_MINUS_EPS);
-    return -(u < 0.00390625f ? log1pf(-u) : logf(1.0f - u)) / sigma_t;
-}
-FOGRT__PUBLIC float fogrt_exponential_pdf(float sigma_t, float t) {
-    if (!(sigma_t > 0.0f) || t < 0.0f) return 0.0f;
-    return sigma_t * expf(-sigma_t * t);
-}
-FOGRT__PUBLIC float fogrt_exponential_cdf(float sigma_t, float t) {
-    if (!(sigma_t > 0.0f) || t <= 0.0f) return 0.0f;
-    return -expm1f(-sigma_t * t);
-}
-#endif /* FOGRT_NO_MEDIUM */
-
-/* ------------------------------------------------------------------------------------------
-   3.2 Light attenuation through fog (paper eq. 7-8)
-   dL = -sigma_t L dt (eq. 7) integrates, in a homogeneous medium, to L = L0 exp(-sigma_t t)
-   (eq. 8): Beer-Lambert. The fraction exp(-sigma_t t) is the transmittance T(t). A shadow
-   ray through fog carries it in closed form; a path's free flight (3.1) needs no T at all,
-   since the collision's pdf sigma_t T cancels it.
-   ------------------------------------------------------------------------------------------ */
-#ifndef FOGRT_NO_MEDIUM
-/* Beer-Lambert: the fraction of light that crosses a distance without colliding. */
-FOGRT__PUBLIC float fogrt_transmittance(float sigma_t, float distance) {
-    if (!(sigma_t > 0.0f) || !(distance > 0.0f)) return 1.0f;
-    return expf(-sigma_t * distance);   /* underflows to 0 for optical depth > ~87: correct */
-}
-/* Eq. 8 along o + t d for t in [0, dist]: exp(-sigma_t x the length in fog). */
-FOGRT__HOT float fogrt__fog_transmittance(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d,
-                                          float dist) {
-    (void)o;                                             /* o, d: read by Part II's bounded fog */
-    (void)d;
-#ifndef FOGRT_MINIMAL
-    float a, b;
-    if (s->x && !fogrt__fog_box_span(s, o, d, dist, &a, &b)) return 1.0f; /* SEAM 6: fog in a box */
-    if (s->x) dist = b - a;
-#endif
-    return fogrt_transmittance(s->medium.sigma_t, dist);
-}
-#endif
-
-/* Visibility times transmittance (eq. 8) between the vertex and the light sample's point.
-   The shadow ray starts at the offset origin and aims at the target itself, stopping a ray
-   offset short of it (the target may lie on a surface: the emitter). */
-FOGRT__HOT float fogrt__shadow(const fogrt_scene *s, const fogrt__vertex *v,
-                               const fogrt_light_sample *ls, uint64_t *rays) {
-    fogrt__v3 o = v->is_medium ? v->p : fogrt__offset(s, v->p, v->ng, ls->wi);
-    ++*rays;
-    if (!(ls->dist < INFINITY)) {                        /* toward the environment */
-        if (fogrt__traverse(s, o, ls->wi, 0.0f, INFINITY, NULL, true)) return 0.0f;
-    } else {
-        fogrt__v3 y = fogrt__madd(v->p, ls->wi, ls->dist), to = fogrt__sub(y, o);
-        float len = fogrt__length(to), tmax = len - fogrt__offset_size(s, y);
-        if (tmax > 0.0f &&
-            fogrt__traverse(s, o, fogrt__scale(to, 1.0f / len), 0.0f, tmax, NULL, true))
-            return 0.0f;
-    }
-#ifndef FOGRT_NO_MEDIUM
-    if (v->in_medium) return fogrt__fog_transmittance(s, v->p, ls->wi, ls->dist);
-#endif
-    return 1.0f;
-}
-
-/* ------------------------------------------------------------------------------------------
-   3.3 Fog scattering: the Henyey-Greenstein phase function (paper eq. 9-12)
-   ------------------------------------------------------------------------------------------ */
-#ifndef FOGRT_NO_MEDIUM
-FOGRT__PRIVATE float fogrt__clamp_g(float g) {
-    if (!(g == g)) return 0.0f;
-    return FOGRT__CLAMP(g, -FOGRT_HG_G_MAX, FOGRT_HG_G_MAX);
-}
-/* p(mu) = (1 - g^2) / (4 pi (1 + g^2 - 2 g mu)^(3/2)). The base 1 + g^2 - 2 g mu is written
-   as a sum of non-negative terms, so it does not cancel near the peak when |g| -> 1:
-   g >= 0: (1 - g)^2 + 2g(1 - mu);  g < 0: (1 + g)^2 - 2g(1 + mu).  The arguments are 1 - mu
-   and 1 + mu, so a caller that knows them exactly (the sampler) loses nothing.            */
-FOGRT__PRIVATE float fogrt__hg_phase_pm(float g, float one_minus_mu, float one_plus_mu) {
-    float base = g >= 0.0f ? (1.0f - g) * (1.0f - g) + 2.0f * g * one_minus_mu
-                           : (1.0f + g) * (1.0f + g) - 2.0f * g * one_plus_mu;
-    return FOGRT__INV_4PI * (1.0f - g) * (1.0f + g) / (base * sqrtf(base));
-}
-FOGRT__PUBLIC float fogrt_hg_phase(float g, float mu) {
-    mu = FOGRT__CLAMP(mu, -1.0f, 1.0f);
-    return fogrt__hg_phase_pm(fogrt__clamp_g(g), 1.0f - mu, 1.0f + mu);
-}
-/* D = (1 - g) + 2 g u, as a sum of two non-negative terms: for g < 0 and u -> 1 the direct
-   form would cancel, so it is written (1 + g) - 2 g (1 - u) there. */
-FOGRT__PRIVATE float fogrt__hg_D(float g, float u) {
-    return g >= 0.0f ? (1.0f - g) + 2.0f * g * u : (1.0f + g) - 2.0f * g * (1.0f - u);
-}
-/* Eq. 10-11: the inverse of HG's CDF. As the paper writes it (one_minus_mu NULL),
-     mu = (1 + g^2 - s^2) / (2 g),  s = (1 - g^2) / D,  D = 1 - g + 2 g u,
-   it divides 0 by 0 at g = 0 (the limit is isotropic, 2u - 1), and for small |g| subtracts
-   nearly equal numbers and divides the rounding by 2g: its error grows like 1e-7 / |g|
-   (test_hg_eq11_matches_stable_form). The renderer asks for 1 - mu and 1 + mu, and gets eq. 11
-   rearranged: 2 g (1 - mu) = s^2 - (1 - g)^2 and 2 g (1 + mu) = (1 + g)^2 - s^2, each a
-   difference of squares, with 1 + g - D = 2 g (1 - u) and D - (1 - g) = 2 g u, give
-     1 - mu = (1 - g)^2 (1 - u) (1 + g + D) / D^2,   1 + mu = (1 + g)^2 u (1 - g + D) / D^2:
-   no division by g and nothing that cancels. Near the peak (|g| -> 1) mu itself rounds to
-   +-1 long before the angle is 0 (at g = 0.99 one sample in 2000 would land on the peak
-   direction); sin(theta) = sqrt((1 - mu)(1 + mu)) from these keeps its full precision. */
-FOGRT__PRIVATE float fogrt__sample_hg_mu_eq11(float g, float u, float *one_minus_mu,
-                                              float *one_plus_mu) {
-    if (one_minus_mu) {                       /* the cancellation-free branch: eq. 11 rearranged */
-        float D = fogrt__hg_D(g, u), D2 = D * D;
-        *one_minus_mu = FOGRT__CLAMP((1.0f - g) * (1.0f - g) * (1.0f - u) * (1.0f + g + D) / D2,
-                                     0.0f, 2.0f);
-        *one_plus_mu = FOGRT__CLAMP((1.0f + g) * (1.0f + g) * u * (1.0f - g + D) / D2, 0.0f, 2.0f);
-        /* mu from the nearer end: no rounding */
-        return *one_minus_mu < *one_plus_mu ? 1.0f - *one_minus_mu : *one_plus_mu - 1.0f;
-    }
-    if (g == 0.0f) return 2.0f * u - 1.0f;
-    float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
-    return FOGRT__CLAMP((1.0f + g * g - s * s) / (2.0f * g), -1.0f, 1.0f);
-}
-/* The same inverse as mu, expanded so that nothing divides by g:
-     mu = (2u - (1 - g)) / D + 2 g (1 - g)(1 + g) u (1 - u) / D^2.
-   g = 0 gives mu = 2u - 1 (isotropic) with no special branch; u = 0 gives -1, u -> 1 gives 1. */
-FOGRT__PUBLIC float fogrt_sample_hg_mu(float g, float u) {
-    g = fogrt__clamp_g(g);
-    u = FOGRT__CLAMP(u, 0.0f, 1.0f);
-    float D = fogrt__hg_D(g, u);
-    float mu = (2.0f * u - (1.0f - g)) / D +
-               2.0f * g * (1.0f - g) * (1.0f + g) * u * (1.0f - u) / (D * D);
-    return FOGRT__CLAMP(mu, -1.0f, 1.0f);
-}
-/* The same for a unit wo (the integrator's, which skips the normalisation). */
-FOGRT__PRIVATE fogrt__v3 fogrt__sample_hg_unit(float g, fogrt__v3 wo, float u1, float u2,
-                                               float *pdf) {
-    fogrt__frame f = fogrt__frame_from_z(fogrt__neg(wo));   /* z: propagation */
-    float one_minus_mu, one_plus_mu, mu;
-    g = fogrt__clamp_g(g);
-    mu = fogrt__sample_hg_mu_eq11(g, FOGRT__CLAMP(u1, 0.0f, 1.0f), &one_minus_mu, &one_plus_mu);
-    if (pdf) *pdf = fogrt__hg_phase_pm(g, one_minus_mu, one_plus_mu);
-    return fogrt__direction_at(&f, mu, sqrtf(one_minus_mu * one_plus_mu), u2);
-}
-FOGRT__PUBLIC fogrt_vec3 fogrt_sample_hg(float g, fogrt_vec3 wo, float u1, float u2, float *pdf) {
-    return fogrt__sample_hg_unit(g, fogrt__normalize(wo), u1, u2, pdf);
-}
-/* mu = cos(d, wi) with d = -wo. Near the peaks 1 - mu and 1 + mu are taken from the chord
-   lengths, |wi + wo|^2 / 2 and |wi - wo|^2 / 2, which keep their precision where a rounded
-   dot product would not (at g = 0.999 the phase function changes 12% per ulp of mu there). */
-FOGRT__PUBLIC float fogrt_hg_pdf(float g, fogrt_vec3 wo, fogrt_vec3 wi) {
-    fogrt__v3 a = fogrt__add(wi, wo), b = fogrt__sub(wi, wo);
-    return fogrt__hg_phase_pm(fogrt__clamp_g(g), FOGRT__CLAMP(0.5f * fogrt__dot(a, a), 0.0f, 2.0f),
-                              FOGRT__CLAMP(0.5f * fogrt__dot(b, b), 0.0f, 2.0f));
-}
-#endif /* FOGRT_NO_MEDIUM */
-
-/* ------------------------------------------------------------------------------------------
-   3.4 The global illumination pipeline: Algorithm 1 (eq. 13) and the one-bounce baseline
-   Algorithm 1 is written as a recursion; fogrt__algorithm1 below runs it as a loop (the
-   recursion's tail call), keeping the product of the weights of eq. 13 as the throughput
-   beta = prod f cos / pdf, so that the light found at depth k counts beta_k Le. Every render
-   runs it; with Part II's state on the walk each step hands on at its seam (7a-7d). Its
-   steps carry the numbers of the algorithm's lines:
-     2     "ray depth > 0 and coin flip(p)": the depth limit, and Russian roulette after
-           rr_depth bounces: go on with probability q = min(0.95, max(beta)), weight 1/q;
-     3-4   intersect the BVH (t_i), sample a fog collision t_fog (3.1), keep the nearer;
-     5-10  light sampling at the vertex: in fog over the sphere of directions (6), at a
-           surface over the hemisphere (9), each light's sample weighted by MIS (2.3);
-     11-20 the new direction: HG in fog (15, 3.3), the BSDF on a surface (19, 2.2);
-     13,22 the weight of eq. 13: f cos / pdf (HG: p / p = 1; the fog's albedo sigma_s /
-           sigma_t at a collision, since transmittance and free-flight pdf cancel);
-     12,23 one bounce more.
-   Light reached by the ray itself (an emitter hit, or the sky) is added with the MIS weight
-   of BSDF sampling, so that the two estimates of an area light add up to one. The fog fills
-   all space outside refractive objects (a ray that refracts into one leaves it until it
-   refracts out). Light that bounced fewer than min_depth times is not counted (CS184's -o 0).
-   ------------------------------------------------------------------------------------------ */
-/* A ray's hit as a surface point: the point, its geometric normal and its shading normal. */
-FOGRT__HOT void fogrt__surface_frame(const fogrt_scene *s, fogrt__v3 o, fogrt__v3 d,
-                                     const fogrt_hit *h, fogrt__v3 *p, fogrt__v3 *ng,
-                                     fogrt__v3 *ns) {
-    *p = fogrt__madd(o, d, h->t);
-    if (h->prim < s->tri_count) {
-        const fogrt__v3 *v = &s->tri_v[3 * h->prim];
-        *ng = fogrt__normalize(fogrt__cross(fogrt__sub(v[1], v[0]), fogrt__sub(v[2], v[0])));
-        *ns = *ng;
-        if (s->tri_has_n[h->prim]) {   /* interpolated shading normal, on the side of ng */
-            const fogrt__v3 *n = &s->tri_n[3 * h->prim];
-            fogrt__v3 sn =
-                    fogrt__add(fogrt__scale(n[0], 1.0f - h->u - h->v),
-                               fogrt__add(fogrt__scale(n[1], h->u), fogrt__scale(n[2], h->v)));
-            if (fogrt__dot(sn, sn) > 0.0f) {
-                sn = fogrt__normalize(sn);
-                *ns = fogrt__dot(sn, *ng) < 0.0f ? fogrt__neg(sn) : sn;
-            }
-        }
-    } else {
-        fogrt__v3 c = s->sph_c[h->prim - s->tri_count];
-        float r = s->sph_r[h->prim - s->tri_count];
-        *ng = fogrt__normalize(fogrt__sub(*p, c));
-        *p = fogrt__madd(c, *ng, r);               /* re-project: removes the hit's rounding */
-        *ns = *ng;
-    }
-}
-/* A surface vertex at p (normals ng, ns from fogrt__surface_frame) for the ray arriving
-   along -wo: reflective BSDFs are two-sided (the frame turns to wo's side), refractive ones
-   keep the outward normal, so wo.z < 0 in the frame means "inside". Returns whether wo is
-   on the front side. */
-FOGRT__HOT bool fogrt__surface_vertex_set(fogrt__vertex *v, const fogrt_material_desc *m,
-                                          fogrt__v3 wo, fogrt__v3 p, fogrt__v3 ng, fogrt__v3 ns,
-                                          bool in_medium) {
-    fogrt_bsdf_type type = fogrt__bsdf_type(m);
-    bool entering = fogrt__dot(wo, ng) > 0.0f;
-    if (type < FOGRT_BSDF_REFRACTION) {                  /* reflects only: two-sided */
-        if (!entering) {
-            ng = fogrt__neg(ng);
-            ns = fogrt__neg(ns);
-        }
-        if (fogrt__dot(wo, ns) <= 0.0f) ns = ng;
-    }
-    v->p = p;
-    v->frame = fogrt__frame_from_z(ns);
-    v->ng = ng;
-    v->wo = wo;
-    v->m = m;
-    v->is_medium = false;
-    v->in_medium = in_medium;
-    return entering;
-}
-/* Lines 19-20: a new direction from the BSDF at surface vertex v, in world space. A shading
-   normal can send a direction through the geometric surface: such a sample is dropped. */
-FOGRT__HOT bool fogrt__sample_surface(const fogrt__settings *st, const fogrt__vertex *v,
-                                      const float *u, fogrt_bsdf_sample *bs, fogrt__v3 *wi,
-                                      float *cos_o) {
-    fogrt__v3 wo_l = fogrt__to_local(&v->frame, v->wo);
-    *cos_o = wo_l.z;
-    if (!fogrt_sample_bsdf(v->m, st->desc.fresnel, wo_l, u[0], u[1], u[2], bs)) return false;
-    *wi = fogrt__normalize(fogrt__to_world(&v->frame, bs->wi));
-    float side = fogrt__dot(*wi, v->ng) * fogrt__dot(v->wo, v->ng);
-    return bs->is_transmission ? side < 0.0f : side > 0.0f;
-}
-/* Lines 5-10: light sampling at a scattering vertex v, every light (area lights
-   light_samples times), each sample f Le T w / (n pdf) with w the MIS weight (1 for a point
-   or spot light, which BSDF sampling can never hit). */
-FOGRT__PRIVATE fogrt__v3 fogrt__nee(const fogrt_scene *s, const fogrt__settings *st,
-                                    const fogrt__vertex *v, fogrt_rng *rng, uint64_t *rays) {
-    fogrt__v3 L = fogrt__v(0.0f, 0.0f, 0.0f);
-    uint32_t total = s->light_count + s->area_light_count;
-    for (uint32_t i = 0; i < total; ++i) {
-        int n = i < s->light_count && !(s->lights[i].radius > 0.0f) ? 1 : st->desc.light_samples;
-        for (int j = 0; j < n; ++j) {
-            fogrt_light_sample ls;
-            float pdf_b, tr, u[3];
-            u[0] = fogrt_rng_float(rng);
-            u[1] = fogrt_rng_float(rng);
-            u[2] = fogrt_rng_float(rng);
-            if (!fogrt_scene_sample_light(s, i, v->p, u[0], u[1], u[2], &ls)) continue;
-            fogrt__v3 f = fogrt__vertex_f(s, v, ls.wi, &pdf_b);
-            if (fogrt__is_black(f) || (tr = fogrt__shadow(s, v, &ls, rays)) == 0.0f) continue;
-            float w = ls.is_delta || !st->desc.mis
-                              ? 1.0f
-                              : fogrt__power_heuristic((float)n * ls.pdf, pdf_b);
-            L = fogrt__add(L, fogrt__scale(fogrt__mul(f, ls.Le), tr * w / (ls.pdf * (float)n)));
-        }
-    }
-    return L;
-}
-/* The MIS weight of emission that the ray found by BSDF or phase sampling from prev_p with
-   density prev_pdf (1 after a camera ray or a specular bounce, which light sampling cannot
-   produce; 0 with MIS off, where light sampling alone counts area lights). */
-FOGRT__PRIVATE float fogrt__emission_weight(const fogrt_scene *s, const fogrt__settings *st,
-                                            bool prev_delta, float prev_pdf, fogrt__v3 prev_p,
-                                            const fogrt_hit *hit, fogrt__v3 p, fogrt__v3 ng) {
-    if (prev_delta || !st->desc.nee) return 1.0f;
-    if (!st->desc.mis) return 0.0f;
-    return fogrt__power_heuristic(prev_pdf,
-                                  (float)st->desc.light_samples *
-                                          fogrt__area_light_pdf(s, hit->prim, prev_p, p, ng));
-}
-/* Algorithm 1's state between two vertices: the ray, the throughput beta, the light
-   gathered, the vertex just found, and what MIS needs of the vertex the ray left. */
-struct fogrt__path;
-typedef struct fogrt__walk {
-    fogrt__v3 o, d, beta, L, prev_p;
-    float prev_pdf;            /* the density with which the ray's direction was chosen */
-    bool prev_delta;           /* camera ray or specular bounce: emission counts in full */
-    bool in_fog;               /* the ray travels in fog */
-    int depth;                 /* scattering events so far */
-    fogrt__vertex v;           /* the vertex the ray reached */
-    fogrt_rng *rng;
-    uint64_t *rays;            /* rays traced, for the render's statistics */
-    struct fogrt__path *x;     /* Part II's state of the path (E), or NULL: the paper's steps */
-} fogrt__walk;
-
-/* Lines 3-4, 5 and 14 (a fog particle), 8 and 18 (an object): the next vertex along the
-   ray, with the emission the ray reaches on the way. Returns false when the path ends
-   there (it left the scene, or hit a black diffuse surface). limit: the depth at which the
-   path stops (Part II's steps skip what only a deeper path would use). */
-FOGRT__PRIVATE bool fogrt__next_vertex(const fogrt_scene *s, const fogrt__settings *st,
-                                       fogrt__walk *w, int limit) {
-#ifndef FOGRT_MINIMAL
-    if (w->x) return fogrt__full_next_event(s, st, w->x, limit); /* SEAM 7a: E's next event */
-#endif
-    (void)limit;
-    fogrt_hit hit;
-    float t_fog = INFINITY;
-    ++*w->rays;
-    bool found = fogrt__traverse(s, w->o, w->d, 0.0f, INFINITY, &hit, false);         /* 3: t_i */
-#ifndef FOGRT_NO_MEDIUM
-    if (w->in_fog)
-        t_fog = fogrt_sample_exponential(s->medium.sigma_t, fogrt_rng_float(w->rng)); /* 4 */
-#endif
-    fogrt__vertex *v = &w->v;
-    if (t_fog < (found ? hit.t : INFINITY)) {                                          /* 5, 14 */
-        w->beta = fogrt__mul(w->beta, s->medium.albedo);
-        v->p = fogrt__madd(w->o, w->d, t_fog);
-        v->wo = fogrt__neg(w->d);
-        v->is_medium = true;
-        v->in_medium = true;
-        v->m = NULL;
-        v->ng = fogrt__v(0.0f, 0.0f, 0.0f);
-        return true;
-    }
-    if (!found) { /* the sky */
-        if (s->has_env && w->depth >= st->desc.min_depth)
-            w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__env_radiance(s, w->d)));
-        return false;
-    }
-    const fogrt_material_desc *m =
-            &s->materials[fogrt_scene_get_prim_material(s, hit.prim)]; /* 8, 18 */
-    fogrt__v3 p, ng, ns;
-    fogrt__surface_frame(s, w->o, w->d, &hit, &p, &ng, &ns);
-    if (!fogrt__is_black(m->emission) && fogrt__dot(w->d, ng) < 0.0f &&
-        w->depth >= st->desc.min_depth) {
-        float mis =
-                fogrt__emission_weight(s, st, w->prev_delta, w->prev_pdf, w->prev_p, &hit, p, ng);
-        w->L = fogrt__add(w->L, fogrt__scale(fogrt__mul(w->beta, m->emission), mis));
-    }
-    if (fogrt__bsdf_type(m) == FOGRT_BSDF_DIFFUSE && fogrt__is_black(m->reflectance)) return false;
-    (void)fogrt__surface_vertex_set(v, m, fogrt__neg(w->d), p, ng, ns, w->in_fog);
-    return true;
-}
-/* Fog, or a surface whose BSDF light sampling can reach (line 9: "if not specular"). */
-FOGRT__PRIVATE bool fogrt__scatters(const fogrt__vertex *v) {
-    return v->is_medium || !fogrt__bsdf_is_delta(fogrt__bsdf_type(v->m));
-}
-/* Lines 5-10: the light sampled at a scattering vertex (6 in fog, 9 on a surface). */
-FOGRT__PRIVATE void fogrt__light_at_vertex(const fogrt_scene *s, const fogrt__settings *st,
-                                           fogrt__walk *w) {
-#ifndef FOGRT_MINIMAL
-    if (w->x) { /* SEAM 7b: E's light step */
-        fogrt__full_light_step(s, st, w->x);
-        return;
-    }
-#endif
-    if (st->desc.nee && fogrt__scatters(&w->v) && w->depth + 1 >= st->desc.min_depth)
-        w->L = fogrt__add(w->L, fogrt__mul(w->beta, fogrt__nee(s, st, &w->v, w->rng, w->rays)));
-}
-/* Lines 11-22: the new direction, inverse HG in fog (15-17, eq. 11-12), the BSDF on an
-   object (19-21), and the weight of eq. 13 (line 22), f |cos theta| / pdf. In fog that
-   weight is p / pdf = 1: eq. 12 samples the phase function exactly. Returns false when no
-   direction could be drawn. */
-FOGRT__PRIVATE bool fogrt__new_direction(const fogrt_scene *s, const fogrt__settings *st,
-                                         fogrt__walk *w) {
-#ifndef FOGRT_MINIMAL
-    if (w->x) return fogrt__full_scatter(s, st, w->x);                    /* SEAM 7c: E's scatter */
-#endif
-    const fogrt__vertex *v = &w->v;
-    float u[3];
-    u[0] = fogrt_rng_float(w->rng);
-    u[1] = fogrt_rng_float(w->rng);
-    u[2] = fogrt_rng_float(w->rng);
-#ifndef FOGRT_NO_MEDIUM
-    if (v->is_medium) {
-        w->d = fogrt__sample_hg_unit(s->medium.g, v->wo, u[1], u[2], &w->prev_pdf);
-        w->prev_delta = false;
-        w->o = w->prev_p = v->p;
-        return true;
-    }
-#endif
-    fogrt_bsdf_sample bs;
-    fogrt__v3 wi;
-    float cos_o;
-    if (!fogrt__sample_surface(st, v, u, &bs, &wi, &cos_o)) return false;
-    /* Eq. 13, f |cos theta| / pdf, theta between the sampled w_i (bs.wi, shading frame) and the
-       normal: the paper's "hitting ray" is w_i, the ray that hits what sends back L_i. Mirror and
-       glass: f and pdf hold the same Dirac delta, so their sampler reports the ratio, as usual. */
-    fogrt__v3 f = fogrt_bsdf_eval(v->m, fogrt__to_local(&v->frame, v->wo), bs.wi);
-    fogrt__v3 weight = bs.is_delta ? bs.weight : fogrt__scale(f, fabsf(bs.wi.z) / bs.pdf);
-    w->beta = fogrt__mul(w->beta, weight);
-    w->prev_pdf = bs.pdf;
-    w->prev_delta = bs.is_delta;
-    if (bs.is_transmission)                             /* into or out of a refractive object */
-        w->in_fog = !(fogrt__dot(v->wo, v->ng) > 0.0f) && (s->features & FOGRT_FEATURE_MEDIUM);
-    w->d = wi;
-    w->o = fogrt__offset(s, v->p, v->ng, wi);
-    w->prev_p = v->p;
-    return true;
-}
-/* Line 2's coin flip, after lines 12 and 23 (one bounce more): after rr_depth bounces the
-   path goes on with probability q = min(0.95, max(beta)), weighted 1/q (unbiased: the
-   path's expected value is unchanged). */
-FOGRT__PRIVATE bool fogrt__roulette(const fogrt__settings *st, fogrt__walk *w) {
-    ++w->depth;                                                          /* 12, 23 */
-    if (w->depth <= st->desc.rr_depth) return true;
-    float q = FOGRT__MIN(0.95f, fogrt__max3(w->beta));
-    float u = fogrt_rng_float(w->rng);
-#ifndef FOGRT_MINIMAL
-    if (w->x) q = fogrt__full_roulette_q(st, w->x, u); /* SEAM 7d: the pilot's q (C) */
-#endif
-    if (!(u < q)) return false;
-    w->beta = fogrt__scale(w->beta, 1.0f / q);
-    return true;
-}
-
-/* The walk of a camera ray from o along d. */
-FOGRT__PRIVATE void fogrt__walk_start(fogrt__walk *w, const fogrt_scene *s, fogrt__v3 o,
-                                      fogrt__v3 d, fogrt_rng *rng, uint64_t *rays) {
-    memset(w, 0, sizeof *w);
-    w->o = o;
-    w->d = d;
-    w->prev_p = o;
-    w->beta = fogrt__v(1.0f, 1.0f, 1.0f);
-    w->prev_pdf = 1.0f;
-    w->prev_delta = true;
-    w->in_fog = (s->features & FOGRT_FEATURE_MEDIUM) != 0;   /* the camera is in the fog */
-    w->rng = rng;
-    w->rays = rays;
-}
-/* Algorithm 1, the loop every render runs. one_bounce: the paper's baseline instead
-   (section 4.3): the camera ray is followed through mirrors and glass to the first
-   scattering vertex, which samples the lights and takes one more step that only adds the
-   emission it finds (its MIS half). */
-FOGRT__PRIVATE fogrt__v3 fogrt__algorithm1(const fogrt_scene *s, const fogrt__settings *st,
-                                           fogrt__walk *w, bool one_bounce) {
-    int limit = st->max_depth;                                           /* 2: ray depth > 0 */
-    for (uint32_t vertex = 0; vertex < FOGRT_MAX_PATH_VERTICES; ++vertex) {
-        if (!fogrt__next_vertex(s, st, w, limit)) break;                 /* 3-5, 8, 14, 18 */
-        if (w->depth >= limit || fogrt__is_black(w->beta)) break;        /* 2: ray depth > 0 */
-        fogrt__light_at_vertex(s, st, w);                                /* 5-10 */
-        if (one_bounce && fogrt__scatters(&w->v))                        /* the baseline: */
-            limit = w->depth + 1;                                        /* one step more */
-        if (!fogrt__new_direction(s, st, w)) break;                      /* 11-22 */
-        if (!fogrt__roulette(st, w)) break;                    /* 2: coin flip(p); 12, 23 */
-    }
-    return w->L;
-}
-
 /* ------------------------------------------------------------------------------------------
    I.3 The camera: pinhole or thin lens (the paper's section 4.2)
    ------------------------------------------------------------------------------------------ */
