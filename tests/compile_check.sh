@@ -225,6 +225,7 @@ if have "$GCC"; then
                 "-DFOGRT_NO_WIDE_BVH -DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_NO_ESTIMATION" \
                 "-DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_NO_MEDIUM" "-DFOGRT_NO_ESTIMATION -DFOGRT_TRACE" \
                 -DFOGRT_NO_MEDIA "-DFOGRT_NO_MEDIA -DFOGRT_NO_LAMPS_IN_FOG -DFOGRT_TRACE" -DFOGRT_NO_SHAPES \
+                -DFOGRT_NO_MICROFACET "-DFOGRT_NO_MICROFACET -DFOGRT_TRACE" \
                 -DFOGRT_WBVH_NO_AVX2 -DFOGRT_WBVH_NO_SIMD; do
         run "$GCC appendix removed: $defs" $GCC $CWARN -fopenmp $defs -I"$ROOT" -c "$TMP/impl.c" -o "$TMP/app.o"
     done
@@ -305,6 +306,8 @@ if have "$GCC" && have nm; then
         fogrt__media_next_event fogrt__chroma_next_event fogrt__chroma_mix fogrt__chroma_shadow
     run "nm: FOGRT_NO_SHAPES removes appendix H" appendix_nm FOGRT_NO_SHAPES \
         fogrt_scene_set_interior fogrt_scene_set_shape_material fogrt__h_radiance fogrt__shapes_build fogrt__find_boundaries fogrt__h_shadow
+    run "nm: FOGRT_NO_MICROFACET removes appendix I" appendix_nm FOGRT_NO_MICROFACET \
+        fogrt__x_mf_sample fogrt__x_mf_eval fogrt__x_mf_pdf fogrt__mf_check fogrt__mf_fresnel1 fogrt__mf_lambda
 else
     skip "appendix nm checks: gcc or nm not installed"
 fi

@@ -436,11 +436,12 @@ static void test_add_materials(void)
 {
     fogrt_scene *scene = new_scene(NULL);
     fogrt_material_desc m, back;
+    static const fogrt_bsdf_type types[3] = { FOGRT_BSDF_DIFFUSE, FOGRT_BSDF_MIRROR, FOGRT_BSDF_REFRACTION };
     uint32_t id = 99;
     int i;
     for (i = 0; i < 3; i++) {
         memset(&m, 0, sizeof m);
-        m.type = (fogrt_bsdf_type)(FOGRT_BSDF_DIFFUSE + i);
+        m.type = types[i];
         m.reflectance = v3(0.1f * (float)i, 0.2f, 0.3f);
         m.transmittance = v3(0.4f, 0.5f, 0.6f);
         m.emission = v3(0, (float)i, 0);
