@@ -51,6 +51,9 @@
 
 /* The program's name in every message ("fogrt" or "preview"). */
 static const char *cli_prog = "fogrt";
+/* Set by cli_std_streams when the program started with fd 1 closed: output meant for stdout
+   (--print-camera, --trace) would go to /dev/null, so the program says so and fails instead. */
+static int cli_stdout_closed = 0;
 
 /* Threads: at most 4 per processor, and never more than this (OMP_NUM_THREADS included):
    the library's own cap when it has one. */
@@ -76,7 +79,9 @@ CLI_FN void cli_std_streams(void)
     int fd;
     for (fd = 0; fd <= 2; ++fd) {
         if (fcntl(fd, F_GETFD) == -1 && errno == EBADF) {
-            int k = open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
+            int k;
+            if (fd == 1) cli_stdout_closed = 1;
+            k = open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
             if (k >= 0 && k != fd) { dup2(k, fd); close(k); }
         }
     }

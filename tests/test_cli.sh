@@ -238,6 +238,21 @@ expect 1 "full.png" "write_full_disk: PNG to /dev/full" -- -s 1 -r 16 12 -f "$tm
 check "grep -q 'No space left' '$tmp/err' && ! grep -q 'wrote' '$tmp/err'" "write_full_disk: no ENOSPC message, or it claims success"
 ln -s /dev/full "$tmp/full.pfm"
 expect 1 "full.pfm" "write_full_disk: PFM to /dev/full" -- --quiet -s 1 -r 16 12 -f "$tmp/full.pfm"
+# -- side_file_lost: a --log that cannot be written (a full disk, a missing directory) costs
+#    the log, not the image: a warning naming it, the image written, exit 1 --
+ln -s /dev/full "$tmp/full.csv"
+expect 1 "full.csv: write failed: No space left" "side_file_lost: --log to /dev/full" -- -s 2 -r 16 12 -f "$tmp/logfull.pfm" --log "$tmp/full.csv"
+check "[ -s '$tmp/logfull.pfm' ] && grep -q 'wrote' '$tmp/err'" "side_file_lost: --log to /dev/full lost the image: $(cat "$tmp/err")"
+expect 1 "no/dir/x.csv: cannot write" "side_file_lost: --log in a missing directory" -- -s 2 -r 16 12 -f "$tmp/logdir.pfm" --log "$tmp/no/dir/x.csv"
+check "[ -s '$tmp/logdir.pfm' ]" "side_file_lost: --log in a missing directory lost the image"
+expect 0 "" "side_file_lost: --log /dev/null is a log nobody keeps" -- --quiet -s 2 -r 16 12 -f "$tmp/lognull.pfm" --log /dev/null
+# --print-camera and --trace print all the run makes: stdout closed or full is a failure
+"$fogrt" --print-camera -r 32 24 >&- 2>"$tmp/err"; st=$?
+check "[ $st -eq 1 ] && grep -q 'print-camera: stdout is closed' '$tmp/err'" "side_file_lost: --print-camera with stdout closed: exit $st: $(cat "$tmp/err")"
+"$fogrt" --print-camera -r 32 24 >/dev/full 2>"$tmp/err"; st=$?
+check "[ $st -eq 1 ] && grep -q 'print-camera: cannot write to stdout' '$tmp/err'" "side_file_lost: --print-camera to /dev/full: exit $st: $(cat "$tmp/err")"
+"$fogrt" --trace 2,2 -r 32 24 >/dev/full 2>"$tmp/err"; st=$?
+check "[ $st -eq 1 ] && grep -q 'trace: cannot write to stdout' '$tmp/err'" "side_file_lost: --trace to /dev/full: exit $st: $(cat "$tmp/err")"
 # -- write_atomic: a failed write keeps the old image; a good one replaces it by rename --
 "$fogrt" --quiet -s 1 -r 32 24 -f "$tmp/keep.pfm" "$lit"
 cp "$tmp/keep.pfm" "$tmp/keep.orig"
