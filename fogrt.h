@@ -899,7 +899,7 @@ typedef struct fogrt_image {
     int width, height;
     double *sum;         /* 3 * width * height: sum of sample radiance (RGB) */
     double *sum_sq;      /* width * height: sum of squared sample luminance */
-    uint32_t *count;     /* width * height */
+    uint32_t *count;     /* width * height; at most 2^32 - 1 (fogrt_render refuses a call that would pass it) */
     double *stream_sum;      /* FOGRT_IMAGE_STREAMS * width * height: per pixel, each stream's luminance sum */
     uint32_t *stream_count;  /* FOGRT_IMAGE_STREAMS * width * height: per pixel, each stream's samples */
     uint64_t rejected;   /* non-finite samples seen and dropped */
@@ -3205,12 +3205,26 @@ FOGRT__PRIVATE bool fogrt__report(const fogrt_render_desc *d, int rows_done, int
     p.rows_done = rows_done; p.rows_total = rows_total; p.samples_per_pixel = spp;
     return d->progress(&p, d->user_data);
 }
+/* A pixel counts its samples in 32 bits: a render that would take one past 2^32 - 1 is refused
+   before it starts (the count would wrap and the mean jump by orders of magnitude). With rates a
+   pixel takes at most spp x rate + 1 samples in the call. */
+FOGRT__PRIVATE fogrt_result fogrt__check_count_room(const fogrt_scene *s, const fogrt_render_desc *d, const fogrt_image *img, int spp) {
+    size_t n = (size_t)img->width * (size_t)img->height;
+    for (size_t i = 0; i < n; ++i) {
+        double most = d->sample_rate ? ceil((double)spp * (double)d->sample_rate[i]) + 1.0 : (double)spp;
+        if ((double)img->count[i] + most > 4294967295.0)
+            return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE, "render: samples_per_pixel more would take a pixel's "
+                               "sample count past 2^32 - 1, the most it counts (render into a new or cleared image)");
+    }
+    return FOGRT_RESULT_OK;
+}
 FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt_render_desc *d, const fogrt_image *img, int spp) {
     if (!s->built) return fogrt__fail(s, FOGRT_RESULT_NOT_BUILT, "render: the scene changed since fogrt_scene_build");
     if (img->width <= 0 || img->height <= 0 || !img->sum || !img->sum_sq || !img->count ||
         (d->width && d->width != img->width) || (d->height && d->height != img->height))
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: image size does not match render desc width/height");
     if (spp < 0) return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: samples_per_pixel < 0");
+    FOGRT__PASS(fogrt__check_count_room(s, d, img, spp));
     return fogrt__beyond_image(s, d, img);
 }
 
