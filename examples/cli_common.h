@@ -160,18 +160,21 @@ CLI_FN int cli_distance(const char *a, const char *b)
     return d[n][m];
 }
 /* The unknown flag's message, with the nearest known flag when one is near: a third of its
-   letters wrong at most, or the only flag it starts. known ends with NULL. */
+   letters wrong at most, or the only flag it starts. Letters, not dashes, are compared (the
+   dashes are the same in most flags, so "-x" would otherwise be one edit from "-r"), and a
+   suggestion keeps at least one of the flag's letters. known ends with NULL. */
+CLI_FN const char *cli_flag_letters(const char *f) { while (*f == '-') ++f; return f; }
 CLI_FN int cli_unknown_flag(const char *flag, const char *const *known)
 {
     const char *best = NULL, *prefix = NULL;
     int best_d = 99, prefixes = 0, k;
-    size_t n = strlen(flag);
+    size_t n = strlen(flag), letters = strlen(cli_flag_letters(flag));
     for (k = 0; known[k]; ++k) {
-        int d = cli_distance(flag, known[k]);
+        int d = cli_distance(cli_flag_letters(flag), cli_flag_letters(known[k]));
         if (d < best_d) { best_d = d; best = known[k]; }
         if (n >= 4 && strncmp(known[k], flag, n) == 0) { prefix = known[k]; prefixes++; }
     }
-    if (best && best_d <= (int)(strlen(best) + 2) / 3 && best_d < (int)n)
+    if (best && best_d <= (int)(strlen(cli_flag_letters(best)) + 2) / 3 && best_d < (int)letters)
         return cli_bad_flag(flag, "unknown flag: did you mean %s?", best);
     if (prefixes == 1) return cli_bad_flag(flag, "unknown flag: did you mean %s?", prefix);
     return cli_bad_flag(flag, "unknown flag");

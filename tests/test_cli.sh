@@ -55,6 +55,9 @@ out="$tmp/never.png"
 # ---- flags: values out of range, unknown flags, missing values (exit 2, the flag named) ----
 expect 2 "--bogus"      "unknown flag"            -- --bogus -f "$out";                one_line_no_image "unknown flag"
 expect 2 "-x"           "unknown short flag"      -- -x -f "$out";                     one_line_no_image "unknown short flag"
+check "! grep -q 'did you mean' '$tmp/err'" "unknown short flag: -x gets a suggestion that shares no letter with it: $(cat "$tmp/err")"
+expect 2 "did you mean --density?" "misspelt flag: a suggestion" -- --densty 0.5 -f "$out"
+expect 2 "did you mean -s?" "a short flag with two dashes: a suggestion" -- --s 4 -f "$out"
 expect 2 "--density"    "negative density"        -- --density -0.5 -f "$out";         one_line_no_image "negative density"
 expect 2 "--density"    "non-numeric density"     -- --density fog -f "$out"
 expect 2 "--g"          "|g| > 1 (--g)"           -- --g 1.5 -f "$out";                one_line_no_image "|g| > 1"
@@ -887,6 +890,12 @@ printf '\001\002\033[31m\377\376\300 1 2\n' >"$tmp/bytes.cam"
 expect 2 "bytes.cam" "wrong_kind: -c with raw bytes" -- -f "$out" -c "$tmp/bytes.cam"
 check "! LC_ALL=C grep -q '[^[:print:]]' '$tmp/err'" "wrong_kind: -c printed raw bytes: $(od -c "$tmp/err" | head -3)"
 
+# -- unresolved_names: a reference the loader cannot resolve is a warning naming the file, the
+#    line, the name and the node holding it --
+sed 's|target="#m1"|target="#nosuch"|; s|<instance_geometry url="#tri"><bind_material><technique_common><instance_material symbol="m" target="#m2"/>|<instance_geometry url="#notri"><bind_material><technique_common><instance_material symbol="m" target="#m2"/>|' \
+  tests/data/dae_materials.dae >"$tmp/unres.dae"
+expect 0 'unres.dae:65: warning: <instance_material> target "#nosuch" in <node> "n1": not found: grey 0.5' "unresolved_names: instance_material" -- -s 1 -r 8 6 -f "$tmp/unres.pfm" "$tmp/unres.dae"
+check "grep -qF 'unres.dae:66: warning: <instance_geometry> url \"#notri\" in <node> \"n2\": not found: skipped' '$tmp/err'" "unresolved_names: instance_geometry: $(grep warning "$tmp/err")"
 # -- readme_timing: every fogrt example in the README says how long it takes --
 untimed=$(sed -n '/^## The `fogrt` command/,/^## /p' README.md | grep '^build/fogrt' | grep -v '[0-9] s\b\|[0-9] s)\|minutes\|--time [0-9]' | head -3)
 check "[ -z \"\$untimed\" ]" "readme_timing: README examples without their time: $untimed"
