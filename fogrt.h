@@ -239,7 +239,7 @@ typedef struct fogrt_scene_desc {
 FOGRT_API fogrt_result fogrt_scene_create(const fogrt_scene_desc *desc, fogrt_scene **out_scene);
 FOGRT_API void fogrt_scene_destroy(fogrt_scene *scene);   /* NULL is a no-op */
 
-/* The four BSDFs of the paper. */
+/* The paper's four BSDFs (diffuse, mirror, refraction, glass), and appendix H's interface. */
 typedef enum fogrt_bsdf_type {
     FOGRT_BSDF_DEFAULT = 0,   /* = diffuse */
     FOGRT_BSDF_DIFFUSE,       /* Lambertian, f = reflectance / pi */
@@ -7865,8 +7865,9 @@ FOGRT__PRIVATE void fogrt__x_scene_free(fogrt_scene *s) {
    What every build has besides the method itself, FOGRT_MINIMAL too: the full build's preset,
    result names, the image's storage, the scene's getters, the public building blocks of an
    integrator, 8-bit output, and the checks of what a build left out. None of it is the
-   method, and Part I calls only two of these functions (a primitive's material, and the
-   preset a NULL desc means); they stand here so that Part I reads as the method alone.
+   method, and Part I calls few of these functions (a primitive's material, the preset a NULL
+   desc means, and the fogrt__beyond_* checks); they stand here so that Part I reads as the
+   method alone.
    ========================================================================================== */
 /* The full build's preset, the names of result codes, and the image's storage. */
 /* Part II's defaults: lamps in fog (B) on, as far as the build has them. */
