@@ -10,8 +10,9 @@
 #   2. README's complete program is examples/minimal.c (after the file's opening comment).
 #   3. every field of the descriptions a user fills (fogrt_*_desc, fogrt_allocator,
 #      fogrt_logger) is named in README.md's section on that struct ("#### `fogrt_X_desc`").
-#   4. every fogrt_ function, type and FOGRT_ macro that README.md and docs/*.md name exists in
-#      fogrt.h or fogrt_load.h; every repository file they name exists.
+#   4. every fogrt_ function, type and FOGRT_ macro that README.md and docs/*.md name in
+#      backquotes exists in the headers or the programs around them; every repository file
+#      they name exists.
 #   5. no prose quotes line numbers ("fogrt.h:123", "test_x.c:45", "line 123 of fogrt.h"), which
 #      move with every edit, nor spells out how many cross-check scenes, tutorial programs or test
 #      programs there are (counts that change as they are added; say "every" instead).
@@ -120,8 +121,9 @@ done
 docs="README.md $(ls docs/*.md)"
 known="$out/known.txt"
 # the headers' names, and those of the programs around them (a test macro, `fogrt_cli`)
-{ cat fogrt.h fogrt_load.h examples/*.c examples/*.h tests/*.c tests/*.h Makefile mk/*.mk
-  ls examples tests | sed 's/\.[a-z]*$//'; } | grep -o '\<\(fogrt\|FOGRT\)_[A-Za-z0-9_]*' | sort -u >"$known"
+{ find examples tests bench tools -type f \( -name '*.c' -o -name '*.h' -o -name '*.sh' -o -name '*.py' \) -exec cat {} +
+  cat fogrt.h fogrt_load.h Makefile mk/*.mk
+  find examples tests bench tools -type f | sed 's|.*/||; s/\.[a-z]*$//'; } | grep -o '\<\(fogrt\|FOGRT\)_[A-Za-z0-9_]*' | sort -u >"$known"
 for doc in $docs; do
     for name in $(grep -o '`[^`]*`' "$doc" | grep -o '\<\(fogrt\|FOGRT\)_[A-Za-z0-9_]*' | sort -u); do
         ok
