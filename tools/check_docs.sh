@@ -128,7 +128,7 @@ for doc in $docs; do
     for name in $(grep -o '`[^`]*`' "$doc" | grep -o '\<\(fogrt\|FOGRT\)_[A-Za-z0-9_]*' | sort -u); do
         ok
         case $name in *_|*_X) continue ;; esac     # a prefix or a pattern (`fogrt_scene_get_X`), not a name
-        grep -qx "$name" "$known" || fail "$doc names \`$name\`, which fogrt.h and fogrt_load.h do not have"
+        grep -qx "$name" "$known" || fail "$doc names \`$name\`, which neither the headers nor the programs in the tree have"
     done
     # repository paths in backquotes or links: examples/..., tests/..., docs/..., tools/..., bench/..., mk/...
     for path in $(grep -o '[`(]\(examples\|tests\|docs\|tools\|bench\|mk\|\.ci\)/[A-Za-z0-9_./-]*[`)]' "$doc" | tr -d '`()' | sort -u); do
