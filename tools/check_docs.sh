@@ -25,7 +25,10 @@ cd "$(dirname "$0")/.." || exit 2
 rm -rf "$out" && mkdir -p "$out" || exit 2
 checks=0
 failed=0
-fail() { echo "check-docs: $*"; failed=$((failed + 1)); }
+# ok starts a check (a code block, a struct, a document's names...); fail prints one line per
+# claim that does not hold and counts the check it belongs to as failed once.
+last_failed=-1
+fail() { echo "check-docs: $*"; [ "$last_failed" = "$checks" ] || { failed=$((failed + 1)); last_failed=$checks; }; }
 ok() { checks=$((checks + 1)); }
 # OpenMP as the README's command has it, when this compiler has it
 omp=-fopenmp
@@ -58,7 +61,6 @@ for b in $blocks; do
         fi
         # the files the program says it writes ("out.png" in a string) are there, non-empty
         for f in $(grep -o '"[A-Za-z0-9_]*\.\(png\|pfm\|ppm\)"' "$b" | tr -d '"' | sort -u); do
-            ok
             [ -s "$d/$f" ] || fail "README.md's C block $name writes no $f"
         done
     else
@@ -112,7 +114,6 @@ for pair in fogrt_scene_desc:fogrt_scene_desc fogrt_allocator:fogrt_scene_desc f
     ok
     [ -s "$out/section.md" ] || { fail "README.md has no section \"#### \`$sec\`\" documenting $s's fields"; continue; }
     for f in $list; do
-        ok
         grep -q "\`$f\`\|\`$f(" "$out/section.md" || fail "README.md's section on $sec does not name $s's field \`$f\`"
     done
 done
@@ -125,14 +126,14 @@ known="$out/known.txt"
   cat fogrt.h fogrt_load.h Makefile mk/*.mk
   find examples tests bench tools -type f | sed 's|.*/||; s/\.[a-z]*$//'; } | grep -o '\<\(fogrt\|FOGRT\)_[A-Za-z0-9_]*' | sort -u >"$known"
 for doc in $docs; do
+    ok
     for name in $(grep -o '`[^`]*`' "$doc" | grep -o '\<\(fogrt\|FOGRT\)_[A-Za-z0-9_]*' | sort -u); do
-        ok
         case $name in *_|*_X) continue ;; esac     # a prefix or a pattern (`fogrt_scene_get_X`), not a name
         grep -qx "$name" "$known" || fail "$doc names \`$name\`, which neither the headers nor the programs in the tree have"
     done
     # repository paths in backquotes or links: examples/..., tests/..., docs/..., tools/..., bench/..., mk/...
+    ok
     for path in $(grep -o '[`(]\(examples\|tests\|docs\|tools\|bench\|mk\|\.ci\)/[A-Za-z0-9_./-]*[`)]' "$doc" | tr -d '`()' | sort -u); do
-        ok
         case $path in *'*'*|*/) continue ;; esac
         [ -e "$path" ] || [ -e "${path%/}" ] || fail "$doc names $path, which is not in the tree"
     done
