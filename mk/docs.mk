@@ -20,7 +20,7 @@ endif
 # --porcelain` empty (CI runs it; about a minute on two cores). make figures writes only under
 # $(BUILD) (make figures-docs, run on purpose, rewrites docs/figures/).
 .PHONY: check-regenerate
-check-regenerate:
+check-regenerate: | $(BUILD)
 	@command -v git >/dev/null && git rev-parse --is-inside-work-tree >/dev/null 2>&1 || \
 	  { echo "check-regenerate: not a git checkout: nothing to compare with"; exit 2; }
 	@[ -z "$$(git status --porcelain)" ] || \
