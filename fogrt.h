@@ -917,7 +917,7 @@ typedef struct fogrt_image {
     int width, height;
     double *sum;         /* 3 * width * height: sum of sample radiance (RGB) */
     double *sum_sq;      /* width * height: sum of squared sample luminance */
-    uint32_t *count;     /* width * height */
+    uint32_t *count;     /* width * height; at most 2^32 - 1 (fogrt_render refuses a call that would pass it) */
     double *stream_sum;      /* FOGRT_IMAGE_STREAMS * width * height: per pixel, each stream's luminance sum */
     uint32_t *stream_count;  /* FOGRT_IMAGE_STREAMS * width * height: per pixel, each stream's samples */
     uint64_t rejected;   /* non-finite samples seen and dropped */
@@ -1145,6 +1145,8 @@ FOGRT__PRIVATE fogrt_result fogrt__beyond_medium(const fogrt_scene *s, const fog
 FOGRT__PRIVATE fogrt_result fogrt__beyond_build(const fogrt_scene *s, const fogrt_build_desc *d);
 FOGRT__PRIVATE fogrt_result fogrt__beyond_render(const fogrt_scene *s, const fogrt_render_desc *d);
 FOGRT__PRIVATE fogrt_result fogrt__beyond_image(const fogrt_scene *s, const fogrt_render_desc *d, const fogrt_image *img);
+FOGRT__PRIVATE fogrt_result fogrt__check_count_room(const fogrt_scene *s, const fogrt_render_desc *d,
+                                                    const fogrt_image *img, int spp);
 /* The seams: what Part I calls of Part II (numbered as in Part I's opening comment). */
 struct fogrt__settings;
 struct fogrt__job;
@@ -3598,6 +3600,7 @@ FOGRT__PRIVATE fogrt_result fogrt__check_image(const fogrt_scene *s, const fogrt
                            "render: image size does not match render desc width/height");
     if (spp < 0)
         return fogrt__fail(s, FOGRT_RESULT_INVALID_ARGUMENT, "render: samples_per_pixel < 0");
+    FOGRT__PASS(fogrt__check_count_room(s, d, img, spp));
     return fogrt__beyond_image(s, d, img);
 }
 
@@ -8401,8 +8404,9 @@ FOGRT__PRIVATE void fogrt__appendix_scene_free(fogrt_scene *s) {
    What every build has besides the method itself, FOGRT_MINIMAL too: the full build's preset,
    result names, the image's storage, the scene's getters, the public building blocks of an
    integrator, 8-bit output, and the checks of what a build left out. None of it is the
-   method, and Part I calls only two of these functions (a primitive's material, and the
-   preset a NULL desc means); they stand here so that Part I reads as the method alone.
+   method, and Part I calls few of these functions (a primitive's material, the preset a NULL
+   desc means, and the fogrt__beyond_* checks); they stand here so that Part I reads as the
+   method alone.
    ========================================================================================== */
 /* The full build's preset, the names of result codes, and the image's storage. */
 /* Part II's defaults: lamps in fog (B) on, as far as the build has them. */
@@ -8659,6 +8663,23 @@ FOGRT__PUBLIC fogrt_result fogrt_write_ppm(const char *path, int width, int heig
    naming the macro. Part I runs these checks on every desc it takes; in a full build they
    pass everything but the scene's media inside shapes (H), checked before a build.
    ------------------------------------------------------------------------------------------ */
+/* A pixel counts its samples in 32 bits: a render that would take one past 2^32 - 1 is
+   refused before it starts (the count would wrap and the mean jump by orders of magnitude).
+   With rates a pixel takes at most spp x rate + 1 samples in the call. */
+FOGRT__PRIVATE fogrt_result fogrt__check_count_room(const fogrt_scene *s, const fogrt_render_desc *d,
+                                                    const fogrt_image *img, int spp) {
+    size_t n = (size_t)img->width * (size_t)img->height;
+    for (size_t i = 0; i < n; ++i) {
+        double rate = d->sample_rate ? (double)d->sample_rate[i] : 0.0;
+        double most = d->sample_rate ? ceil((double)spp * rate) + 1.0 : (double)spp;
+        if ((double)img->count[i] + most > 4294967295.0)
+            return fogrt__fail(s, FOGRT_RESULT_TOO_LARGE,
+                               "render: samples_per_pixel more would take a pixel's sample count "
+                               "past 2^32 - 1, the most it counts (render into a new or cleared "
+                               "image)");
+    }
+    return FOGRT_RESULT_OK;
+}
 FOGRT__PRIVATE fogrt_result fogrt__beyond_material(const fogrt_scene *s, const fogrt_material_desc *m) {
 #ifdef FOGRT_NO_GLASS
     FOGRT__REFUSE_IF(m->type == FOGRT_BSDF_REFRACTION || m->type == FOGRT_BSDF_GLASS, UNSUPPORTED,

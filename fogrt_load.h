@@ -1563,6 +1563,24 @@ FOGRT__LD void fogrt__ld_material_name(const fogrt__ld *L, int32_t material, cha
     else snprintf(out, size, "%s", material < 0 ? "the default material" : "a material without id");
 }
 
+/* A reference that resolves to nothing (or to the wrong kind of element): one warning at the
+   referring element's line naming the attribute's value, the element that holds it, and what
+   fogrt does instead, e.g. `<instance_geometry> url "#box" in node "n": not found: skipped`.
+   The holder is the element's <node> when it has one, else the element itself. */
+FOGRT__LD void fogrt__ld_warn_unresolved(fogrt__ld *L, int32_t e, const char *attr, const char *instead) {
+    uint32_t vlen = 0, hlen = 0;
+    const char *value = fogrt__ld_attr(L, e, attr, &vlen);
+    int32_t holder = e;
+    const char *hname;
+    while (holder >= 0 && !fogrt__ld_is(L, holder, "node") && !fogrt__ld_attr(L, holder, "id", &hlen)) holder = L->el[holder].parent;
+    if (holder < 0) holder = e;
+    hname = fogrt__ld_attr(L, holder, "id", &hlen);
+    if (!hname) hname = fogrt__ld_attr(L, holder, "name", &hlen);
+    fogrt__ld_warn(L, L->el[e].line, "<%.*s> %s \"%.*s\" in <%.*s> \"%.*s\": not found: %s",
+                   FOGRT__LD_CLIP(L->el[e].name_len), L->el[e].name, attr, FOGRT__LD_CLIP(value ? vlen : 0), value ? value : "",
+                   FOGRT__LD_CLIP(L->el[holder].name_len), L->el[holder].name, FOGRT__LD_CLIP(hname ? hlen : 0), hname ? hname : "", instead);
+}
+
 /* Local material index for a <material> element (-1: the default grey), cached. */
 FOGRT__LD fogrt_result fogrt__ld_material(fogrt__ld *L, int32_t material, uint32_t *out) {
     uint32_t i;
@@ -1573,7 +1591,13 @@ FOGRT__LD fogrt_result fogrt__ld_material(fogrt__ld *L, int32_t material, uint32
     } else {
         int32_t effect = fogrt__ld_ref(L, fogrt__ld_child(L, material, "instance_effect"), "url");
         if (effect < 0) {
-            fogrt__ld_warn(L, L->el[material].line, "material has no resolvable <instance_effect>: grey 0.5");
+            int32_t ie = fogrt__ld_child(L, material, "instance_effect");
+            if (ie >= 0) fogrt__ld_warn_unresolved(L, ie, "url", "grey 0.5");
+            else {
+                char name[64];
+                fogrt__ld_material_name(L, material, name, sizeof name);
+                fogrt__ld_warn(L, L->el[material].line, "%s has no <instance_effect>: grey 0.5", name);
+            }
             m = fogrt__ld_diffuse(0.5f, 0.5f, 0.5f);
         } else {
             FOGRT__LD_TRY(fogrt__ld_effect(L, effect, &m));
@@ -1610,7 +1634,7 @@ FOGRT__LD fogrt_result fogrt__ld_bound_material(fogrt__ld *L, int32_t inst, int3
     if (im >= 0) {
         target = fogrt__ld_ref(L, im, "target");
         if (target < 0 || !fogrt__ld_is(L, target, "material")) {
-            fogrt__ld_warn(L, L->el[im].line, "instance_material target not found: grey 0.5");
+            fogrt__ld_warn_unresolved(L, im, "target", "grey 0.5");
             target = -1;
         }
     }
@@ -1904,7 +1928,7 @@ FOGRT__LD fogrt_result fogrt__ld_sphere_instance(fogrt__ld *L, int32_t geom, int
 FOGRT__LD fogrt_result fogrt__ld_geometry(fogrt__ld *L, int32_t inst, const double M[16], int node_line) {
     int32_t geom = fogrt__ld_ref(L, inst, "url"), mesh, rad;
     if (geom < 0 || !fogrt__ld_is(L, geom, "geometry")) {
-        fogrt__ld_warn(L, L->el[inst].line, "instance_geometry url not found: skipped");
+        fogrt__ld_warn_unresolved(L, inst, "url", "skipped");
         return FOGRT_RESULT_OK;
     }
     mesh = fogrt__ld_child(L, geom, "mesh");
@@ -1986,7 +2010,7 @@ FOGRT__LD fogrt_result fogrt__ld_light(fogrt__ld *L, int32_t inst, const double 
     fogrt_light_desc d;
     double o[4], dir[3];
     if (light < 0 || !fogrt__ld_is(L, light, "light")) {
-        fogrt__ld_warn(L, L->el[inst].line, "instance_light url not found: skipped");
+        fogrt__ld_warn_unresolved(L, inst, "url", "skipped");
         return FOGRT_RESULT_OK;
     }
     type = fogrt__ld_light_type(L, light);
@@ -2023,7 +2047,7 @@ FOGRT__LD fogrt_result fogrt__ld_camera(fogrt__ld *L, int32_t inst, const double
         return FOGRT_RESULT_OK;
     }
     if (cam < 0 || !fogrt__ld_is(L, cam, "camera")) {
-        fogrt__ld_warn(L, L->el[inst].line, "instance_camera url not found: skipped");
+        fogrt__ld_warn_unresolved(L, inst, "url", "skipped");
         return FOGRT_RESULT_OK;
     }
     persp = fogrt__ld_path(L, cam, "optics/technique_common/perspective");

@@ -51,6 +51,9 @@
 
 /* The program's name in every message ("fogrt" or "preview"). */
 static const char *cli_prog = "fogrt";
+/* Set by cli_std_streams when the program started with fd 1 closed: output meant for stdout
+   (--print-camera, --trace) would go to /dev/null, so the program says so and fails instead. */
+static int cli_stdout_closed = 0;
 
 /* Threads: at most 4 per processor, and never more than this (OMP_NUM_THREADS included):
    the library's own cap when it has one. */
@@ -76,7 +79,9 @@ CLI_FN void cli_std_streams(void)
     int fd;
     for (fd = 0; fd <= 2; ++fd) {
         if (fcntl(fd, F_GETFD) == -1 && errno == EBADF) {
-            int k = open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
+            int k;
+            if (fd == 1) cli_stdout_closed = 1;
+            k = open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
             if (k >= 0 && k != fd) { dup2(k, fd); close(k); }
         }
     }
@@ -155,18 +160,21 @@ CLI_FN int cli_distance(const char *a, const char *b)
     return d[n][m];
 }
 /* The unknown flag's message, with the nearest known flag when one is near: a third of its
-   letters wrong at most, or the only flag it starts. known ends with NULL. */
+   letters wrong at most, or the only flag it starts. Letters, not dashes, are compared (the
+   dashes are the same in most flags, so "-x" would otherwise be one edit from "-r"), and a
+   suggestion keeps at least one of the flag's letters. known ends with NULL. */
+CLI_FN const char *cli_flag_letters(const char *f) { while (*f == '-') ++f; return f; }
 CLI_FN int cli_unknown_flag(const char *flag, const char *const *known)
 {
     const char *best = NULL, *prefix = NULL;
     int best_d = 99, prefixes = 0, k;
-    size_t n = strlen(flag);
+    size_t n = strlen(flag), letters = strlen(cli_flag_letters(flag));
     for (k = 0; known[k]; ++k) {
-        int d = cli_distance(flag, known[k]);
+        int d = cli_distance(cli_flag_letters(flag), cli_flag_letters(known[k]));
         if (d < best_d) { best_d = d; best = known[k]; }
         if (n >= 4 && strncmp(known[k], flag, n) == 0) { prefix = known[k]; prefixes++; }
     }
-    if (best && best_d <= (int)(strlen(best) + 2) / 3 && best_d < (int)n)
+    if (best && best_d <= (int)(strlen(cli_flag_letters(best)) + 2) / 3 && best_d < (int)letters)
         return cli_bad_flag(flag, "unknown flag: did you mean %s?", best);
     if (prefixes == 1) return cli_bad_flag(flag, "unknown flag: did you mean %s?", prefix);
     return cli_bad_flag(flag, "unknown flag");

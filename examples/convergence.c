@@ -273,6 +273,17 @@ static void names_from_configs(const config *c, int nc, char names[][64])
     for (i = 0; i < nc; ++i) snprintf(names[i], 64, "%s", c[i].name);
 }
 
+/* Closes a file this program wrote: a write that failed (a full disk) is one message and -1,
+   never "wrote". */
+static int close_written(FILE *f, const char *path)
+{
+    int failed = ferror(f) != 0;
+    if (fclose(f) != 0) failed = 1;
+    if (failed) { fprintf(stderr, "convergence: write failed: %s: %s\n", path, strerror(errno)); return -1; }
+    printf("wrote %s\n", path);
+    return 0;
+}
+
 static int write_csv(const char *out, const char *name, int w, int h, const char (*names)[64], const ladder *lad, int nc)
 {
     char path[1024];
@@ -287,9 +298,7 @@ static int write_csv(const char *out, const char *name, int w, int h, const char
                     lad[i].wall[k], lad[i].meas[k], lad[i].est[k],
                     lad[i].meas[k] > 0.0 ? 1.0 / (lad[i].meas[k] * lad[i].cpu[k]) : (double)NAN, lad[i].worst[k],
                     lad[i].worst_x[k], lad[i].worst_y[k]);
-    fclose(f);
-    printf("wrote %s\n", path);
-    return 0;
+    return close_written(f, path);
 }
 
 /* Reads a CSV write_csv wrote back into names, lad and nc (the rows of one configuration
@@ -420,9 +429,7 @@ static int write_svg(const char *out, const char *name, int w, int h, const char
     snprintf(path, sizeof path, "%s/%s.svg", out, name);
     if (!(f = fopen(path, "w"))) { fprintf(stderr, "convergence: cannot write %s: %s\n", path, strerror(errno)); return -1; }
     svgplot_write(f, &d, s, anchor >= 0 ? nc + 1 : nc);
-    fclose(f);
-    printf("wrote %s\n", path);
-    return 0;
+    return close_written(f, path);
 }
 
 static const char *base_name(const char *path, char *buf, size_t size)
@@ -448,7 +455,7 @@ static int usage(const char *msg)
 int main(int argc, char **argv)
 {
     const char *scene_arg = "default", *ref_arg = NULL, *out = "build/convergence";
-    int w = 160, h = 120, only_ref = 0, i, nc, rw = 0, rh = 0;
+    int w = 160, h = 120, only_ref = 0, i, nc, rw = 0, rh = 0, status;
     double budget = 15.0, ref_budget = 60.0;
     char name[128], ref_path[1024], var_path[1024], line[160];
     config cfg[8];
@@ -538,8 +545,10 @@ int main(int argc, char **argv)
     }
 
     names_from_configs(cfg, nc, names);
-    if (write_csv(out, name, w, h, (const char(*)[64])names, lad, nc) != 0 ||
-        write_svg(out, name, w, h, (const char(*)[64])names, lad, nc) != 0) { free(ref); free(ref_var); fogrt_scene_destroy(scene); return 1; }
+    /* the plot is written even when the data file cannot be (and the run then exits 1) */
+    status = write_csv(out, name, w, h, (const char(*)[64])names, lad, nc) != 0;
+    status |= write_svg(out, name, w, h, (const char(*)[64])names, lad, nc) != 0;
+    if (status) { free(ref); free(ref_var); fogrt_scene_destroy(scene); return 1; }
     free(ref); free(ref_var);
     fogrt_scene_destroy(scene);
     return 0;

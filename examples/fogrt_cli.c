@@ -234,7 +234,9 @@ static void usage(FILE *f)
         "Error against time (the progress line and the summary show the same numbers):\n"
         "  --log FILE.csv   append one row per progressive batch to a fogrt log (default none):\n"
         "                   a new file is created at the start with the header row; an existing\n"
-        "                   file must be a fogrt log (that header its first line). Columns:\n"
+        "                   file must be a fogrt log (that header its first line). A log that\n"
+        "                   cannot be written is a warning: the image is still written, exit 1.\n"
+        "                   Columns:\n"
         "                     seconds       render time so far\n"
         "                     spp           mean samples per pixel so far\n"
         "                     samples_per_second\n"
@@ -1255,7 +1257,7 @@ static void take_measurement(render_state *p, const fogrt_image *img, const char
         }
         fprintf(f, "%s\n", event);
         if (fflush(f) != 0 || ferror(f)) {
-            fprintf(stderr, "fogrt: --log %s: write failed: %s\n", p->log_path, strerror(errno));
+            fprintf(stderr, "fogrt: warning: --log %s: write failed: %s: rendering on without the log (exit status 1)\n", p->log_path, strerror(errno));
             p->log_failed = true;
         }
     }
@@ -1477,23 +1479,25 @@ static int check_scene_kind(const char *path)
 }
 
 /* --log: a new file gets the header row at once; an existing one must be a fogrt log (its first
-   line that header), else appending would damage a file that is something else. NULL with
-   *status set (2 refused, 1 cannot write) after one message. */
+   line that header), else appending would damage a file that is something else. A character
+   device (/dev/null, a terminal) gets the header like a new file. NULL with *status set after
+   one message: 2 refused (the run stops), 1 cannot be written (the caller renders on: the
+   image is what the run is for, the log a side file). */
 static FILE *open_log(const char *path, int *status)
 {
     struct stat st;
     FILE *f;
     bool fresh = true;
     if (stat(path, &st) == 0) {
-        if (!S_ISREG(st.st_mode)) {
+        if (!S_ISREG(st.st_mode) && !S_ISCHR(st.st_mode)) {
             fprintf(stderr, "fogrt: --log %s: is %s, not a regular file\n", path, cli_file_kind(st.st_mode));
             *status = 2; return NULL;
         }
-        if (st.st_size > 0) {
+        if (S_ISREG(st.st_mode) && st.st_size > 0) {
             char first[256];
             size_t n;
             f = fopen(path, "rb");
-            if (!f) { fprintf(stderr, "fogrt: --log %s: cannot read: %s\n", path, strerror(errno)); *status = 1; return NULL; }
+            if (!f) { fprintf(stderr, "fogrt: warning: --log %s: cannot read: %s: rendering without the log (exit status 1)\n", path, strerror(errno)); *status = 1; return NULL; }
             n = fread(first, 1, strlen(log_header), f);
             fclose(f);
             if (n != strlen(log_header) || memcmp(first, log_header, n) != 0) {
@@ -1505,9 +1509,9 @@ static FILE *open_log(const char *path, int *status)
         }
     }
     f = fopen(path, "a");
-    if (!f) { fprintf(stderr, "fogrt: --log %s: cannot write: %s\n", path, strerror(errno)); *status = 1; return NULL; }
+    if (!f) { fprintf(stderr, "fogrt: warning: --log %s: cannot write: %s: rendering without the log (exit status 1)\n", path, strerror(errno)); *status = 1; return NULL; }
     if (fresh && (fputs(log_header, f) < 0 || fflush(f) != 0)) {
-        fprintf(stderr, "fogrt: --log %s: write failed: %s\n", path, strerror(errno));
+        fprintf(stderr, "fogrt: warning: --log %s: write failed: %s: rendering without the log (exit status 1)\n", path, strerror(errno));
         fclose(f);
         *status = 1; return NULL;
     }
@@ -1524,6 +1528,22 @@ static void print_camera(const fogrt_camera_desc *c, int W, int H)
            (double)c->look_at.x, (double)c->look_at.y, (double)c->look_at.z,
            (double)c->up.x, (double)c->up.y, (double)c->up.z,
            horizontal_fov(c, W, H), vertical_fov(c, W, H), W, H, (double)c->lens_radius, (double)c->focal_distance);
+}
+
+/* The output of --print-camera and --trace is all the run makes: lost, it is a failure (exit
+   1 and one line), whether stdout was closed (cli_std_streams put /dev/null there) or a write
+   to it failed. */
+static int stdout_status(const char *flag, int status)
+{
+    if (cli_stdout_closed) {
+        fprintf(stderr, "fogrt: %s: stdout is closed: nothing was printed\n", flag);
+        return 1;
+    }
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "fogrt: %s: cannot write to stdout: %s\n", flag, strerror(errno));
+        return 1;
+    }
+    return status;
 }
 
 /* The program; main only makes the process fit to run it first (its own frame is small, so
@@ -1616,7 +1636,9 @@ static int run(int argc, char **argv)
         if (o.reference && !(ref = read_reference(o.reference, o.width, o.height))) return 2;
         if (o.log_path) {           /* created (or checked) before anything is loaded or rendered */
             ps.log = open_log(o.log_path, &status);
-            if (!ps.log) { free(ref); return status; }
+            if (!ps.log && status != 1) { free(ref); return status; }
+            ps.log_failed = !ps.log;
+            status = 0;
             ps.log_path = o.log_path;
         }
         if (!o.output_set && !o.quiet)
@@ -1715,7 +1737,7 @@ static int run(int argc, char **argv)
         fail_line(&logbuf, where, r);
         status = 2; goto done;
     }
-    if (o.print_camera) { print_camera(&cam, o.width, o.height); status = 0; goto done; }
+    if (o.print_camera) { print_camera(&cam, o.width, o.height); status = stdout_status("--print-camera", 0); goto done; }
 
     /* Build */
     bd = fogrt_build_defaults();
@@ -1760,6 +1782,7 @@ static int run(int argc, char **argv)
     if (o.trace) {
         fill_render_desc(&o, threads, &rd);
         status = cli_trace_path(scene, &rd, o.width, o.height, o.trace_x, o.trace_y, (uint32_t)o.trace_sample, stdout);
+        status = stdout_status("--trace", status);
         goto done;
     }
 
@@ -1861,8 +1884,10 @@ static int run(int argc, char **argv)
                 elapsed > 0 ? (double)ee.samples / elapsed * 1e-6 : 0.0, err_a, err_b,
                 (unsigned long long)img.rejected, fog_text, fogrt_render_samplers(scene, &rd, samplers, sizeof samplers));
     }
-    if (ps.log_failed) status = 1;
-    else if (cli_interrupted) status = 130;
+    if (ps.log_failed) {
+        fprintf(stderr, "fogrt: --log %s: not written in full (the warning above says why): exit status 1, the image is written\n", o.log_path);
+        status = 1;
+    } else if (cli_interrupted) status = 130;
 
 done:
     if (ps.log && fclose(ps.log) != 0 && status == 0) {

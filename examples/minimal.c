@@ -1,9 +1,10 @@
 /* minimal.c - the complete program from the README: a scene built in code, rendered
    progressively until its own error estimate drops below 15% (at most 1024 samples per
-   pixel), written to out.pfm. Every call's result is checked. Compiles as C99 and as C++. */
+   pixel), written to out.png. Every call's result is checked. Compiles as C99 and as C++. */
 #define FOGRT_IMPLEMENTATION
 #include "fogrt.h"
-#include "stb_write.h"   /* stb_image_write (Debian's libstb-dev) for the PNG; fogrt itself needs libc only */
+#define STB_IMAGE_WRITE_IMPLEMENTATION   /* stb_image_write for the PNG: Debian's libstb-dev */
+#include <stb/stb_image_write.h>    /* (fogrt itself needs only libc and libm) */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -1,7 +1,7 @@
 # mk/compile.mk - `make check-compile`: fogrt.h compiles warning-free (-Werror) with gcc and
 # clang (if installed) as C99, as C++11, without OpenMP, as FOGRT_STATIC, and with every
 # combination of the FOGRT_NO_* strip macros. See tests/compile_check.sh.
-# Also builds the README's examples/minimal.c as C++ ($(BUILD)/minimal_cxx; make test builds it as C).
+# Also builds the README's examples/minimal.c as C++ ($(BUILD)/minimal_cxx; make test's check-docs builds it as C).
 check-compile: $(BUILD)/minimal_cxx
 	@sh tests/compile_check.sh
 

@@ -14,9 +14,13 @@ TUTORIAL_SRCS := $(sort $(wildcard examples/tutorial/[0-9][0-9]_*.c))
 TUTORIAL_BINS := $(patsubst examples/tutorial/%.c,$(BUILD)/tutorial/%,$(TUTORIAL_SRCS))
 TUTORIAL_OUT  ?= docs/tutorial
 
-$(BUILD)/tutorial/%: examples/tutorial/%.c examples/tutorial/tutorial.h examples/plotfont.h fogrt.h | deps-stb $(BUILD)
+# Each example defines FOGRT_IMPLEMENTATION, so that it builds alone; here it is compiled with
+# fogrt.h's implementation guard (FOGRT_IMPLEMENTATION_INCLUDED) already set, which leaves the
+# implementation out, and linked with the one build of it the tests share ($(FOGRT_IMPL_OBJ)):
+# the examples use the public API alone.
+$(BUILD)/tutorial/%: examples/tutorial/%.c examples/tutorial/tutorial.h examples/plotfont.h fogrt.h $(FOGRT_IMPL_OBJ) | deps-stb $(BUILD)
 	@mkdir -p $(BUILD)/tutorial
-	$(CC) $(ALL_CFLAGS) -Iexamples/tutorial -o $@ $< $(LDLIBS)
+	$(QCC)$(CC) $(ALL_CFLAGS) -DFOGRT_IMPLEMENTATION_INCLUDED -Iexamples/tutorial -o $@ $< $(FOGRT_IMPL_OBJ) $(LDLIBS)
 
 tutorial-build: $(TUTORIAL_BINS)
 

@@ -225,6 +225,30 @@ static void test_cancel_flag_stops_a_render(void)
     fogrt_scene_destroy(s);
 }
 
+/* A pixel counts its samples in 32 bits: a render that would take a count past 2^32 - 1 is
+   refused (TOO_LARGE, the image untouched), one that reaches it exactly is not. */
+static void test_sample_count_never_wraps(void)
+{
+    fogrt_scene *s = NULL;
+    fogrt_image img;
+    fogrt_render_stats st;
+    fogrt_render_desc rd = fogrt_render_defaults();
+    CHECK_OK(fogrt_scene_create(NULL, &s));
+    CHECK_OK(fogrt_scene_add_default(s));
+    CHECK_OK(fogrt_scene_build(s, NULL));
+    CHECK_OK(fogrt_image_alloc(&img, 4, 3, NULL));
+    img.count[5] = 0xFFFFFFFFu - 3u;
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_TOO_LARGE, fogrt_render(s, &rd, &img, 4, &st));
+    TEST_ASSERT_EQUAL_UINT32(0xFFFFFFFFu - 3u, img.count[5]);
+    TEST_ASSERT_EQUAL_UINT32(0, img.count[0]);
+    CHECK_OK(fogrt_render(s, &rd, &img, 3, &st));
+    TEST_ASSERT_EQUAL_UINT32(0xFFFFFFFFu, img.count[5]);
+    TEST_ASSERT_EQUAL_INT(FOGRT_RESULT_TOO_LARGE, fogrt_render(s, &rd, &img, 1, &st));
+    TEST_ASSERT_EQUAL_UINT32(0xFFFFFFFFu, img.count[5]);
+    fogrt_image_free(&img);
+    fogrt_scene_destroy(s);
+}
+
 /* A fan of slivers around one vertex (every box overlaps every other there: a ray visits
    thousands of nodes) builds without the roulette's pilot, whose fixed number of paths would
    take minutes in it; an ordinary scene keeps it. */
@@ -282,6 +306,7 @@ int main(void)
     RUN_TEST(test_absurd_thread_count_is_cut);
     RUN_TEST(test_rates_do_not_depend_on_batches);
     RUN_TEST(test_cancel_flag_stops_a_render);
+    RUN_TEST(test_sample_count_never_wraps);
     RUN_TEST(test_pilot_skipped_in_sliver_fans);
     return UNITY_END();
 }

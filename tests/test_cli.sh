@@ -55,6 +55,9 @@ out="$tmp/never.png"
 # ---- flags: values out of range, unknown flags, missing values (exit 2, the flag named) ----
 expect 2 "--bogus"      "unknown flag"            -- --bogus -f "$out";                one_line_no_image "unknown flag"
 expect 2 "-x"           "unknown short flag"      -- -x -f "$out";                     one_line_no_image "unknown short flag"
+check "! grep -q 'did you mean' '$tmp/err'" "unknown short flag: -x gets a suggestion that shares no letter with it: $(cat "$tmp/err")"
+expect 2 "did you mean --density?" "misspelt flag: a suggestion" -- --densty 0.5 -f "$out"
+expect 2 "did you mean -s?" "a short flag with two dashes: a suggestion" -- --s 4 -f "$out"
 expect 2 "--density"    "negative density"        -- --density -0.5 -f "$out";         one_line_no_image "negative density"
 expect 2 "--density"    "non-numeric density"     -- --density fog -f "$out"
 expect 2 "--g"          "|g| > 1 (--g)"           -- --g 1.5 -f "$out";                one_line_no_image "|g| > 1"
@@ -238,6 +241,21 @@ expect 1 "full.png" "write_full_disk: PNG to /dev/full" -- -s 1 -r 16 12 -f "$tm
 check "grep -q 'No space left' '$tmp/err' && ! grep -q 'wrote' '$tmp/err'" "write_full_disk: no ENOSPC message, or it claims success"
 ln -s /dev/full "$tmp/full.pfm"
 expect 1 "full.pfm" "write_full_disk: PFM to /dev/full" -- --quiet -s 1 -r 16 12 -f "$tmp/full.pfm"
+# -- side_file_lost: a --log that cannot be written (a full disk, a missing directory) costs
+#    the log, not the image: a warning naming it, the image written, exit 1 --
+ln -s /dev/full "$tmp/full.csv"
+expect 1 "full.csv: write failed: No space left" "side_file_lost: --log to /dev/full" -- -s 2 -r 16 12 -f "$tmp/logfull.pfm" --log "$tmp/full.csv"
+check "[ -s '$tmp/logfull.pfm' ] && grep -q 'wrote' '$tmp/err'" "side_file_lost: --log to /dev/full lost the image: $(cat "$tmp/err")"
+expect 1 "no/dir/x.csv: cannot write" "side_file_lost: --log in a missing directory" -- -s 2 -r 16 12 -f "$tmp/logdir.pfm" --log "$tmp/no/dir/x.csv"
+check "[ -s '$tmp/logdir.pfm' ]" "side_file_lost: --log in a missing directory lost the image"
+expect 0 "" "side_file_lost: --log /dev/null is a log nobody keeps" -- --quiet -s 2 -r 16 12 -f "$tmp/lognull.pfm" --log /dev/null
+# --print-camera and --trace print all the run makes: stdout closed or full is a failure
+"$fogrt" --print-camera -r 32 24 >&- 2>"$tmp/err"; st=$?
+check "[ $st -eq 1 ] && grep -q 'print-camera: stdout is closed' '$tmp/err'" "side_file_lost: --print-camera with stdout closed: exit $st: $(cat "$tmp/err")"
+"$fogrt" --print-camera -r 32 24 >/dev/full 2>"$tmp/err"; st=$?
+check "[ $st -eq 1 ] && grep -q 'print-camera: cannot write to stdout' '$tmp/err'" "side_file_lost: --print-camera to /dev/full: exit $st: $(cat "$tmp/err")"
+"$fogrt" --trace 2,2 -r 32 24 >/dev/full 2>"$tmp/err"; st=$?
+check "[ $st -eq 1 ] && grep -q 'trace: cannot write to stdout' '$tmp/err'" "side_file_lost: --trace to /dev/full: exit $st: $(cat "$tmp/err")"
 # -- write_atomic: a failed write keeps the old image; a good one replaces it by rename --
 "$fogrt" --quiet -s 1 -r 32 24 -f "$tmp/keep.pfm" "$lit"
 cp "$tmp/keep.pfm" "$tmp/keep.orig"
@@ -877,6 +895,12 @@ printf '\001\002\033[31m\377\376\300 1 2\n' >"$tmp/bytes.cam"
 expect 2 "bytes.cam" "wrong_kind: -c with raw bytes" -- -f "$out" -c "$tmp/bytes.cam"
 check "! LC_ALL=C grep -q '[^[:print:]]' '$tmp/err'" "wrong_kind: -c printed raw bytes: $(od -c "$tmp/err" | head -3)"
 
+# -- unresolved_names: a reference the loader cannot resolve is a warning naming the file, the
+#    line, the name and the node holding it --
+sed 's|target="#m1"|target="#nosuch"|; s|<instance_geometry url="#tri"><bind_material><technique_common><instance_material symbol="m" target="#m2"/>|<instance_geometry url="#notri"><bind_material><technique_common><instance_material symbol="m" target="#m2"/>|' \
+  tests/data/dae_materials.dae >"$tmp/unres.dae"
+expect 0 'unres.dae:65: warning: <instance_material> target "#nosuch" in <node> "n1": not found: grey 0.5' "unresolved_names: instance_material" -- -s 1 -r 8 6 -f "$tmp/unres.pfm" "$tmp/unres.dae"
+check "grep -qF 'unres.dae:66: warning: <instance_geometry> url \"#notri\" in <node> \"n2\": not found: skipped' '$tmp/err'" "unresolved_names: instance_geometry: $(grep warning "$tmp/err")"
 # -- readme_timing: every fogrt example in the README says how long it takes --
 untimed=$(sed -n '/^## The `fogrt` command/,/^## /p' README.md | grep '^build/fogrt' | grep -v '[0-9] s\b\|[0-9] s)\|minutes\|--time [0-9]' | head -3)
 check "[ -z \"\$untimed\" ]" "readme_timing: README examples without their time: $untimed"

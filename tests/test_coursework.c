@@ -10,7 +10,11 @@
 #include <stdio.h>
 #include <string.h>
 #include "unity.h"
+/* Public API only: make test links this program with one shared build of the
+   implementation (compiled with FOGRT_TESTS_SHARED_IMPL) instead of compiling it again. */
+#ifndef FOGRT_TESTS_SHARED_IMPL
 #define FOGRT_IMPLEMENTATION
+#endif
 #include "fogrt.h"
 #include "examples/coursework/check.h"
 

@@ -22,7 +22,11 @@
    for a fog cube lit by an area light through its interface. And the refusals: a medium on
    an open mesh, media that overlap, a bounded interior, shape numbers out of range; a
    refused build leaves the scene as it was. Fixed seeds throughout. */
+/* Public API only: make test links this program with one shared build of the
+   implementation (compiled with FOGRT_TESTS_SHARED_IMPL) instead of compiling it again. */
+#ifndef FOGRT_TESTS_SHARED_IMPL
 #define FOGRT_IMPLEMENTATION
+#endif
 #include "fogrt.h"
 #include "unity.h"
 #include "test_util.h"
