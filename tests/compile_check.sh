@@ -304,7 +304,7 @@ if have "$GCC" && have nm; then
         fogrt_sample_hg2 fogrt_sample_rayleigh fogrt_sample_phase fogrt__x_check_media fogrt__media_emission \
         fogrt__media_next_event fogrt__chroma_next_event fogrt__chroma_mix fogrt__chroma_shadow
     run "nm: FOGRT_NO_SHAPES removes appendix H" appendix_nm FOGRT_NO_SHAPES \
-        fogrt_scene_set_interior fogrt_scene_set_shape_material fogrt__h_radiance fogrt__shapes_build fogrt__find_boundaries fogrt__h_shadow
+        fogrt_scene_set_interior fogrt_scene_set_shape_material fogrt__h_next_event fogrt__shapes_build fogrt__find_boundaries fogrt__h_shadow
 else
     skip "appendix nm checks: gcc or nm not installed"
 fi
