@@ -305,9 +305,9 @@ if have "$GCC" && have nm; then
         fogrt_sample_hg2 fogrt_sample_rayleigh fogrt_sample_phase fogrt__media_check fogrt__media_emission \
         fogrt__media_next_event fogrt__chroma_next_event fogrt__chroma_mix fogrt__chroma_shadow
     run "nm: FOGRT_NO_SHAPES removes appendix H" appendix_nm FOGRT_NO_SHAPES \
-        fogrt_scene_set_interior fogrt_scene_set_shape_material fogrt__h_radiance fogrt__shapes_build fogrt__find_boundaries fogrt__h_shadow
+        fogrt_scene_set_interior fogrt_scene_set_shape_material fogrt__h_next_event fogrt__shapes_build fogrt__find_boundaries fogrt__h_shadow
     run "nm: FOGRT_NO_MICROFACET removes appendix I" appendix_nm FOGRT_NO_MICROFACET \
-        fogrt__x_mf_sample fogrt__x_mf_eval fogrt__x_mf_pdf fogrt__mf_check fogrt__mf_fresnel1 fogrt__mf_lambda
+        fogrt__mf_sample fogrt__mf_eval fogrt__mf_pdf fogrt__mf_check fogrt__mf_fresnel1 fogrt__mf_lambda
 else
     skip "appendix nm checks: gcc or nm not installed"
 fi
