@@ -899,8 +899,11 @@ check "! LC_ALL=C grep -q '[^[:print:]]' '$tmp/err'" "wrong_kind: -c printed raw
 #    line, the name and the node holding it --
 sed 's|target="#m1"|target="#nosuch"|; s|<instance_geometry url="#tri"><bind_material><technique_common><instance_material symbol="m" target="#m2"/>|<instance_geometry url="#notri"><bind_material><technique_common><instance_material symbol="m" target="#m2"/>|' \
   tests/data/dae_materials.dae >"$tmp/unres.dae"
-expect 0 'unres.dae:65: warning: <instance_material> target "#nosuch" in <node> "n1": not found: grey 0.5' "unresolved_names: instance_material" -- -s 1 -r 8 6 -f "$tmp/unres.pfm" "$tmp/unres.dae"
-check "grep -qF 'unres.dae:66: warning: <instance_geometry> url \"#notri\" in <node> \"n2\": not found: skipped' '$tmp/err'" "unresolved_names: instance_geometry: $(grep warning "$tmp/err")"
+# (the lines the warnings must name: where the two broken references stand in the file)
+l_mat=$(grep -n 'target="#nosuch"' "$tmp/unres.dae" | head -1 | cut -d: -f1)
+l_geo=$(grep -n 'url="#notri"' "$tmp/unres.dae" | head -1 | cut -d: -f1)
+expect 0 "unres.dae:$l_mat: warning: <instance_material> target \"#nosuch\" in <node> \"n1\": not found: grey 0.5" "unresolved_names: instance_material" -- -s 1 -r 8 6 -f "$tmp/unres.pfm" "$tmp/unres.dae"
+check "grep -qF 'unres.dae:$l_geo: warning: <instance_geometry> url \"#notri\" in <node> \"n2\": not found: skipped' '$tmp/err'" "unresolved_names: instance_geometry: $(grep warning "$tmp/err")"
 # -- readme_timing: every fogrt example in the README says how long it takes --
 untimed=$(sed -n '/^## The `fogrt` command/,/^## /p' README.md | grep '^build/fogrt' | grep -v '[0-9] s\b\|[0-9] s)\|minutes\|--time [0-9]' | head -3)
 check "[ -z \"\$untimed\" ]" "readme_timing: README examples without their time: $untimed"
