@@ -335,6 +335,21 @@ static cw_fns w4_empty_side_fns(void)
     return f;
 }
 
+/* tests/coursework/wrong/step4_best_cost_unscaled.c */
+#define cw_split_cost w4_best_cost_unscaled_split_cost
+#define cw_best_split w4_best_cost_unscaled_best_split
+#include "tests/coursework/wrong/step4_best_cost_unscaled.c"
+#undef cw_split_cost
+#undef cw_best_split
+static cw_fns w4_best_cost_unscaled_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.split_cost = w4_best_cost_unscaled_split_cost;
+    f.best_split = w4_best_cost_unscaled_best_split;
+    return f;
+}
+
 /* examples/coursework/solutions/step5_bsdf.c */
 #define cw_sample_diffuse ref5_sample_diffuse
 #define cw_diffuse_pdf ref5_diffuse_pdf
@@ -806,6 +821,11 @@ static void test_step4_wrong_empty_side(void)
     expect_caught(4, "tests/coursework/wrong/step4_empty_side.c", w4_empty_side_fns(), "step4.edges",
                   "no plane splits them");
 }
+static void test_step4_wrong_best_cost_unscaled(void)
+{
+    expect_caught(4, "tests/coursework/wrong/step4_best_cost_unscaled.c", w4_best_cost_unscaled_fns(), "step4.sah_best_cost",
+                  "lacks the division by the parent's area");
+}
 static void test_step5_reference_passes(void) { expect_all_pass(5, ref5_fns()); }
 static void test_step5_skeleton_fails(void) { expect_skeleton_fails(5, skel5_fns()); }
 static void test_step5_wrong_missing_pdf(void)
@@ -905,6 +925,7 @@ int main(void)
     RUN_TEST(test_step4_wrong_volume_swapped);
     RUN_TEST(test_step4_wrong_sah_no_area);
     RUN_TEST(test_step4_wrong_empty_side);
+    RUN_TEST(test_step4_wrong_best_cost_unscaled);
     RUN_TEST(test_step5_reference_passes);
     RUN_TEST(test_step5_skeleton_fails);
     RUN_TEST(test_step5_wrong_missing_pdf);

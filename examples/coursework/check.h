@@ -1471,6 +1471,77 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
     cw_emit(run, heuristic == CW_SAH ? "step4.sah_choice" : "step4.volume_choice", good == sets, m, adv, png);
 }
 
+/* The cost cw_best_split returns with its plane: a builder compares it with the cost of a
+   leaf, so it must be the heuristic's value of the plane returned, on the same scale as
+   cw_split_cost, whichever plane was chosen. */
+static void cw_step4_best_cost(const cw_fns *f, cw_run *run, int heuristic)
+{
+    static cw_node nd;
+    fogrt_rng rng;
+    int s, sets = 400, judged = 0, good = 0, zero = 0, unscaled = 0, no_trav = 0, own = 0, first = -1;
+    double want = 0.0, gave = 0.0;
+    char m[500], adv[600];
+    const char *name = heuristic == CW_SAH ? "step4.sah_best_cost" : "step4.volume_best_cost";
+    cw_begin(run);
+    cw_seed(&rng, heuristic == CW_SAH ? 413 : 414);
+    for (s = 0; s < sets; ++s) {
+        int kind = s % 4, n = 2 + (int)(cw_u(&rng) * 150.0f), nl, nr;
+        cw_aabb l, r;
+        cw_split got;
+        double ref, al, ar, ap;
+        cw_make_node(&nd, &rng, kind, n);
+        cw_node_bin(&nd, 12);
+        got = f->best_split(heuristic, &nd.parent, &nd.bins);
+        if (got.axis < 0 || got.axis > 2 || got.plane < 1 || got.plane >= nd.bins.n_bins) continue;
+        cw_node_sides(&nd, got.axis, got.plane, &l, &nl, &r, &nr);
+        if (!nl || !nr) continue;               /* an invalid plane is step4.*_choice's to judge */
+        judged++;
+        ref = cw_ref_cost(heuristic, &nd.parent, &l, nl, &r, nr);
+        if (isfinite(got.cost) && fabs(got.cost - ref) <= 1e-4 * fabs(ref) + 1e-9) { good++; continue; }
+        al = cw_box_area(&l); ar = cw_box_area(&r); ap = cw_box_area(&nd.parent);
+        if (got.cost == 0.0f) zero++;
+        if (heuristic == CW_SAH) {
+            double raw = nl * al + nr * ar;
+            if (fabs(got.cost - raw) <= 1e-4 * raw || fabs(got.cost - (1.0 + raw)) <= 1e-4 * (1.0 + raw)) unscaled++;
+            else if (fabs(got.cost - raw / ap) <= 1e-4 * raw / ap) no_trav++;
+        }
+        {
+            double o = f->split_cost(heuristic, &nd.parent, &l, nl, &r, nr);
+            if (fabs(got.cost - o) <= 1e-5 * fabs(o) + 1e-12) own++;
+        }
+        if (first < 0) { first = s; want = ref; gave = got.cost; }
+    }
+    {
+        int bad = judged - good, pass = judged > 0 && bad == 0;
+        cw_fmt(m, sizeof m, "the cost returned with the plane equals the %s of that plane on %d of %d random nodes "
+               "(relative tolerance 1e-4)", heuristic == CW_SAH ? "SAH" : "volume heuristic (eq. 1)", good, judged);
+        if (pass) adv[0] = '\0';
+        else if (judged == 0)
+            cw_fmt(adv, sizeof adv, "cw_best_split returned no valid plane on any node, so its cost could not be judged: "
+                   "see %s", heuristic == CW_SAH ? "step4.sah_choice" : "step4.volume_choice");
+        else if (zero == bad)
+            cw_fmt(adv, sizeof adv, "cw_best_split returns cost 0: the cw_split it returns carries the chosen plane's cost "
+                   "(node %d: %.6g)", first, want);
+        else if (unscaled > bad / 2)
+            cw_fmt(adv, sizeof adv, "node %d: cw_best_split returned %.6g, the SAH of its plane is %.6g: the returned cost "
+                   "lacks the division by the parent's area A (and the traversal cost 1); comparing N_l A_l + N_r A_r "
+                   "picks the same plane, but the cost returned is the SAH's, 1 + (N_l A_l + N_r A_r) / A", first, gave, want);
+        else if (no_trav > bad / 2)
+            cw_fmt(adv, sizeof adv, "node %d: cw_best_split returned %.6g, the SAH of its plane is %.6g: the traversal cost "
+                   "1 is missing from the returned cost", first, gave, want);
+        else if (own > bad / 2)
+            cw_fmt(adv, sizeof adv, "node %d: cw_best_split returned %.6g, the %s of its plane is %.6g; it is what your "
+                   "cw_split_cost gives, so the cost formula is what differs (see %s)", first, gave,
+                   heuristic == CW_SAH ? "SAH" : "volume heuristic", want,
+                   heuristic == CW_SAH ? "step4.sah_cost" : "step4.volume_cost");
+        else
+            cw_fmt(adv, sizeof adv, "node %d: cw_best_split returned cost %.6g with its plane, whose %s is %.6g: return the "
+                   "cost of the plane you return (eq. 2 keeps the minimum, and the minimum's value)", first, gave,
+                   heuristic == CW_SAH ? "SAH" : "volume heuristic", want);
+        cw_emit(run, name, pass, m, adv, NULL);
+    }
+}
+
 /* Nodes where a careless choice goes wrong. */
 static void cw_step4_edges(const cw_fns *f, cw_run *run)
 {
@@ -1546,6 +1617,8 @@ static void cw_step4(const cw_fns *f, cw_run *run)
     cw_step4_cost(f, run, CW_VOLUME);
     cw_step4_choice(f, run, CW_SAH);
     cw_step4_choice(f, run, CW_VOLUME);
+    cw_step4_best_cost(f, run, CW_SAH);
+    cw_step4_best_cost(f, run, CW_VOLUME);
     cw_step4_edges(f, run);
 }
 
