@@ -639,6 +639,36 @@ static cw_fns w8_full_fns(void)
     return f;
 }
 
+/* tests/coursework/wrong/step8_no_mis.c */
+#define cw_mis_weight w8_no_mis_mis_weight
+#define cw_mis_radiance w8_no_mis_mis_radiance
+#include "tests/coursework/wrong/step8_no_mis.c"
+#undef cw_mis_weight
+#undef cw_mis_radiance
+static cw_fns w8_no_mis_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.mis_weight = w8_no_mis_mis_weight;
+    f.mis_radiance = w8_no_mis_mis_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step8_balance.c */
+#define cw_mis_weight w8_balance_mis_weight
+#define cw_mis_radiance w8_balance_mis_radiance
+#include "tests/coursework/wrong/step8_balance.c"
+#undef cw_mis_weight
+#undef cw_mis_radiance
+static cw_fns w8_balance_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.mis_weight = w8_balance_mis_weight;
+    f.mis_radiance = w8_balance_mis_radiance;
+    return f;
+}
+
 /* examples/coursework/solutions/step9_equiangular.c: fogrt's equiangular sampler, which is
    Part II's (B); the skeleton and the wrong twins below use none of Part II */
 #ifndef FOGRT_MINIMAL
@@ -878,6 +908,16 @@ static void test_step8_wrong_emission_full_weight(void)
     expect_caught(8, "tests/coursework/wrong/step8_emission_full_weight.c", w8_full_fns(), "step8.box",
                   "emission counted at full weight?");
 }
+static void test_step8_wrong_no_mis(void)
+{
+    expect_caught(8, "tests/coursework/wrong/step8_no_mis.c", w8_no_mis_fns(), "step8.noise",
+                  "Is the strategy of BSDF and phase sampling missing");
+}
+static void test_step8_wrong_balance(void)
+{
+    expect_caught(8, "tests/coursework/wrong/step8_balance.c", w8_balance_fns(), "step8.weights",
+                  "the kit asks for the power heuristic");
+}
 static void test_step9_reference_passes(void)
 {
 #ifdef FOGRT_MINIMAL
@@ -943,6 +983,8 @@ int main(void)
     RUN_TEST(test_step8_reference_passes);
     RUN_TEST(test_step8_skeleton_fails);
     RUN_TEST(test_step8_wrong_emission_full_weight);
+    RUN_TEST(test_step8_wrong_no_mis);
+    RUN_TEST(test_step8_wrong_balance);
     RUN_TEST(test_step9_reference_passes);
     RUN_TEST(test_step9_skeleton_fails);
     RUN_TEST(test_step9_wrong_no_delta);

@@ -2258,11 +2258,12 @@ enum {
     CW_SC_POINT_FOG_A,          /* a point light in fog, g = 0.6 */
     CW_SC_POINT_FOG_B,          /* a point light in fog, g = -0.3 */
     CW_SC_AREA_FLOOR,           /* a floor under a square area light */
+    CW_SC_LIGHT_WALL,           /* a floor meeting a large emitting wall: light sampling alone is noisy there */
     CW_SC_COUNT
 };
 static const char *const cw_scene_name[CW_SC_COUNT] = {
     "box", "fog", "fog_area", "furnace", "furnace", "furnace_fog", "floor", "floor_fog", "point_fog", "point_fog",
-    "area_floor"};
+    "area_floor", "light_wall"};
 
 static fogrt_vec3 cw_f3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
 static uint32_t cw__material(fogrt_scene *s, float r, float g, float b, float e)
@@ -2416,6 +2417,16 @@ static const fogrt_scene *cw_scene(int which)
         cw__quad(s, cw_f3(-5, 0, -5), cw_f3(0, 0, 10), cw_f3(10, 0, 0), cw__material(s, 0.6f, 0.6f, 0.6f, 0.0f));
         cw__quad(s, cw_f3(-0.4f, 1.0f, -0.4f), cw_f3(0.8f, 0, 0), cw_f3(0, 0, 0.8f), cw__material(s, 0.0f, 0.0f, 0.0f, 4.0f));
         break;
+    case CW_SC_LIGHT_WALL:
+        /* Floor points near the wall see it over most of their hemisphere, and a point on the
+           wall drawn by its area lands close to them with density 1/r^2 far from what the
+           cosine gives: BSDF sampling finds that light with little noise, light sampling with
+           much. The fog makes phase sampling matter the same way near the wall. */
+        cw__quad(s, cw_f3(-2, 0, -1), cw_f3(0, 0, 3), cw_f3(4, 0, 0), cw__material(s, 0.7f, 0.7f, 0.7f, 0.0f));
+        cw__quad(s, cw_f3(-2, 0, -1), cw_f3(4, 0, 0), cw_f3(0, 1.2f, 0), cw__material(s, 0.0f, 0.0f, 0.0f, 1.5f));
+        cw__medium(s, 0.3f, 0.9f, 0.2f);
+        cw__camera(s, cw_f3(0.0f, 1.6f, 1.8f), cw_f3(0.0f, 0.0f, -0.6f), 50.0f);
+        break;
     default: break;
     }
     {
@@ -2431,6 +2442,7 @@ static const fogrt_scene *cw_scene(int which)
 typedef struct cw_img {
     float rgb[3 * CW_W * CW_H];
     double lum[CW_W * CW_H], var[CW_W * CW_H];
+    double svar[CW_W * CW_H];   /* the variance of one sample's luminance (the estimator's noise) */
     double rel_err;             /* fogrt_image_error */
     uint64_t rejected;          /* non-finite samples */
     int ok;
@@ -2451,6 +2463,11 @@ static void cw_render(int scene, fogrt_render_desc desc, int spp, cw_img *out)
         for (i = 0; i < CW_W * CW_H; ++i) {
             out->lum[i] = 0.2126 * out->rgb[3 * i] + 0.7152 * out->rgb[3 * i + 1] + 0.0722 * out->rgb[3 * i + 2];
             out->var[i] = fogrt_image_pixel_variance(&img, (size_t)i);
+            if (img.count[i] > 1) {
+                double n = img.count[i], mean = (0.2126 * img.sum[3 * i] + 0.7152 * img.sum[3 * i + 1] +
+                                                 0.0722 * img.sum[3 * i + 2]) / n;
+                out->svar[i] = fmax(img.sum_sq[i] / n - mean * mean, 0.0) * n / (n - 1.0);
+            }
         }
         fogrt_image_error(&img, &e);
         out->rel_err = e.relative_error;
@@ -2605,6 +2622,9 @@ static void cw_render_picture(const cw_run *run, const char *stem, const char *t
     pf_canvas_free(&c);
 }
 
+/* The student's image of the last render check (the noise check reads it). */
+static cw_img cw_student_img;
+
 /* One render check: the student's image (desc with its radiance and user data) against
    fogrt's (ref NULL: a furnace of constant value). hint_dark / hint_bright: what a too dark
    or too bright image usually means in this step. Returns whether it passed; *cmp gets the
@@ -2613,19 +2633,18 @@ static int cw_render_check(cw_run *run, const char *name, const char *stem, cons
                            fogrt_render_desc desc, int spp, const cw_img *ref, double value,
                            const char *hint_dark, const char *hint_bright, cw_cmp *out)
 {
-    static cw_img img;
     cw_cmp c;
     char m[600], adv[900], png[256], verdict[1600];
     int pass;
     desc.seed = 0xC0DE0000ull + cw_seed_offset;
-    cw_render(scene, desc, spp, &img);
-    if (!img.ok || (ref && !ref->ok)) {
+    cw_render(scene, desc, spp, &cw_student_img);
+    if (!cw_student_img.ok || (ref && !ref->ok)) {
         cw_emit(run, name, 0, "fogrt_render failed (scene or reference)", "", NULL);
         if (out) memset(out, 0, sizeof *out);
         return 0;
     }
-    c = cw_compare(&img, ref, value, ref ? 0.0 : CW_FURNACE_TOL);
-    pass = cw_cmp_pass(&c) && img.rejected == 0;
+    c = cw_compare(&cw_student_img, ref, value, ref ? 0.0 : CW_FURNACE_TOL);
+    pass = cw_cmp_pass(&c) && cw_student_img.rejected == 0;
     if (ref)
         cw_fmt(m, sizeof m, "mean %.5g vs fogrt's %.5g (ratio %.4f, relative error of the difference %.2g%%): z = %.2f "
                "(fail if |z| > %g); worst region %s z = %.2f (fail if > %g)", c.mean_a, c.mean_b,
@@ -2635,9 +2654,9 @@ static int cw_render_check(cw_run *run, const char *name, const char *stem, cons
         cw_fmt(m, sizeof m, "mean %.5g, exact %.5g (standard error %.2g%% + tolerance %.2g%%): z = %.2f (fail if |z| > %g); "
                "worst region %s z = %.2f (fail if > %g)", c.mean_a, value, 100.0 * sqrt(fmax(c.se_rel * c.se_rel -
                CW_FURNACE_TOL * CW_FURNACE_TOL, 0.0)), 100.0 * CW_FURNACE_TOL, c.z, CW_Z_IMAGE, cw_region_name(c.reg), c.zreg, CW_Z_REGION);
-    if (img.rejected)
+    if (cw_student_img.rejected)
         cw_fmt(adv, sizeof adv, "%llu samples were NaN or infinite (fogrt dropped them): a division by a zero pdf, or "
-               "a direction that is not unit length?", (unsigned long long)img.rejected);
+               "a direction that is not unit length?", (unsigned long long)cw_student_img.rejected);
     else if (!(c.mean_a > 0.0))
         cw_fmt(adv, sizeof adv, "your image is black: nothing is returned yet (is the TODO still there?)");
     else if (c.z < -CW_Z_IMAGE || (fabs(c.z) <= CW_Z_IMAGE && c.zreg < 0.0))
@@ -2651,10 +2670,10 @@ static int cw_render_check(cw_run *run, const char *name, const char *stem, cons
     cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
     {
         char t2[200];
-        if (ref) cw_fmt(t2, sizeof t2, "%s (relative error of yours %.2g%%, of fogrt's %.2g%%)", title, 100.0 * img.rel_err,
+        if (ref) cw_fmt(t2, sizeof t2, "%s (relative error of yours %.2g%%, of fogrt's %.2g%%)", title, 100.0 * cw_student_img.rel_err,
                         100.0 * ref->rel_err);
-        else cw_fmt(t2, sizeof t2, "%s (relative error of yours %.2g%%)", title, 100.0 * img.rel_err);
-        cw_render_picture(run, stem, t2, ref ? "fogrt (reference)" : "exact: 1 everywhere", &img, ref, value, verdict, pass,
+        else cw_fmt(t2, sizeof t2, "%s (relative error of yours %.2g%%)", title, 100.0 * cw_student_img.rel_err);
+        cw_render_picture(run, stem, t2, ref ? "fogrt (reference)" : "exact: 1 everywhere", &cw_student_img, ref, value, verdict, pass,
                           png, sizeof png);
     }
     cw_emit(run, name, pass, m, adv, png);
@@ -3057,6 +3076,35 @@ static void cw_step8_weights(const cw_fns *f, cw_run *run)
     }
 }
 
+/* The noise of the student's last render (cw_student_img) against the reference's: the
+   variance of one sample's luminance, summed over the image and over each region. MIS does
+   not change the mean, only the variance, so this is where a missing strategy shows. */
+#define CW_NOISE_RATIO 1.3        /* correct MIS: 0.985-1.00 over 12 seeds; without MIS: 2.2-103 */
+static void cw_noise_check(cw_run *run, const char *name, const cw_img *ref, const char *advice)
+{
+    const cw_img *a = &cw_student_img;
+    double sa = 0.0, sr = 0.0, worst = 0.0;
+    int rx, ry, x, y, wreg = 0, pass;
+    char m[500], adv[900];
+    if (!a->ok || !ref || !ref->ok) { cw_emit(run, name, 0, "no image to judge (see the render check above)", "", NULL); return; }
+    for (ry = 0; ry < CW_RY; ++ry)
+        for (rx = 0; rx < CW_RX; ++rx) {
+            double va = 0.0, vr = 0.0;
+            for (y = ry * CW_H / CW_RY; y < (ry + 1) * CW_H / CW_RY; ++y)
+                for (x = rx * CW_W / CW_RX; x < (rx + 1) * CW_W / CW_RX; ++x) { va += a->svar[y * CW_W + x]; vr += ref->svar[y * CW_W + x]; }
+            sa += va; sr += vr;
+            if (vr > 0.0 && va / vr > worst) { worst = va / vr; wreg = ry * CW_RX + rx; }
+        }
+    {
+        double ratio = sr > 0.0 ? sa / sr : (sa > 0.0 ? HUGE_VAL : 1.0);
+        pass = ratio <= CW_NOISE_RATIO && a->rejected == 0;
+        cw_fmt(m, sizeof m, "variance of one sample, summed over the image: %.3g times fogrt's (fail if > %g); the noisiest "
+               "region against fogrt's: %s, %.3g times", ratio, CW_NOISE_RATIO, cw_region_name(wreg), worst);
+        cw_fmt(adv, sizeof adv, "%s", advice);
+    }
+    cw_emit(run, name, pass, m, adv, NULL);
+}
+
 static void cw_step8(const cw_fns *f, cw_run *run)
 {
     static cw_path_settings set;
@@ -3077,6 +3125,21 @@ static void cw_step8(const cw_fns *f, cw_run *run)
     cw_begin(run);
     cw_render_check(run, "step8.fog", "step8_fog", "Step 8: MIS in fog (area light, point light)",
         CW_SC_FOG_AREA, d, 128, cw_path_reference(CW_SC_FOG_AREA, 1, &set, 128), 0.0, dark, bright, NULL);
+    /* the noise: no roulette (its q is the student's choice and changes the variance too) */
+    set.max_depth = 4; set.rr_depth = 1000;
+    cw_begin(run);
+    {
+        const cw_img *ref = cw_path_reference(CW_SC_LIGHT_WALL, 1, &set, 64);
+        cw_render_check(run, "step8.wall", "step8_wall", "Step 8: a floor by an emitting wall, in fog (up to 4 bounces)",
+            CW_SC_LIGHT_WALL, d, 64, ref, 0.0, dark, bright, NULL);
+        cw_begin(run);
+        cw_noise_check(run, "step8.noise", ref,
+            "your image is right on average but much noisier than MIS makes it: near the emitting wall light sampling "
+            "alone is noisy, and BSDF sampling (phase sampling in fog) finds that light with little noise. Is the "
+            "strategy of BSDF and phase sampling missing, the emission a bounced ray hits left out (step 7's "
+            "estimator)? Count it with w(pdf of the ray's direction, fogrt_scene_light_pdf(scene, x, hit, sf)), and "
+            "weight each light sample with w(ls.pdf, the BSDF's or phase function's pdf of wi) (eq. 3, power heuristic)");
+    }
     set.max_depth = -1; set.rr_depth = 1;
     cw_begin(run);
     cw_render_check(run, "step8.furnace", "step8_furnace", "Step 8: furnace: a sphere emitting 0.5, reflecting half, fog of albedo 1",
