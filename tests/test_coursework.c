@@ -594,6 +594,42 @@ static cw_fns w7_no_albedo_fns(void)
     return f;
 }
 
+/* tests/coursework/wrong/step7_fog_bias3.c */
+#define cw_path_radiance w7_fog_bias3_path_radiance
+#include "tests/coursework/wrong/step7_fog_bias3.c"
+#undef cw_path_radiance
+static cw_fns w7_fog_bias3_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = w7_fog_bias3_path_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step7_hg_over_pdf.c */
+#define cw_path_radiance w7_hg_over_pdf_path_radiance
+#include "tests/coursework/wrong/step7_hg_over_pdf.c"
+#undef cw_path_radiance
+static cw_fns w7_hg_over_pdf_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = w7_hg_over_pdf_path_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step7_flight_sigma_s.c */
+#define cw_path_radiance w7_flight_sigma_s_path_radiance
+#include "tests/coursework/wrong/step7_flight_sigma_s.c"
+#undef cw_path_radiance
+static cw_fns w7_flight_sigma_s_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = w7_flight_sigma_s_path_radiance;
+    return f;
+}
+
 /* examples/coursework/solutions/step8_mis.c */
 #define cw_mis_weight ref8_mis_weight
 #define cw_mis_radiance ref8_mis_radiance
@@ -777,10 +813,18 @@ static void expect_caught(int step, const char *what, cw_fns f, const char *chec
 static void expect_skeleton_fails(int step, cw_fns f)
 {
     const cw_run *r = run_step(step, f);
-    char msg[200];
+    char msg[300];
     snprintf(msg, sizeof msg, "step %d skeleton as shipped: %d of %d checks fail", step, r->count - r->passed, r->count);
     TEST_MESSAGE(msg);
-    TEST_ASSERT_TRUE_MESSAGE(r->passed < r->count, "the skeleton passes every check: it must not contain the answer");
+    {
+        int i;
+        for (i = 0; i < r->count; ++i)
+            if (r->r[i].pass) {
+                snprintf(msg, sizeof msg, "the skeleton as shipped passes %s: a check that an empty function passes grades "
+                         "nothing", r->r[i].name);
+                TEST_FAIL_MESSAGE(msg);
+            }
+    }
 }
 
 static void test_step1_reference_passes(void) { expect_all_pass(1, ref1_fns()); }
@@ -901,6 +945,21 @@ static void test_step7_wrong_no_albedo(void)
     expect_caught(7, "tests/coursework/wrong/step7_no_albedo.c", w7_no_albedo_fns(), "step7.direct",
                   "Is the albedo applied at fog collisions?");
 }
+static void test_step7_wrong_fog_bias3(void)
+{
+    expect_caught(7, "tests/coursework/wrong/step7_fog_bias3.c", w7_fog_bias3_fns(), "step7.fog_single",
+                  "too bright by a factor 1.03");
+}
+static void test_step7_wrong_hg_over_pdf(void)
+{
+    expect_caught(7, "tests/coursework/wrong/step7_hg_over_pdf.c", w7_hg_over_pdf_fns(), "step7.bounces",
+                  "times as noisy as fogrt's");
+}
+static void test_step7_wrong_flight_sigma_s(void)
+{
+    expect_caught(7, "tests/coursework/wrong/step7_flight_sigma_s.c", w7_flight_sigma_s_fns(), "step7.fog_single",
+                  "free flights drawn with sigma_s");
+}
 static void test_step8_reference_passes(void) { expect_all_pass(8, ref8_fns()); }
 static void test_step8_skeleton_fails(void) { expect_skeleton_fails(8, skel8_fns()); }
 static void test_step8_wrong_emission_full_weight(void)
@@ -980,6 +1039,9 @@ int main(void)
     RUN_TEST(test_step7_skeleton_fails);
     RUN_TEST(test_step7_wrong_no_q);
     RUN_TEST(test_step7_wrong_no_albedo);
+    RUN_TEST(test_step7_wrong_fog_bias3);
+    RUN_TEST(test_step7_wrong_hg_over_pdf);
+    RUN_TEST(test_step7_wrong_flight_sigma_s);
     RUN_TEST(test_step8_reference_passes);
     RUN_TEST(test_step8_skeleton_fails);
     RUN_TEST(test_step8_wrong_emission_full_weight);
