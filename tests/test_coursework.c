@@ -545,6 +545,21 @@ static cw_fns w6_no_transmittance_fns(void)
     return f;
 }
 
+/* tests/coursework/wrong/step6_one_light.c */
+#define cw_direct_surface w6_one_light_direct_surface
+#define cw_direct_fog w6_one_light_direct_fog
+#include "tests/coursework/wrong/step6_one_light.c"
+#undef cw_direct_surface
+#undef cw_direct_fog
+static cw_fns w6_one_light_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.direct_surface = w6_one_light_direct_surface;
+    f.direct_fog = w6_one_light_direct_fog;
+    return f;
+}
+
 /* examples/coursework/solutions/step7_path.c: also the test that fogrt's public blocks reproduce its own
    Algorithm 1 (the checks compare with fogrt's image) */
 #define cw_path_radiance ref7_path_radiance
@@ -627,6 +642,18 @@ static cw_fns w7_flight_sigma_s_fns(void)
     cw_fns f;
     memset(&f, 0, sizeof f);
     f.path_radiance = w7_flight_sigma_s_path_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step7_rr_always.c */
+#define cw_path_radiance w7_rr_always_path_radiance
+#include "tests/coursework/wrong/step7_rr_always.c"
+#undef cw_path_radiance
+static cw_fns w7_rr_always_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = w7_rr_always_path_radiance;
     return f;
 }
 
@@ -934,6 +961,11 @@ static void test_step6_wrong_no_transmittance(void)
     expect_caught(6, "tests/coursework/wrong/step6_no_transmittance.c", w6_no_transmittance_fns(), "step6.fog_formula",
                   "transmittance exp(-sigma_t dist) of the shadow ray");
 }
+static void test_step6_wrong_one_light(void)
+{
+    expect_caught(6, "tests/coursework/wrong/step6_one_light.c", w6_one_light_fns(), "step6.every_light",
+                  "ONE sample of EVERY light");
+}
 static void test_step7_reference_passes(void) { expect_all_pass(7, ref7_fns()); }
 static void test_step7_skeleton_fails(void) { expect_skeleton_fails(7, skel7_fns()); }
 static void test_step7_wrong_no_q(void)
@@ -959,6 +991,11 @@ static void test_step7_wrong_flight_sigma_s(void)
 {
     expect_caught(7, "tests/coursework/wrong/step7_flight_sigma_s.c", w7_flight_sigma_s_fns(), "step7.fog_single",
                   "free flights drawn with sigma_s");
+}
+static void test_step7_wrong_rr_always(void)
+{
+    expect_caught(7, "tests/coursework/wrong/step7_rr_always.c", w7_rr_always_fns(), "step7.depth",
+                  "roulette played before rr_depth");
 }
 static void test_step8_reference_passes(void) { expect_all_pass(8, ref8_fns()); }
 static void test_step8_skeleton_fails(void) { expect_skeleton_fails(8, skel8_fns()); }
@@ -1035,6 +1072,7 @@ int main(void)
     RUN_TEST(test_step6_wrong_no_cos);
     RUN_TEST(test_step6_wrong_no_pdf);
     RUN_TEST(test_step6_wrong_no_transmittance);
+    RUN_TEST(test_step6_wrong_one_light);
     RUN_TEST(test_step7_reference_passes);
     RUN_TEST(test_step7_skeleton_fails);
     RUN_TEST(test_step7_wrong_no_q);
@@ -1042,6 +1080,7 @@ int main(void)
     RUN_TEST(test_step7_wrong_fog_bias3);
     RUN_TEST(test_step7_wrong_hg_over_pdf);
     RUN_TEST(test_step7_wrong_flight_sigma_s);
+    RUN_TEST(test_step7_wrong_rr_always);
     RUN_TEST(test_step8_reference_passes);
     RUN_TEST(test_step8_skeleton_fails);
     RUN_TEST(test_step8_wrong_emission_full_weight);

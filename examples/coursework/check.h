@@ -2284,11 +2284,12 @@ enum {
     CW_SC_POINT_FOG_B,          /* a point light in fog, g = -0.3 */
     CW_SC_AREA_FLOOR,           /* a floor under a square area light */
     CW_SC_LIGHT_WALL,           /* a floor meeting a large emitting wall: light sampling alone is noisy there */
+    CW_SC_TWO_POINTS,           /* a floor lit by two point lights (step 6: every light, once) */
     CW_SC_COUNT
 };
 static const char *const cw_scene_name[CW_SC_COUNT] = {
     "box", "fog", "fog_area", "furnace", "furnace", "furnace_fog", "floor", "floor_fog", "point_fog", "point_fog",
-    "area_floor", "light_wall"};
+    "area_floor", "light_wall", "two_points"};
 
 static fogrt_vec3 cw_f3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
 static uint32_t cw__material(fogrt_scene *s, float r, float g, float b, float e)
@@ -2451,6 +2452,11 @@ static const fogrt_scene *cw_scene(int which)
         cw__quad(s, cw_f3(-2, 0, -1), cw_f3(4, 0, 0), cw_f3(0, 1.2f, 0), cw__material(s, 0.0f, 0.0f, 0.0f, 1.5f));
         cw__medium(s, 0.3f, 0.9f, 0.2f);
         cw__camera(s, cw_f3(0.0f, 1.6f, 1.8f), cw_f3(0.0f, 0.0f, -0.6f), 50.0f);
+        break;
+    case CW_SC_TWO_POINTS:
+        cw__quad(s, cw_f3(-5, 0, -5), cw_f3(0, 0, 10), cw_f3(10, 0, 0), cw__material(s, 0.6f, 0.6f, 0.6f, 0.0f));
+        cw__point_light(s, cw_f3(-0.8f, 1.0f, 0.2f), cw_f3(2.0f, 1.0f, 0.5f), 0.0f);
+        cw__point_light(s, cw_f3(0.9f, 1.5f, -0.4f), cw_f3(0.5f, 1.0f, 3.0f), 0.0f);
         break;
     default: break;
     }
@@ -2660,6 +2666,8 @@ static void cw_render_picture(const cw_run *run, const char *stem, const char *t
     pf_canvas_free(&c);
 }
 
+/* What an image noisier than fogrt's means in the check at hand (NULL: the general advice). */
+static const char *cw_noise_hint;
 /* The student's image of the last render check and its verdict (the noise check reads them). */
 static cw_img cw_student_img;
 static int cw_student_pass;
@@ -2706,6 +2714,8 @@ static int cw_render_check(cw_run *run, const char *name, const char *stem, cons
                "a direction that is not unit length?", (unsigned long long)cw_student_img.rejected);
     else if (!(c.mean_a > 0.0))
         cw_fmt(adv, sizeof adv, "your image is black: nothing is returned yet (is the TODO still there?)");
+    else if (noisy && cw_cmp_pass(&c) && cw_noise_hint)
+        cw_fmt(adv, sizeof adv, "right on average, but one sample's variance is %.3g times fogrt's: %s", noise, cw_noise_hint);
     else if (noisy && cw_cmp_pass(&c))
         cw_fmt(adv, sizeof adv, "one sample's variance is %.3g times fogrt's, and the mean %.4g times fogrt's (%s within "
                "the noise): this step's estimator is fogrt's, so its noise should be too; rare samples with huge weights "
@@ -2936,6 +2946,71 @@ static void cw_step6_fog_formula(const cw_fns *f, cw_run *run)
     }
 }
 
+/* Two point lights over a floor: one sample of each is exact, so every call must return the
+   sum of both lights' (rho/pi) cos I/r^2. One light picked at random and multiplied by the
+   number of lights is unbiased too, but it is not the contract, and its answer changes from
+   call to call. */
+static void cw_step6_every_light(const cw_fns *f, cw_run *run)
+{
+    static const float pts[5][2] = {{0, 0}, {-0.8f, 0.3f}, {0.9f, -0.4f}, {1.5f, 1.0f}, {-2.0f, -1.5f}};
+    static const float lp[2][3] = {{-0.8f, 1.0f, 0.2f}, {0.9f, 1.5f, -0.4f}};
+    static const float Iv[2][3] = {{2.0f, 1.0f, 0.5f}, {0.5f, 1.0f, 3.0f}};
+    const fogrt_scene *s = cw_scene(CW_SC_TWO_POINTS);
+    const double rho = 0.6;
+    char m[500], adv[700];
+    double worst = 0.0, wgot = 0.0, wexp = 0.0;
+    int k, j, calls = 0, one_light = 0, bad = 0, wk = 0;
+    cw_begin(run);
+    if (!s) { cw_emit(run, "step6.every_light", 0, "scene failed", "", NULL); return; }
+    for (k = 0; k < 5; ++k) {
+        fogrt_vec3 q = cw_f3(pts[k][0], 0.0f, pts[k][1]), e = cw_f3(pts[k][0] + 0.3f, 1.2f, pts[k][1] + 1.0f), d, wo;
+        fogrt_hit hit;
+        fogrt_surface sf;
+        double each[2], sum;
+        int l;
+        d = cw_v3(q.x - e.x, q.y - e.y, q.z - e.z);
+        if (!fogrt_scene_intersect(s, e, d, 0.0f, INFINITY, &hit)) continue;
+        fogrt_scene_surface(s, e, d, &hit, &sf);
+        wo = cw_f3(-d.x, -d.y, -d.z);
+        for (l = 0; l < 2; ++l) {
+            double w[3], r2, c;
+            w[0] = lp[l][0] - sf.p.x; w[1] = lp[l][1] - sf.p.y; w[2] = lp[l][2] - sf.p.z;
+            r2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+            c = w[1] / sqrt(r2);
+            each[l] = rho / CW_PI * c / r2 * (0.2126 * Iv[l][0] + 0.7152 * Iv[l][1] + 0.0722 * Iv[l][2]);
+        }
+        sum = each[0] + each[1];
+        for (j = 0; j < 8; ++j) {
+            fogrt_rng rng;
+            double got, err;
+            cw_seed(&rng, 740 + 8 * k + j);
+            got = cw_lum3(f->direct_surface(s, &sf, wo, &rng));
+            calls++;
+            err = isfinite(got) ? fabs(got - sum) / (1e-4 * sum) : HUGE_VAL;
+            if (err > 1.0) {
+                bad++;
+                if (fabs(got - 2.0 * each[0]) <= 1e-3 * sum || fabs(got - 2.0 * each[1]) <= 1e-3 * sum) one_light++;
+            }
+            if (!(err <= worst)) { worst = err; wgot = got; wexp = sum; wk = k; }
+        }
+    }
+    {
+        int pass = calls > 0 && bad == 0;
+        cw_fmt(m, sizeof m, "%d of %d calls at 5 floor points lit by two point lights return the sum of both lights' "
+               "(rho/pi) cos I/r^2 (relative tolerance 1e-4); worst at point %d: %.6g, expected %.6g", calls - bad, calls,
+               wk, wgot, wexp);
+        if (pass) adv[0] = '\0';
+        else if (one_light > bad / 2)
+            cw_fmt(adv, sizeof adv, "your answer is twice one light's, a different light from call to call: you pick one "
+                   "light at random and multiply by the number of lights. That is unbiased, but the contract (coursework.h, "
+                   "step 6) asks for ONE sample of EVERY light, lights 0 .. fogrt_scene_light_total() - 1, summed");
+        else
+            cw_fmt(adv, sizeof adv, "with point lights one sample of each light is exact: sum f Le |cos| T / pdf over "
+                   "every light (lights 0 .. fogrt_scene_light_total() - 1), each with its own three random numbers");
+        cw_emit(run, "step6.every_light", pass, m, adv, NULL);
+    }
+}
+
 /* The area light's estimate at floor points against the integral (quadrature in double),
    and against what the usual mistakes would average to. */
 static void cw_step6_area_estimate(const cw_fns *f, cw_run *run)
@@ -3002,6 +3077,7 @@ static void cw_step6(const cw_fns *f, cw_run *run)
     fogrt_render_desc d = fogrt_render_paper_defaults();
     cw_step6_surface_formula(f, run);
     cw_step6_fog_formula(f, run);
+    cw_step6_every_light(f, run);
     cw_step6_area_estimate(f, run);
     d.radiance = cw__direct_radiance;
     d.user_data = (void *)f;
@@ -3031,6 +3107,40 @@ static void cw_step6(const cw_fns *f, cw_run *run)
 static const cw_img *cw_path_reference(int scene, int mis, const cw_path_settings *set, int spp)
 {
     return cw_reference(scene, FOGRT_INTEGRATOR_PATH, mis, set->max_depth, set->rr_depth, spp);
+}
+
+/* The noise of the student's last render (cw_student_img) against the reference's: the
+   variance of one sample's luminance, summed over the image and over each region. MIS does
+   not change the mean, only the variance, so this is where a missing strategy shows. */
+#define CW_NOISE_RATIO 1.3        /* correct MIS: 0.985-1.00 over 12 seeds; without MIS: 2.2-103 */
+static void cw_noise_check(cw_run *run, const char *name, const cw_img *ref, const char *advice)
+{
+    const cw_img *a = &cw_student_img;
+    double sa = 0.0, sr = 0.0, worst = 0.0;
+    int rx, ry, x, y, wreg = 0, pass;
+    char m[500], adv[900];
+    if (!a->ok || !ref || !ref->ok) { cw_emit(run, name, 0, "no image to judge (see the render check above)", "", NULL); return; }
+    if (!cw_student_pass) {
+        cw_emit(run, name, 0, "not judged: the noise of an image is compared only once its mean is right",
+                "see the render check above, which this image failed", NULL);
+        return;
+    }
+    for (ry = 0; ry < CW_RY; ++ry)
+        for (rx = 0; rx < CW_RX; ++rx) {
+            double va = 0.0, vr = 0.0;
+            for (y = ry * CW_H / CW_RY; y < (ry + 1) * CW_H / CW_RY; ++y)
+                for (x = rx * CW_W / CW_RX; x < (rx + 1) * CW_W / CW_RX; ++x) { va += a->svar[y * CW_W + x]; vr += ref->svar[y * CW_W + x]; }
+            sa += va; sr += vr;
+            if (vr > 0.0 && va / vr > worst) { worst = va / vr; wreg = ry * CW_RX + rx; }
+        }
+    {
+        double ratio = sr > 0.0 ? sa / sr : (sa > 0.0 ? HUGE_VAL : 1.0);
+        pass = ratio <= CW_NOISE_RATIO && a->rejected == 0;
+        cw_fmt(m, sizeof m, "variance of one sample, summed over the image: %.3g times fogrt's (fail if > %g); the noisiest "
+               "region against fogrt's: %s, %.3g times", ratio, CW_NOISE_RATIO, cw_region_name(wreg), worst);
+        cw_fmt(adv, sizeof adv, "%s", advice);
+    }
+    cw_emit(run, name, pass, m, adv, NULL);
 }
 
 /* Single scattering along a ray in infinite fog lit by a point light, in double: with
@@ -3169,6 +3279,28 @@ static void cw_step7(const cw_fns *f, cw_run *run)
     bounces_ok = cw_render_check(run, "step7.bounces", "step7_bounces", "Step 7: up to 6 bounces in fog, no roulette",
         CW_SC_FOG, d, 128, cw_path_reference(CW_SC_FOG, 0, &set, 128), 0.0, dark, bright, NULL);
 
+
+    /* Inside a closed white sphere every light sample returns the same 0.5 and every bounce
+       keeps the throughput at 1, so with 8 bounces and no roulette each path gives
+       0.5 + 8 x 0.5 = 4.5 up to the facets, nearly without noise: a depth counted another way
+       shows in the mean, a roulette played before rr_depth in the noise. */
+    set.max_depth = 8; set.rr_depth = 1000;
+    cw_begin(run);
+    {
+        const cw_img *ref = cw_path_reference(CW_SC_FURNACE_1, 0, &set, 16);
+        cw_noise_hint = "without the roulette this estimator has almost no noise here (only the facets'): with "
+            "rr_depth = 1000 no path may end by the coin flip (the contract: roulette only once more than rr_depth "
+            "scattering events happened). Is the roulette played before rr_depth events?";
+        cw_render_check(run, "step7.depth", "step7_depth", "Step 7: 8 bounces in a closed white sphere emitting 0.5, no roulette",
+            CW_SC_FURNACE_1, d, 16, ref, 0.0,
+            "every vertex's light sample adds 0.5 here, 0.5 + 8 x 0.5 in all: are fewer than max_depth = 8 light samples "
+            "taken (max_depth counts scattering events after the camera ray; light sampling happens while fewer than "
+            "max_depth events came before)?",
+            "every vertex's light sample adds 0.5 here, 0.5 + 8 x 0.5 in all: is light sampled at more than 8 vertices, "
+            "or emission counted on bounced rays?", NULL);
+        cw_noise_hint = NULL;
+    }
+
     set.max_depth = -1; set.rr_depth = 0;
     cw_begin(run);
     cw_fmt(dark, sizeof dark, "%s", bounces_ok ? "right without the roulette (step7.bounces), too dark with it from the "
@@ -3239,40 +3371,6 @@ static void cw_step8_weights(const cw_fns *f, cw_run *run)
                    "pdf of 1e5 does not overflow when squared in float");
         cw_emit(run, "step8.weights", pass, m, adv, NULL);
     }
-}
-
-/* The noise of the student's last render (cw_student_img) against the reference's: the
-   variance of one sample's luminance, summed over the image and over each region. MIS does
-   not change the mean, only the variance, so this is where a missing strategy shows. */
-#define CW_NOISE_RATIO 1.3        /* correct MIS: 0.985-1.00 over 12 seeds; without MIS: 2.2-103 */
-static void cw_noise_check(cw_run *run, const char *name, const cw_img *ref, const char *advice)
-{
-    const cw_img *a = &cw_student_img;
-    double sa = 0.0, sr = 0.0, worst = 0.0;
-    int rx, ry, x, y, wreg = 0, pass;
-    char m[500], adv[900];
-    if (!a->ok || !ref || !ref->ok) { cw_emit(run, name, 0, "no image to judge (see the render check above)", "", NULL); return; }
-    if (!cw_student_pass) {
-        cw_emit(run, name, 0, "not judged: the noise of an image is compared only once its mean is right",
-                "see the render check above, which this image failed", NULL);
-        return;
-    }
-    for (ry = 0; ry < CW_RY; ++ry)
-        for (rx = 0; rx < CW_RX; ++rx) {
-            double va = 0.0, vr = 0.0;
-            for (y = ry * CW_H / CW_RY; y < (ry + 1) * CW_H / CW_RY; ++y)
-                for (x = rx * CW_W / CW_RX; x < (rx + 1) * CW_W / CW_RX; ++x) { va += a->svar[y * CW_W + x]; vr += ref->svar[y * CW_W + x]; }
-            sa += va; sr += vr;
-            if (vr > 0.0 && va / vr > worst) { worst = va / vr; wreg = ry * CW_RX + rx; }
-        }
-    {
-        double ratio = sr > 0.0 ? sa / sr : (sa > 0.0 ? HUGE_VAL : 1.0);
-        pass = ratio <= CW_NOISE_RATIO && a->rejected == 0;
-        cw_fmt(m, sizeof m, "variance of one sample, summed over the image: %.3g times fogrt's (fail if > %g); the noisiest "
-               "region against fogrt's: %s, %.3g times", ratio, CW_NOISE_RATIO, cw_region_name(wreg), worst);
-        cw_fmt(adv, sizeof adv, "%s", advice);
-    }
-    cw_emit(run, name, pass, m, adv, NULL);
 }
 
 static void cw_step8(const cw_fns *f, cw_run *run)
