@@ -797,6 +797,108 @@ static cw_fns w9_pdf_no_h_fns(void)
 }
 #endif
 
+/* tests/coursework/wrong/step3_mu_reversed.c */
+#define cw_hg_phase w3_mu_reversed_hg_phase
+#define cw_sample_hg_mu w3_mu_reversed_sample_hg_mu
+#define cw_sample_hg w3_mu_reversed_sample_hg
+#include "tests/coursework/wrong/step3_mu_reversed.c"
+#undef cw_hg_phase
+#undef cw_sample_hg_mu
+#undef cw_sample_hg
+static cw_fns w3_mu_reversed_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.hg_phase = w3_mu_reversed_hg_phase;
+    f.sample_hg_mu = w3_mu_reversed_sample_hg_mu;
+    f.sample_hg = w3_mu_reversed_sample_hg;
+    return f;
+}
+
+/* tests/coursework/wrong/step3_flipped_g_float.c */
+#define cw_hg_phase w3_flipped_g_float_hg_phase
+#define cw_sample_hg_mu w3_flipped_g_float_sample_hg_mu
+#define cw_sample_hg w3_flipped_g_float_sample_hg
+#include "tests/coursework/wrong/step3_flipped_g_float.c"
+#undef cw_hg_phase
+#undef cw_sample_hg_mu
+#undef cw_sample_hg
+static cw_fns w3_flipped_g_float_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.hg_phase = w3_flipped_g_float_hg_phase;
+    f.sample_hg_mu = w3_flipped_g_float_sample_hg_mu;
+    f.sample_hg = w3_flipped_g_float_sample_hg;
+    return f;
+}
+
+/* tests/coursework/wrong/step4_longest_axis.c */
+#define cw_split_cost w4_longest_axis_split_cost
+#define cw_best_split w4_longest_axis_best_split
+#include "tests/coursework/wrong/step4_longest_axis.c"
+#undef cw_split_cost
+#undef cw_best_split
+static cw_fns w4_longest_axis_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.split_cost = w4_longest_axis_split_cost;
+    f.best_split = w4_longest_axis_best_split;
+    return f;
+}
+
+/* tests/coursework/wrong/step5_eta_not_inverted.c */
+#define cw_sample_diffuse w5_eta_not_inverted_sample_diffuse
+#define cw_diffuse_pdf w5_eta_not_inverted_diffuse_pdf
+#define cw_sample_mirror w5_eta_not_inverted_sample_mirror
+#define cw_fresnel_schlick w5_eta_not_inverted_fresnel_schlick
+#define cw_sample_glass w5_eta_not_inverted_sample_glass
+#include "tests/coursework/wrong/step5_eta_not_inverted.c"
+#undef cw_sample_diffuse
+#undef cw_diffuse_pdf
+#undef cw_sample_mirror
+#undef cw_fresnel_schlick
+#undef cw_sample_glass
+static cw_fns w5_eta_not_inverted_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.sample_diffuse = w5_eta_not_inverted_sample_diffuse;
+    f.diffuse_pdf = w5_eta_not_inverted_diffuse_pdf;
+    f.sample_mirror = w5_eta_not_inverted_sample_mirror;
+    f.fresnel_schlick = w5_eta_not_inverted_fresnel_schlick;
+    f.sample_glass = w5_eta_not_inverted_sample_glass;
+    return f;
+}
+
+/* tests/coursework/wrong/step7_cos_wo.c */
+#define cw_path_radiance w7_cos_wo_path_radiance
+#include "tests/coursework/wrong/step7_cos_wo.c"
+#undef cw_path_radiance
+static cw_fns w7_cos_wo_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = w7_cos_wo_path_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step9_far_end.c */
+#define cw_sample_equiangular w9_far_end_sample_equiangular
+#define cw_equiangular_pdf w9_far_end_equiangular_pdf
+#include "tests/coursework/wrong/step9_far_end.c"
+#undef cw_sample_equiangular
+#undef cw_equiangular_pdf
+static cw_fns w9_far_end_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.sample_equiangular = w9_far_end_sample_equiangular;
+    f.equiangular_pdf = w9_far_end_equiangular_pdf;
+    return f;
+}
+
 static cw_run run_;
 
 /* Runs one step quietly on f; returns the run. */
@@ -1038,6 +1140,37 @@ static void test_step9_wrong_pdf_no_h(void)
 #endif
 }
 
+static void test_w3_mu_reversed(void)
+{
+    expect_caught(3, "tests/coursework/wrong/step3_mu_reversed.c", w3_mu_reversed_fns(), "step3.edges",
+                  "failed on the convention alone");
+}
+static void test_w3_flipped_g_float(void)
+{
+    expect_caught(3, "tests/coursework/wrong/step3_flipped_g_float.c", w3_flipped_g_float_fns(), "step3.eq9",
+                  "is g's sign flipped?");
+}
+static void test_w4_longest_axis(void)
+{
+    expect_caught(4, "tests/coursework/wrong/step4_longest_axis.c", w4_longest_axis_fns(), "step4.sah_choice",
+                  "did you search one axis only");
+}
+static void test_w5_eta_not_inverted(void)
+{
+    expect_caught(5, "tests/coursework/wrong/step5_eta_not_inverted.c", w5_eta_not_inverted_fns(), "step5.glass_dirs",
+                  "you used the ratio of entering the glass");
+}
+static void test_w7_cos_wo(void)
+{
+    expect_caught(7, "tests/coursework/wrong/step7_cos_wo.c", w7_cos_wo_fns(), "step7.box",
+                  "instead of the new direction wi");
+}
+static void test_w9_far_end(void)
+{
+    expect_caught(9, "tests/coursework/wrong/step9_far_end.c", w9_far_end_fns(), "step9.edges",
+                  "failed on the convention alone");
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -1090,5 +1223,11 @@ int main(void)
     RUN_TEST(test_step9_skeleton_fails);
     RUN_TEST(test_step9_wrong_no_delta);
     RUN_TEST(test_step9_wrong_pdf_no_h);
+    RUN_TEST(test_w3_mu_reversed);
+    RUN_TEST(test_w3_flipped_g_float);
+    RUN_TEST(test_w4_longest_axis);
+    RUN_TEST(test_w5_eta_not_inverted);
+    RUN_TEST(test_w7_cos_wo);
+    RUN_TEST(test_w9_far_end);
     return UNITY_END();
 }

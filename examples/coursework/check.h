@@ -923,7 +923,11 @@ static void cw_step3(const cw_fns *f, cw_run *run)
                 double err = fabs(v - ref) / ((1e-4 + 1e-6 * terms / base) * ref + 1e-9);
                 n++;
                 if (!(err <= worst)) { worst = err; wg = g; wmu = mu; }
-                if (fabs(v - cw_hg_ref(-g, mu)) <= 1e-4 * cw_hg_ref(-g, mu)) flipped++;
+                {
+                    /* the same float allowance as for eq. 9 itself, at the flipped peak */
+                    double fb = 1.0 + g * g + 2.0 * g * mu, fr = cw_hg_ref(-g, mu);
+                    if (fabs(v - fr) <= (1e-4 + 1e-6 * terms / fb) * fr + 1e-9) flipped++;
+                }
                 if (fabs(v - 4.0 * CW_PI * ref) <= 1e-4 * 4.0 * CW_PI * ref) times4pi++;
                 if (fabs(v - 2.0 * CW_PI * ref) <= 1e-4 * 2.0 * CW_PI * ref) permu++;
             }
@@ -931,7 +935,7 @@ static void cw_step3(const cw_fns *f, cw_run *run)
             int pass = worst <= 1.0;
             cw_fmt(m, sizeof m, "largest error at g = %g, mu = %g: %.7g against eq. 9's %.7g (relative tolerance 1e-4, more "
                    "near the peak where float rounding grows)", wg, wmu, f->hg_phase((float)wg, (float)wmu), cw_hg_ref(wg, wmu));
-            if (flipped == n)
+            if (flipped >= n * 9 / 10)
                 cw_fmt(adv, sizeof adv, "your values are HG with -g: is g's sign flipped? (g > 0 must favour mu = +1, the "
                        "direction the light was already going)");
             else if (times4pi == n)
@@ -1117,15 +1121,20 @@ static void cw_step3(const cw_fns *f, cw_run *run)
     {
         static const float eg[5] = {0.0f, 0.99f, -0.99f, 1e-4f, -1e-4f};
         static const float eu[3] = {0.0f, 0.5f, CW_U_MAX};
-        int ok = 0, total = 0, bad = 0;
-        char what[300] = "";
+        int ok = 0, total = 0, bad = 0, mirrored = 0, mu_bad = 0;
+        char what[400] = "";
         for (k = 0; k < 5; ++k)
             for (i = 0; i < 3; ++i) {
                 float mu = f->sample_hg_mu(eg[k], eu[i]);
                 double ref = cw__hg_quantile(eg[k], eu[i]);
                 total++;
                 if (isfinite(mu) && fabs(mu) <= 1.0f + 1e-5f && fabs(mu - ref) <= 2e-3) ok++;
-                else if (!bad++) {
+                else {
+                    mu_bad++;
+                    /* the same distribution run the other way: mu(u) = quantile(1 - u) */
+                    if (isfinite(mu) && fabs(mu - cw__hg_quantile(eg[k], 1.0 - (double)eu[i])) <= 2e-3) mirrored++;
+                }
+                if (!(isfinite(mu) && fabs(mu) <= 1.0f + 1e-5f && fabs(mu - ref) <= 2e-3) && !bad++) {
                     if (eg[k] == 0.0f && !isfinite(mu))
                         cw_fmt(what, sizeof what, "g = 0 gave mu = %s at u = %g: eq. 11 divides by 2g; at g = 0 HG is "
                                "isotropic, mu = 2u - 1 (use it when |g| is tiny)", isnan(mu) ? "nan" : "infinity", eu[i]);
@@ -1148,6 +1157,11 @@ static void cw_step3(const cw_fns *f, cw_run *run)
                 if (isfinite(v) && v >= 0.0f) ok++;
                 else if (!bad++) cw_fmt(what, sizeof what, "p(g = %g, mu = %d) = %g", eg[k], i, v);
             }
+        if (mu_bad > 0 && mirrored == mu_bad)
+            cw_fmt(what, sizeof what, "your mu runs the other way: mu(u) is eq. 11's mu(1 - u), falling from +1 at u = 0. "
+                   "The distribution is right (the chi-square checks pass), but the kit's convention (coursework.h, step 3) "
+                   "is eq. 11 as the paper writes it, mu rising with u from -1 at u = 0: this check failed on the "
+                   "convention alone");
         cw_fmt(m, sizeof m, "%d of %d edge cases finite and right (g = 0, +-1e-4, +-0.99; u = 0, 0.5, 1 - 2^-24)", ok, total);
         cw_emit(run, "step3.edges", ok == total, m, what, NULL);
     }
@@ -1389,7 +1403,7 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
         if (ok) { good++; continue; }
         if (first_bad < 0) {
             int a, k;
-            double axis0_best = HUGE_VAL, worst = -1.0;
+            double axis_best[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, worst = -1.0;
             first_bad = s; bad_pick = got; bad_best = best; bad_cost = got_cost; bad_best_cost = best_cost;
             bad_n = n; bad_kind = kind;
             if (got.plane >= 1 && got.plane < nd.bins.n_bins && got.axis >= 0 && got.axis < 3) {
@@ -1410,13 +1424,14 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
                     if (!nl || !nr) continue;
                     c = cw_ref_cost(heuristic, &nd.parent, &l, nl, &r, nr);
                     o = f->split_cost(heuristic, &nd.parent, &l, nl, &r, nr);
-                    if (a == 0 && c < axis0_best) axis0_best = c;
+                    if (c < axis_best[a]) axis_best[a] = c;
                     if (c > worst) worst = c;
                     if (o < own_min) own_min = o;
                     if (o > own_max) own_max = o;
                     if (a == got.axis && k == got.plane) own_got = o;
                 }
-            if (got.axis == 0 && fabs(got_cost - axis0_best) <= 1e-6 * axis0_best + 1e-12) only_x = 1;
+            if (got.axis >= 0 && got.axis < 3 && fabs(got_cost - axis_best[got.axis]) <= 1e-6 * axis_best[got.axis] + 1e-12)
+                only_x = 1;
             if (fabs(own_got - own_min) <= 1e-6 * fabs(own_min) + 1e-12) own_cheapest = 1;
             else if (fabs(own_got - own_max) <= 1e-6 * fabs(own_max) + 1e-12 || fabs(got_cost - worst) <= 1e-6 * worst + 1e-12)
                 worst_pick = 1;
@@ -1442,7 +1457,8 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
                                    "differs (see step4.sah_cost)" : ": it is the cheapest under your cw_split_cost, so the "
                                    "cost is what differs (see step4.volume_cost)")
                    : worst_pick ? ": you kept the most expensive plane, keep the smallest cost"
-                   : only_x ? ": you searched axis x only; eq. 2 takes the best over x, y and z"
+                   : only_x ? ": it is the cheapest plane on its own axis, not over all three: did you search one axis "
+                              "only (the longest, say)? Eq. 2 takes the best plane over x, y and z"
                    : ": count each side from the bins' counts and grow each side's box from the bins' boxes");
     }
     /* the picture: the student's cost of every plane of one node, against the reference */
@@ -1976,8 +1992,12 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
                 } else if (fabs(st * eta - si) > 2e-3 || (si > 1e-3 && dot_t > 0.0)) {
                     good = 0;
                     cw_fmt(why, sizeof why, "refraction of wo = (%.3f, %.3f, %.3f) gave wi = (%.3f, %.3f, %.3f): sin_t = %.4f but "
-                           "Snell gives sin_i / eta = %.4f%s", wo.x, wo.y, wo.z, s.wi.x, s.wi.y, s.wi.z, st, si / eta,
-                           fabs(st - si * eta) < 2e-3 ? " (eta is inverted: leaving the glass, divide by 1/eta)" : "");
+                           "Snell gives %.4f%s", wo.x, wo.y, wo.z, s.wi.x, s.wi.y, s.wi.z, st, si / eta,
+                           fabs(st - si * eta) >= 2e-3 ? ""
+                           : wo.z < 0 ? " (you used the ratio of entering the glass: leaving it (wo.z < 0) the ratio is "
+                                        "inverted, sin_t = eta sin_i with eta = 1.5 here)"
+                                      : " (you used the ratio of leaving the glass: entering it (wo.z > 0) sin_t = "
+                                        "sin_i / eta with eta = 1.5 here)");
                 } else if (fabs(s.pdf - (1.0 - F)) > 1e-3 * (1.0 - F) + 2e-4 || fabs(s.weight - 1.0f) > 1e-3f) {
                     good = 0;
                     cw_fmt(why, sizeof why, "a refraction at cos_i = %.3f has pdf %g and weight %g; expected pdf 1 - F = %.5f and "
@@ -2217,12 +2237,16 @@ static void cw_step9(const cw_fns *f, cw_run *run)
     {
         static const float ec[5][4] = {{0.0f, 1.0f, -5.0f, 5.0f}, {2.0f, 0.2f, 0.0f, 1e30f}, {3.0f, 1e-4f, 0.0f, 6.0f},
                                        {1e3f, 1e-3f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f, 0.0f}};
-        int ok = 0, total = 0, j;
+        int ok = 0, total = 0, j, nbad = 0, mirrored = 0;
         float us[3] = {0.0f, 0.5f, CW_U_MAX};
         for (k = 0; k < 5; ++k)
             for (j = 0; j < 3; ++j) {
                 float b = k == 1 ? INFINITY : ec[k][3], pdf = -1.0f;
                 float t = f->sample_equiangular(ec[k][0], ec[k][1], ec[k][2], b, us[j], &pdf);
+                cw__eq em;
+                double tm;
+                em.delta = ec[k][0]; em.h = ec[k][1]; em.a = ec[k][2]; em.b = b; em.f = f;
+                tm = cw__eq_quantile(&em, 1.0 - (double)us[j]);      /* the same sampler run from b */
                 /* u = 0 must give t = a, up to float rounding of delta + h tan(theta_a) */
                 float slack = 1e-3f * (1.0f + fabsf(ec[k][2]) + fabsf(ec[k][2] - ec[k][0]));
                 int good = isfinite(t) && t >= ec[k][2] - slack && t <= b + slack && isfinite(pdf) && pdf >= 0.0f
@@ -2236,11 +2260,22 @@ static void cw_step9(const cw_fns *f, cw_run *run)
                 }
                 if (k == 4) good = isfinite(t) && isfinite(pdf);   /* an empty segment: anything finite */
                 total++;
+                if (!good && k < 4) {
+                    nbad++;
+                    if ((isfinite(t) && fabs(t - tm) <= 1e-3 * (1.0 + fabs(tm))) || (!isfinite(t) && !(fabs(tm) < 1e30))
+                        || (fabs(t) > 1e30 && !(fabs(tm) < 1e30)))
+                        mirrored++;
+                }
                 if (good) ok++;
                 else if (!adv[0])
                     cw_fmt(adv, sizeof adv, "delta = %g, h = %g, [a, b] = [%g, %g], u = %.9g gave t = %g, pdf = %g: t must be finite, "
                            "in [a, b] (t = a at u = 0) and the pdf finite, the density at t", ec[k][0], ec[k][1], ec[k][2], b, us[j], t, pdf);
             }
+        if (nbad > 0 && mirrored == nbad)
+            cw_fmt(adv, sizeof adv, "your t runs the other way: t(u) is the inverse CDF at 1 - u, starting from b at u = 0. "
+                   "The distribution is right (the chi-square checks pass), but the kit's convention (coursework.h, step 9) "
+                   "is t = a at u = 0, rising with u (from b, u = 0 would give t = infinity when b is): this check failed "
+                   "on the convention alone");
         cw_fmt(m, sizeof m, "%d of %d edge cases right (u = 0 and 1 - 2^-24, b = infinity, h = 1e-4, light far past the "
                "segment, a = b)", ok, total);
         cw_emit(run, "step9.edges", ok == total, m, adv, NULL);
@@ -2731,8 +2766,8 @@ static int cw_render_check(cw_run *run, const char *name, const char *stem, cons
                fabs(c.z) <= CW_Z_IMAGE ? c.reg_ratio : c.mean_a / c.mean_b,
                fabs(c.z) <= CW_Z_IMAGE ? "" : " overall", hint_bright);
     if (noisy && !cw_cmp_pass(&c) && !cw_student_img.rejected && c.mean_a > 0.0) {
-        cw_fmt(noise_note, sizeof noise_note, " Your image is also %.3g times as noisy as fogrt's: some samples carry "
-               "huge weights (a division by a pdf that f does not cancel?)", noise);
+        cw_fmt(noise_note, sizeof noise_note, "; and your image is %.3g times as noisy as fogrt's: some samples "
+               "carry huge weights (a division by a pdf that f does not cancel?)", noise);
         strncat(adv, noise_note, sizeof adv - strlen(adv) - 1);
     }
     cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
@@ -3270,8 +3305,9 @@ static void cw_step7(const cw_fns *f, cw_run *run)
     cw_begin(run);
     cw_fmt(dark, sizeof dark, "without the roulette (rr_depth = 1000), up to 6 bounces, light is lost: %s",
            direct_ok ? "the first vertex is right (step7.direct), so look at what a bounce multiplies the throughput by: eq. 13's "
-           "f cos / pdf at a surface (the sample's weight, with the pdf divided once), 1 after HG sampling, the albedo at a "
-           "fog collision (once); and max_depth counted as scattering events" : "start with step7.direct");
+           "f cos / pdf at a surface (the sample's weight, with the pdf divided once; cos of the NEW direction wi and the "
+           "normal, not of the ray that arrived), 1 after HG sampling, the albedo at a fog collision (once); and "
+           "max_depth counted as scattering events" : "start with step7.direct");
     cw_fmt(bright, sizeof bright, "without the roulette (rr_depth = 1000), up to 6 bounces, light is made: %s",
            direct_ok ? "is emission counted on rays after a bounce (light sampling already counts it)? Is the albedo "
            "forgotten at a fog collision, or the pdf not divided? After HG sampling the weight is p_HG / pdf = 1, no division "
@@ -3316,8 +3352,10 @@ static void cw_step7(const cw_fns *f, cw_run *run)
     cw_render_check(run, "step7.box", "step7_box", "Step 7: global illumination in the box, no fog",
         CW_SC_BOX, d, 64, cw_path_reference(CW_SC_BOX, 0, &set, 64), 0.0,
         "light is lost at the bounces between the walls: eq. 13's weight f cos / pdf (for the diffuse BSDF it is the "
-        "reflectance), and 1/q after the roulette",
-        "light is made at the bounces: emission counted on bounced rays as well as by light sampling, or the pdf not divided", NULL);
+        "reflectance; the cosine is the new direction wi's, not the arriving ray's), and 1/q after the roulette",
+        "light is made at the bounces: emission counted on bounced rays as well as by light sampling, or the pdf not "
+        "divided, or eq. 13's cosine taken from the ray that arrived instead of the new direction wi (f cos / pdf is the "
+        "reflectance for cosine-weighted diffuse sampling)", NULL);
 
     set.max_depth = -1; set.rr_depth = 1;
     cw_begin(run);
