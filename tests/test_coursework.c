@@ -899,6 +899,21 @@ static cw_fns w9_far_end_fns(void)
     return f;
 }
 
+/* tests/coursework/wrong/step8_fog_bias3.c */
+#define cw_mis_weight w8_fog_bias3_mis_weight
+#define cw_mis_radiance w8_fog_bias3_mis_radiance
+#include "tests/coursework/wrong/step8_fog_bias3.c"
+#undef cw_mis_weight
+#undef cw_mis_radiance
+static cw_fns w8_fog_bias3_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.mis_weight = w8_fog_bias3_mis_weight;
+    f.mis_radiance = w8_fog_bias3_mis_radiance;
+    return f;
+}
+
 static cw_run run_;
 
 /* Runs one step quietly on f; returns the run. */
@@ -1171,6 +1186,12 @@ static void test_w9_far_end(void)
                   "failed on the convention alone");
 }
 
+static void test_w8_fog_bias3(void)
+{
+    expect_caught(8, "tests/coursework/wrong/step8_fog_bias3.c", w8_fog_bias3_fns(), "step8.fog_single",
+                  "too bright by a factor 1.03");
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -1229,5 +1250,6 @@ int main(void)
     RUN_TEST(test_w5_eta_not_inverted);
     RUN_TEST(test_w7_cos_wo);
     RUN_TEST(test_w9_far_end);
+    RUN_TEST(test_w8_fog_bias3);
     return UNITY_END();
 }
