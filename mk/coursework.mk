@@ -1,8 +1,11 @@
 # mk/coursework.mk - the coursework kit (examples/coursework/, docs/coursework.md).
 #   make check-step STEP=N               judges examples/coursework/stepN_*.c (the skeleton
 #                                        a student fills in); SRC=path/to/their.c judges
-#                                        another file. One line per check; the pictures go
-#                                        to $(BUILD)/coursework/. Exit status 1 if a check fails.
+#                                        another file; SEED=K redraws every sampled check
+#                                        (the verdicts the kit gives use 0). One line per
+#                                        check; the pictures go to $(BUILD)/coursework/.
+#                                        Exit status 0: every check passed; 1: a check
+#                                        failed; 2: the file does not compile (or no STEP).
 #   make coursework-solutions            runs every step's checks on the reference solutions
 #                                        (examples/coursework/solutions/) and prints one table.
 # Steps 6-8 render with fogrt_render on every OpenMP thread; idle threads sleep instead of
@@ -20,14 +23,32 @@ $(BUILD)/coursework/check_step%.o: $(CW_DEPS) | deps-stb $(BUILD)
 	@mkdir -p $(BUILD)/coursework
 	$(CC) $(ALL_CFLAGS) -DCW_STEP=$* -I$(CW_DIR) -c -o $@ $(CW_DIR)/check_step.c
 
+# make exits with 2 whenever a recipe fails, whatever the recipe's status, so a failed check
+# and a file that does not compile could not be told apart by a recipe. `make check-step`
+# therefore judges while the makefile is read: the build and the checker run in $(shell),
+# their lines go to the terminal on stderr as they come, and the status decides how make
+# ends: 0 runs an empty recipe, 1 turns on -q (make then exits with 1 for the phony goal
+# without running anything), 2 lets the recipe fail.
+ifeq ($(MAKECMDGOALS),check-step)
+CW_PASS_VARS := $(foreach v,CC CFLAGS BUILD OPENMP SANITIZE MINIMAL,$(if $(filter command line,$(origin $(v))),'$(v)=$($(v))'))
+CW_SRC := $(if $(SRC),$(SRC),$(wildcard $(CW_DIR)/step$(STEP)_*.c))
+CW_STATUS := $(strip $(shell ( \
+  exec >&2; \
+  [ -n "$(filter $(COURSEWORK_STEPS),$(STEP))" ] || { echo "usage: make check-step STEP=N [SRC=path/to/your.c] [SEED=K]  (steps: $(COURSEWORK_STEPS))"; exit 2; }; \
+  [ -n "$(CW_SRC)" ] && [ -f "$(CW_SRC)" ] || { echo "check-step: no source for step $(STEP) (SRC=$(SRC))"; exit 2; }; \
+  $(MAKE) --no-print-directory $(CW_PASS_VARS) $(BUILD)/coursework/check_step$(STEP).o || exit 2; \
+  $(CC) $(ALL_CFLAGS) -I$(CW_DIR) -o $(BUILD)/coursework/step$(STEP) $(BUILD)/coursework/check_step$(STEP).o "$(CW_SRC)" $(LDLIBS) \
+    || { echo "check-step: $(CW_SRC) does not compile against examples/coursework/coursework.h"; exit 2; }; \
+  CW_SOURCE="$(CW_SRC)" OMP_WAIT_POLICY=$${OMP_WAIT_POLICY:-passive} $(CW_TIMEOUT) ./$(BUILD)/coursework/step$(STEP) \
+    $(BUILD)/coursework $(SEED) || exit 1 \
+  ); echo $$?))
+ifeq ($(CW_STATUS),1)
+MAKEFLAGS += -q
+endif
+endif
+
 check-step:
-	@[ -n "$(filter $(COURSEWORK_STEPS),$(STEP))" ] || { echo "usage: make check-step STEP=N [SRC=path/to/your.c]  (steps: $(COURSEWORK_STEPS))"; exit 2; }
-	@$(MAKE) --no-print-directory $(BUILD)/coursework/check_step$(STEP).o
-	@src="$(if $(SRC),$(SRC),$(wildcard $(CW_DIR)/step$(STEP)_*.c))"; \
-	[ -n "$$src" ] && [ -f "$$src" ] || { echo "check-step: no source for step $(STEP) (SRC=$(SRC))"; exit 2; }; \
-	$(CC) $(ALL_CFLAGS) -I$(CW_DIR) -o $(BUILD)/coursework/step$(STEP) $(BUILD)/coursework/check_step$(STEP).o "$$src" $(LDLIBS) \
-	  || { echo "check-step: $$src does not compile against examples/coursework/coursework.h"; exit 2; }; \
-	OMP_WAIT_POLICY=$${OMP_WAIT_POLICY:-passive} $(CW_TIMEOUT) ./$(BUILD)/coursework/step$(STEP) $(BUILD)/coursework
+	@[ "$(CW_STATUS)" = 0 ] || exit 2
 
 coursework-solutions: $(foreach s,$(COURSEWORK_STEPS),$(BUILD)/coursework/check_step$(s).o)
 	@mkdir -p $(BUILD)/coursework/solutions

@@ -339,6 +339,21 @@ static cw_fns w4_empty_side_fns(void)
     return f;
 }
 
+/* tests/coursework/wrong/step4_best_cost_unscaled.c */
+#define cw_split_cost w4_best_cost_unscaled_split_cost
+#define cw_best_split w4_best_cost_unscaled_best_split
+#include "tests/coursework/wrong/step4_best_cost_unscaled.c"
+#undef cw_split_cost
+#undef cw_best_split
+static cw_fns w4_best_cost_unscaled_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.split_cost = w4_best_cost_unscaled_split_cost;
+    f.best_split = w4_best_cost_unscaled_best_split;
+    return f;
+}
+
 /* examples/coursework/solutions/step5_bsdf.c */
 #define cw_sample_diffuse ref5_sample_diffuse
 #define cw_diffuse_pdf ref5_diffuse_pdf
@@ -534,6 +549,21 @@ static cw_fns w6_no_transmittance_fns(void)
     return f;
 }
 
+/* tests/coursework/wrong/step6_one_light.c */
+#define cw_direct_surface w6_one_light_direct_surface
+#define cw_direct_fog w6_one_light_direct_fog
+#include "tests/coursework/wrong/step6_one_light.c"
+#undef cw_direct_surface
+#undef cw_direct_fog
+static cw_fns w6_one_light_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.direct_surface = w6_one_light_direct_surface;
+    f.direct_fog = w6_one_light_direct_fog;
+    return f;
+}
+
 /* examples/coursework/solutions/step7_path.c: also the test that fogrt's public blocks reproduce its own
    Algorithm 1 (the checks compare with fogrt's image) */
 #define cw_path_radiance ref7_path_radiance
@@ -583,6 +613,54 @@ static cw_fns w7_no_albedo_fns(void)
     return f;
 }
 
+/* tests/coursework/wrong/step7_fog_bias3.c */
+#define cw_path_radiance w7_fog_bias3_path_radiance
+#include "tests/coursework/wrong/step7_fog_bias3.c"
+#undef cw_path_radiance
+static cw_fns w7_fog_bias3_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = w7_fog_bias3_path_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step7_hg_over_pdf.c */
+#define cw_path_radiance w7_hg_over_pdf_path_radiance
+#include "tests/coursework/wrong/step7_hg_over_pdf.c"
+#undef cw_path_radiance
+static cw_fns w7_hg_over_pdf_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = w7_hg_over_pdf_path_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step7_flight_sigma_s.c */
+#define cw_path_radiance w7_flight_sigma_s_path_radiance
+#include "tests/coursework/wrong/step7_flight_sigma_s.c"
+#undef cw_path_radiance
+static cw_fns w7_flight_sigma_s_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = w7_flight_sigma_s_path_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step7_rr_always.c */
+#define cw_path_radiance w7_rr_always_path_radiance
+#include "tests/coursework/wrong/step7_rr_always.c"
+#undef cw_path_radiance
+static cw_fns w7_rr_always_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = w7_rr_always_path_radiance;
+    return f;
+}
+
 /* examples/coursework/solutions/step8_mis.c */
 #define cw_mis_weight ref8_mis_weight
 #define cw_mis_radiance ref8_mis_radiance
@@ -625,6 +703,36 @@ static cw_fns w8_full_fns(void)
     memset(&f, 0, sizeof f);
     f.mis_weight = w8_full_mis_weight;
     f.mis_radiance = w8_full_mis_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step8_no_mis.c */
+#define cw_mis_weight w8_no_mis_mis_weight
+#define cw_mis_radiance w8_no_mis_mis_radiance
+#include "tests/coursework/wrong/step8_no_mis.c"
+#undef cw_mis_weight
+#undef cw_mis_radiance
+static cw_fns w8_no_mis_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.mis_weight = w8_no_mis_mis_weight;
+    f.mis_radiance = w8_no_mis_mis_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step8_balance.c */
+#define cw_mis_weight w8_balance_mis_weight
+#define cw_mis_radiance w8_balance_mis_radiance
+#include "tests/coursework/wrong/step8_balance.c"
+#undef cw_mis_weight
+#undef cw_mis_radiance
+static cw_fns w8_balance_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.mis_weight = w8_balance_mis_weight;
+    f.mis_radiance = w8_balance_mis_radiance;
     return f;
 }
 
@@ -693,6 +801,123 @@ static cw_fns w9_pdf_no_h_fns(void)
 }
 #endif
 
+/* tests/coursework/wrong/step3_mu_reversed.c */
+#define cw_hg_phase w3_mu_reversed_hg_phase
+#define cw_sample_hg_mu w3_mu_reversed_sample_hg_mu
+#define cw_sample_hg w3_mu_reversed_sample_hg
+#include "tests/coursework/wrong/step3_mu_reversed.c"
+#undef cw_hg_phase
+#undef cw_sample_hg_mu
+#undef cw_sample_hg
+static cw_fns w3_mu_reversed_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.hg_phase = w3_mu_reversed_hg_phase;
+    f.sample_hg_mu = w3_mu_reversed_sample_hg_mu;
+    f.sample_hg = w3_mu_reversed_sample_hg;
+    return f;
+}
+
+/* tests/coursework/wrong/step3_flipped_g_float.c */
+#define cw_hg_phase w3_flipped_g_float_hg_phase
+#define cw_sample_hg_mu w3_flipped_g_float_sample_hg_mu
+#define cw_sample_hg w3_flipped_g_float_sample_hg
+#include "tests/coursework/wrong/step3_flipped_g_float.c"
+#undef cw_hg_phase
+#undef cw_sample_hg_mu
+#undef cw_sample_hg
+static cw_fns w3_flipped_g_float_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.hg_phase = w3_flipped_g_float_hg_phase;
+    f.sample_hg_mu = w3_flipped_g_float_sample_hg_mu;
+    f.sample_hg = w3_flipped_g_float_sample_hg;
+    return f;
+}
+
+/* tests/coursework/wrong/step4_longest_axis.c */
+#define cw_split_cost w4_longest_axis_split_cost
+#define cw_best_split w4_longest_axis_best_split
+#include "tests/coursework/wrong/step4_longest_axis.c"
+#undef cw_split_cost
+#undef cw_best_split
+static cw_fns w4_longest_axis_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.split_cost = w4_longest_axis_split_cost;
+    f.best_split = w4_longest_axis_best_split;
+    return f;
+}
+
+/* tests/coursework/wrong/step5_eta_not_inverted.c */
+#define cw_sample_diffuse w5_eta_not_inverted_sample_diffuse
+#define cw_diffuse_pdf w5_eta_not_inverted_diffuse_pdf
+#define cw_sample_mirror w5_eta_not_inverted_sample_mirror
+#define cw_fresnel_schlick w5_eta_not_inverted_fresnel_schlick
+#define cw_sample_glass w5_eta_not_inverted_sample_glass
+#include "tests/coursework/wrong/step5_eta_not_inverted.c"
+#undef cw_sample_diffuse
+#undef cw_diffuse_pdf
+#undef cw_sample_mirror
+#undef cw_fresnel_schlick
+#undef cw_sample_glass
+static cw_fns w5_eta_not_inverted_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.sample_diffuse = w5_eta_not_inverted_sample_diffuse;
+    f.diffuse_pdf = w5_eta_not_inverted_diffuse_pdf;
+    f.sample_mirror = w5_eta_not_inverted_sample_mirror;
+    f.fresnel_schlick = w5_eta_not_inverted_fresnel_schlick;
+    f.sample_glass = w5_eta_not_inverted_sample_glass;
+    return f;
+}
+
+/* tests/coursework/wrong/step7_cos_wo.c */
+#define cw_path_radiance w7_cos_wo_path_radiance
+#include "tests/coursework/wrong/step7_cos_wo.c"
+#undef cw_path_radiance
+static cw_fns w7_cos_wo_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.path_radiance = w7_cos_wo_path_radiance;
+    return f;
+}
+
+/* tests/coursework/wrong/step9_far_end.c */
+#define cw_sample_equiangular w9_far_end_sample_equiangular
+#define cw_equiangular_pdf w9_far_end_equiangular_pdf
+#include "tests/coursework/wrong/step9_far_end.c"
+#undef cw_sample_equiangular
+#undef cw_equiangular_pdf
+static cw_fns w9_far_end_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.sample_equiangular = w9_far_end_sample_equiangular;
+    f.equiangular_pdf = w9_far_end_equiangular_pdf;
+    return f;
+}
+
+/* tests/coursework/wrong/step8_fog_bias3.c */
+#define cw_mis_weight w8_fog_bias3_mis_weight
+#define cw_mis_radiance w8_fog_bias3_mis_radiance
+#include "tests/coursework/wrong/step8_fog_bias3.c"
+#undef cw_mis_weight
+#undef cw_mis_radiance
+static cw_fns w8_fog_bias3_fns(void)
+{
+    cw_fns f;
+    memset(&f, 0, sizeof f);
+    f.mis_weight = w8_fog_bias3_mis_weight;
+    f.mis_radiance = w8_fog_bias3_mis_radiance;
+    return f;
+}
+
 static cw_run run_;
 
 /* Runs one step quietly on f; returns the run. */
@@ -736,10 +961,18 @@ static void expect_caught(int step, const char *what, cw_fns f, const char *chec
 static void expect_skeleton_fails(int step, cw_fns f)
 {
     const cw_run *r = run_step(step, f);
-    char msg[200];
+    char msg[300];
     snprintf(msg, sizeof msg, "step %d skeleton as shipped: %d of %d checks fail", step, r->count - r->passed, r->count);
     TEST_MESSAGE(msg);
-    TEST_ASSERT_TRUE_MESSAGE(r->passed < r->count, "the skeleton passes every check: it must not contain the answer");
+    {
+        int i;
+        for (i = 0; i < r->count; ++i)
+            if (r->r[i].pass) {
+                snprintf(msg, sizeof msg, "the skeleton as shipped passes %s: a check that an empty function passes grades "
+                         "nothing", r->r[i].name);
+                TEST_FAIL_MESSAGE(msg);
+            }
+    }
 }
 
 static void test_step1_reference_passes(void) { expect_all_pass(1, ref1_fns()); }
@@ -810,6 +1043,11 @@ static void test_step4_wrong_empty_side(void)
     expect_caught(4, "tests/coursework/wrong/step4_empty_side.c", w4_empty_side_fns(), "step4.edges",
                   "no plane splits them");
 }
+static void test_step4_wrong_best_cost_unscaled(void)
+{
+    expect_caught(4, "tests/coursework/wrong/step4_best_cost_unscaled.c", w4_best_cost_unscaled_fns(), "step4.sah_best_cost",
+                  "lacks the division by the parent's area");
+}
 static void test_step5_reference_passes(void) { expect_all_pass(5, ref5_fns()); }
 static void test_step5_skeleton_fails(void) { expect_skeleton_fails(5, skel5_fns()); }
 static void test_step5_wrong_missing_pdf(void)
@@ -844,6 +1082,11 @@ static void test_step6_wrong_no_transmittance(void)
     expect_caught(6, "tests/coursework/wrong/step6_no_transmittance.c", w6_no_transmittance_fns(), "step6.fog_formula",
                   "transmittance exp(-sigma_t dist) of the shadow ray");
 }
+static void test_step6_wrong_one_light(void)
+{
+    expect_caught(6, "tests/coursework/wrong/step6_one_light.c", w6_one_light_fns(), "step6.every_light",
+                  "ONE sample of EVERY light");
+}
 static void test_step7_reference_passes(void) { expect_all_pass(7, ref7_fns()); }
 static void test_step7_skeleton_fails(void) { expect_skeleton_fails(7, skel7_fns()); }
 static void test_step7_wrong_no_q(void)
@@ -855,12 +1098,42 @@ static void test_step7_wrong_no_albedo(void)
     expect_caught(7, "tests/coursework/wrong/step7_no_albedo.c", w7_no_albedo_fns(), "step7.direct",
                   "Is the albedo applied at fog collisions?");
 }
+static void test_step7_wrong_fog_bias3(void)
+{
+    expect_caught(7, "tests/coursework/wrong/step7_fog_bias3.c", w7_fog_bias3_fns(), "step7.fog_single",
+                  "too bright by a factor 1.03");
+}
+static void test_step7_wrong_hg_over_pdf(void)
+{
+    expect_caught(7, "tests/coursework/wrong/step7_hg_over_pdf.c", w7_hg_over_pdf_fns(), "step7.bounces",
+                  "times as noisy as fogrt's");
+}
+static void test_step7_wrong_flight_sigma_s(void)
+{
+    expect_caught(7, "tests/coursework/wrong/step7_flight_sigma_s.c", w7_flight_sigma_s_fns(), "step7.fog_single",
+                  "free flights drawn with sigma_s");
+}
+static void test_step7_wrong_rr_always(void)
+{
+    expect_caught(7, "tests/coursework/wrong/step7_rr_always.c", w7_rr_always_fns(), "step7.depth",
+                  "roulette played before rr_depth");
+}
 static void test_step8_reference_passes(void) { expect_all_pass(8, ref8_fns()); }
 static void test_step8_skeleton_fails(void) { expect_skeleton_fails(8, skel8_fns()); }
 static void test_step8_wrong_emission_full_weight(void)
 {
     expect_caught(8, "tests/coursework/wrong/step8_emission_full_weight.c", w8_full_fns(), "step8.box",
                   "emission counted at full weight?");
+}
+static void test_step8_wrong_no_mis(void)
+{
+    expect_caught(8, "tests/coursework/wrong/step8_no_mis.c", w8_no_mis_fns(), "step8.noise",
+                  "Is the strategy of BSDF and phase sampling missing");
+}
+static void test_step8_wrong_balance(void)
+{
+    expect_caught(8, "tests/coursework/wrong/step8_balance.c", w8_balance_fns(), "step8.weights",
+                  "the kit asks for the power heuristic");
 }
 static void test_step9_reference_passes(void)
 {
@@ -886,6 +1159,43 @@ static void test_step9_wrong_pdf_no_h(void)
 #endif
 }
 
+static void test_w3_mu_reversed(void)
+{
+    expect_caught(3, "tests/coursework/wrong/step3_mu_reversed.c", w3_mu_reversed_fns(), "step3.edges",
+                  "failed on the convention alone");
+}
+static void test_w3_flipped_g_float(void)
+{
+    expect_caught(3, "tests/coursework/wrong/step3_flipped_g_float.c", w3_flipped_g_float_fns(), "step3.eq9",
+                  "is g's sign flipped?");
+}
+static void test_w4_longest_axis(void)
+{
+    expect_caught(4, "tests/coursework/wrong/step4_longest_axis.c", w4_longest_axis_fns(), "step4.sah_choice",
+                  "did you search one axis only");
+}
+static void test_w5_eta_not_inverted(void)
+{
+    expect_caught(5, "tests/coursework/wrong/step5_eta_not_inverted.c", w5_eta_not_inverted_fns(), "step5.glass_dirs",
+                  "you used the ratio of entering the glass");
+}
+static void test_w7_cos_wo(void)
+{
+    expect_caught(7, "tests/coursework/wrong/step7_cos_wo.c", w7_cos_wo_fns(), "step7.box",
+                  "instead of the new direction wi");
+}
+static void test_w9_far_end(void)
+{
+    expect_caught(9, "tests/coursework/wrong/step9_far_end.c", w9_far_end_fns(), "step9.edges",
+                  "failed on the convention alone");
+}
+
+static void test_w8_fog_bias3(void)
+{
+    expect_caught(8, "tests/coursework/wrong/step8_fog_bias3.c", w8_fog_bias3_fns(), "step8.fog_single",
+                  "too bright by a factor 1.03");
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -909,6 +1219,7 @@ int main(void)
     RUN_TEST(test_step4_wrong_volume_swapped);
     RUN_TEST(test_step4_wrong_sah_no_area);
     RUN_TEST(test_step4_wrong_empty_side);
+    RUN_TEST(test_step4_wrong_best_cost_unscaled);
     RUN_TEST(test_step5_reference_passes);
     RUN_TEST(test_step5_skeleton_fails);
     RUN_TEST(test_step5_wrong_missing_pdf);
@@ -919,16 +1230,30 @@ int main(void)
     RUN_TEST(test_step6_wrong_no_cos);
     RUN_TEST(test_step6_wrong_no_pdf);
     RUN_TEST(test_step6_wrong_no_transmittance);
+    RUN_TEST(test_step6_wrong_one_light);
     RUN_TEST(test_step7_reference_passes);
     RUN_TEST(test_step7_skeleton_fails);
     RUN_TEST(test_step7_wrong_no_q);
     RUN_TEST(test_step7_wrong_no_albedo);
+    RUN_TEST(test_step7_wrong_fog_bias3);
+    RUN_TEST(test_step7_wrong_hg_over_pdf);
+    RUN_TEST(test_step7_wrong_flight_sigma_s);
+    RUN_TEST(test_step7_wrong_rr_always);
     RUN_TEST(test_step8_reference_passes);
     RUN_TEST(test_step8_skeleton_fails);
     RUN_TEST(test_step8_wrong_emission_full_weight);
+    RUN_TEST(test_step8_wrong_no_mis);
+    RUN_TEST(test_step8_wrong_balance);
     RUN_TEST(test_step9_reference_passes);
     RUN_TEST(test_step9_skeleton_fails);
     RUN_TEST(test_step9_wrong_no_delta);
     RUN_TEST(test_step9_wrong_pdf_no_h);
+    RUN_TEST(test_w3_mu_reversed);
+    RUN_TEST(test_w3_flipped_g_float);
+    RUN_TEST(test_w4_longest_axis);
+    RUN_TEST(test_w5_eta_not_inverted);
+    RUN_TEST(test_w7_cos_wo);
+    RUN_TEST(test_w9_far_end);
+    RUN_TEST(test_w8_fog_bias3);
     return UNITY_END();
 }

@@ -677,27 +677,37 @@ static void cw_step1(const cw_fns *f, cw_run *run)
     cw_begin(run);
     {
         static const float cs[6][2] = {{1.0f, 0.0f}, {1.0f, CW_U_MAX}, {1e-6f, 0.5f}, {1e6f, 0.5f}, {1e6f, CW_U_MAX}, {1e-6f, CW_U_MAX}};
-        int bad = -1, total = 0, ok = 0;
+        int bad = -1, total = 0, ok = 0, wrong_value = 0;
         float got = 0.0f;
+        double want_v = 0.0;
         const char *what = "";
         for (i = 0; i < 6; ++i) {
             float t = f->sample_free_flight(cs[i][0], cs[i][1]);
+            double want = -log1p(-(double)cs[i][1]) / cs[i][0];
             total++;
-            if (isfinite(t) && t >= 0.0f) ok++;
-            else if (bad < 0) { bad = i; got = t; what = "t"; }
+            if (isfinite(t) && t >= 0.0f && fabs(t - want) <= 1e-3 * want + 1e-30) ok++;
+            else if (bad < 0) { bad = i; got = t; what = "t"; wrong_value = isfinite(t) && t >= 0.0f; want_v = want; }
         }
         {
             static const float ps[4][2] = {{1e6f, 0.0f}, {1e-6f, 1e6f}, {1.0f, 1e30f}, {40.0f, 0.0f}};
             for (i = 0; i < 4; ++i) {
                 float v = f->free_flight_pdf(ps[i][0], ps[i][1]);
+                double want = ps[i][0] * exp(-(double)ps[i][0] * ps[i][1]);
                 total++;
-                if (isfinite(v) && v >= 0.0f) ok++;
-                else if (bad < 0) { bad = 6 + i; got = v; what = "pdf"; }
+                if (isfinite(v) && v >= 0.0f && fabs(v - want) <= 1e-3 * want + 1e-30) ok++;
+                else if (bad < 0) { bad = 6 + i; got = v; what = "pdf"; wrong_value = isfinite(v) && v >= 0.0f; want_v = want; }
             }
             {
                 int pass = ok == total;
-                cw_fmt(m, sizeof m, "%d of %d edge cases finite and >= 0 (u = 0, u = 1 - 2^-24, sigma_t 1e-6 and 1e6)", ok, total);
-                if (bad == 0)
+                cw_fmt(m, sizeof m, "%d of %d edge cases finite and right within 1e-3 (u = 0, u = 1 - 2^-24, sigma_t 1e-6 "
+                       "and 1e6)", ok, total);
+                if (bad >= 0 && wrong_value && bad < 6)
+                    cw_fmt(adv, sizeof adv, "sigma_t = %g, u = %.9g gave t = %g, eq. 6 inverted gives %.7g", cs[bad][0],
+                           cs[bad][1], got, want_v);
+                else if (bad >= 6 && wrong_value)
+                    cw_fmt(adv, sizeof adv, "pdf(sigma_t = %g, t = %g) = %g, the exponential density sigma_t exp(-sigma_t t) "
+                           "is %.7g", ps[bad - 6][0], ps[bad - 6][1], got, want_v);
+                else if (bad == 0)
                     cw_fmt(adv, sizeof adv, "u = 0 gave t = %g: log(u) is -infinity at u = 0, which the kit (and fogrt's "
                            "random numbers) pass; u lies in [0, 1), so use log(1 - u) as the paper does", got);
                 else if (bad >= 0 && bad < 6)
@@ -913,7 +923,11 @@ static void cw_step3(const cw_fns *f, cw_run *run)
                 double err = fabs(v - ref) / ((1e-4 + 1e-6 * terms / base) * ref + 1e-9);
                 n++;
                 if (!(err <= worst)) { worst = err; wg = g; wmu = mu; }
-                if (fabs(v - cw_hg_ref(-g, mu)) <= 1e-4 * cw_hg_ref(-g, mu)) flipped++;
+                {
+                    /* the same float allowance as for eq. 9 itself, at the flipped peak */
+                    double fb = 1.0 + g * g + 2.0 * g * mu, fr = cw_hg_ref(-g, mu);
+                    if (fabs(v - fr) <= (1e-4 + 1e-6 * terms / fb) * fr + 1e-9) flipped++;
+                }
                 if (fabs(v - 4.0 * CW_PI * ref) <= 1e-4 * 4.0 * CW_PI * ref) times4pi++;
                 if (fabs(v - 2.0 * CW_PI * ref) <= 1e-4 * 2.0 * CW_PI * ref) permu++;
             }
@@ -921,7 +935,7 @@ static void cw_step3(const cw_fns *f, cw_run *run)
             int pass = worst <= 1.0;
             cw_fmt(m, sizeof m, "largest error at g = %g, mu = %g: %.7g against eq. 9's %.7g (relative tolerance 1e-4, more "
                    "near the peak where float rounding grows)", wg, wmu, f->hg_phase((float)wg, (float)wmu), cw_hg_ref(wg, wmu));
-            if (flipped == n)
+            if (flipped >= n * 9 / 10)
                 cw_fmt(adv, sizeof adv, "your values are HG with -g: is g's sign flipped? (g > 0 must favour mu = +1, the "
                        "direction the light was already going)");
             else if (times4pi == n)
@@ -1107,15 +1121,20 @@ static void cw_step3(const cw_fns *f, cw_run *run)
     {
         static const float eg[5] = {0.0f, 0.99f, -0.99f, 1e-4f, -1e-4f};
         static const float eu[3] = {0.0f, 0.5f, CW_U_MAX};
-        int ok = 0, total = 0, bad = 0;
-        char what[300] = "";
+        int ok = 0, total = 0, bad = 0, mirrored = 0, mu_bad = 0;
+        char what[400] = "";
         for (k = 0; k < 5; ++k)
             for (i = 0; i < 3; ++i) {
                 float mu = f->sample_hg_mu(eg[k], eu[i]);
                 double ref = cw__hg_quantile(eg[k], eu[i]);
                 total++;
                 if (isfinite(mu) && fabs(mu) <= 1.0f + 1e-5f && fabs(mu - ref) <= 2e-3) ok++;
-                else if (!bad++) {
+                else {
+                    mu_bad++;
+                    /* the same distribution run the other way: mu(u) = quantile(1 - u) */
+                    if (isfinite(mu) && fabs(mu - cw__hg_quantile(eg[k], 1.0 - (double)eu[i])) <= 2e-3) mirrored++;
+                }
+                if (!(isfinite(mu) && fabs(mu) <= 1.0f + 1e-5f && fabs(mu - ref) <= 2e-3) && !bad++) {
                     if (eg[k] == 0.0f && !isfinite(mu))
                         cw_fmt(what, sizeof what, "g = 0 gave mu = %s at u = %g: eq. 11 divides by 2g; at g = 0 HG is "
                                "isotropic, mu = 2u - 1 (use it when |g| is tiny)", isnan(mu) ? "nan" : "infinity", eu[i]);
@@ -1138,6 +1157,11 @@ static void cw_step3(const cw_fns *f, cw_run *run)
                 if (isfinite(v) && v >= 0.0f) ok++;
                 else if (!bad++) cw_fmt(what, sizeof what, "p(g = %g, mu = %d) = %g", eg[k], i, v);
             }
+        if (mu_bad > 0 && mirrored == mu_bad)
+            cw_fmt(what, sizeof what, "your mu runs the other way: mu(u) is eq. 11's mu(1 - u), falling from +1 at u = 0. "
+                   "The distribution is right (the chi-square checks pass), but the kit's convention (coursework.h, step 3) "
+                   "is eq. 11 as the paper writes it, mu rising with u from -1 at u = 0: this check failed on the "
+                   "convention alone");
         cw_fmt(m, sizeof m, "%d of %d edge cases finite and right (g = 0, +-1e-4, +-0.99; u = 0, 0.5, 1 - 2^-24)", ok, total);
         cw_emit(run, "step3.edges", ok == total, m, what, NULL);
     }
@@ -1379,7 +1403,7 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
         if (ok) { good++; continue; }
         if (first_bad < 0) {
             int a, k;
-            double axis0_best = HUGE_VAL, worst = -1.0;
+            double axis_best[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, worst = -1.0;
             first_bad = s; bad_pick = got; bad_best = best; bad_cost = got_cost; bad_best_cost = best_cost;
             bad_n = n; bad_kind = kind;
             if (got.plane >= 1 && got.plane < nd.bins.n_bins && got.axis >= 0 && got.axis < 3) {
@@ -1400,13 +1424,14 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
                     if (!nl || !nr) continue;
                     c = cw_ref_cost(heuristic, &nd.parent, &l, nl, &r, nr);
                     o = f->split_cost(heuristic, &nd.parent, &l, nl, &r, nr);
-                    if (a == 0 && c < axis0_best) axis0_best = c;
+                    if (c < axis_best[a]) axis_best[a] = c;
                     if (c > worst) worst = c;
                     if (o < own_min) own_min = o;
                     if (o > own_max) own_max = o;
                     if (a == got.axis && k == got.plane) own_got = o;
                 }
-            if (got.axis == 0 && fabs(got_cost - axis0_best) <= 1e-6 * axis0_best + 1e-12) only_x = 1;
+            if (got.axis >= 0 && got.axis < 3 && fabs(got_cost - axis_best[got.axis]) <= 1e-6 * axis_best[got.axis] + 1e-12)
+                only_x = 1;
             if (fabs(own_got - own_min) <= 1e-6 * fabs(own_min) + 1e-12) own_cheapest = 1;
             else if (fabs(own_got - own_max) <= 1e-6 * fabs(own_max) + 1e-12 || fabs(got_cost - worst) <= 1e-6 * worst + 1e-12)
                 worst_pick = 1;
@@ -1432,7 +1457,8 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
                                    "differs (see step4.sah_cost)" : ": it is the cheapest under your cw_split_cost, so the "
                                    "cost is what differs (see step4.volume_cost)")
                    : worst_pick ? ": you kept the most expensive plane, keep the smallest cost"
-                   : only_x ? ": you searched axis x only; eq. 2 takes the best over x, y and z"
+                   : only_x ? ": it is the cheapest plane on its own axis, not over all three: did you search one axis "
+                              "only (the longest, say)? Eq. 2 takes the best plane over x, y and z"
                    : ": count each side from the bins' counts and grow each side's box from the bins' boxes");
     }
     /* the picture: the student's cost of every plane of one node, against the reference */
@@ -1469,6 +1495,77 @@ static void cw_step4_choice(const cw_fns *f, cw_run *run, int heuristic)
                    sizeof png);
     } else png[0] = '\0';
     cw_emit(run, heuristic == CW_SAH ? "step4.sah_choice" : "step4.volume_choice", good == sets, m, adv, png);
+}
+
+/* The cost cw_best_split returns with its plane: a builder compares it with the cost of a
+   leaf, so it must be the heuristic's value of the plane returned, on the same scale as
+   cw_split_cost, whichever plane was chosen. */
+static void cw_step4_best_cost(const cw_fns *f, cw_run *run, int heuristic)
+{
+    static cw_node nd;
+    fogrt_rng rng;
+    int s, sets = 400, judged = 0, good = 0, zero = 0, unscaled = 0, no_trav = 0, own = 0, first = -1;
+    double want = 0.0, gave = 0.0;
+    char m[500], adv[600];
+    const char *name = heuristic == CW_SAH ? "step4.sah_best_cost" : "step4.volume_best_cost";
+    cw_begin(run);
+    cw_seed(&rng, heuristic == CW_SAH ? 413 : 414);
+    for (s = 0; s < sets; ++s) {
+        int kind = s % 4, n = 2 + (int)(cw_u(&rng) * 150.0f), nl, nr;
+        cw_aabb l, r;
+        cw_split got;
+        double ref, al, ar, ap;
+        cw_make_node(&nd, &rng, kind, n);
+        cw_node_bin(&nd, 12);
+        got = f->best_split(heuristic, &nd.parent, &nd.bins);
+        if (got.axis < 0 || got.axis > 2 || got.plane < 1 || got.plane >= nd.bins.n_bins) continue;
+        cw_node_sides(&nd, got.axis, got.plane, &l, &nl, &r, &nr);
+        if (!nl || !nr) continue;               /* an invalid plane is step4.*_choice's to judge */
+        judged++;
+        ref = cw_ref_cost(heuristic, &nd.parent, &l, nl, &r, nr);
+        if (isfinite(got.cost) && fabs(got.cost - ref) <= 1e-4 * fabs(ref) + 1e-9) { good++; continue; }
+        al = cw_box_area(&l); ar = cw_box_area(&r); ap = cw_box_area(&nd.parent);
+        if (got.cost == 0.0f) zero++;
+        if (heuristic == CW_SAH) {
+            double raw = nl * al + nr * ar;
+            if (fabs(got.cost - raw) <= 1e-4 * raw || fabs(got.cost - (1.0 + raw)) <= 1e-4 * (1.0 + raw)) unscaled++;
+            else if (fabs(got.cost - raw / ap) <= 1e-4 * raw / ap) no_trav++;
+        }
+        {
+            double o = f->split_cost(heuristic, &nd.parent, &l, nl, &r, nr);
+            if (fabs(got.cost - o) <= 1e-5 * fabs(o) + 1e-12) own++;
+        }
+        if (first < 0) { first = s; want = ref; gave = got.cost; }
+    }
+    {
+        int bad = judged - good, pass = judged > 0 && bad == 0;
+        cw_fmt(m, sizeof m, "the cost returned with the plane equals the %s of that plane on %d of %d random nodes "
+               "(relative tolerance 1e-4)", heuristic == CW_SAH ? "SAH" : "volume heuristic (eq. 1)", good, judged);
+        if (pass) adv[0] = '\0';
+        else if (judged == 0)
+            cw_fmt(adv, sizeof adv, "cw_best_split returned no valid plane on any node, so its cost could not be judged: "
+                   "see %s", heuristic == CW_SAH ? "step4.sah_choice" : "step4.volume_choice");
+        else if (zero == bad)
+            cw_fmt(adv, sizeof adv, "cw_best_split returns cost 0: the cw_split it returns carries the chosen plane's cost "
+                   "(node %d: %.6g)", first, want);
+        else if (unscaled > bad / 2)
+            cw_fmt(adv, sizeof adv, "node %d: cw_best_split returned %.6g, the SAH of its plane is %.6g: the returned cost "
+                   "lacks the division by the parent's area A (and the traversal cost 1); comparing N_l A_l + N_r A_r "
+                   "picks the same plane, but the cost returned is the SAH's, 1 + (N_l A_l + N_r A_r) / A", first, gave, want);
+        else if (no_trav > bad / 2)
+            cw_fmt(adv, sizeof adv, "node %d: cw_best_split returned %.6g, the SAH of its plane is %.6g: the traversal cost "
+                   "1 is missing from the returned cost", first, gave, want);
+        else if (own > bad / 2)
+            cw_fmt(adv, sizeof adv, "node %d: cw_best_split returned %.6g, the %s of its plane is %.6g; it is what your "
+                   "cw_split_cost gives, so the cost formula is what differs (see %s)", first, gave,
+                   heuristic == CW_SAH ? "SAH" : "volume heuristic", want,
+                   heuristic == CW_SAH ? "step4.sah_cost" : "step4.volume_cost");
+        else
+            cw_fmt(adv, sizeof adv, "node %d: cw_best_split returned cost %.6g with its plane, whose %s is %.6g: return the "
+                   "cost of the plane you return (eq. 2 keeps the minimum, and the minimum's value)", first, gave,
+                   heuristic == CW_SAH ? "SAH" : "volume heuristic", want);
+        cw_emit(run, name, pass, m, adv, NULL);
+    }
 }
 
 /* Nodes where a careless choice goes wrong. */
@@ -1546,6 +1643,8 @@ static void cw_step4(const cw_fns *f, cw_run *run)
     cw_step4_cost(f, run, CW_VOLUME);
     cw_step4_choice(f, run, CW_SAH);
     cw_step4_choice(f, run, CW_VOLUME);
+    cw_step4_best_cost(f, run, CW_SAH);
+    cw_step4_best_cost(f, run, CW_VOLUME);
     cw_step4_edges(f, run);
 }
 
@@ -1893,8 +1992,12 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
                 } else if (fabs(st * eta - si) > 2e-3 || (si > 1e-3 && dot_t > 0.0)) {
                     good = 0;
                     cw_fmt(why, sizeof why, "refraction of wo = (%.3f, %.3f, %.3f) gave wi = (%.3f, %.3f, %.3f): sin_t = %.4f but "
-                           "Snell gives sin_i / eta = %.4f%s", wo.x, wo.y, wo.z, s.wi.x, s.wi.y, s.wi.z, st, si / eta,
-                           fabs(st - si * eta) < 2e-3 ? " (eta is inverted: leaving the glass, divide by 1/eta)" : "");
+                           "Snell gives %.4f%s", wo.x, wo.y, wo.z, s.wi.x, s.wi.y, s.wi.z, st, si / eta,
+                           fabs(st - si * eta) >= 2e-3 ? ""
+                           : wo.z < 0 ? " (you used the ratio of entering the glass: leaving it (wo.z < 0) the ratio is "
+                                        "inverted, sin_t = eta sin_i with eta = 1.5 here)"
+                                      : " (you used the ratio of leaving the glass: entering it (wo.z > 0) sin_t = "
+                                        "sin_i / eta with eta = 1.5 here)");
                 } else if (fabs(s.pdf - (1.0 - F)) > 1e-3 * (1.0 - F) + 2e-4 || fabs(s.weight - 1.0f) > 1e-3f) {
                     good = 0;
                     cw_fmt(why, sizeof why, "a refraction at cos_i = %.3f has pdf %g and weight %g; expected pdf 1 - F = %.5f and "
@@ -1924,19 +2027,26 @@ static void cw_step5_specular(const cw_fns *f, cw_run *run)
                 /* refusing (0) is fine here: these u may put wi on the horizon */
                 if (!f->sample_diffuse(wos[a], us[b], us[1 - b], &s)
                     || (cw_finite3(s.wi) && fabs(cw_len3(s.wi) - 1.0) < 1e-4 && isfinite(s.pdf) && isfinite(s.weight)
-                        && s.pdf >= 0.0f)) ok++;
+                        && s.pdf >= 0.0f && s.wi.z * wos[a].z >= 0.0f
+                        && fabs(s.pdf - fabs(s.wi.z) / CW_PI) <= 1e-3 * fabs(s.wi.z) / CW_PI + 1e-6
+                        && (s.pdf == 0.0f || fabs(s.weight - 1.0f) <= 1e-3f))) ok++;
                 else if (!adv[0])
                     cw_fmt(adv, sizeof adv, "diffuse at wo = (%g, %g, %g), u = %g, %g gave wi = (%g, %g, %g), pdf %g, weight %g",
                            wos[a].x, wos[a].y, wos[a].z, us[b], us[1 - b], s.wi.x, s.wi.y, s.wi.z, s.pdf, s.weight);
                 memset(&s, 0, sizeof s);
                 total++;
+                /* a unit wi that is the mirror direction or crosses the surface */
                 if (f->sample_glass(1.5f, wos[a], us[b], &s) && cw_finite3(s.wi) && fabs(cw_len3(s.wi) - 1.0) < 1e-4
-                    && isfinite(s.pdf) && isfinite(s.weight) && s.pdf > 0.0f) ok++;
+                    && isfinite(s.pdf) && isfinite(s.weight) && s.pdf > 0.0f
+                    && ((fabs(s.wi.x + wos[a].x) < 1e-4 && fabs(s.wi.y + wos[a].y) < 1e-4 && fabs(s.wi.z - wos[a].z) < 1e-4)
+                        || s.wi.z * wos[a].z < 0.0f)) ok++;
                 else if (!adv[0])
                     cw_fmt(adv, sizeof adv, "glass at wo = (%g, %g, %g), u_lobe = %g gave wi = (%g, %g, %g), pdf %g, weight %g",
                            wos[a].x, wos[a].y, wos[a].z, us[b], s.wi.x, s.wi.y, s.wi.z, s.pdf, s.weight);
             }
-        cw_fmt(m, sizeof m, "%d of %d edge cases finite (normal incidence, grazing wo on both sides, u = 0 and 1 - 2^-24)", ok, total);
+        cw_fmt(m, sizeof m, "%d of %d edge cases finite and consistent (diffuse: wo's side, pdf |cos|/pi, weight 1; glass: "
+               "the mirror direction or through the surface) at normal incidence, grazing wo on both sides, u = 0 and "
+               "1 - 2^-24", ok, total);
         cw_emit(run, "step5.edges", ok == total, m, adv, NULL);
     }
 }
@@ -2127,23 +2237,45 @@ static void cw_step9(const cw_fns *f, cw_run *run)
     {
         static const float ec[5][4] = {{0.0f, 1.0f, -5.0f, 5.0f}, {2.0f, 0.2f, 0.0f, 1e30f}, {3.0f, 1e-4f, 0.0f, 6.0f},
                                        {1e3f, 1e-3f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f, 0.0f}};
-        int ok = 0, total = 0, j;
+        int ok = 0, total = 0, j, nbad = 0, mirrored = 0;
         float us[3] = {0.0f, 0.5f, CW_U_MAX};
         for (k = 0; k < 5; ++k)
             for (j = 0; j < 3; ++j) {
                 float b = k == 1 ? INFINITY : ec[k][3], pdf = -1.0f;
                 float t = f->sample_equiangular(ec[k][0], ec[k][1], ec[k][2], b, us[j], &pdf);
+                cw__eq em;
+                double tm;
+                em.delta = ec[k][0]; em.h = ec[k][1]; em.a = ec[k][2]; em.b = b; em.f = f;
+                tm = cw__eq_quantile(&em, 1.0 - (double)us[j]);      /* the same sampler run from b */
                 /* u = 0 must give t = a, up to float rounding of delta + h tan(theta_a) */
                 float slack = 1e-3f * (1.0f + fabsf(ec[k][2]) + fabsf(ec[k][2] - ec[k][0]));
                 int good = isfinite(t) && t >= ec[k][2] - slack && t <= b + slack && isfinite(pdf) && pdf >= 0.0f
                            && (us[j] != 0.0f || fabsf(t - ec[k][2]) <= slack);
+                if (good && k < 2) {            /* well-conditioned cases: the pdf is the density at t */
+                    cw__eq e;
+                    double want;
+                    e.delta = ec[k][0]; e.h = ec[k][1]; e.a = ec[k][2]; e.b = b; e.f = f;
+                    want = cw__eq_density(&e, t);
+                    good = fabs(pdf - want) <= 1e-2 * want + 1e-9;
+                }
                 if (k == 4) good = isfinite(t) && isfinite(pdf);   /* an empty segment: anything finite */
                 total++;
+                if (!good && k < 4) {
+                    nbad++;
+                    if ((isfinite(t) && fabs(t - tm) <= 1e-3 * (1.0 + fabs(tm))) || (!isfinite(t) && !(fabs(tm) < 1e30))
+                        || (fabs(t) > 1e30 && !(fabs(tm) < 1e30)))
+                        mirrored++;
+                }
                 if (good) ok++;
                 else if (!adv[0])
                     cw_fmt(adv, sizeof adv, "delta = %g, h = %g, [a, b] = [%g, %g], u = %.9g gave t = %g, pdf = %g: t must be finite, "
-                           "in [a, b] (t = a at u = 0) and the pdf finite", ec[k][0], ec[k][1], ec[k][2], b, us[j], t, pdf);
+                           "in [a, b] (t = a at u = 0) and the pdf finite, the density at t", ec[k][0], ec[k][1], ec[k][2], b, us[j], t, pdf);
             }
+        if (nbad > 0 && mirrored == nbad)
+            cw_fmt(adv, sizeof adv, "your t runs the other way: t(u) is the inverse CDF at 1 - u, starting from b at u = 0. "
+                   "The distribution is right (the chi-square checks pass), but the kit's convention (coursework.h, step 9) "
+                   "is t = a at u = 0, rising with u (from b, u = 0 would give t = infinity when b is): this check failed "
+                   "on the convention alone");
         cw_fmt(m, sizeof m, "%d of %d edge cases right (u = 0 and 1 - 2^-24, b = infinity, h = 1e-4, light far past the "
                "segment, a = b)", ok, total);
         cw_emit(run, "step9.edges", ok == total, m, adv, NULL);
@@ -2162,6 +2294,10 @@ static void cw_step9(const cw_fns *f, cw_run *run)
    region by more than CW_Z_REGION (the level 1e-4 split over 12 regions): a correct
    estimator fails with probability about 1.5e-4 per check. Furnaces compare with the exact
    value 1 the same way (plus a tolerance of CW_FURNACE_TOL for the faceted sphere).
+   The standard error counts the reference's variance and the larger of the two images'
+   (cw_diff_var), never the student's alone, and an image more than CW_NOISE_MAX times as
+   noisy as fogrt's fails (cw_noise_median). Where a method is about noise (MIS), its noise
+   is checked against fogrt's more tightly (cw_noise_check).
    The scenes are built here in code; every reference image is rendered at check time.
    ========================================================================================== */
 #define CW_W 48
@@ -2171,6 +2307,7 @@ static void cw_step9(const cw_fns *f, cw_run *run)
 #define CW_Z_IMAGE 4.0          /* two-sided p = 6.3e-5 */
 #define CW_Z_REGION 4.46        /* two-sided p = 8.2e-6 = 1e-4 / 12 regions */
 #define CW_FURNACE_TOL 0.004
+#define CW_NOISE_MAX 4.0        /* one sample's variance at most 4 times fogrt's (the median over the pixels) */
 #define CW_SCALE 5              /* picture pixels per image pixel */
 
 enum {
@@ -2185,11 +2322,13 @@ enum {
     CW_SC_POINT_FOG_A,          /* a point light in fog, g = 0.6 */
     CW_SC_POINT_FOG_B,          /* a point light in fog, g = -0.3 */
     CW_SC_AREA_FLOOR,           /* a floor under a square area light */
+    CW_SC_LIGHT_WALL,           /* a floor meeting a large emitting wall: light sampling alone is noisy there */
+    CW_SC_TWO_POINTS,           /* a floor lit by two point lights (step 6: every light, once) */
     CW_SC_COUNT
 };
 static const char *const cw_scene_name[CW_SC_COUNT] = {
     "box", "fog", "fog_area", "furnace", "furnace", "furnace_fog", "floor", "floor_fog", "point_fog", "point_fog",
-    "area_floor"};
+    "area_floor", "light_wall", "two_points"};
 
 static fogrt_vec3 cw_f3(float x, float y, float z) { fogrt_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
 static uint32_t cw__material(fogrt_scene *s, float r, float g, float b, float e)
@@ -2343,6 +2482,21 @@ static const fogrt_scene *cw_scene(int which)
         cw__quad(s, cw_f3(-5, 0, -5), cw_f3(0, 0, 10), cw_f3(10, 0, 0), cw__material(s, 0.6f, 0.6f, 0.6f, 0.0f));
         cw__quad(s, cw_f3(-0.4f, 1.0f, -0.4f), cw_f3(0.8f, 0, 0), cw_f3(0, 0, 0.8f), cw__material(s, 0.0f, 0.0f, 0.0f, 4.0f));
         break;
+    case CW_SC_LIGHT_WALL:
+        /* Floor points near the wall see it over most of their hemisphere, and a point on the
+           wall drawn by its area lands close to them with density 1/r^2 far from what the
+           cosine gives: BSDF sampling finds that light with little noise, light sampling with
+           much. The fog makes phase sampling matter the same way near the wall. */
+        cw__quad(s, cw_f3(-2, 0, -1), cw_f3(0, 0, 3), cw_f3(4, 0, 0), cw__material(s, 0.7f, 0.7f, 0.7f, 0.0f));
+        cw__quad(s, cw_f3(-2, 0, -1), cw_f3(4, 0, 0), cw_f3(0, 1.2f, 0), cw__material(s, 0.0f, 0.0f, 0.0f, 1.5f));
+        cw__medium(s, 0.3f, 0.9f, 0.2f);
+        cw__camera(s, cw_f3(0.0f, 1.6f, 1.8f), cw_f3(0.0f, 0.0f, -0.6f), 50.0f);
+        break;
+    case CW_SC_TWO_POINTS:
+        cw__quad(s, cw_f3(-5, 0, -5), cw_f3(0, 0, 10), cw_f3(10, 0, 0), cw__material(s, 0.6f, 0.6f, 0.6f, 0.0f));
+        cw__point_light(s, cw_f3(-0.8f, 1.0f, 0.2f), cw_f3(2.0f, 1.0f, 0.5f), 0.0f);
+        cw__point_light(s, cw_f3(0.9f, 1.5f, -0.4f), cw_f3(0.5f, 1.0f, 3.0f), 0.0f);
+        break;
     default: break;
     }
     {
@@ -2358,6 +2512,7 @@ static const fogrt_scene *cw_scene(int which)
 typedef struct cw_img {
     float rgb[3 * CW_W * CW_H];
     double lum[CW_W * CW_H], var[CW_W * CW_H];
+    double svar[CW_W * CW_H];   /* the variance of one sample's luminance (the estimator's noise) */
     double rel_err;             /* fogrt_image_error */
     uint64_t rejected;          /* non-finite samples */
     int ok;
@@ -2378,6 +2533,11 @@ static void cw_render(int scene, fogrt_render_desc desc, int spp, cw_img *out)
         for (i = 0; i < CW_W * CW_H; ++i) {
             out->lum[i] = 0.2126 * out->rgb[3 * i] + 0.7152 * out->rgb[3 * i + 1] + 0.0722 * out->rgb[3 * i + 2];
             out->var[i] = fogrt_image_pixel_variance(&img, (size_t)i);
+            if (img.count[i] > 1) {
+                double n = img.count[i], mean = (0.2126 * img.sum[3 * i] + 0.7152 * img.sum[3 * i + 1] +
+                                                 0.0722 * img.sum[3 * i + 2]) / n;
+                out->svar[i] = fmax(img.sum_sq[i] / n - mean * mean, 0.0) * n / (n - 1.0);
+            }
         }
         fogrt_image_error(&img, &e);
         out->rel_err = e.relative_error;
@@ -2422,6 +2582,18 @@ typedef struct cw_cmp {
     double reg_ratio;           /* its mean ratio */
 } cw_cmp;
 
+/* The variance of the difference of two images' sums: the reference's variance vb, and the
+   larger of the two for the student's image, which a right estimator makes as noisy as
+   fogrt's. So the student's own estimate never stands alone (a heavy-tailed estimator
+   underestimates its own noise), and an image noisier than fogrt's only widens the margin:
+   one much noisier fails the noise limit of cw_render_check instead. Without a reference
+   (a furnace, exact), the student's own. */
+static double cw_diff_var(double va, double vb, int have_ref)
+{
+    if (!have_ref) return va;
+    return vb + fmax(va, vb);
+}
+
 /* b NULL: the reference is the constant `value` with no error (a furnace). tol: a relative
    difference that is not counted (added to the standard error as a floor). */
 static cw_cmp cw_compare(const cw_img *a, const cw_img *b, double value, double tol)
@@ -2432,14 +2604,15 @@ static cw_cmp cw_compare(const cw_img *a, const cw_img *b, double value, double 
     memset(&c, 0, sizeof c);
     for (ry = 0; ry < CW_RY; ++ry)
         for (rx = 0; rx < CW_RX; ++rx) {
-            double ra = 0.0, rb = 0.0, rv = 0.0, n = 0.0, z;
+            double ra = 0.0, rb = 0.0, rv, va = 0.0, vb = 0.0, n = 0.0, z;
             for (y = ry * CW_H / CW_RY; y < (ry + 1) * CW_H / CW_RY; ++y)
                 for (x = rx * CW_W / CW_RX; x < (rx + 1) * CW_W / CW_RX; ++x) {
                     int i = y * CW_W + x;
-                    ra += a->lum[i]; rv += a->var[i];
-                    if (b) { rb += b->lum[i]; rv += b->var[i]; } else rb += value;
+                    ra += a->lum[i]; va += a->var[i];
+                    if (b) { rb += b->lum[i]; vb += b->var[i]; } else rb += value;
                     n += 1.0;
                 }
+            rv = cw_diff_var(va, vb, b != NULL);
             sa += ra; sb += rb; v += rv;
             {
                 double den = sqrt(rv + (tol * rb) * (tol * rb));
@@ -2532,6 +2705,35 @@ static void cw_render_picture(const cw_run *run, const char *stem, const char *t
     pf_canvas_free(&c);
 }
 
+/* The median over the pixels of the ratio of one sample's variance, the student's image's
+   over the reference's. A median, not a ratio of sums: a correct estimator with rare large
+   samples (light sampling near a facet's edge) puts a few pixels' variance far off in
+   either image, which moves a sum by orders of magnitude but the median not at all, while
+   an estimator that is noisier everywhere moves it by its full factor. */
+static int cw__cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+static double cw_noise_median(const cw_img *a, const cw_img *b)
+{
+    static double r[CW_W * CW_H];
+    int i, n = 0;
+    for (i = 0; i < CW_W * CW_H; ++i) {
+        if (b->svar[i] > 0.0) r[n++] = a->svar[i] / b->svar[i];
+        else if (a->svar[i] > 0.0) r[n++] = HUGE_VAL;
+    }
+    if (n == 0) return 1.0;
+    qsort(r, (size_t)n, sizeof r[0], cw__cmp_double);
+    return n % 2 ? r[n / 2] : 0.5 * (r[n / 2 - 1] + r[n / 2]);
+}
+
+/* What an image noisier than fogrt's means in the check at hand (NULL: the general advice). */
+static const char *cw_noise_hint;
+/* The student's image of the last render check and its verdict (the noise check reads them). */
+static cw_img cw_student_img;
+static int cw_student_pass;
+
 /* One render check: the student's image (desc with its radiance and user data) against
    fogrt's (ref NULL: a furnace of constant value). hint_dark / hint_bright: what a too dark
    or too bright image usually means in this step. Returns whether it passed; *cmp gets the
@@ -2540,33 +2742,46 @@ static int cw_render_check(cw_run *run, const char *name, const char *stem, cons
                            fogrt_render_desc desc, int spp, const cw_img *ref, double value,
                            const char *hint_dark, const char *hint_bright, cw_cmp *out)
 {
-    static cw_img img;
     cw_cmp c;
-    char m[600], adv[900], png[256], verdict[1600];
-    int pass;
+    char m[700], adv[1100], png[256], verdict[1900], noise_note[300] = "";
+    double noise = 1.0;
+    int pass, noisy;
     desc.seed = 0xC0DE0000ull + cw_seed_offset;
-    cw_render(scene, desc, spp, &img);
-    if (!img.ok || (ref && !ref->ok)) {
+    cw_render(scene, desc, spp, &cw_student_img);
+    if (!cw_student_img.ok || (ref && !ref->ok)) {
         cw_emit(run, name, 0, "fogrt_render failed (scene or reference)", "", NULL);
         if (out) memset(out, 0, sizeof *out);
         return 0;
     }
-    c = cw_compare(&img, ref, value, ref ? 0.0 : CW_FURNACE_TOL);
-    pass = cw_cmp_pass(&c) && img.rejected == 0;
+    c = cw_compare(&cw_student_img, ref, value, ref ? 0.0 : CW_FURNACE_TOL);
+    if (ref) noise = cw_noise_median(&cw_student_img, ref);
+    noisy = !(noise <= CW_NOISE_MAX);
+    pass = cw_cmp_pass(&c) && cw_student_img.rejected == 0 && !noisy;
     if (ref)
         cw_fmt(m, sizeof m, "mean %.5g vs fogrt's %.5g (ratio %.4f, relative error of the difference %.2g%%): z = %.2f "
-               "(fail if |z| > %g); worst region %s z = %.2f (fail if > %g)", c.mean_a, c.mean_b,
-               c.mean_b > 0.0 ? c.mean_a / c.mean_b : NAN, 100.0 * c.se_rel, c.z, CW_Z_IMAGE, cw_region_name(c.reg),
-               c.zreg, CW_Z_REGION);
+               "(fail if |z| > %g); worst region %s z = %.2f (fail if > %g); noise (median over the pixels of one sample's "
+               "variance, yours over fogrt's) %.3g (fail if > %g)",
+               c.mean_a, c.mean_b, c.mean_b > 0.0 ? c.mean_a / c.mean_b : NAN, 100.0 * c.se_rel, c.z, CW_Z_IMAGE,
+               cw_region_name(c.reg), c.zreg, CW_Z_REGION, noise, CW_NOISE_MAX);
     else
         cw_fmt(m, sizeof m, "mean %.5g, exact %.5g (standard error %.2g%% + tolerance %.2g%%): z = %.2f (fail if |z| > %g); "
                "worst region %s z = %.2f (fail if > %g)", c.mean_a, value, 100.0 * sqrt(fmax(c.se_rel * c.se_rel -
                CW_FURNACE_TOL * CW_FURNACE_TOL, 0.0)), 100.0 * CW_FURNACE_TOL, c.z, CW_Z_IMAGE, cw_region_name(c.reg), c.zreg, CW_Z_REGION);
-    if (img.rejected)
+    if (cw_student_img.rejected)
         cw_fmt(adv, sizeof adv, "%llu samples were NaN or infinite (fogrt dropped them): a division by a zero pdf, or "
-               "a direction that is not unit length?", (unsigned long long)img.rejected);
+               "a direction that is not unit length?", (unsigned long long)cw_student_img.rejected);
     else if (!(c.mean_a > 0.0))
         cw_fmt(adv, sizeof adv, "your image is black: nothing is returned yet (is the TODO still there?)");
+    else if (noisy && cw_cmp_pass(&c) && cw_noise_hint)
+        cw_fmt(adv, sizeof adv, "right on average, but one sample's variance is %.3g times fogrt's (the median pixel): %s",
+               noise, cw_noise_hint);
+    else if (noisy && cw_cmp_pass(&c))
+        cw_fmt(adv, sizeof adv, "one sample's variance is %.3g times fogrt's (the median pixel), and the mean %.4g times "
+               "fogrt's (%s within "
+               "the noise): this step's estimator is fogrt's, so its noise should be too; rare samples with huge weights "
+               "(a division by a small pdf that does not cancel against f, a weight multiplied in twice) make an image "
+               "this noisy, and so much noise can hide a wrong mean", noise, c.mean_b > 0.0 ? c.mean_a / c.mean_b : NAN,
+               fabs(c.mean_a / c.mean_b - 1.0) < 0.05 ? "close" : "not close, yet");
     else if (c.z < -CW_Z_IMAGE || (fabs(c.z) <= CW_Z_IMAGE && c.zreg < 0.0))
         cw_fmt(adv, sizeof adv, "too dark%s by a factor ~%.3g%s: %s", fabs(c.z) <= CW_Z_IMAGE ? " in one region" : "",
                fabs(c.z) <= CW_Z_IMAGE ? 1.0 / c.reg_ratio : c.mean_b / c.mean_a,
@@ -2575,17 +2790,23 @@ static int cw_render_check(cw_run *run, const char *name, const char *stem, cons
         cw_fmt(adv, sizeof adv, "too bright%s by a factor ~%.3g%s: %s", fabs(c.z) <= CW_Z_IMAGE ? " in one region" : "",
                fabs(c.z) <= CW_Z_IMAGE ? c.reg_ratio : c.mean_a / c.mean_b,
                fabs(c.z) <= CW_Z_IMAGE ? "" : " overall", hint_bright);
+    if (noisy && !cw_cmp_pass(&c) && !cw_student_img.rejected && c.mean_a > 0.0) {
+        cw_fmt(noise_note, sizeof noise_note, "; and your image is %.3g times as noisy as fogrt's: some samples "
+               "carry huge weights (a division by a pdf that f does not cancel?)", noise);
+        strncat(adv, noise_note, sizeof adv - strlen(adv) - 1);
+    }
     cw_fmt(verdict, sizeof verdict, "%s %s: %s%s%s", name, pass ? "PASS" : "FAIL", m, pass ? "" : " -- ", pass ? "" : adv);
     {
         char t2[200];
-        if (ref) cw_fmt(t2, sizeof t2, "%s (relative error of yours %.2g%%, of fogrt's %.2g%%)", title, 100.0 * img.rel_err,
+        if (ref) cw_fmt(t2, sizeof t2, "%s (relative error of yours %.2g%%, of fogrt's %.2g%%)", title, 100.0 * cw_student_img.rel_err,
                         100.0 * ref->rel_err);
-        else cw_fmt(t2, sizeof t2, "%s (relative error of yours %.2g%%)", title, 100.0 * img.rel_err);
-        cw_render_picture(run, stem, t2, ref ? "fogrt (reference)" : "exact: 1 everywhere", &img, ref, value, verdict, pass,
+        else cw_fmt(t2, sizeof t2, "%s (relative error of yours %.2g%%)", title, 100.0 * cw_student_img.rel_err);
+        cw_render_picture(run, stem, t2, ref ? "fogrt (reference)" : "exact: 1 everywhere", &cw_student_img, ref, value, verdict, pass,
                           png, sizeof png);
     }
     cw_emit(run, name, pass, m, adv, png);
     if (out) *out = c;
+    cw_student_pass = pass;
     return pass;
 }
 
@@ -2785,6 +3006,71 @@ static void cw_step6_fog_formula(const cw_fns *f, cw_run *run)
     }
 }
 
+/* Two point lights over a floor: one sample of each is exact, so every call must return the
+   sum of both lights' (rho/pi) cos I/r^2. One light picked at random and multiplied by the
+   number of lights is unbiased too, but it is not the contract, and its answer changes from
+   call to call. */
+static void cw_step6_every_light(const cw_fns *f, cw_run *run)
+{
+    static const float pts[5][2] = {{0, 0}, {-0.8f, 0.3f}, {0.9f, -0.4f}, {1.5f, 1.0f}, {-2.0f, -1.5f}};
+    static const float lp[2][3] = {{-0.8f, 1.0f, 0.2f}, {0.9f, 1.5f, -0.4f}};
+    static const float Iv[2][3] = {{2.0f, 1.0f, 0.5f}, {0.5f, 1.0f, 3.0f}};
+    const fogrt_scene *s = cw_scene(CW_SC_TWO_POINTS);
+    const double rho = 0.6;
+    char m[500], adv[700];
+    double worst = 0.0, wgot = 0.0, wexp = 0.0;
+    int k, j, calls = 0, one_light = 0, bad = 0, wk = 0;
+    cw_begin(run);
+    if (!s) { cw_emit(run, "step6.every_light", 0, "scene failed", "", NULL); return; }
+    for (k = 0; k < 5; ++k) {
+        fogrt_vec3 q = cw_f3(pts[k][0], 0.0f, pts[k][1]), e = cw_f3(pts[k][0] + 0.3f, 1.2f, pts[k][1] + 1.0f), d, wo;
+        fogrt_hit hit;
+        fogrt_surface sf;
+        double each[2], sum;
+        int l;
+        d = cw_v3(q.x - e.x, q.y - e.y, q.z - e.z);
+        if (!fogrt_scene_intersect(s, e, d, 0.0f, INFINITY, &hit)) continue;
+        fogrt_scene_surface(s, e, d, &hit, &sf);
+        wo = cw_f3(-d.x, -d.y, -d.z);
+        for (l = 0; l < 2; ++l) {
+            double w[3], r2, c;
+            w[0] = lp[l][0] - sf.p.x; w[1] = lp[l][1] - sf.p.y; w[2] = lp[l][2] - sf.p.z;
+            r2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+            c = w[1] / sqrt(r2);
+            each[l] = rho / CW_PI * c / r2 * (0.2126 * Iv[l][0] + 0.7152 * Iv[l][1] + 0.0722 * Iv[l][2]);
+        }
+        sum = each[0] + each[1];
+        for (j = 0; j < 8; ++j) {
+            fogrt_rng rng;
+            double got, err;
+            cw_seed(&rng, 740 + 8 * k + j);
+            got = cw_lum3(f->direct_surface(s, &sf, wo, &rng));
+            calls++;
+            err = isfinite(got) ? fabs(got - sum) / (1e-4 * sum) : HUGE_VAL;
+            if (err > 1.0) {
+                bad++;
+                if (fabs(got - 2.0 * each[0]) <= 1e-3 * sum || fabs(got - 2.0 * each[1]) <= 1e-3 * sum) one_light++;
+            }
+            if (!(err <= worst)) { worst = err; wgot = got; wexp = sum; wk = k; }
+        }
+    }
+    {
+        int pass = calls > 0 && bad == 0;
+        cw_fmt(m, sizeof m, "%d of %d calls at 5 floor points lit by two point lights return the sum of both lights' "
+               "(rho/pi) cos I/r^2 (relative tolerance 1e-4); worst at point %d: %.6g, expected %.6g", calls - bad, calls,
+               wk, wgot, wexp);
+        if (pass) adv[0] = '\0';
+        else if (one_light > bad / 2)
+            cw_fmt(adv, sizeof adv, "your answer is twice one light's, a different light from call to call: you pick one "
+                   "light at random and multiply by the number of lights. That is unbiased, but the contract (coursework.h, "
+                   "step 6) asks for ONE sample of EVERY light, lights 0 .. fogrt_scene_light_total() - 1, summed");
+        else
+            cw_fmt(adv, sizeof adv, "with point lights one sample of each light is exact: sum f Le |cos| T / pdf over "
+                   "every light (lights 0 .. fogrt_scene_light_total() - 1), each with its own three random numbers");
+        cw_emit(run, "step6.every_light", pass, m, adv, NULL);
+    }
+}
+
 /* The area light's estimate at floor points against the integral (quadrature in double),
    and against what the usual mistakes would average to. */
 static void cw_step6_area_estimate(const cw_fns *f, cw_run *run)
@@ -2851,6 +3137,7 @@ static void cw_step6(const cw_fns *f, cw_run *run)
     fogrt_render_desc d = fogrt_render_paper_defaults();
     cw_step6_surface_formula(f, run);
     cw_step6_fog_formula(f, run);
+    cw_step6_every_light(f, run);
     cw_step6_area_estimate(f, run);
     d.radiance = cw__direct_radiance;
     d.user_data = (void *)f;
@@ -2882,6 +3169,146 @@ static const cw_img *cw_path_reference(int scene, int mis, const cw_path_setting
     return cw_reference(scene, FOGRT_INTEGRATOR_PATH, mis, set->max_depth, set->rr_depth, spp);
 }
 
+/* The noise of the student's last render (cw_student_img) against the reference's: the
+   variance of one sample's luminance, summed over the image and over each region. MIS does
+   not change the mean, only the variance, so this is where a missing strategy shows. */
+#define CW_NOISE_RATIO 1.3        /* correct MIS: 0.985-1.00 over 12 seeds; without MIS: 2.2-103 */
+static void cw_noise_check(cw_run *run, const char *name, const cw_img *ref, const char *advice)
+{
+    const cw_img *a = &cw_student_img;
+    double sa = 0.0, sr = 0.0, worst = 0.0;
+    int rx, ry, x, y, wreg = 0, pass;
+    char m[500], adv[900];
+    if (!a->ok || !ref || !ref->ok) { cw_emit(run, name, 0, "no image to judge (see the render check above)", "", NULL); return; }
+    if (!cw_student_pass) {
+        cw_emit(run, name, 0, "not judged: the noise of an image is compared only once its mean is right",
+                "see the render check above, which this image failed", NULL);
+        return;
+    }
+    for (ry = 0; ry < CW_RY; ++ry)
+        for (rx = 0; rx < CW_RX; ++rx) {
+            double va = 0.0, vr = 0.0;
+            for (y = ry * CW_H / CW_RY; y < (ry + 1) * CW_H / CW_RY; ++y)
+                for (x = rx * CW_W / CW_RX; x < (rx + 1) * CW_W / CW_RX; ++x) { va += a->svar[y * CW_W + x]; vr += ref->svar[y * CW_W + x]; }
+            sa += va; sr += vr;
+            if (vr > 0.0 && va / vr > worst) { worst = va / vr; wreg = ry * CW_RX + rx; }
+        }
+    {
+        double ratio = sr > 0.0 ? sa / sr : (sa > 0.0 ? HUGE_VAL : 1.0);
+        pass = ratio <= CW_NOISE_RATIO && a->rejected == 0;
+        cw_fmt(m, sizeof m, "variance of one sample, summed over the image: %.3g times fogrt's (fail if > %g); the noisiest "
+               "region against fogrt's: %s, %.3g times", ratio, CW_NOISE_RATIO, cw_region_name(wreg), worst);
+        cw_fmt(adv, sizeof adv, "%s", advice);
+    }
+    cw_emit(run, name, pass, m, adv, NULL);
+}
+
+/* Single scattering along a ray in infinite fog lit by a point light, in double: with
+   s = 1 - exp(-sigma_t t) (the free flight's CDF, eq. 6) the first collision is uniform in
+   s, and the estimate there is albedo p_HG(mu) T(r) I / r^2 (step 6 times the albedo). Gives
+   the mean and the variance of that estimate per unit intensity; flight_sigma != sigma_t
+   gives the mean of an estimator that draws its free flights with flight_sigma instead. */
+static void cw_single_scatter(double sigma_t, double albedo, double g, const double o[3], const double d[3],
+                              const double lp[3], double flight_sigma, double *mean, double *var)
+{
+    const int M = 200000;
+    double s1 = 0.0, s2 = 0.0;
+    int i;
+    for (i = 0; i < M; ++i) {
+        double u = (i + 0.5) / M, t = -log1p(-u) / flight_sigma, w[3], r, mu, v;
+        int c;
+        for (c = 0; c < 3; ++c) w[c] = lp[c] - (o[c] + d[c] * t);
+        r = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+        mu = (d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) / r;
+        v = albedo * cw_hg_ref(g, mu) * exp(-sigma_t * r) / (r * r);
+        s1 += v; s2 += v * v;
+    }
+    *mean = s1 / M;
+    *var = s2 / M - (s1 / M) * (s1 / M);
+}
+
+/* Fog alone, against the exact answer: max_depth 1 along three rays in the infinite fog of
+   a point light (no surface in their way), 200000 estimates each, against the
+   single-scattering integral. Resolves a bias of 1-2% in fog, which the images cannot.
+   Steps 7 and 8 alike: a point light takes no MIS weight, so both estimators agree here. */
+static void cw_fog_single(cw_run *run, const char *name, uint64_t seed0,
+                          fogrt_vec3 (*radiance)(const fogrt_scene *, fogrt_vec3, fogrt_vec3, fogrt_rng *, void *))
+{
+    static const double rays[3][6] = {{-3.0, 1.5, -0.3, 1.0, 0.0, 0.0},         /* passes 0.5 above the light */
+                                      {0.9, 0.2, 1.5, -0.3, 0.35, -0.9},        /* toward the light, past it */
+                                      {1.5, 2.0, 0.5, 0.1, 1.0, 0.2}};          /* away: back-scattering only */
+    const double zc = 4.15;                                  /* two-sided 1e-4 over the three rays */
+    const int N = 200000;
+    static cw_path_settings set;
+    const fogrt_scene *s = cw_scene(CW_SC_POINT_FOG_A);
+    fogrt_medium_desc med;
+    char m[700], adv[800];
+    double worst = 0.0, wz = 0.0, wratio = 1.0, wnoise = 1.0, wse = 0.0, ratios[3], m_sig[3], m_noal[3], m_al2[3];
+    double maxnoise = 0.0, lp[3], Il;
+    int k, wk = 0, nonfinite = 0;
+    cw_begin(run);
+    if (!s) { cw_emit(run, name, 0, "scene failed", "", NULL); return; }
+    fogrt_scene_get_medium(s, &med);
+    lp[0] = 0.2; lp[1] = 1.0; lp[2] = -0.3;                  /* CW_SC_POINT_FOG_A's light */
+    Il = 0.2126 * 1.0 + 0.7152 * 2.0 + 0.0722 * 3.0;
+    set.max_depth = 1; set.rr_depth = 1000;
+    for (k = 0; k < 3; ++k) {
+        double o[3], d[3], len, mean, var, sum = 0.0, sum2 = 0.0, got, se, z, bug, vb;
+        fogrt_rng rng;
+        int i, c;
+        for (c = 0; c < 3; ++c) { o[c] = rays[k][c]; d[c] = rays[k][3 + c]; }
+        len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (c = 0; c < 3; ++c) d[c] /= len;
+        cw_single_scatter(med.sigma_t, med.albedo.x, med.g, o, d, lp, med.sigma_t, &mean, &var);
+        mean *= Il; var *= Il * Il;
+        cw_seed(&rng, seed0 + k);
+        for (i = 0; i < N; ++i) {
+            fogrt_vec3 L = radiance(s, cw_f3((float)o[0], (float)o[1], (float)o[2]), cw_v3(d[0], d[1], d[2]), &rng, &set);
+            double x = cw_lum3(L);
+            if (!isfinite(x)) { nonfinite++; continue; }
+            sum += x; sum2 += x * x;
+        }
+        got = sum / N;
+        vb = sum2 / N - got * got;
+        se = sqrt(var / N);                                  /* the exact estimator's variance, not the student's */
+        z = (got - mean) / se;
+        ratios[k] = got / mean;
+        cw_single_scatter(med.sigma_t, med.albedo.x, med.g, o, d, lp, med.sigma_t * med.albedo.x, &bug, &vb);
+        vb = sum2 / N - got * got;
+        m_sig[k] = bug * Il / mean;
+        m_noal[k] = 1.0 / med.albedo.x; m_al2[k] = med.albedo.x;
+        if (vb / var > maxnoise) maxnoise = vb / var;
+        if (!(fabs(z) <= worst)) { worst = fabs(z); wz = z; wk = k; wratio = got / mean; wnoise = vb / var; wse = se / mean; }
+    }
+    {
+        int pass = worst <= zc && !nonfinite && maxnoise <= CW_NOISE_MAX;
+        cw_fmt(m, sizeof m, "3 rays through fog lit by a point light, max_depth 1, %d estimates each, against the single-"
+               "scattering integral: worst ray %d: mean %.4f times exact (standard error %.2g%%, from the exact estimator's "
+               "variance), z = %.2f (fail if |z| > %g); noise %.3g times the exact estimator's (fail if > %g)",
+               N, wk + 1, wratio, 100.0 * wse, wz, zc, wnoise, CW_NOISE_MAX);
+        if (nonfinite) cw_fmt(adv, sizeof adv, "%d estimates were NaN or infinite", nonfinite);
+        else if (worst <= zc)
+            cw_fmt(adv, sizeof adv, "right on average, but %.3g times as noisy as Algorithm 1 at max_depth 1 (a free flight, "
+                   "the albedo, one light sample): is a weight divided by a pdf that the estimate does not need?", maxnoise);
+        else if (cw_ratios_match(ratios, m_sig, 3, 0.01))
+            cw_fmt(adv, sizeof adv, "your fog matches free flights drawn with sigma_s = albedo x sigma_t: eq. 6 draws the "
+                   "distance to the next collision with sigma_t (absorption and scattering both stop the flight); the albedo "
+                   "then accounts for the absorbed part");
+        else if (cw_ratios_match(ratios, m_noal, 3, 0.01))
+            cw_fmt(adv, sizeof adv, "too bright by 1/albedo in fog: multiply the throughput by the medium's albedo at each "
+                   "fog collision (Algorithm 1)");
+        else if (cw_ratios_match(ratios, m_al2, 3, 0.01))
+            cw_fmt(adv, sizeof adv, "too dark by the albedo in fog: the albedo is applied twice (at the collision and in the "
+                   "light sample?)");
+        else
+            cw_fmt(adv, sizeof adv, "%s by a factor %.4f in fog, at the first vertex: a free flight with sigma_t (eq. 6), the "
+                   "throughput times the albedo, then the light sample of step 6: p_HG(mu) (eq. 9) I/r^2 T (eq. 8), mu the "
+                   "cosine between the ray's direction and wi", wz > 0 ? "too bright" : "too dark", wz > 0 ? wratio : 1.0 / wratio);
+        cw_emit(run, name, pass, m, adv, NULL);
+    }
+}
+static void cw_step7_fog_single(const cw_fns *f, cw_run *run) { cw_fog_single(run, "step7.fog_single", 760, f->path_radiance); }
+
 static void cw_step7(const cw_fns *f, cw_run *run)
 {
     static cw_path_settings set;
@@ -2900,17 +3327,44 @@ static void cw_step7(const cw_fns *f, cw_run *run)
         "with max_depth = 1 the image is the camera ray's emission plus light sampling at the first vertex: is emission "
         "counted on rays after a bounce too (light sampling already counts it)? Is the albedo applied at fog collisions?", NULL);
 
+    cw_step7_fog_single(f, run);
+
     set.max_depth = 6; set.rr_depth = 1000;
     cw_begin(run);
     cw_fmt(dark, sizeof dark, "without the roulette (rr_depth = 1000), up to 6 bounces, light is lost: %s",
            direct_ok ? "the first vertex is right (step7.direct), so look at what a bounce multiplies the throughput by: eq. 13's "
-           "f cos / pdf at a surface (the sample's weight, with the pdf divided once), 1 after HG sampling, the albedo at a "
-           "fog collision (once); and max_depth counted as scattering events" : "start with step7.direct");
+           "f cos / pdf at a surface (the sample's weight, with the pdf divided once; cos of the NEW direction wi and the "
+           "normal, not of the ray that arrived), 1 after HG sampling, the albedo at a fog collision (once); and "
+           "max_depth counted as scattering events" : "start with step7.direct");
     cw_fmt(bright, sizeof bright, "without the roulette (rr_depth = 1000), up to 6 bounces, light is made: %s",
            direct_ok ? "is emission counted on rays after a bounce (light sampling already counts it)? Is the albedo "
-           "forgotten at a fog collision, or the pdf not divided?" : "start with step7.direct");
+           "forgotten at a fog collision, or the pdf not divided? After HG sampling the weight is p_HG / pdf = 1, no division "
+           "by the phase function's pdf; at a surface eq. 13's cosine is the new direction wi's, not the arriving ray's"
+           : "start with step7.direct");
     bounces_ok = cw_render_check(run, "step7.bounces", "step7_bounces", "Step 7: up to 6 bounces in fog, no roulette",
         CW_SC_FOG, d, 128, cw_path_reference(CW_SC_FOG, 0, &set, 128), 0.0, dark, bright, NULL);
+
+
+    /* Inside a closed white sphere every light sample returns the same 0.5 and every bounce
+       keeps the throughput at 1, so with 8 bounces and no roulette each path gives
+       0.5 + 8 x 0.5 = 4.5 up to the facets, nearly without noise: a depth counted another way
+       shows in the mean, a roulette played before rr_depth in the noise. */
+    set.max_depth = 8; set.rr_depth = 1000;
+    cw_begin(run);
+    {
+        const cw_img *ref = cw_path_reference(CW_SC_FURNACE_1, 0, &set, 16);
+        cw_noise_hint = "without the roulette this estimator has almost no noise here (only the facets'): with "
+            "rr_depth = 1000 no path may end by the coin flip (the contract: roulette only once more than rr_depth "
+            "scattering events happened). Is the roulette played before rr_depth events?";
+        cw_render_check(run, "step7.depth", "step7_depth", "Step 7: 8 bounces in a closed white sphere emitting 0.5, no roulette",
+            CW_SC_FURNACE_1, d, 16, ref, 0.0,
+            "every vertex's light sample adds 0.5 here, 0.5 + 8 x 0.5 in all: are fewer than max_depth = 8 light samples "
+            "taken (max_depth counts scattering events after the camera ray; light sampling happens while fewer than "
+            "max_depth events came before)?",
+            "every vertex's light sample adds 0.5 here, 0.5 + 8 x 0.5 in all: is light sampled at more than 8 vertices, "
+            "or emission counted on bounced rays?", NULL);
+        cw_noise_hint = NULL;
+    }
 
     set.max_depth = -1; set.rr_depth = 0;
     cw_begin(run);
@@ -2927,8 +3381,10 @@ static void cw_step7(const cw_fns *f, cw_run *run)
     cw_render_check(run, "step7.box", "step7_box", "Step 7: global illumination in the box, no fog",
         CW_SC_BOX, d, 64, cw_path_reference(CW_SC_BOX, 0, &set, 64), 0.0,
         "light is lost at the bounces between the walls: eq. 13's weight f cos / pdf (for the diffuse BSDF it is the "
-        "reflectance), and 1/q after the roulette",
-        "light is made at the bounces: emission counted on bounced rays as well as by light sampling, or the pdf not divided", NULL);
+        "reflectance; the cosine is the new direction wi's, not the arriving ray's), and 1/q after the roulette",
+        "light is made at the bounces: emission counted on bounced rays as well as by light sampling, or the pdf not "
+        "divided, or eq. 13's cosine taken from the ray that arrived instead of the new direction wi (f cos / pdf is the "
+        "reflectance for cosine-weighted diffuse sampling)", NULL);
 
     set.max_depth = -1; set.rr_depth = 1;
     cw_begin(run);
@@ -2995,6 +3451,8 @@ static void cw_step8(const cw_fns *f, cw_run *run)
     const char *dark = "light is missing: a weight applied on one side only (the light sample weighted but the emission "
         "bounced rays find not counted?), or the two weights computed from different pdfs; point lights take weight 1";
     cw_step8_weights(f, run);
+    cw_begin(run);
+    cw_fog_single(run, "step8.fog_single", 770, f->mis_radiance);
     d.radiance = f->mis_radiance;
     d.user_data = &set;
     set.max_depth = -1; set.rr_depth = 3;
@@ -3004,6 +3462,21 @@ static void cw_step8(const cw_fns *f, cw_run *run)
     cw_begin(run);
     cw_render_check(run, "step8.fog", "step8_fog", "Step 8: MIS in fog (area light, point light)",
         CW_SC_FOG_AREA, d, 128, cw_path_reference(CW_SC_FOG_AREA, 1, &set, 128), 0.0, dark, bright, NULL);
+    /* the noise: no roulette (its q is the student's choice and changes the variance too) */
+    set.max_depth = 4; set.rr_depth = 1000;
+    cw_begin(run);
+    {
+        const cw_img *ref = cw_path_reference(CW_SC_LIGHT_WALL, 1, &set, 64);
+        cw_render_check(run, "step8.wall", "step8_wall", "Step 8: a floor by an emitting wall, in fog (up to 4 bounces)",
+            CW_SC_LIGHT_WALL, d, 64, ref, 0.0, dark, bright, NULL);
+        cw_begin(run);
+        cw_noise_check(run, "step8.noise", ref,
+            "your image is right on average but much noisier than MIS makes it: near the emitting wall light sampling "
+            "alone is noisy, and BSDF sampling (phase sampling in fog) finds that light with little noise. Is the "
+            "strategy of BSDF and phase sampling missing, the emission a bounced ray hits left out (step 7's "
+            "estimator)? Count it with w(pdf of the ray's direction, fogrt_scene_light_pdf(scene, x, hit, sf)), and "
+            "weight each light sample with w(ls.pdf, the BSDF's or phase function's pdf of wi) (eq. 3, power heuristic)");
+    }
     set.max_depth = -1; set.rr_depth = 1;
     cw_begin(run);
     cw_render_check(run, "step8.furnace", "step8_furnace", "Step 8: furnace: a sphere emitting 0.5, reflecting half, fog of albedo 1",

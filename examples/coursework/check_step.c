@@ -1,10 +1,12 @@
 /* check_step.c - judges one coursework step (docs/coursework.md).
 
-   Built by `make check-step STEP=N [SRC=their.c]` with -DCW_STEP=N and linked with the
-   student's file, which defines that step's functions (coursework.h). Prints one line per
+   Built by `make check-step STEP=N [SRC=their.c] [SEED=K]` with -DCW_STEP=N and linked with
+   the student's file, which defines that step's functions (coursework.h). Prints one line per
    check and writes the pictures into the directory given as the first argument (default
-   build/coursework). A second argument N > 0 redraws every sampler check with another seed
-   (a third, any word, turns the pictures off): the verdicts the kit gives use seed 0.
+   build/coursework). A second argument N > 0 redraws every sampled check with another seed
+   (a third, any word, turns the pictures off): the verdicts the kit gives use seed 0. The
+   environment variable CW_SOURCE names the file judged (make check-step sets it), so that
+   the verdict can say which file to edit.
    Exit status: 0 when every check passed, 1 otherwise.                                      */
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,6 +23,7 @@ int main(int argc, char **argv)
 {
     static cw_run run;
     cw_fns f;
+    const char *src;
     int failed;
     memset(&f, 0, sizeof f);
     memset(&run, 0, sizeof run);
@@ -62,9 +65,15 @@ int main(int argc, char **argv)
 #else
 #error "steps 1-9 exist"
 #endif
+    src = getenv("CW_SOURCE");
     printf("step %d: %s\n", CW_STEP, cw_step_title(CW_STEP));
+    if (src && *src) printf("judging %s\n", src);
     failed = cw_run_step(CW_STEP, &f, &run);
-    printf("step %d: %d of %d checks passed in %.2f s%s\n", CW_STEP, run.passed, run.count, run.seconds,
-           failed ? "" : " -- all passed");
+    if (failed && src && *src)
+        printf("step %d: %d of %d checks passed in %.2f s -- %d failed: edit %s (the lines above say what each check "
+               "saw)\n", CW_STEP, run.passed, run.count, run.seconds, failed, src);
+    else
+        printf("step %d: %d of %d checks passed in %.2f s%s\n", CW_STEP, run.passed, run.count, run.seconds,
+               failed ? "" : " -- all passed");
     return failed ? 1 : 0;
 }

@@ -43,7 +43,9 @@ float cw_transmittance_estimate(float sigma_t, float distance, float u);
 /* ---- Step 3: the Henyey-Greenstein phase function (paper section 3.3, eq. 9-12) -----------
    cw_hg_phase:      eq. 9, per steradian, as a function of mu = cos(theta).
    cw_sample_hg_mu:  eq. 10-11, the inverse-CDF sample of mu for one uniform u (|g| < 1,
-                     including g = 0 exactly).
+                     including g = 0 exactly), in the paper's direction: mu rises with u,
+                     mu = -1 at u = 0 (texts that write mu falling in u, as PBRT-v3 does,
+                     sample the same distribution, but the checks hold you to this one).
    cw_sample_hg:     a full unit direction wi around the propagation direction d = -wo:
                      mu from u1 (eq. 11), the azimuth phi from u2 (eq. 12).                 */
 float cw_hg_phase(float g, float mu);
@@ -174,7 +176,9 @@ fogrt_vec3 cw_mis_radiance(const fogrt_scene *scene, fogrt_vec3 o, fogrt_vec3 d,
    approach to the ray's line is at t = delta, at distance h > 0. Sample t with density
    proportional to 1 / (h^2 + (t - delta)^2), which cancels the light's 1 / r^2 (the paper's
    section 5 asks for importance sampling in fog). Return t and store its pdf; the pdf
-   function gives the same density at any t (0 outside [a, b]).                            */
+   function gives the same density at any t (0 outside [a, b]). Convention: t rises with u
+   from t = a at u = 0 (the inverse CDF from the near end; sampling from b is the same
+   distribution, but the checks hold you to this one).                                      */
 float cw_sample_equiangular(float delta, float h, float a, float b, float u, float *pdf);
 float cw_equiangular_pdf(float delta, float h, float a, float b, float t);
 

@@ -7,7 +7,8 @@
    d, then wi = sin(theta) cos(phi) x + sin(theta) sin(phi) y + cos(theta) d).
 
    Check it:  make check-step STEP=3           (pictures in build/coursework/step3_*.png)
-   Rules: -1 < g < 1, g = 0 exactly included; u in [0, 1).                                */
+   Rules: -1 < g < 1, g = 0 exactly included; u in [0, 1); mu rises with u (mu = -1 at
+   u = 0), the direction in which the paper writes eq. 11.                                 */
 #include <math.h>
 #include "coursework.h"
 

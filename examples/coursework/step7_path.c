@@ -9,6 +9,13 @@
    13's weight; then Russian roulette. Without MIS here: emission found by a ray counts only
    when that ray is the camera ray.
 
+   Eq. 13, L_i = f_r g(w_i) cos(theta) / pdf: theta is the angle between the NEW direction
+   w_i (the sampled ray, which goes on to hit the next surface: the paper's "hitting ray" is
+   that ray of the recursive call) and the surface normal, as in eq. 3's cos(theta_i); not
+   the angle of the ray that arrived. For cosine-weighted diffuse sampling f cos / pdf is the
+   reflectance (fogrt_sample_bsdf's weight); after HG sampling in fog there is no cosine and
+   the weight is p_HG / pdf = 1.
+
    Check it:  make check-step STEP=7           (pictures in build/coursework/step7_*.png)  */
 #include <math.h>
 #include "coursework.h"

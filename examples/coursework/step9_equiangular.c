@@ -4,6 +4,8 @@
    sampling t uniformly in the angle the segment subtends at the light cancels it. The light
    is at distance h from the ray's line, closest at t = delta (coursework.h).
 
+   Convention: t = a at u = 0, rising with u (coursework.h).
+
    Check it:  make check-step STEP=9           (pictures in build/coursework/step9_*.png)  */
 #include <math.h>
 #include "coursework.h"
