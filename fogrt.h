@@ -1182,11 +1182,11 @@ FOGRT__PRIVATE fogrt_result fogrt__media_check(const fogrt_scene *s, fogrt_mediu
 FOGRT__PRIVATE bool fogrt__full_wanted(const fogrt_scene *s, const struct fogrt__settings *st);      /* 7 (E) */
 struct fogrt__walk; struct fogrt__path;
 FOGRT__PRIVATE fogrt_vec3 fogrt__full_radiance(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__walk *w);
-FOGRT__PRIVATE bool fogrt__full_next_event(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
+FOGRT__HOT bool fogrt__full_next_event(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P,
                                         int limit);                                              /* 7a */
-FOGRT__PRIVATE void fogrt__full_light_step(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
-FOGRT__PRIVATE bool fogrt__full_scatter(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
-FOGRT__PRIVATE float fogrt__full_roulette_q(const struct fogrt__settings *st, struct fogrt__path *P, float u);   /* 7d */
+FOGRT__HOT void fogrt__full_light_step(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
+FOGRT__HOT bool fogrt__full_scatter(const fogrt_scene *s, const struct fogrt__settings *st, struct fogrt__path *P);
+FOGRT__HOT float fogrt__full_roulette_q(const struct fogrt__settings *st, struct fogrt__path *P, float u);   /* 7d */
 FOGRT__PRIVATE void fogrt__full_samplers(const fogrt_scene *s, const struct fogrt__settings *st, char *buf, size_t size);
 FOGRT__PRIVATE void fogrt__say(char *buf, size_t size, bool yes, const char *name);
 #endif
@@ -6827,7 +6827,7 @@ FOGRT__PRIVATE fogrt__step fogrt__next_event_of(const fogrt_scene *s) {
 
 /* c. Light sampling at the scattering vertex (next-event estimation, 2.3); a mirror
    or glass vertex cannot be reached by a light sample and is skipped. */
-FOGRT__PRIVATE void fogrt__full_light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
+FOGRT__HOT void fogrt__full_light_step(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
 #ifdef FOGRT__LAMPS
     if (P->xs->glow) fogrt__glow_setup(s, P, &P->w.v, &P->glow, fogrt__is_scattering(P) && (P->w.v.is_medium || P->type == FOGRT_BSDF_DIFFUSE));
 #endif
@@ -6929,7 +6929,7 @@ FOGRT__PRIVATE bool fogrt__scatter_glow(const fogrt_scene *s, const fogrt__setti
 
 /* d. The new direction: Henyey-Greenstein in the fog (eq. 11-12, weight p / pdf = 1), the
    BSDF on a surface; near a lamp, the mixture of d'. */
-FOGRT__PRIVATE bool fogrt__full_scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
+FOGRT__HOT bool fogrt__full_scatter(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P) {
     P->w.prev_p = P->w.v.p;
     P->rr_scale = 1.0f;                                  /* (d' sets it for the roulette after it) */
 
@@ -6953,7 +6953,7 @@ FOGRT__PRIVATE bool fogrt__full_scatter(const fogrt_scene *s, const fogrt__setti
 /* e. Russian roulette after rr_depth bounces: continue with probability q, weight 1/q;
    q = min(0.95, k x throughput), k in [1, 4] chosen for the scene by its pilot (chapter
    15): the k that makes variance x time least. */
-FOGRT__PRIVATE float fogrt__full_roulette_q(const fogrt__settings *st, fogrt__path *P, float u) {
+FOGRT__HOT float fogrt__full_roulette_q(const fogrt__settings *st, fogrt__path *P, float u) {
     if (P->xs->rr_probe && !P->probed) {                 /* the pilot: the path's first roulette */
         P->probed = true;
         P->probe_lum = fogrt__luminance(P->w.L);
@@ -7164,7 +7164,7 @@ FOGRT__PRIVATE fogrt__v3 fogrt__full_radiance(const fogrt_scene *s, const fogrt_
     return fogrt__full_radiance_xs(s, st, &xs, w);
 }
 /* Seam 7a: the next event, by the steps chosen for the path (E's, G's or H's). */
-FOGRT__PRIVATE bool fogrt__full_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
+FOGRT__HOT bool fogrt__full_next_event(const fogrt_scene *s, const fogrt__settings *st, fogrt__path *P, int limit) {
     return P->next_event(s, st, P, limit);
 }
 
@@ -7309,11 +7309,14 @@ FOGRT__PRIVATE void fogrt__describe_sample(const fogrt_trace_event *e, char *buf
         snprintf(buf, size, "mixed direction (d'): u0 = %.4f -> %s; u1, u2 = (%.4f, %.4f); pdf = %.4g (phase/BSDF pdf %.4g); weight (%.4g, %.4g, %.4g); new d = (%.4f, %.4f, %.4f)",
                  (double)e->u[0], e->flag ? (e->source ? "the footprint of a lamp's cone on a plane" : "the glow of a lamp") : "the phase function / BSDF", (double)e->u[1], (double)e->u[2],
                  (double)e->pdf, (double)e->pdf_other, FOGRT__V3F(e->value), FOGRT__V3F(e->d)); break;
-    case FOGRT_TRACE_BSDF_SAMPLE:
-        snprintf(buf, size, "BSDF sample (%s): u = (%.4f, %.4f, %.4f) -> %s%s%.4g; pdf %.4g, weight (%.4g, %.4g, %.4g); new d = (%.4f, %.4f, %.4f)",
-                 fogrt__bsdf_name(e->bsdf), (double)e->u[0], (double)e->u[1], (double)e->u[2], lobes[e->lobe],
-                 e->bsdf == FOGRT_BSDF_GLASS ? ", Fresnel F = " : "", e->bsdf == FOGRT_BSDF_GLASS ? (double)e->fresnel : 0.0,
-                 (double)e->pdf, FOGRT__V3F(e->value), FOGRT__V3F(e->d)); break;
+    case FOGRT_TRACE_BSDF_SAMPLE: {
+        char fresnel[40] = "";                           /* glass only: the F it chose by */
+        if (e->bsdf == FOGRT_BSDF_GLASS) snprintf(fresnel, sizeof fresnel, ", Fresnel F = %.4g", (double)e->fresnel);
+        snprintf(buf, size, "BSDF sample (%s): u = (%.4f, %.4f, %.4f) -> %s%s; pdf %.4g, weight (%.4g, %.4g, %.4g); new d = (%.4f, %.4f, %.4f)",
+                 fogrt__bsdf_name(e->bsdf), (double)e->u[0], (double)e->u[1], (double)e->u[2], lobes[e->lobe], fresnel,
+                 (double)e->pdf, FOGRT__V3F(e->value), FOGRT__V3F(e->d));
+        break;
+    }
     default:
         snprintf(buf, size, "unknown event %d", (int)e->kind); break;
     }
