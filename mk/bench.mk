@@ -111,3 +111,9 @@ VS_ARGS ?=
 
 variance-sources: $(BUILD)/bench/variance_sources
 	./$(BUILD)/bench/variance_sources $(VS_ARGS)
+
+# CS184's CBspheres with two rough metals (appendix I) as CS184 writes them, clear and in fog
+# (tools/microfacet_demo.sh; build/microfacet/, about a minute).
+.PHONY: microfacet-demo
+microfacet-demo: $(BUILD)/fogrt
+	sh tools/microfacet_demo.sh $(BUILD)/fogrt $(SHARED)

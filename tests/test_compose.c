@@ -136,7 +136,7 @@ static fogrt_scene *spot_scene(bool smoke)
     add_quad_corners(s, v3(-2, 0, -2), v3(2, 0, -2), v3(2, 2.5f, -2), v3(-2, 2.5f, -2), grey);
     CHECK_OK(fogrt_scene_add_sphere(s, v3(0.0f, 0.6f, 0.0f), 0.45f, add_clear_material(s, FOGRT_BSDF_GLASS)));
     if (smoke) {
-        fogrt_medium_desc m = medium(4.0f, 0.9f, 0.3f);
+        fogrt_medium_desc m = medium(5.0f, 0.5f, 0.3f);
         CHECK_OK(fogrt_scene_set_interior(s, FOGRT_SHAPE_SPHERE, 0, &m));
     }
     fogrt_light_desc l;
